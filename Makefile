@@ -1,0 +1,45 @@
+# footprint: top-level driver. Every target first installs missing Debian packages (quietly).
+#   make        Release build with debug info into build/ (build/footprint, build/footprint-bench)
+#   make demo   ... then runs the demo on the built-in image (writes out/)
+#   make test   ... then runs the unit tests, in Release and under ASan+UBSan (build-asan/)
+#   make bench  ... then runs the texture benchmark (writes bench-out/texture.json)
+#   make format clang-formats the sources
+JOBS ?= $(shell nproc)
+CMAKE_FLAGS ?=
+
+.PHONY: all deps build build-asan demo test test-release test-asan bench format clean
+
+all: build
+
+deps:
+	@scripts/install-deps.sh
+
+build: deps
+	@cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS) >/dev/null
+	@cmake --build build -j $(JOBS)
+
+build-asan: deps
+	@cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DFOOTPRINT_SANITIZE=ON \
+	    -DFOOTPRINT_TESTS_ONLY=ON $(CMAKE_FLAGS) >/dev/null
+	@cmake --build build-asan -j $(JOBS) --target footprint-tests
+
+demo: build
+	./build/footprint demo --out out
+
+test-release: build
+	cd build && ctest --output-on-failure -j $(JOBS)
+
+test-asan: build-asan
+	cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+	    ctest --output-on-failure -j $(JOBS)
+
+test: test-release test-asan
+
+bench: build
+	./build/footprint-bench texture --json bench-out/texture.json
+
+format:
+	clang-format -i $$(git ls-files '*.h' '*.cpp')
+
+clean:
+	rm -rf build build-asan

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs the Debian packages footprint builds and tests with; silent when all are present.
+# Idempotent: called by every `make` target. Needs root (or sudo) only when something is missing.
+set -euo pipefail
+
+packages=(
+    build-essential cmake ninja-build clang-format pkg-config
+    libopenimageio-dev openimageio-tools libopencv-core-dev   # image I/O + benchmark peer
+    libtbb-dev                                                # parallelism
+    libembree-dev libtinyobjloader-dev libtinygltf-dev libstb-dev
+    nlohmann-json3-dev libcli11-dev
+    libgtest-dev libgmock-dev libbenchmark-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+        missing+=("$p")
+    fi
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "install-deps: installing ${missing[*]}" >&2
+sudo=""
+[ "$(id -u)" -ne 0 ] && sudo="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

@@ -1,0 +1,44 @@
+// texture/footprint_assembly.h — probe placement for footprint assembly (spec §2.8).
+//
+// Footprint assembly [S97a §5; the lecture notes] approximates the anisotropic footprint ellipse
+// (semi-axes λ1 ≥ λ2, major direction r1, in level-0 texels) by N isotropic trilinear probes on a
+// line through the centre along r1, each weighted 1/N. All rules place the probes evenly and
+// symmetrically: o_i = (i − (N−1)/2)·step, i = 0..N−1.
+//
+// Rule B (ProbeRule::moment_matched, the default; spec §2.8). T_min = 1 level-0 texel:
+//     T_p = max(λ2, T_min)
+//     λ1 ≤ T_p:  N = 1
+//     else:      N = ⌈√(3(λ1/T_p)² − 2)⌉                 smallest N with spacing ≤ T_p (no gaps)
+//                N > N_max:  N = N_max,  T_p = max(T_p, λ1·√(3/(N_max² + 2)))  (raises the lod)
+//                Δ = √(3(λ1² − T_p²)/(N² − 1))            spacing, Δ ≤ T_p
+//     lod = clamp(log2 T_p, 0, L_max)
+//   Kernel covariance ¼(λ1² r1r1ᵀ + max(λ2, T_p)² r2r2ᵀ) = K/4 unless clamped ([FAB] in check.py).
+// Rule A (ProbeRule::ext; EXT_texture_filter_anisotropic on the ellipse axes):
+//     N = min(⌈λ1/max(λ2, ε)⌉, N_max),  lod = log2(λ1/N),  o_i = (i/(N+1) − ½)·λ1 r1 (i = 1..N)
+//   It integrates about one pixel step along r1 (σ_major → λ1/√12 instead of λ1/2).
+// Texram (ProbeRule::texram): N a power of two ≤ N_max, o_i = ((i − ½)/N − ½)·λ1 r1, lod =
+// log2(λ1/N).
+#pragma once
+
+#include "math/footprint_ellipse.h"
+#include "texture/texture_lookup.h"
+
+namespace footprint {
+
+struct ProbePlan {
+    int count = 1;         // N
+    Vec2 step;             // level-0 texels between neighbouring probes (along r1)
+    float lod = 0;         // level of every probe, in [0, max_level]
+    float texel_size = 1;  // T_p before the lod was clamped to the pyramid
+
+    Vec2 offset(int i) const {
+        return (static_cast<float>(i) - 0.5f * static_cast<float>(count - 1)) * step;
+    }
+};
+
+// The probes for a footprint ellipse (finite, λ1 ≥ λ2 ≥ 0). max_probes ≥ 1; max_level = the
+// pyramid's coarsest level. lod_bias is added before clamping.
+ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max_probes,
+                      int max_level, float lod_bias = 0);
+
+}  // namespace footprint

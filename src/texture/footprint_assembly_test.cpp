@@ -1,0 +1,156 @@
+#include "texture/footprint_assembly.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "texture/kernel_moments.h"
+
+namespace footprint {
+namespace {
+
+// check.py's tolerance for Rule B's kernel covariance ([FAB]: relative Frobenius error < 3 %). The
+// residual comes from averaging the bilinear phase over a finite 8×8 grid and from the box
+// pyramid's discrete taps; a wrong axis (r2 for r1), a transposed K or Rule A's spacing all miss by
+// more than 30 %.
+constexpr double kKernelCovarianceTolerance = 0.03;
+// The kernel mean must sit on the lookup centre: probes are placed symmetrically (float rounding of
+// offsets up to ~1000 texels).
+constexpr double kKernelMeanTolerance = 2e-3;
+
+FootprintEllipse random_footprint(std::mt19937& rng, float min_size, float max_size,
+                                  float max_aniso) {
+    std::uniform_real_distribution<float> u(0, 1);
+    const float major = min_size * std::pow(max_size / min_size, u(rng));
+    const float aniso = std::pow(max_aniso, u(rng));
+    const float angle = u(rng) * float(M_PI);
+    return make_footprint_ellipse(major, major / aniso, angle);
+}
+
+// Phase-averaged kernel moments of footprint assembly for one footprint: the bilinear weights of a
+// probe depend on where it falls inside a texel, so (like check.py) average over a 16×16 grid of
+// centre offsets spanning one texel of the coarser level the probes read.
+KernelMoments averaged_fa_moments(const MomentPyramids& moments, const FootprintEllipse& e,
+                                  const LookupOptions& options, float* mean_error) {
+    const ProbePlan plan =
+        plan_probes(e, options.probe_rule, options.max_probes, moments.first().max_level());
+    const float period = std::exp2(std::floor(plan.lod) + 1);
+    KernelMoments avg{};
+    *mean_error = 0;
+    constexpr int kPhases = 16;  // 8 phases per texel of the finer level
+    for (int i = 0; i < kPhases * kPhases; ++i) {
+        const float ox = period * ((i % kPhases) + 0.5f) / kPhases,
+                    oy = period * ((i / kPhases) + 0.5f) / kPhases;
+        const KernelMoments m =
+            moments.measure(ox, oy, [&](const MipPyramid& p, float s, float t, float* out) {
+                texture_lookup(p, s, t, e, options, out);
+            });
+        *mean_error = std::max({*mean_error, std::fabs(m.mean.x - ox), std::fabs(m.mean.y - oy)});
+        avg.covariance = avg.covariance + (1.0f / (kPhases * kPhases)) * m.covariance;
+    }
+    return avg;
+}
+
+const MomentPyramids& moment_pyramids() {
+    static const MomentPyramids pyramids(2048);
+    return pyramids;
+}
+
+TEST(FootprintAssembly, RuleBPlansMatchTheSpecExamples) {
+    // The four [FAB] cases of check.py (N_max = 16).
+    struct Case {
+        float l1, l2;
+        int n;
+        float texel_size;
+    };
+    for (const Case c : {Case{14.8f, 4, 7, 4}, Case{4 * std::sqrt(258.0f / 3), 2, 16, 4},
+                         Case{9, 8, 2, 8}, Case{7, 0.6f, 13, 1}}) {
+        const ProbePlan plan = plan_probes(make_footprint_ellipse(c.l1, c.l2, 0.3f),
+                                           ProbeRule::moment_matched, 16, 12);
+        EXPECT_EQ(plan.count, c.n) << c.l1 << "," << c.l2;
+        EXPECT_NEAR(plan.texel_size, c.texel_size, 1e-3f) << c.l1 << "," << c.l2;
+        EXPECT_NEAR(plan.lod, std::log2(c.texel_size), 1e-4f);
+        // Spacing never exceeds the probe size: no gaps between probes.
+        EXPECT_LE(length(plan.step), plan.texel_size * (1 + 1e-5f));
+    }
+}
+
+TEST(FootprintAssembly, RuleAAndTexramPlans) {
+    const FootprintEllipse e = make_footprint_ellipse(32, 2, 0);
+    const ProbePlan a = plan_probes(e, ProbeRule::ext, 16, 12);
+    EXPECT_EQ(a.count, 16);
+    EXPECT_NEAR(a.lod, 1.0f, 1e-6f);           // log2(λ1/N) = log2(2)
+    EXPECT_NEAR(a.step.x, 32.0f / 17, 1e-5f);  // o_i = (i/(N+1) − ½)·λ1 r1
+    const ProbePlan t = plan_probes(make_footprint_ellipse(32, 3, 0), ProbeRule::texram, 16, 12);
+    EXPECT_EQ(t.count, 8);               // ⌈32/3⌉ = 11 → power of two 8
+    EXPECT_NEAR(t.step.x, 4.0f, 1e-6f);  // λ1/N
+    EXPECT_NEAR(t.offset(0).x, (0.5f / 8 - 0.5f) * 32, 1e-5f);
+}
+
+TEST(FootprintAssembly, KernelCovarianceIsQuarterK) {
+    // Hundreds of random footprints: all orientations, anisotropy 1–64, major semi-axis 0.1–500
+    // texels, with a probe budget that never clamps (⌈√(3·64²)⌉ = 111 probes).
+    const MomentPyramids& moments = moment_pyramids();
+    LookupOptions options;
+    options.max_probes = 128;
+    std::mt19937 rng(2024);
+    for (int i = 0; i < 300; ++i) {
+        const FootprintEllipse e = random_footprint(rng, 0.1f, 500, 64);
+        float mean_error = 0;
+        const KernelMoments m = averaged_fa_moments(moments, e, options, &mean_error);
+        // Magnification (λ < T_min = 1) reads level 0 with one-texel probes: K_eff uses max(λ, 1).
+        const float major = std::max(e.major_radius, 1.0f), minor = std::max(e.minor_radius, 1.0f);
+        const Sym2 expected =
+            0.25f *
+            make_footprint_ellipse(major, minor, std::atan2(e.major_axis.y, e.major_axis.x)).matrix;
+        EXPECT_LT(relative_error(m.covariance, expected), kKernelCovarianceTolerance)
+            << "footprint " << i << ": λ = (" << e.major_radius << ", " << e.minor_radius << ")";
+        EXPECT_LT(mean_error, kKernelMeanTolerance * std::max(1.0f, e.major_radius))
+            << "footprint " << i;
+    }
+}
+
+TEST(FootprintAssembly, ClampedProbeBudgetRaisesTheMinorAxisOnly) {
+    // With N_max = 16 the spec's kernel is ¼(λ1² r1r1ᵀ + max(λ2, T_p)² r2r2ᵀ): the major axis keeps
+    // its full length, the minor one grows to the raised probe size T_p.
+    const MomentPyramids& moments = moment_pyramids();
+    LookupOptions options;  // max_probes = 16 (default)
+    std::mt19937 rng(99);
+    for (int i = 0; i < 100; ++i) {
+        const FootprintEllipse e = random_footprint(rng, 8, 400, 64);
+        const ProbePlan plan =
+            plan_probes(e, options.probe_rule, options.max_probes, moments.first().max_level());
+        float mean_error = 0;
+        const KernelMoments m = averaged_fa_moments(moments, e, options, &mean_error);
+        const float minor = std::max(e.minor_radius, plan.texel_size);
+        const float major = std::max(e.major_radius, plan.texel_size);
+        const Sym2 expected =
+            0.25f *
+            make_footprint_ellipse(major, minor, std::atan2(e.major_axis.y, e.major_axis.x)).matrix;
+        EXPECT_LT(relative_error(m.covariance, expected), kKernelCovarianceTolerance)
+            << "footprint " << i << ": λ = (" << e.major_radius << ", " << e.minor_radius
+            << "), N = " << plan.count;
+    }
+}
+
+TEST(FootprintAssembly, RuleAIntegratesOnePixelStep) {
+    // Spec §2.8: Rule A's kernel along r1 is about a one-pixel-step box, σ²_major → λ1²/12 + T²/4
+    // ([FAX]: λ = (32, 2) gives σ_major = 8.7 instead of Rule B's 16).
+    const MomentPyramids& moments = moment_pyramids();
+    LookupOptions options;
+    options.probe_rule = ProbeRule::ext;
+    const FootprintEllipse e = make_footprint_ellipse(32, 2, 0.4f);
+    float mean_error = 0;
+    const KernelMoments m = averaged_fa_moments(moments, e, options, &mean_error);
+    const float sigma_major = std::sqrt(m.covariance.quadratic_form(e.major_axis));
+    const int n = 16;
+    const float t = 2;
+    const float predicted =
+        std::sqrt(t * t / 4 + 32.0f * 32 * (n - 1) / (12.0f * (n + 1)));  // check.py [FAX]
+    EXPECT_NEAR(sigma_major, predicted, 0.03f * predicted);
+    EXPECT_NEAR(predicted, 8.73f, 0.01f);
+}
+
+}  // namespace
+}  // namespace footprint

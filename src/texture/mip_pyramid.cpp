@@ -1,0 +1,260 @@
+#include "texture/mip_pyramid.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "texture/summed_area_table.h"
+
+namespace footprint {
+
+namespace {
+
+// One source texel's weight in a destination texel.
+struct Tap {
+    int index;
+    float weight;
+};
+
+// The taps of every destination texel along one axis (compressed rows: taps[first[i]..first[i+1])).
+struct AxisTaps {
+    std::vector<int> first;
+    std::vector<Tap> taps;
+};
+
+// Cumulative distribution of the downsampling kernel, in destination-texel units: box = B-spline of
+// order 0 (support ±½), tent = B-spline of order 1 (support ±1).
+double kernel_cdf(DownsampleFilter filter, double u) {
+    switch (filter) {
+        case DownsampleFilter::box:
+            return std::clamp(u + 0.5, 0.0, 1.0);
+        case DownsampleFilter::tent:
+            if (u <= -1) return 0;
+            if (u >= 1) return 1;
+            return u <= 0 ? 0.5 * (u + 1) * (u + 1) : 1 - 0.5 * (1 - u) * (1 - u);
+    }
+    return 0;
+}
+
+double kernel_radius(DownsampleFilter filter) {
+    return filter == DownsampleFilter::box ? 0.5 : 1.0;
+}
+
+// Exact integral of the kernel over each source texel [j, j+1), for destination texel centres at
+// (i + ½)·r in source units. Source indices outside [0, src) wrap with the pyramid's wrap mode.
+AxisTaps make_axis_taps(int src, int dst, DownsampleFilter filter, WrapMode wrap) {
+    AxisTaps axis;
+    const double r = static_cast<double>(src) / dst;
+    const double radius = kernel_radius(filter) * r;
+    axis.first.reserve(dst + 1);
+    for (int i = 0; i < dst; ++i) {
+        axis.first.push_back(static_cast<int>(axis.taps.size()));
+        const double centre = (i + 0.5) * r;
+        const int j0 = static_cast<int>(std::floor(centre - radius));
+        const int j1 = static_cast<int>(std::ceil(centre + radius));
+        double sum = 0;
+        const std::size_t begin = axis.taps.size();
+        for (int j = j0; j < j1; ++j) {
+            const double w =
+                kernel_cdf(filter, (j + 1 - centre) / r) - kernel_cdf(filter, (j - centre) / r);
+            if (w <= 1e-12) continue;
+            axis.taps.push_back({wrap_index(j, src, wrap), static_cast<float>(w)});
+            sum += w;
+        }
+        // The weights are a partition of unity analytically; renormalise away the rounding.
+        for (std::size_t k = begin; k < axis.taps.size(); ++k)
+            axis.taps[k].weight = static_cast<float>(axis.taps[k].weight / sum);
+    }
+    axis.first.push_back(static_cast<int>(axis.taps.size()));
+    return axis;
+}
+
+// Variance of one destination texel's taps about its centre, in source texels² (the variance the
+// downsampling step adds; for the box with r = 2 it is ¼, for the tent ¾).
+double tap_variance(int src, int dst, DownsampleFilter filter) {
+    if (src == dst) return 0;
+    const AxisTaps axis = make_axis_taps(src, dst, filter, WrapMode::repeat);
+    const int i = dst / 2;  // an interior texel (wrap cannot fold taps onto each other there)
+    const double centre = (i + 0.5) * src / dst - 0.5;  // in source texel-centre coordinates
+    double var = 0;
+    for (int k = axis.first[i]; k < axis.first[i + 1]; ++k) {
+        const double d = axis.taps[k].index - centre;
+        var += axis.taps[k].weight * d * d;
+    }
+    return var;
+}
+
+// Separable downsampling of a row-major (width × height × stride) buffer.
+std::vector<float> downsample(const std::vector<float>& src, int sw, int sh, int dw, int dh,
+                              int stride, const MipPyramidOptions& options) {
+    const AxisTaps xt = make_axis_taps(sw, dw, options.downsample, options.wrap_s);
+    const AxisTaps yt = make_axis_taps(sh, dh, options.downsample, options.wrap_t);
+
+    // Horizontal pass: sw × sh → dw × sh.
+    std::vector<float> mid(static_cast<std::size_t>(dw) * sh * stride);
+    tbb::parallel_for(tbb::blocked_range<int>(0, sh, 16), [&](const tbb::blocked_range<int>& rows) {
+        float acc[MipPyramid::kMaxChannels];
+        for (int y = rows.begin(); y < rows.end(); ++y) {
+            const float* in = src.data() + static_cast<std::size_t>(y) * sw * stride;
+            float* out = mid.data() + static_cast<std::size_t>(y) * dw * stride;
+            for (int x = 0; x < dw; ++x) {
+                std::fill(acc, acc + stride, 0.0f);
+                for (int k = xt.first[x]; k < xt.first[x + 1]; ++k) {
+                    const float* t = in + static_cast<std::size_t>(xt.taps[k].index) * stride;
+                    for (int c = 0; c < stride; ++c) acc[c] += xt.taps[k].weight * t[c];
+                }
+                std::copy(acc, acc + stride, out + static_cast<std::size_t>(x) * stride);
+            }
+        }
+    });
+
+    // Vertical pass: dw × sh → dw × dh, whole rows at a time (streams through memory).
+    std::vector<float> dst(static_cast<std::size_t>(dw) * dh * stride, 0.0f);
+    const std::size_t row_floats = static_cast<std::size_t>(dw) * stride;
+    tbb::parallel_for(tbb::blocked_range<int>(0, dh, 4), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y < rows.end(); ++y) {
+            float* out = dst.data() + y * row_floats;
+            for (int k = yt.first[y]; k < yt.first[y + 1]; ++k) {
+                const float w = yt.taps[k].weight;
+                const float* in =
+                    mid.data() + static_cast<std::size_t>(yt.taps[k].index) * row_floats;
+                for (std::size_t i = 0; i < row_floats; ++i) out[i] += w * in[i];
+            }
+        }
+    });
+    return dst;
+}
+
+// The image's texels row-major with each texel padded from `channels` to `stride` floats.
+std::vector<float> padded_to_stride(const Image& image, int stride) {
+    std::vector<float> padded(image.pixel_count() * stride, 0.0f);
+    for (std::size_t i = 0; i < image.pixel_count(); ++i)
+        std::copy_n(&image.pixels[i * image.channels], image.channels, &padded[i * stride]);
+    return padded;
+}
+
+}  // namespace
+
+MipPyramid::MipPyramid() = default;
+MipPyramid::~MipPyramid() = default;
+MipPyramid::MipPyramid(MipPyramid&&) noexcept = default;
+MipPyramid& MipPyramid::operator=(MipPyramid&&) noexcept = default;
+
+void MipPyramid::allocate(int width, int height, int channels, const MipPyramidOptions& options) {
+    options_ = options;
+    channels_ = channels;
+    stride_ = texel_stride(channels);
+    tile_log2_ = options.tile_log2;
+    // Level geometry (spec §1) and one allocation for all levels, each padded to whole tiles.
+    const int tile = 1 << tile_log2_;
+    std::size_t total = 0;
+    levels_.clear();
+    for (int w = width, h = height;; w = std::max(1, w / 2), h = std::max(1, h / 2)) {
+        Level l;
+        l.width = w;
+        l.height = h;
+        l.tiles_x = (w + tile - 1) / tile;
+        const int tiles_y = (h + tile - 1) / tile;
+        l.offset = total;
+        total += static_cast<std::size_t>(l.tiles_x) * tiles_y * tile * tile * stride_;
+        levels_.push_back(l);
+        if (w == 1 && h == 1) break;
+    }
+    storage_.assign(total, 0.0f);
+}
+
+MipPyramid MipPyramid::build(const Image& level0, const MipPyramidOptions& options) {
+    assert(!level0.empty() && level0.channels >= 1 && level0.channels <= kMaxChannels);
+    assert(options.tile_log2 >= 0 && options.tile_log2 <= 6);
+    MipPyramid p;
+    p.allocate(level0.width, level0.height, level0.channels, options);
+
+    std::vector<float> current = padded_to_stride(level0, p.stride_);
+    p.store_level(0, current);
+
+    for (int l = 1; l < p.level_count(); ++l) {
+        current = downsample(current, p.width(l - 1), p.height(l - 1), p.width(l), p.height(l),
+                             p.stride_, options);
+        p.store_level(l, current);
+        // Variances add through the chain; a step's variance in level-0 units scales with the
+        // source level's texel size squared.
+        const double tx = double(level0.width) / p.width(l - 1),
+                     ty = double(level0.height) / p.height(l - 1);
+        const Vec2 before = p.levels_[l - 1].prefilter_variance;
+        p.levels_[l].prefilter_variance = {
+            float(before.x +
+                  tx * tx * tap_variance(p.width(l - 1), p.width(l), options.downsample)),
+            float(before.y +
+                  ty * ty * tap_variance(p.height(l - 1), p.height(l), options.downsample))};
+    }
+
+    if (options.summed_area_table)
+        p.sat_ = std::make_unique<SummedAreaTable>(
+            SummedAreaTable::build(level0, options.wrap_s, options.wrap_t));
+    return p;
+}
+
+Result<MipPyramid> MipPyramid::from_levels(const std::vector<Image>& levels,
+                                           const MipPyramidOptions& options) {
+    if (levels.empty() || levels[0].empty()) return Error{"MIP chain: level 0 is empty"};
+    const Image& base = levels[0];
+    if (base.channels < 1 || base.channels > kMaxChannels)
+        return Error{"MIP chain: " + std::to_string(base.channels) +
+                     " channels (1 to 8 supported)"};
+    MipPyramid p;
+    p.allocate(base.width, base.height, base.channels, options);
+    if (levels.size() != p.levels_.size())
+        return Error{"MIP chain: " + std::to_string(levels.size()) + " levels given, a " +
+                     std::to_string(base.width) + "x" + std::to_string(base.height) +
+                     " texture needs " + std::to_string(p.levels_.size())};
+    for (int l = 0; l < p.level_count(); ++l) {
+        const Image& image = levels[l];
+        if (image.width != p.width(l) || image.height != p.height(l) ||
+            image.channels != base.channels ||
+            image.pixels.size() != image.pixel_count() * image.channels)
+            return Error{"MIP chain: level " + std::to_string(l) + " is " +
+                         std::to_string(image.width) + "x" + std::to_string(image.height) + "x" +
+                         std::to_string(image.channels) + ", expected " +
+                         std::to_string(p.width(l)) + "x" + std::to_string(p.height(l)) + "x" +
+                         std::to_string(base.channels)};
+        p.store_level(l, image);
+        const float t = float(base.width) / float(p.width(l));
+        p.levels_[l].prefilter_variance = {(t * t - 1) / 12, (t * t - 1) / 12};
+    }
+    if (options.summed_area_table)
+        p.sat_ = std::make_unique<SummedAreaTable>(
+            SummedAreaTable::build(base, options.wrap_s, options.wrap_t));
+    return p;
+}
+
+void MipPyramid::store_level(int level, const std::vector<float>& row_major) {
+    const Level& l = levels_[level];
+    if (tile_log2_ == 0) {
+        std::copy(row_major.begin(), row_major.end(), storage_.begin() + l.offset);
+        return;
+    }
+    tbb::parallel_for(0, l.height, [&](int y) {
+        for (int x = 0; x < l.width; ++x) {
+            const float* src = &row_major[(static_cast<std::size_t>(y) * l.width + x) * stride_];
+            std::copy_n(src, stride_, storage_.data() + (texel(level, x, y) - storage_.data()));
+        }
+    });
+}
+
+void MipPyramid::store_level(int level, const Image& image) {
+    store_level(level, padded_to_stride(image, stride_));
+}
+
+Image MipPyramid::level_image(int level) const {
+    Image image(width(level), height(level), channels_);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            std::copy_n(texel(level, x, y), channels_, image.at(x, y));
+    return image;
+}
+
+}  // namespace footprint

@@ -1,0 +1,140 @@
+// texture/mip_pyramid.h — MIP pyramids of any size and channel count, stored for fast lookups.
+//
+// Level sizes follow spec §1: W_l = max(1, ⌊W_0/2^l⌋), H_l likewise, down to 1×1. Non-power-of-two
+// and odd sizes are handled exactly: texel i of level l covers the level-(l−1) interval
+// [i·r, (i+1)·r) with r = W_{l−1}/W_l (r = 2.5 for 5 → 2), so the levels stay aligned in (s, t).
+//
+// Downsampling filters (DownsampleFilter):
+//   box   the papers' 2×2 box (for odd sizes its exact generalisation: the mean over the
+//         covered interval, with fractional weights for partly covered texels). Each level then
+//         holds the plain average of the level-0 texels it covers, which is what footprint
+//         assembly's kernel-covariance rule (spec §2.6, (T²/4 − 1/12)·I per probe) assumes and
+//         what the bump pyramid's moment recursion (spec §5.3) needs.
+//   tent  the linear B-spline (support ±1 output texel) integrated exactly over the source
+//         texels. Chosen as the higher-quality filter because its frequency response is sinc²:
+//         side lobes at −26 dB instead of the box's −13 dB, so far less aliasing leaks into
+//         coarse levels, while the kernel stays short (4 taps per axis for r = 2), positive (no
+//         ringing on HDR data, unlike Lanczos) and — being a B-spline — a partition of unity,
+//         so with repeat wrap every level keeps the image mean exactly for any size. The price
+//         is more blur: each tent level adds r²/6 instead of the box's r²/12 of variance.
+// Both filters keep the mean of every level equal to the image mean under repeat wrap.
+//
+// Memory layout (TexelLayout): each level is stored in square tiles of 2^k × 2^k texels, tiles
+// row-major, texels row-major inside a tile, channels interleaved and padded to a stride of
+// 1, 2, 4 or 8 floats (RGB is stored as RGBA-aligned 16-byte texels). tile_log2 = 0 is the plain
+// row-major layout. All levels live in one allocation, level-major. The default was chosen by
+// `footprint-bench layout` (see README "Performance").
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "core/result.h"
+#include "image/image.h"
+#include "math/vec.h"
+#include "texture/wrap.h"
+
+namespace footprint {
+
+class SummedAreaTable;
+
+enum class DownsampleFilter { box, tent };
+
+struct MipPyramidOptions {
+    WrapMode wrap_s = WrapMode::repeat;
+    WrapMode wrap_t = WrapMode::repeat;
+    DownsampleFilter downsample = DownsampleFilter::box;
+    int tile_log2 = 2;               // texel tiles of 2^k × 2^k; 0 = row-major (see header text)
+    bool summed_area_table = false;  // also build a SAT of level 0 (TextureFilter::summed_area)
+};
+
+class MipPyramid {
+  public:
+    static constexpr int kMaxChannels = 8;
+
+    MipPyramid();
+    ~MipPyramid();
+    MipPyramid(MipPyramid&&) noexcept;
+    MipPyramid& operator=(MipPyramid&&) noexcept;
+
+    // Builds every level from a level-0 image of any size ≥ 1×1 with 1..kMaxChannels channels
+    // (asserts on an empty image or a bad channel count: validate user images before).
+    // Runs on oneTBB's task arena; a 4096² RGBA float pyramid takes well under a second on 2 cores.
+    static MipPyramid build(const Image& level0, const MipPyramidOptions& options = {});
+
+    // A pyramid from ready-made levels (a MIP chain from a file, or a test's coloured levels).
+    // levels[l] must be max(1, ⌊W0/2^l⌋) × max(1, ⌊H0/2^l⌋) down to 1×1, all with one channel
+    // count; returns an Error naming the first level that is not. prefilter_variance() assumes the
+    // box.
+    static Result<MipPyramid> from_levels(const std::vector<Image>& levels,
+                                          const MipPyramidOptions& options = {});
+
+    int channels() const { return channels_; }
+    int stride() const { return stride_; }  // floats per stored texel (≥ channels)
+    int level_count() const { return static_cast<int>(levels_.size()); }
+    int max_level() const { return level_count() - 1; }
+    int width(int level) const { return levels_[level].width; }
+    int height(int level) const { return levels_[level].height; }
+    WrapMode wrap_s() const { return options_.wrap_s; }
+    WrapMode wrap_t() const { return options_.wrap_t; }
+    const MipPyramidOptions& options() const { return options_; }
+    bool empty() const { return levels_.empty(); }
+
+    // Read access to one level: texel(x, y) is `stride()` floats, the first `channels()`
+    // meaningful; x ∈ [0, width), y ∈ [0, height).
+    struct LevelView {
+        const float* base;
+        int width, height;
+        int tiles_x, tile_log2, stride;
+        const float* texel(int x, int y) const {
+            const int m = (1 << tile_log2) - 1;
+            const std::size_t tile =
+                static_cast<std::size_t>(y >> tile_log2) * tiles_x + (x >> tile_log2);
+            const std::size_t inside = (static_cast<std::size_t>(y & m) << tile_log2) + (x & m);
+            return base + ((tile << (2 * tile_log2)) + inside) * stride;
+        }
+    };
+    LevelView level(int l) const {
+        const Level& v = levels_[l];
+        return {storage_.data() + v.offset, v.width, v.height, v.tiles_x, tile_log2_, stride_};
+    }
+    const float* texel(int l, int x, int y) const { return level(l).texel(x, y); }
+
+    // Per-axis variance (level-0 texels², about level-0 texel centres) of the downsampling kernel
+    // that made level l from level 0: (T²−1)/12 for the box pyramid with texel size T. EWA
+    // subtracts it so that its kernel covariance is K/4 on any level (ewa.h).
+    Vec2 prefilter_variance(int l) const { return levels_[l].prefilter_variance; }
+
+    // A copy of one level as a plain image (for inspection, tests and the demo).
+    Image level_image(int level) const;
+
+    // The summed-area table of level 0, or nullptr unless options.summed_area_table was set.
+    const SummedAreaTable* summed_area_table() const { return sat_.get(); }
+
+  private:
+    struct Level {
+        int width = 0, height = 0;
+        int tiles_x = 0;
+        std::size_t offset = 0;  // in floats
+        Vec2 prefilter_variance;
+    };
+    void allocate(int width, int height, int channels, const MipPyramidOptions& options);
+    void store_level(int level, const std::vector<float>& row_major);
+    void store_level(int level, const Image& image);
+
+    MipPyramidOptions options_;
+    int channels_ = 0;
+    int stride_ = 0;
+    int tile_log2_ = 0;
+    std::vector<Level> levels_;
+    std::vector<float> storage_;
+    std::unique_ptr<SummedAreaTable> sat_;
+};
+
+// The number of stored floats per texel for a channel count: 1, 2, 4 or 8.
+constexpr int texel_stride(int channels) {
+    return channels <= 1 ? 1 : channels == 2 ? 2 : channels <= 4 ? 4 : 8;
+}
+
+}  // namespace footprint

@@ -1,0 +1,92 @@
+// texture/texture_lookup.h — filtered texture lookups: one call, every filter.
+//
+// Conventions (spec §1):
+//   (s, t)                 normalised coordinates; s grows with the column, t with the row
+//                          (t = 0 is the top row of the image). At level l the texel coordinate
+//                          is X = s·W_l − ½: texel i has its centre at X = i.
+//   ∂s/∂x, ∂t/∂x, ∂s/∂y, ∂t/∂y
+//                          derivatives of (s, t) per pixel step in x and in y, in normalised
+//                          units (like OpenImageIO's dsdx…dtdy). Zero derivatives mean "no
+//                          antialiasing": a point (bilinear) sample.
+//   footprint              D = S·∂(s,t)/∂(x,y), S = diag(W_0, H_0), in level-0 texels per pixel;
+//                          K = D Dᵀ (math/footprint_ellipse.h). Filters that honour K have a
+//                          kernel covariance of K/4 (spec §2.6: a σ = ½-pixel Gaussian pixel
+//                          filter).
+//
+// Filters (TextureFilter):
+//   nearest             the nearest level-0 texel (the aliased baseline)
+//   bilinear            bilinear at level 0 (no MIP)
+//   trilinear           isotropic MIP (GL rule: ρ = max(|∂X/∂x|, |∂X/∂y|), lod = log2 ρ, linear
+//                       blend between the two nearest levels) — the 1997 hardware baseline
+//   footprint_assembly  several trilinear probes along the major axis r1 of the footprint ellipse
+//                       [S97a §5, lecture notes]; probe count, spacing and level by spec §2.8:
+//                       Rule B (moment-matched, kernel covariance K/4) by default, Rule A (EXT) and
+//                       Texram's power-of-two rule as options, at most max_probes probes
+//   ewa                 elliptical weighted average (Heckbert 1989; as in pbrt-v4): a Gaussian of
+//                       covariance K/4 summed over the texels of the level chosen from the minor
+//                       axis, blended between two levels; anisotropy clamped to max_anisotropy by
+//                       growing the minor axis. The high-quality reference filter.
+//   summed_area         box mean over the footprint ellipse's bounding rectangle from a summed-area
+//                       table (needs MipPyramidOptions::summed_area_table)
+//
+// Robustness: non-finite or zero derivatives give a bilinear sample at level 0; a non-finite
+// position gives the coarsest level (the texture mean); footprints larger than the texture are read
+// from the coarsest levels. No input produces NaN from finite texels.
+#pragma once
+
+#include <optional>
+#include <string_view>
+
+#include "math/footprint_ellipse.h"
+#include "texture/mip_pyramid.h"
+
+namespace footprint {
+
+enum class TextureFilter { nearest, bilinear, trilinear, footprint_assembly, ewa, summed_area };
+
+// How footprint assembly places its probes (spec §2.8).
+enum class ProbeRule {
+    moment_matched,  // Rule B: kernel covariance K/4, no gaps between probes (default)
+    ext,             // Rule A: EXT_texture_filter_anisotropic's rule on the ellipse axes
+    texram,          // Texram: power-of-two probe counts, probes at ((i − ½)/N − ½)·λ1 r1
+};
+
+// How a probe between two MIP levels blends them.
+enum class LodBlend {
+    linear,  // GL: weight w = frac(lod); kernel variance 4^L(1+3w)/4, up to 12 % wide in σ
+    variance_matched,  // w' = (4^w − 1)/3 makes the blended variance 4^{L+w}/4 exactly (spec §2.8)
+};
+
+struct LookupOptions {
+    TextureFilter filter = TextureFilter::footprint_assembly;
+    ProbeRule probe_rule = ProbeRule::moment_matched;
+    int max_probes = 16;  // footprint assembly: N_max (≥ 1); more anisotropy raises the lod
+    LodBlend lod_blend = LodBlend::variance_matched;  // footprint assembly's probes
+    float max_anisotropy = 16;  // EWA: λ1/λ2 clamp (grows λ2), as pbrt-v4's maxAnisotropy
+    float lod_bias = 0;         // added to the level of trilinear, footprint assembly and EWA
+};
+
+// Where and how large a lookup is: position and derivatives in normalised units (see above).
+struct TextureCoords {
+    float s = 0, t = 0;
+    float dsdx = 0, dtdx = 0;
+    float dsdy = 0, dtdy = 0;
+};
+
+// Filters `pyramid` over the footprint of `coords`, writing pyramid.channels() floats to `out`.
+// Thread-safe: lookups only read the pyramid.
+void texture_lookup(const MipPyramid& pyramid, const TextureCoords& coords,
+                    const LookupOptions& options, float* out);
+
+// The same, with the footprint given directly as an ellipse in level-0 texels around (s, t).
+void texture_lookup(const MipPyramid& pyramid, float s, float t, const FootprintEllipse& footprint,
+                    const LookupOptions& options, float* out);
+
+// The footprint ellipse of a lookup: K = D Dᵀ with D = diag(W0, H0)·∂(s,t)/∂(x,y).
+FootprintEllipse footprint_of(const MipPyramid& pyramid, const TextureCoords& coords);
+
+std::optional<TextureFilter> parse_texture_filter(std::string_view name);
+const char* to_string(
+    TextureFilter filter);  // "nearest", "bilinear", "trilinear", "fa", "ewa", "sat"
+
+}  // namespace footprint

@@ -1,0 +1,242 @@
+#include "texture/texture_lookup.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "texture/ewa.h"
+
+namespace footprint {
+namespace {
+
+constexpr TextureFilter kAllFilters[] = {
+    TextureFilter::nearest,   TextureFilter::bilinear,
+    TextureFilter::trilinear, TextureFilter::footprint_assembly,
+    TextureFilter::ewa,       TextureFilter::summed_area};
+
+// A linear ramp is reproduced exactly by every filter whose kernel is symmetric about the centre;
+// what remains is float rounding of values up to ~10 and of offsets up to ~100 texels.
+constexpr float kRampTolerance = 2e-4f;
+// EWA sums a sampled Gaussian, whose centroid is off by its aliasing term ≤ 4πσ²e^{−2π²σ²} ≈ 4e−3
+// texel at its smallest σ (kEwaMinSigma); times the ramp's gradient (0.011 per texel) that is 5e−5.
+constexpr float kEwaRampTolerance = kRampTolerance + 4e-3f * 0.011f;
+// Values from pyramids of constant levels: blends of small integers in float.
+constexpr float kLevelTolerance = 1e-5f;
+
+Image ramp_image(int size) {
+    Image image(size, size, 1);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x)
+            image.at(x, y, 0) = 0.3f + 0.01f * float(x) + 0.005f * float(y);
+    return image;
+}
+
+TEST(TextureLookup, LinearRampIsReproducedAwayFromBorders) {
+    const int size = 512;
+    MipPyramidOptions po;
+    po.wrap_s = po.wrap_t = WrapMode::clamp;
+    const MipPyramid pyramid = MipPyramid::build(ramp_image(size), po);
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> u(0, 1);
+    for (TextureFilter filter : {TextureFilter::bilinear, TextureFilter::trilinear,
+                                 TextureFilter::footprint_assembly, TextureFilter::ewa}) {
+        LookupOptions options;
+        options.filter = filter;
+        for (int i = 0; i < 300; ++i) {
+            const float s = 0.3f + 0.4f * u(rng), t = 0.3f + 0.4f * u(rng);
+            const float major =
+                0.2f * std::pow(200.0f, u(rng));  // up to 40 texels: kernels stay inside
+            const FootprintEllipse e =
+                make_footprint_ellipse(major, major / std::pow(32.0f, u(rng)), u(rng) * 3.2f);
+            float got;
+            texture_lookup(pyramid, s, t, e, options, &got);
+            const float x = s * size - 0.5f, y = t * size - 0.5f;
+            const float want = 0.3f + 0.01f * x + 0.005f * y;
+            EXPECT_NEAR(got, want,
+                        filter == TextureFilter::ewa ? kEwaRampTolerance : kRampTolerance)
+                << to_string(filter) << " footprint " << i << " λ = " << e.major_radius << ","
+                << e.minor_radius;
+        }
+    }
+}
+
+// A pyramid whose level l holds the constant l: a lookup returns the level it read.
+MipPyramid level_index_pyramid(int size) {
+    std::vector<Image> levels;
+    for (int l = 0, w = size;; ++l, w = std::max(1, w / 2)) {
+        levels.emplace_back(w, w, 1, float(l));
+        if (w == 1) break;
+    }
+    return std::move(MipPyramid::from_levels(levels).value());
+}
+
+float lookup_value(const MipPyramid& p, const FootprintEllipse& e, const LookupOptions& options) {
+    float v;
+    texture_lookup(p, 0.37f, 0.61f, e, options, &v);
+    return v;
+}
+
+TEST(TextureLookup, LevelSelection) {
+    const MipPyramid p = level_index_pyramid(256);  // levels 0..8
+    LookupOptions tri, fa, ewa;
+    tri.filter = TextureFilter::trilinear;
+    ewa.filter = TextureFilter::ewa;
+    for (int k = 0; k <= 8; ++k) {
+        const FootprintEllipse iso =
+            make_footprint_ellipse(std::exp2(float(k)), std::exp2(float(k)), 0.2f);
+        EXPECT_NEAR(lookup_value(p, iso, tri), k, kLevelTolerance);
+        EXPECT_NEAR(lookup_value(p, iso, fa), k, kLevelTolerance);
+        // EWA reads one and a half levels finer than the minor axis (ewa.h).
+        EXPECT_NEAR(lookup_value(p, iso, ewa), std::max(0.0f, k - 1.5f), kLevelTolerance) << k;
+    }
+    // Half-way between levels 3 and 4: GL blends linearly, Rule B by variance ((4^w − 1)/3 = 1/3).
+    const FootprintEllipse half = make_footprint_ellipse(std::exp2(3.5f), std::exp2(3.5f), 1.0f);
+    EXPECT_NEAR(lookup_value(p, half, tri), 3.5f, kLevelTolerance);
+    EXPECT_NEAR(lookup_value(p, half, fa), 3.0f + 1.0f / 3, kLevelTolerance);
+    fa.lod_blend = LodBlend::linear;
+    EXPECT_NEAR(lookup_value(p, half, fa), 3.5f, kLevelTolerance);
+    fa.lod_blend = LodBlend::variance_matched;
+
+    // Anisotropic: footprint assembly reads the minor axis' level, trilinear the major one's.
+    const FootprintEllipse aniso = make_footprint_ellipse(16, 4, 0.7f);
+    EXPECT_NEAR(lookup_value(p, aniso, fa), 2.0f, kLevelTolerance);
+    EXPECT_NEAR(lookup_value(p, aniso, tri), 4.0f, kLevelTolerance);
+    // Beyond the probe budget the level rises: λ = (64, 4), N_max = 16 → T_p = 64·√(3/258).
+    const float tp = 64 * std::sqrt(3.0f / 258), w = std::log2(tp) - 2;
+    EXPECT_NEAR(lookup_value(p, make_footprint_ellipse(64, 4, 0.7f), fa),
+                2 + (std::exp2(2 * w) - 1) / 3, 1e-4f);
+    // lod_bias shifts every filter's level.
+    fa.lod_bias = 1;
+    EXPECT_NEAR(lookup_value(p, aniso, fa), 3.0f, kLevelTolerance);
+    // Footprints larger than the texture read the coarsest level; magnification reads level 0.
+    fa.lod_bias = 0;
+    EXPECT_NEAR(lookup_value(p, make_footprint_ellipse(1e6f, 1e6f, 0), fa), 8.0f, kLevelTolerance);
+    EXPECT_NEAR(lookup_value(p, make_footprint_ellipse(0.2f, 0.1f, 0), fa), 0.0f, kLevelTolerance);
+}
+
+TEST(TextureLookup, TrilinearUsesTheGlRuleOnDerivatives) {
+    const MipPyramid p = level_index_pyramid(256);
+    LookupOptions tri;
+    tri.filter = TextureFilter::trilinear;
+    // ρ = max(|∂(X,Y)/∂x|, |∂(X,Y)/∂y|) = max(|(8, 6)|, |(0, 4)|) = 10 → lod log2(10).
+    TextureCoords c{0.4f, 0.4f, 8.0f / 256, 6.0f / 256, 0, 4.0f / 256};
+    float v;
+    texture_lookup(p, c, tri, &v);
+    EXPECT_NEAR(v, std::log2(10.0f), kLevelTolerance);
+    // footprint_of: K = D Dᵀ with D = S·∂(s,t)/∂(x,y).
+    const FootprintEllipse e = footprint_of(p, c);
+    EXPECT_NEAR(e.matrix.xx, 64.0f, 1e-3f);
+    EXPECT_NEAR(e.matrix.xy, 48.0f, 1e-3f);
+    EXPECT_NEAR(e.matrix.yy, 36.0f + 16.0f, 1e-3f);
+}
+
+// Bilinear lookups near and across the edges equal bilinear interpolation of an explicitly
+// wrap-extended copy of the image (built here independently of wrap_index).
+TEST(TextureLookup, WrapModesAtTheEdges) {
+    const int w = 5, h = 4;
+    std::mt19937 rng(8);
+    std::uniform_real_distribution<float> u(0, 1);
+    Image image(w, h, 1);
+    for (float& v : image.pixels) v = u(rng);
+    for (WrapMode ws : {WrapMode::repeat, WrapMode::clamp, WrapMode::mirror})
+        for (WrapMode wt : {WrapMode::repeat, WrapMode::clamp, WrapMode::mirror}) {
+            // 5×5 copies of the texture around the original, mirrored or clamped as the modes say.
+            const int ew = 5 * w, eh = 5 * h;
+            auto source = [&](int i, int n, int copy, WrapMode mode) {
+                if (mode == WrapMode::repeat) return i;
+                if (mode == WrapMode::clamp) return copy < 2 ? 0 : copy > 2 ? n - 1 : i;
+                return (copy % 2 == 0) ? i : n - 1 - i;  // mirror: odd copies reversed
+            };
+            Image extended(ew, eh, 1);
+            for (int y = 0; y < eh; ++y)
+                for (int x = 0; x < ew; ++x)
+                    extended.at(x, y, 0) =
+                        image.at(source(x % w, w, x / w, ws), source(y % h, h, y / h, wt), 0);
+            MipPyramidOptions po;
+            po.wrap_s = ws;
+            po.wrap_t = wt;
+            const MipPyramid p = MipPyramid::build(image, po);
+            LookupOptions bilinear;
+            bilinear.filter = TextureFilter::bilinear;
+            for (int i = 0; i < 200; ++i) {
+                const float s = -1.0f + 3.0f * u(rng), t = -1.0f + 3.0f * u(rng);
+                float got;
+                texture_lookup(p, s, t, FootprintEllipse{}, bilinear, &got);
+                const float x = (s + 2) * w - 0.5f,
+                            y = (t + 2) * h - 0.5f;  // in the extended image
+                const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+                const float fx = x - x0, fy = y - y0;
+                const float want = (1 - fx) * (1 - fy) * extended.at(x0, y0, 0) +
+                                   fx * (1 - fy) * extended.at(x0 + 1, y0, 0) +
+                                   (1 - fx) * fy * extended.at(x0, y0 + 1, 0) +
+                                   fx * fy * extended.at(x0 + 1, y0 + 1, 0);
+                EXPECT_NEAR(got, want, 1e-5f)
+                    << to_string(ws) << "/" << to_string(wt) << " at " << s << "," << t;
+            }
+        }
+}
+
+TEST(TextureLookup, NearestAndBilinearAtTexelCentres) {
+    Image image(4, 2, 2);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = float(i);
+    const MipPyramid p = MipPyramid::build(image);
+    for (TextureFilter f : {TextureFilter::nearest, TextureFilter::bilinear}) {
+        LookupOptions o;
+        o.filter = f;
+        for (int y = 0; y < 2; ++y)
+            for (int x = 0; x < 4; ++x) {
+                float v[2];
+                // Texel (x, y) has its centre at s = (x + ½)/W (spec §1).
+                texture_lookup(p, (x + 0.5f) / 4, (y + 0.5f) / 2, FootprintEllipse{}, o, v);
+                EXPECT_EQ(v[0], image.at(x, y, 0));
+                EXPECT_EQ(v[1], image.at(x, y, 1));
+            }
+    }
+}
+
+TEST(TextureLookup, DegenerateInputsGiveFiniteValues) {
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<float> u(0, 1);
+    Image image(33, 17, 3);
+    for (float& v : image.pixels) v = u(rng);
+    const float inf = std::numeric_limits<float>::infinity(),
+                nan = std::numeric_limits<float>::quiet_NaN();
+    const float values[] = {0.0f, -0.0f, 1e-30f, -3.0f, 1e30f, -1e30f, inf, -inf, nan};
+    for (WrapMode wrap : {WrapMode::repeat, WrapMode::clamp, WrapMode::mirror}) {
+        MipPyramidOptions po;
+        po.wrap_s = po.wrap_t = wrap;
+        po.summed_area_table = true;
+        const MipPyramid p = MipPyramid::build(image, po);
+        for (TextureFilter filter : kAllFilters) {
+            LookupOptions options;
+            options.filter = filter;
+            for (float position : values)
+                for (float derivative : values)
+                    for (int pattern = 0; pattern < 4; ++pattern) {
+                        TextureCoords c{0.5f, 0.25f, 0.01f, 0.0f, 0.0f, 0.01f};
+                        if (pattern & 1) c.s = position;
+                        if (pattern & 2) c.t = position;
+                        c.dsdx = derivative;
+                        c.dtdy = pattern == 3 ? derivative : 0.02f;
+                        float v[3];
+                        texture_lookup(p, c, options, v);
+                        for (float x : v) {
+                            ASSERT_TRUE(std::isfinite(x)) << to_string(filter) << " s=" << c.s
+                                                          << " t=" << c.t << " d=" << derivative;
+                            ASSERT_GE(x, -1e-5f);
+                            ASSERT_LE(x, 1 + 1e-5f);
+                        }
+                    }
+        }
+    }
+}
+
+TEST(TextureLookup, FilterNamesRoundTrip) {
+    for (TextureFilter f : kAllFilters) EXPECT_EQ(parse_texture_filter(to_string(f)), f);
+    EXPECT_FALSE(parse_texture_filter("anisotropic").has_value());
+}
+
+}  // namespace
+}  // namespace footprint
