@@ -1,0 +1,488 @@
+// image/image_io.cpp — image files through OpenImageIO (a private dependency of this module).
+#include "image/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <new>
+#include <optional>
+#include <random>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "image/color.h"
+
+namespace footprint {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Largest image accepted, in float values (16 GiB): guards against corrupt headers that claim
+// absurd sizes.
+constexpr std::uint64_t kMaxValues = std::uint64_t{1} << 32;
+
+std::string quoted(const fs::path& file) {
+    // Built with += : GCC 12 gives a false -Wrestrict for "'" + std::string at -O3.
+    std::string s = "'";
+    s += file.string();
+    s += '\'';
+    return s;
+}
+
+Error read_error(const fs::path& file, const std::string& cause) {
+    return Error{"cannot read " + quoted(file) + ": " + cause};
+}
+
+Error write_error(const fs::path& file, const std::string& cause) {
+    return Error{"cannot write " + quoted(file) + ": " + cause};
+}
+
+// OpenImageIO's message as one line ("" when it has none): newlines joined with "; ".
+std::string clean_oiio_message(std::string message) {
+    std::string out;
+    std::size_t start = 0;
+    while (start <= message.size()) {
+        std::size_t end = message.find('\n', start);
+        if (end == std::string::npos) end = message.size();
+        std::string line = message.substr(start, end - start);
+        while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+        if (!line.empty()) {
+            if (!out.empty()) out += "; ";
+            out += line;
+        }
+        start = end + 1;
+    }
+    return out;
+}
+
+std::string with_oiio_message(std::string cause, const std::string& oiio_message) {
+    std::string message = clean_oiio_message(oiio_message);
+    if (!message.empty()) cause += " (OpenImageIO: " + message + ")";
+    return cause;
+}
+
+std::string lower_extension(const fs::path& file) {
+    std::string ext = file.extension().string();
+    for (char& c : ext) {
+        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    }
+    return ext;
+}
+
+bool says_linear(const std::string& color_space) {
+    std::string s = color_space;
+    for (char& c : s) {
+        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    }
+    return s == "linear" || s == "lin_srgb" || s == "lin_rec709" || s == "scene_linear";
+}
+
+// Checks that `file` is an existing, non-empty, readable regular file (clearer messages than
+// OpenImageIO gives for these cases).
+std::optional<Error> check_readable(const fs::path& file) {
+    std::error_code ec;
+    const fs::file_status st = fs::status(file, ec);
+    if (st.type() == fs::file_type::not_found) return read_error(file, "no such file");
+    if (ec) return read_error(file, ec.message());
+    if (st.type() == fs::file_type::directory) return read_error(file, "it is a directory");
+    if (st.type() != fs::file_type::regular) return read_error(file, "it is not a regular file");
+    const std::uintmax_t size = fs::file_size(file, ec);
+    if (!ec && size == 0) return read_error(file, "the file is empty");
+    std::FILE* f = std::fopen(file.c_str(), "rb");
+    if (f == nullptr) {
+        return read_error(file, "cannot open it: " + std::generic_category().message(errno));
+    }
+    std::fclose(f);
+    return std::nullopt;
+}
+
+// CRC-32 as PNG uses it (ISO 3309, polynomial 0xEDB88320), updated over `size` bytes.
+std::uint32_t crc32_update(std::uint32_t crc, const unsigned char* data, std::size_t size) {
+    static const std::array<std::uint32_t, 256> table = [] {
+        std::array<std::uint32_t, 256> t{};
+        for (std::uint32_t n = 0; n < 256; ++n) {
+            std::uint32_t c = n;
+            for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+            t[n] = c;
+        }
+        return t;
+    }();
+    for (std::size_t i = 0; i < size; ++i) crc = table[(crc ^ data[i]) & 0xffu] ^ (crc >> 8);
+    return crc;
+}
+
+// If `file` starts with the PNG signature, walks its chunks and returns the cause if it is
+// truncated or a critical chunk is corrupt. libpng reports these itself, but it also prints them
+// to stderr and OpenImageIO 2.4 leaks memory on that path, so they are caught here first.
+std::optional<std::string> check_png_structure(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) return std::nullopt;  // OpenImageIO will report it
+    constexpr std::array<unsigned char, 8> kSignature = {0x89, 'P',  'N',  'G',
+                                                         '\r', '\n', 0x1a, '\n'};
+    std::array<unsigned char, 8> head{};
+    if (!in.read(reinterpret_cast<char*>(head.data()), head.size()) || head != kSignature) {
+        return std::nullopt;  // not a PNG file: left to OpenImageIO
+    }
+    std::vector<unsigned char> buffer(1 << 16);
+    bool first = true;
+    for (;;) {
+        std::array<unsigned char, 8> header{};
+        if (!in.read(reinterpret_cast<char*>(header.data()), header.size())) {
+            return std::string("the file is truncated (the PNG ends before its IEND chunk)");
+        }
+        const std::uint32_t length = (std::uint32_t{header[0]} << 24) |
+                                     (std::uint32_t{header[1]} << 16) |
+                                     (std::uint32_t{header[2]} << 8) | std::uint32_t{header[3]};
+        const std::string type(reinterpret_cast<const char*>(header.data()) + 4, 4);
+        const bool letters = std::all_of(type.begin(), type.end(), [](char c) {
+            return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
+        });
+        if (length > 0x7fffffffu || !letters || (first && type != "IHDR")) {
+            return std::string("the file is corrupt (invalid PNG chunk header)");
+        }
+        first = false;
+        const bool critical = type[0] >= 'A' && type[0] <= 'Z';
+        std::uint32_t crc = crc32_update(0xffffffffu, header.data() + 4, 4);
+        std::uint32_t left = length;
+        while (left > 0) {
+            const std::size_t n = std::min<std::size_t>(left, buffer.size());
+            if (!in.read(reinterpret_cast<char*>(buffer.data()), static_cast<std::streamsize>(n))) {
+                return "the file is truncated (PNG chunk '" + type + "' is cut off)";
+            }
+            if (critical) crc = crc32_update(crc, buffer.data(), n);
+            left -= static_cast<std::uint32_t>(n);
+        }
+        std::array<unsigned char, 4> stored{};
+        if (!in.read(reinterpret_cast<char*>(stored.data()), stored.size())) {
+            return "the file is truncated (PNG chunk '" + type + "' is cut off)";
+        }
+        const std::uint32_t expected = (std::uint32_t{stored[0]} << 24) |
+                                       (std::uint32_t{stored[1]} << 16) |
+                                       (std::uint32_t{stored[2]} << 8) | std::uint32_t{stored[3]};
+        if (critical && (crc ^ 0xffffffffu) != expected) {
+            return "the file is corrupt (checksum mismatch in PNG chunk '" + type + "')";
+        }
+        if (type == "IEND") return std::nullopt;
+    }
+}
+
+void decode_srgb(Image& image, const OIIO::TypeDesc& format, int alpha_channel) {
+    // 8- and 16-bit files hold exact codes k / (2^bits − 1): decode them through a table.
+    std::vector<float> table;
+    float scale = 0.0f;
+    if (format == OIIO::TypeDesc::UINT8 || format == OIIO::TypeDesc::UINT16) {
+        const int max_code = format == OIIO::TypeDesc::UINT8 ? 255 : 65535;
+        table.resize(static_cast<std::size_t>(max_code) + 1);
+        for (int k = 0; k <= max_code; ++k) {
+            table[static_cast<std::size_t>(k)] =
+                srgb_to_linear(static_cast<float>(k) / static_cast<float>(max_code));
+        }
+        scale = static_cast<float>(max_code);
+    }
+    const int channels = image.channels;
+    const std::size_t n = image.pixels.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        if (static_cast<int>(i % static_cast<std::size_t>(channels)) == alpha_channel) continue;
+        float& v = image.pixels[i];
+        if (!table.empty()) {
+            const long k = std::lround(std::clamp(v, 0.0f, 1.0f) * scale);
+            v = table[static_cast<std::size_t>(k)];
+        } else {
+            v = srgb_to_linear(v);
+        }
+    }
+}
+
+const char* const kSupportedList = ".png .jpg .jpeg .exr .hdr .tif .tiff";
+
+enum class FileKind { png, jpeg, tiff, exr, hdr, unknown };
+
+FileKind kind_of(const fs::path& file) {
+    const std::string ext = lower_extension(file);
+    if (ext == ".png") return FileKind::png;
+    if (ext == ".jpg" || ext == ".jpeg") return FileKind::jpeg;
+    if (ext == ".tif" || ext == ".tiff") return FileKind::tiff;
+    if (ext == ".exr") return FileKind::exr;
+    if (ext == ".hdr") return FileKind::hdr;
+    return FileKind::unknown;
+}
+
+// A name for the temporary file beside `file`: ".<stem>.tmp-<random><ext>", extension last so
+// that OpenImageIO picks the right writer.
+fs::path temporary_path(const fs::path& file) {
+    static thread_local std::mt19937_64 rng{std::random_device{}()};
+    const fs::path dir = file.parent_path();
+    std::error_code ec;
+    fs::path tmp;
+    for (int attempt = 0; attempt < 16; ++attempt) {
+        char hex[17];
+        std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(rng()));
+        std::string name = ".";
+        name += file.stem().string();
+        name += ".tmp-";
+        name += hex;
+        name += file.extension().string();
+        tmp = dir / name;
+        if (!fs::exists(tmp, ec)) break;
+    }
+    return tmp;
+}
+
+// Writes `values` (already in the file's encoding, `channels` per pixel) to `tmp` with
+// OpenImageIO. Returns the cause on failure; "" on success.
+std::string write_with_oiio(const fs::path& tmp, int width, int height, int channels,
+                            OIIO::TypeDesc file_format, OIIO::TypeDesc data_format,
+                            const void* data, bool linear) {
+    auto out = OIIO::ImageOutput::create(tmp.string());
+    if (!out) {
+        return with_oiio_message("OpenImageIO has no writer for this format", OIIO::geterror());
+    }
+    OIIO::ImageSpec spec(width, height, channels, file_format);
+    switch (channels) {
+        case 1:
+            spec.channelnames = {"Y"};
+            break;
+        case 2:
+            spec.channelnames = {"Y", "A"};
+            break;
+        case 3:
+            spec.channelnames = {"R", "G", "B"};
+            break;
+        default:
+            spec.channelnames = {"R", "G", "B", "A"};
+            break;
+    }
+    spec.alpha_channel = (channels == 2 || channels == 4) ? channels - 1 : -1;
+    spec.attribute("oiio:ColorSpace", linear ? "Linear" : "sRGB");
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // write alpha as given, never divide by it
+    if (!out->open(tmp.string(), spec)) {
+        return with_oiio_message("cannot create the file", out->geterror());
+    }
+    if (!out->write_image(data_format, data)) {
+        std::string cause = with_oiio_message("writing the pixels failed", out->geterror());
+        out->close();
+        return cause;
+    }
+    if (!out->close()) return with_oiio_message("finishing the file failed", out->geterror());
+    return {};
+}
+
+}  // namespace
+
+bool is_supported_image_extension(const fs::path& file) {
+    return kind_of(file) != FileKind::unknown;
+}
+
+Result<Image> load_image(const fs::path& file, const ImageLoadOptions& options) {
+    if (auto error = check_readable(file)) return *error;
+    if (auto cause = check_png_structure(file)) return read_error(file, *cause);
+
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);  // keep straight alpha as stored
+    auto in = OIIO::ImageInput::open(file.string(), &config);
+    if (!in) {
+        return read_error(file,
+                          with_oiio_message("unknown format, or the file is corrupt or truncated",
+                                            OIIO::geterror()));
+    }
+    const OIIO::ImageSpec spec = in->spec();
+    const auto fail = [&](const std::string& cause) {
+        (void)in->geterror();  // drop pending messages so OpenImageIO does not print them
+        in->close();
+        return read_error(file, cause);
+    };
+    if (spec.deep) return fail("deep images are not supported");
+    if (spec.width <= 0 || spec.height <= 0 || spec.depth <= 0) {
+        return fail("the image has zero size (" + std::to_string(spec.width) + " x " +
+                    std::to_string(spec.height) + ")");
+    }
+    if (spec.depth != 1) return fail("it is a 3D volume image; footprint reads 2D images");
+    if (spec.nchannels < 1 || spec.nchannels > 4) {
+        return fail("it has " + std::to_string(spec.nchannels) +
+                    " channels; footprint reads 1 to 4");
+    }
+    const std::uint64_t values = static_cast<std::uint64_t>(spec.width) *
+                                 static_cast<std::uint64_t>(spec.height) *
+                                 static_cast<std::uint64_t>(spec.nchannels);
+    if (values > kMaxValues) {
+        return fail("the image is too large (" + std::to_string(spec.width) + " x " +
+                    std::to_string(spec.height) + " x " + std::to_string(spec.nchannels) + ")");
+    }
+
+    Image image;
+    try {
+        image = Image(spec.width, spec.height, spec.nchannels);
+    } catch (const std::bad_alloc&) {
+        return fail("not enough memory for " + std::to_string(spec.width) + " x " +
+                    std::to_string(spec.height) + " pixels");
+    }
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data())) {
+        std::string cause = with_oiio_message("the file is truncated or corrupt", in->geterror());
+        in->close();
+        return read_error(file, cause);
+    }
+    if (in->has_error()) {
+        std::string cause = with_oiio_message("the file is truncated or corrupt", in->geterror());
+        in->close();
+        return read_error(file, cause);
+    }
+    in->close();
+
+    for (float& v : image.pixels) {
+        if (!std::isfinite(v)) v = 0.0f;
+    }
+
+    bool decode = false;
+    switch (options.encoding) {
+        case ColorEncoding::srgb:
+            decode = true;
+            break;
+        case ColorEncoding::linear:
+            decode = false;
+            break;
+        case ColorEncoding::automatic:
+            decode = !spec.format.is_floating_point() &&
+                     !says_linear(spec.get_string_attribute("oiio:ColorSpace"));
+            break;
+    }
+    if (decode) {
+        int alpha = spec.alpha_channel;
+        if (alpha < 0 || alpha >= spec.nchannels) {
+            alpha = (spec.nchannels == 2 || spec.nchannels == 4) ? spec.nchannels - 1 : -1;
+        }
+        decode_srgb(image, spec.format, alpha);
+    }
+    return image;
+}
+
+Status save_image(const Image& image, const fs::path& file, const ImageSaveOptions& options) {
+    // Validate the image.
+    if (image.width <= 0 || image.height <= 0) {
+        return write_error(file, "the image is empty (" + std::to_string(image.width) + " x " +
+                                     std::to_string(image.height) + ")");
+    }
+    if (image.channels < 1 || image.channels > 4) {
+        return write_error(file, "the image has " + std::to_string(image.channels) +
+                                     " channels; footprint writes 1 to 4");
+    }
+    const std::uint64_t values = static_cast<std::uint64_t>(image.width) *
+                                 static_cast<std::uint64_t>(image.height) *
+                                 static_cast<std::uint64_t>(image.channels);
+    if (values != image.pixels.size()) {
+        return write_error(
+            file, "the image holds " + std::to_string(image.pixels.size()) + " values but " +
+                      std::to_string(image.width) + " x " + std::to_string(image.height) + " x " +
+                      std::to_string(image.channels) + " needs " + std::to_string(values));
+    }
+
+    // Validate the target.
+    const FileKind kind = kind_of(file);
+    if (kind == FileKind::unknown) {
+        const std::string ext = file.extension().string();
+        return write_error(file, (ext.empty() ? std::string("no file extension")
+                                              : "unsupported extension '" + ext + "'") +
+                                     " (supported: " + kSupportedList + ")");
+    }
+    const bool integer_format =
+        kind == FileKind::png || kind == FileKind::jpeg || kind == FileKind::tiff;
+    if (integer_format && options.bits != 8 && options.bits != 16) {
+        return write_error(file, "bits must be 8 or 16, not " + std::to_string(options.bits));
+    }
+    if (kind == FileKind::jpeg && options.bits != 8) {
+        return write_error(
+            file, "JPEG files hold 8 bits per channel only, not " + std::to_string(options.bits));
+    }
+    std::error_code ec;
+    const fs::path dir = file.parent_path();
+    if (!dir.empty()) {
+        const fs::file_status st = fs::status(dir, ec);
+        if (st.type() == fs::file_type::not_found) {
+            return write_error(file, "directory " + quoted(dir) + " does not exist");
+        }
+        if (st.type() != fs::file_type::directory) {
+            return write_error(file, quoted(dir) + " is not a directory");
+        }
+    }
+    if (fs::is_directory(file, ec)) return write_error(file, "it is a directory");
+
+    // Convert to the file's channels and encoding.
+    const bool srgb = options.encoding == ColorEncoding::srgb ||
+                      (options.encoding == ColorEncoding::automatic && integer_format);
+    const int in_channels = image.channels;
+    const bool in_alpha = in_channels == 2 || in_channels == 4;
+    int out_channels = in_channels;
+    if (kind == FileKind::jpeg && in_alpha) out_channels = in_channels - 1;
+    if (kind == FileKind::hdr) out_channels = 3;
+    const bool out_alpha = out_channels == 2 || out_channels == 4;
+    const bool grey_in = in_channels <= 2;
+
+    std::vector<float> converted;
+    try {
+        converted.resize(image.pixel_count() * static_cast<std::size_t>(out_channels));
+    } catch (const std::bad_alloc&) {
+        return write_error(file, "not enough memory to convert the image");
+    }
+    const std::size_t pixels = image.pixel_count();
+    for (std::size_t p = 0; p < pixels; ++p) {
+        const float* src = image.pixels.data() + p * static_cast<std::size_t>(in_channels);
+        float* dst = converted.data() + p * static_cast<std::size_t>(out_channels);
+        for (int c = 0; c < out_channels; ++c) {
+            const bool is_alpha = out_alpha && c == out_channels - 1;
+            float v = is_alpha ? src[in_channels - 1] : src[grey_in ? 0 : c];
+            if (!is_alpha && srgb) v = linear_to_srgb(v);
+            if (integer_format) v = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
+            dst[c] = v;
+        }
+    }
+
+    OIIO::TypeDesc file_format = OIIO::TypeDesc::FLOAT;
+    OIIO::TypeDesc data_format = OIIO::TypeDesc::FLOAT;
+    std::vector<std::uint8_t> codes8;
+    std::vector<std::uint16_t> codes16;
+    const void* data = converted.data();
+    if (integer_format) {
+        // Quantise here (round to nearest) rather than trusting the library's conversion.
+        if (options.bits == 16) {
+            file_format = data_format = OIIO::TypeDesc::UINT16;
+            codes16.resize(converted.size());
+            for (std::size_t i = 0; i < converted.size(); ++i) {
+                codes16[i] = static_cast<std::uint16_t>(std::lround(converted[i] * 65535.0f));
+            }
+            data = codes16.data();
+        } else {
+            file_format = data_format = OIIO::TypeDesc::UINT8;
+            codes8.resize(converted.size());
+            for (std::size_t i = 0; i < converted.size(); ++i) {
+                codes8[i] = static_cast<std::uint8_t>(std::lround(converted[i] * 255.0f));
+            }
+            data = codes8.data();
+        }
+    } else if (kind == FileKind::exr && options.exr_half) {
+        file_format = OIIO::TypeDesc::HALF;
+    }
+
+    // Write a temporary file beside the target, then rename it into place.
+    const fs::path tmp = temporary_path(file);
+    const std::string cause = write_with_oiio(tmp, image.width, image.height, out_channels,
+                                              file_format, data_format, data, !srgb);
+    if (!cause.empty()) {
+        fs::remove(tmp, ec);
+        return write_error(file, cause);
+    }
+    fs::rename(tmp, file, ec);
+    if (ec) {
+        std::error_code ignored;
+        fs::remove(tmp, ignored);
+        return write_error(file, "cannot move the finished file into place: " + ec.message());
+    }
+    return {};
+}
+
+}  // namespace footprint
