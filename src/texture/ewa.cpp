@@ -71,9 +71,10 @@ void accumulate_ewa_level(const MipPyramid& pyramid, int l, float s, float t,
         }
     }
     if (weight_sum <= 0) {  // the ellipse missed every texel centre: fall back to bilinear
-        float bilinear[S] = {};
-        accumulate_bilinear<S>(level, pyramid.wrap_s(), pyramid.wrap_t(), s, t, 1.0f, bilinear);
-        for (int k = 0; k < S; ++k) acc[k] += level_weight * bilinear[k];
+        const Texel<S> bilinear =
+            sample_bilinear<S>(level, pyramid.wrap_s(), pyramid.wrap_t(), s, t);
+        for (int k = 0; k < S; ++k)
+            acc[k] += level_weight * bilinear.v[k];  // (double accumulators)
         return;
     }
     for (int k = 0; k < S; ++k) acc[k] += level_weight * (sum[k] / weight_sum);
@@ -86,10 +87,8 @@ void filter_ewa(const MipPyramid& pyramid, float s, float t, const FootprintElli
     FootprintEllipse e = footprint;
     if (e.major_radius <= 1.0f) {  // magnification: reconstruct, don't blur
         dispatch_stride(pyramid.stride(), [&]<int S>() {
-            float acc[S] = {};
-            accumulate_bilinear<S>(pyramid.level(0), pyramid.wrap_s(), pyramid.wrap_t(), s, t, 1.0f,
-                                   acc);
-            std::copy_n(acc, pyramid.channels(), out);
+            store(sample_bilinear<S>(pyramid.level(0), pyramid.wrap_s(), pyramid.wrap_t(), s, t),
+                  pyramid.channels(), out);
         });
         return;
     }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "texture/filters.h"
 #include "texture/sampling.h"
@@ -16,6 +17,28 @@ float probe_lod(float texel_size, float lod_bias, int max_level) {
                       static_cast<float>(max_level));
 }
 
+// a/√v_N for N Gaussian-weighted probes (footprint_assembly.h): Δ = σ_g ·
+// gaussian_spacing_factor(N). v_N is the variance, in u units, of the weights exp(−½u²) on N even
+// nodes over [−κ, κ]; tabulated once (N ≤ kTable), since a lookup may need it several times.
+float gaussian_spacing_factor(int n) {
+    constexpr int kTable = 1025;
+    static const std::vector<float> table = [] {
+        std::vector<float> t(kTable, 0.0f);
+        for (int m = 2; m < kTable; ++m) {
+            const double a = 2.0 * kGaussianProbeExtent / (m - 1);
+            double sw = 0, swu = 0;
+            for (int i = 0; i < m; ++i) {
+                const double u = (i - 0.5 * (m - 1)) * a, w = std::exp(-0.5 * u * u);
+                sw += w;
+                swu += w * u * u;
+            }
+            t[m] = static_cast<float>(a / std::sqrt(swu / sw));
+        }
+        return t;
+    }();
+    return table[std::clamp(n, 2, kTable - 1)];
+}
+
 int floor_power_of_two(int n) {
     int p = 1;
     while (p * 2 <= n) p *= 2;
@@ -24,19 +47,28 @@ int floor_power_of_two(int n) {
 
 }  // namespace
 
+float single_probe_lod(const Sym2& k, float lod_bias, int max_level) {
+    const float w = std::sqrt((k.xx - k.yy) * (k.xx - k.yy) + 4 * k.xy * k.xy);  // spec §2.7
+    const float major_sq = 0.5f * (k.xx + k.yy + w);
+    const float minor_sq = major_sq > 0 ? std::max(0.0f, k.determinant()) / major_sq : 0.0f;
+    const float tp_sq = std::max(minor_sq, 1.0f);  // T_p² = max(λ2, T_min)²
+    if (!(major_sq <= kIsotropicRatio * kIsotropicRatio * tp_sq)) return -1.0f;
+    return std::clamp(0.5f * std::log2(tp_sq) + lod_bias, 0.0f, static_cast<float>(max_level));
+}
+
 ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max_probes,
                       int max_level, float lod_bias) {
     constexpr float kMinTexelSize = 1.0f;  // T_min: smaller footprints are magnification
     const float l1 = footprint.major_radius, l2 = footprint.minor_radius;
     const Vec2 r1 = footprint.major_axis;
-    max_probes = std::max(1, max_probes);
+    max_probes = std::clamp(max_probes, 1, 1024);
     ProbePlan plan;
 
     switch (rule) {
         case ProbeRule::moment_matched: {  // Rule B
             float tp = std::max(l2, kMinTexelSize);
             int n = 1;
-            if (l1 > tp) {
+            if (l1 > tp * kIsotropicRatio) {
                 const float ratio = l1 / tp;
                 n = static_cast<int>(std::ceil(std::sqrt(std::max(1.0f, 3 * ratio * ratio - 2))));
                 if (n > max_probes) {
@@ -53,6 +85,37 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
             }
             plan.count = n;
             plan.texel_size = tp;
+            break;
+        }
+        case ProbeRule::gaussian: {
+            float tp = std::max(l2, kMinTexelSize);
+            if (l1 <= tp * kIsotropicRatio) {
+                plan.texel_size = tp;
+                break;
+            }
+            auto spacing_factor = [](int n) { return gaussian_spacing_factor(n); };
+            float sigma = 0.5f * std::sqrt(l1 * l1 - tp * tp);
+            // First guess from the continuous truncated Gaussian (v ≈ 0.774 at κ = 2), then exact.
+            int n = std::max(
+                2,
+                static_cast<int>(std::ceil(2 * kGaussianProbeExtent * sigma / (tp * 0.88f))) + 1);
+            while (n < max_probes && sigma * spacing_factor(n) > tp) ++n;
+            while (n > 2 && sigma * spacing_factor(n - 1) <= tp) --n;
+            if (n >= max_probes) {
+                n = std::max(2, max_probes);
+                if (max_probes == 1) {  // one isotropic probe covering λ1
+                    plan.texel_size = std::max(tp, l1);
+                    break;
+                }
+                // Raise T_p until the spacing closes the gaps: T = √(λ1² − T²)/2 · c.
+                const float c = spacing_factor(n);
+                tp = std::max(tp, l1 * 0.5f * c / std::sqrt(1 + 0.25f * c * c));
+                sigma = 0.5f * std::sqrt(std::max(0.0f, l1 * l1 - tp * tp));
+            }
+            plan.count = n;
+            plan.texel_size = tp;
+            plan.step = (sigma * spacing_factor(n)) * r1;
+            plan.weight_falloff = 2 * kGaussianProbeExtent / static_cast<float>(n - 1);
             break;
         }
         case ProbeRule::ext:
@@ -82,18 +145,83 @@ void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
     const ProbePlan plan = plan_probes(footprint, options.probe_rule, options.max_probes,
                                        pyramid.max_level(), options.lod_bias);
     // Offsets are in level-0 texels; divide by S = diag(W0, H0) for normalised units (spec §2.9).
-    const float inv_w = 1.0f / static_cast<float>(pyramid.width(0));
-    const float inv_h = 1.0f / static_cast<float>(pyramid.height(0));
-    const float weight = 1.0f / static_cast<float>(plan.count);
+    // Positions need no per-probe reduction: the footprint is bounded to a few texture sizes, and
+    // sample_bilinear wraps taps outside the level.
+    const float du = plan.step.x / static_cast<float>(pyramid.width(0));
+    const float dv = plan.step.y / static_cast<float>(pyramid.height(0));
+    const float first = -0.5f * static_cast<float>(plan.count - 1);
+    const int max_level = pyramid.max_level();
+    const int l0 = std::min(static_cast<int>(plan.lod), max_level);
+    LodBlend blend = options.lod_blend;
+    if (blend == LodBlend::automatic)
+        blend = plan.count == 1 ? LodBlend::linear : LodBlend::variance_matched;
+    const float w =
+        l0 < max_level ? lod_blend_weight(plan.lod - static_cast<float>(l0), blend) : 0.0f;
+    if (plan.count == 1) {  // one isotropic probe: both levels' taps issued together
+        dispatch_stride(pyramid.stride(), [&]<int S>() {
+            store(sample_trilinear<S>(pyramid, s, t, plan.lod, blend), pyramid.channels(), out);
+        });
+        return;
+    }
     dispatch_stride(pyramid.stride(), [&]<int S>() {
-        float acc[S] = {};
-        for (int i = 0; i < plan.count; ++i) {
-            const Vec2 o = plan.offset(i);
-            const float si = reduce_coordinate(s + o.x * inv_w, pyramid.wrap_s());
-            const float ti = reduce_coordinate(t + o.y * inv_h, pyramid.wrap_t());
-            accumulate_trilinear<S>(pyramid, si, ti, plan.lod, options.lod_blend, weight, acc);
+        // C = Σ w_i trilinear(c + o_i) / Σ w_i (spec §2.9), summed level by level for locality.
+        // Probe weights: equal, or Gaussian exp(−½(a·k)²), k = i − (N−1)/2, from the centre out by
+        // the recurrence w_{k+1} = w_k·r_k, r_{k+1} = r_k·e^{−a²} and mirrored, so that they are
+        // exactly symmetric (the kernel mean stays on the centre) without an exp per probe.
+        float weights[1024];
+        const float a2 = plan.weight_falloff * plan.weight_falloff;
+        const int half = plan.count / 2;  // probes on each side of the centre
+        float wk = plan.count % 2 ? 1.0f : std::exp(-0.125f * a2);         // k = 0 or ½
+        float rk = plan.count % 2 ? std::exp(-0.5f * a2) : std::exp(-a2);  // w_{k+1}/w_k
+        const float r_step = std::exp(-a2);
+        if (plan.count % 2) weights[half] = 1.0f;
+        for (int j = 0; j < half; ++j) {
+            if (j > 0 || plan.count % 2) {
+                wk *= rk;
+                rk *= r_step;
+            }
+            weights[half - 1 - j] = weights[plan.count - half + j] = wk;
         }
-        std::copy_n(acc, pyramid.channels(), out);
+        float weight_sum = 0;
+        for (int i = 0; i < plan.count; ++i) weight_sum += weights[i];
+        // Every probe's texels are known up front: ask for all their cache lines first, so the
+        // misses overlap instead of arriving one probe at a time.
+        auto prefetch_level = [&](int level) {
+            const MipPyramid::LevelView view = pyramid.level(level);
+            for (int i = 0; i < plan.count; ++i) {
+                const float k = first + static_cast<float>(i);
+                const int x = floor_to_int((s + k * du) * static_cast<float>(view.width) - 0.5f);
+                const int y = floor_to_int((t + k * dv) * static_cast<float>(view.height) - 0.5f);
+                if (x >= 0 && y >= 0 && x + 1 < view.width && y + 1 < view.height) {
+                    const float* p = view.texel(x, y);
+                    __builtin_prefetch(p);
+                    __builtin_prefetch(p + view.row_step);
+                }
+            }
+        };
+        if (plan.count > 4) {
+            prefetch_level(l0);
+            if (w > 0.0f) prefetch_level(l0 + 1);
+        }
+        auto sum_level = [&](int level) {
+            const MipPyramid::LevelView view = pyramid.level(level);
+            Texel<S> sum{};
+            for (int i = 0; i < plan.count; ++i) {
+                const float k = first + static_cast<float>(i);
+                add_scaled(sum, weights[i],
+                           sample_bilinear<S>(view, pyramid.wrap_s(), pyramid.wrap_t(), s + k * du,
+                                              t + k * dv));
+            }
+            return sum;
+        };
+        Texel<S> result = sum_level(l0);
+        const float weight = 1.0f / weight_sum;
+        result.v *= weight;
+        if (w > 0.0f) {
+            const Texel<S> coarse = sum_level(l0 + 1);
+            result.v += w * (weight * coarse.v - result.v);
+        }
+        store(result, pyramid.channels(), out);
     });
 }
 

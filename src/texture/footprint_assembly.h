@@ -25,16 +25,29 @@
 
 namespace footprint {
 
+// Where the Gaussian probe weights are cut, in σ of the weight Gaussian.
+constexpr float kGaussianProbeExtent = 2.0f;
+
 struct ProbePlan {
-    int count = 1;         // N
-    Vec2 step;             // level-0 texels between neighbouring probes (along r1)
-    float lod = 0;         // level of every probe, in [0, max_level]
-    float texel_size = 1;  // T_p before the lod was clamped to the pyramid
+    int count = 1;             // N
+    Vec2 step;                 // level-0 texels between neighbouring probes (along r1)
+    float lod = 0;             // level of every probe, in [0, max_level]
+    float texel_size = 1;      // T_p before the lod was clamped to the pyramid
+    float weight_falloff = 0;  // a: weights ∝ exp(−½(a·(i − (N−1)/2))²); 0 = equal weights
 
     Vec2 offset(int i) const {
         return (static_cast<float>(i) - 0.5f * static_cast<float>(count - 1)) * step;
     }
 };
+
+// Rule B (both weightings) takes one probe when λ1 ≤ kIsotropicRatio·max(λ2, T_min): an isotropic
+// footprint must not split into two coincident probes over rounding (kernel variance off < 0.2 %).
+constexpr float kIsotropicRatio = 1.001f;
+
+// For Rule B (both weightings): the lod of the single probe that footprint K takes, or a negative
+// value when K needs several probes. Decided from K's eigenvalues alone — no axes, no square roots
+// of λ — so texture_lookup() can skip the ellipse for the common near-isotropic case.
+float single_probe_lod(const Sym2& k, float lod_bias, int max_level);
 
 // The probes for a footprint ellipse (finite, λ1 ≥ λ2 ≥ 0). max_probes ≥ 1; max_level = the
 // pyramid's coarsest level. lod_bias is added before clamping.

@@ -40,8 +40,8 @@ KernelMoments averaged_fa_moments(const MomentPyramids& moments, const Footprint
     *mean_error = 0;
     constexpr int kPhases = 16;  // 8 phases per texel of the finer level
     for (int i = 0; i < kPhases * kPhases; ++i) {
-        const float ox = period * ((i % kPhases) + 0.5f) / kPhases,
-                    oy = period * ((i / kPhases) + 0.5f) / kPhases;
+        const float ox = period * ((i % kPhases) + 0.5f - 0.5f * kPhases) / kPhases,
+                    oy = period * ((i / kPhases) + 0.5f - 0.5f * kPhases) / kPhases;
         const KernelMoments m =
             moments.measure(ox, oy, [&](const MipPyramid& p, float s, float t, float* out) {
                 texture_lookup(p, s, t, e, options, out);
@@ -88,49 +88,106 @@ TEST(FootprintAssembly, RuleAAndTexramPlans) {
     EXPECT_NEAR(t.offset(0).x, (0.5f / 8 - 0.5f) * 32, 1e-5f);
 }
 
+// The kernel covariance spec §2.8 predicts for Rule B: ¼[(λ1'² − T_p² + T_eff²) r1r1ᵀ + T_eff²
+// r2r2ᵀ], λ1' = max(λ1, T_p). T_eff² is the probes' own variance ×4: T_p² with the variance-matched
+// level blend, 4^L(1 + 3w) for GL's linear blend at lod L + w ([FAT]). With the remap and no
+// clamping this is exactly K/4 (K/4 with λ's below T_min = 1 raised to 1: magnification reads
+// level-0 bilinear).
+Sym2 predicted_kernel(const FootprintEllipse& e, const ProbePlan& plan, LodBlend blend) {
+    const float tp = plan.texel_size;
+    const float level = std::floor(plan.lod), w = plan.lod - level;
+    const float t_eff_sq =
+        blend == LodBlend::variance_matched ? tp * tp : std::exp2(2 * level) * (1 + 3 * w);
+    const float major = std::max(e.major_radius, tp);
+    return outer(e.major_axis, 0.25f * (major * major - tp * tp + t_eff_sq)) +
+           outer(e.minor_axis(), 0.25f * t_eff_sq);
+}
+
+TEST(FootprintAssembly, GaussianPlansKeepRuleBsMomentsAndSpacing) {
+    for (float l1 : {3.0f, 10.0f, 40.0f, 300.0f})
+        for (int max_probes : {4, 16, 30, 128}) {
+            const FootprintEllipse e = make_footprint_ellipse(l1, 1.5f, 0.9f);
+            const ProbePlan plan = plan_probes(e, ProbeRule::gaussian, max_probes, 12);
+            ASSERT_LE(plan.count, max_probes);
+            // No gaps: spacing ≤ T_p.
+            EXPECT_LE(length(plan.step), plan.texel_size * (1 + 1e-4f));
+            // Σw o² / Σw + T_p²/4 = λ1²/4 along r1 (the weights as filter_footprint_assembly makes
+            // them).
+            double sw = 0, swo = 0;
+            for (int i = 0; i < plan.count; ++i) {
+                const double k = i - 0.5 * (plan.count - 1),
+                             w = std::exp(-0.5 * std::pow(plan.weight_falloff * k, 2));
+                sw += w;
+                swo += w * std::pow(k * length(plan.step), 2);
+            }
+            const double major = std::max(l1, plan.texel_size);
+            EXPECT_NEAR(swo / sw + plan.texel_size * plan.texel_size / 4, major * major / 4,
+                        1e-3 * major * major)
+                << "λ1 = " << l1 << ", N_max = " << max_probes;
+        }
+}
+
 TEST(FootprintAssembly, KernelCovarianceIsQuarterK) {
     // Hundreds of random footprints: all orientations, anisotropy 1–64, major semi-axis 0.1–500
-    // texels, with a probe budget that never clamps (⌈√(3·64²)⌉ = 111 probes).
+    // texels, with a probe budget that never clamps (⌈√(3·64²)⌉ = 111 probes), for both weightings
+    // (equal and Gaussian: the same moments by construction) and both level blends.
     const MomentPyramids& moments = moment_pyramids();
-    LookupOptions options;
-    options.max_probes = 128;
-    std::mt19937 rng(2024);
-    for (int i = 0; i < 300; ++i) {
-        const FootprintEllipse e = random_footprint(rng, 0.1f, 500, 64);
-        float mean_error = 0;
-        const KernelMoments m = averaged_fa_moments(moments, e, options, &mean_error);
-        // Magnification (λ < T_min = 1) reads level 0 with one-texel probes: K_eff uses max(λ, 1).
-        const float major = std::max(e.major_radius, 1.0f), minor = std::max(e.minor_radius, 1.0f);
-        const Sym2 expected =
-            0.25f *
-            make_footprint_ellipse(major, minor, std::atan2(e.major_axis.y, e.major_axis.x)).matrix;
-        EXPECT_LT(relative_error(m.covariance, expected), kKernelCovarianceTolerance)
-            << "footprint " << i << ": λ = (" << e.major_radius << ", " << e.minor_radius << ")";
-        EXPECT_LT(mean_error, kKernelMeanTolerance * std::max(1.0f, e.major_radius))
-            << "footprint " << i;
-    }
+    for (ProbeRule rule : {ProbeRule::moment_matched, ProbeRule::gaussian})
+        for (LodBlend blend : {LodBlend::variance_matched, LodBlend::linear}) {
+            LookupOptions options;
+            options.max_probes = 128;
+            options.probe_rule = rule;
+            options.lod_blend = blend;
+            std::mt19937 rng(2024);
+            for (int i = 0; i < 300; ++i) {
+                const FootprintEllipse e = random_footprint(rng, 0.1f, 500, 64);
+                const ProbePlan plan = plan_probes(e, options.probe_rule, options.max_probes,
+                                                   moments.first().max_level());
+                float mean_error = 0;
+                const KernelMoments m = averaged_fa_moments(moments, e, options, &mean_error);
+                const Sym2 expected = predicted_kernel(e, plan, blend);
+                EXPECT_LT(relative_error(m.covariance, expected), kKernelCovarianceTolerance)
+                    << "footprint " << i << ": λ = (" << e.major_radius << ", " << e.minor_radius
+                    << ")";
+                EXPECT_LT(mean_error, kKernelMeanTolerance * std::max(1.0f, e.major_radius))
+                    << "footprint " << i;
+                if (blend == LodBlend::variance_matched) {
+                    // ... which is K/4 itself (λ's raised to T_min = 1).
+                    const float major = std::max(e.major_radius, 1.0f),
+                                minor = std::max(e.minor_radius, 1.0f);
+                    const Sym2 quarter_k = outer(e.major_axis, 0.25f * major * major) +
+                                           outer(e.minor_axis(), 0.25f * minor * minor);
+                    EXPECT_LT(relative_error(m.covariance, quarter_k), kKernelCovarianceTolerance)
+                        << "footprint " << i;
+                }
+            }
+        }
 }
 
 TEST(FootprintAssembly, ClampedProbeBudgetRaisesTheMinorAxisOnly) {
     // With N_max = 16 the spec's kernel is ¼(λ1² r1r1ᵀ + max(λ2, T_p)² r2r2ᵀ): the major axis keeps
     // its full length, the minor one grows to the raised probe size T_p.
     const MomentPyramids& moments = moment_pyramids();
-    LookupOptions options;  // max_probes = 16 (default)
-    std::mt19937 rng(99);
-    for (int i = 0; i < 100; ++i) {
-        const FootprintEllipse e = random_footprint(rng, 8, 400, 64);
-        const ProbePlan plan =
-            plan_probes(e, options.probe_rule, options.max_probes, moments.first().max_level());
-        float mean_error = 0;
-        const KernelMoments m = averaged_fa_moments(moments, e, options, &mean_error);
-        const float minor = std::max(e.minor_radius, plan.texel_size);
-        const float major = std::max(e.major_radius, plan.texel_size);
-        const Sym2 expected =
-            0.25f *
-            make_footprint_ellipse(major, minor, std::atan2(e.major_axis.y, e.major_axis.x)).matrix;
-        EXPECT_LT(relative_error(m.covariance, expected), kKernelCovarianceTolerance)
-            << "footprint " << i << ": λ = (" << e.major_radius << ", " << e.minor_radius
-            << "), N = " << plan.count;
+    for (ProbeRule rule : {ProbeRule::moment_matched, ProbeRule::gaussian}) {
+        LookupOptions options;
+        options.max_probes = 16;
+        options.probe_rule = rule;
+        options.lod_blend = LodBlend::variance_matched;
+        std::mt19937 rng(99);
+        for (int i = 0; i < 100; ++i) {
+            const FootprintEllipse e = random_footprint(rng, 8, 400, 64);
+            const ProbePlan plan =
+                plan_probes(e, options.probe_rule, options.max_probes, moments.first().max_level());
+            float mean_error = 0;
+            const KernelMoments m = averaged_fa_moments(moments, e, options, &mean_error);
+            const float minor = std::max(e.minor_radius, plan.texel_size);
+            const float major = std::max(e.major_radius, plan.texel_size);
+            const Sym2 expected = outer(e.major_axis, 0.25f * major * major) +
+                                  outer(e.minor_axis(), 0.25f * minor * minor);
+            EXPECT_LT(relative_error(m.covariance, expected), kKernelCovarianceTolerance)
+                << "footprint " << i << ": λ = (" << e.major_radius << ", " << e.minor_radius
+                << "), N = " << plan.count;
+        }
     }
 }
 
@@ -140,6 +197,7 @@ TEST(FootprintAssembly, RuleAIntegratesOnePixelStep) {
     const MomentPyramids& moments = moment_pyramids();
     LookupOptions options;
     options.probe_rule = ProbeRule::ext;
+    options.max_probes = 16;
     const FootprintEllipse e = make_footprint_ellipse(32, 2, 0.4f);
     float mean_error = 0;
     const KernelMoments m = averaged_fa_moments(moments, e, options, &mean_error);

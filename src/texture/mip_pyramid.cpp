@@ -164,7 +164,7 @@ void MipPyramid::allocate(int width, int height, int channels, const MipPyramidO
         levels_.push_back(l);
         if (w == 1 && h == 1) break;
     }
-    storage_.assign(total, 0.0f);
+    storage_ = detail::TexelStorage(total);
 }
 
 MipPyramid MipPyramid::build(const Image& level0, const MipPyramidOptions& options) {
@@ -234,7 +234,7 @@ Result<MipPyramid> MipPyramid::from_levels(const std::vector<Image>& levels,
 void MipPyramid::store_level(int level, const std::vector<float>& row_major) {
     const Level& l = levels_[level];
     if (tile_log2_ == 0) {
-        std::copy(row_major.begin(), row_major.end(), storage_.begin() + l.offset);
+        std::copy(row_major.begin(), row_major.end(), storage_.data() + l.offset);
         return;
     }
     tbb::parallel_for(0, l.height, [&](int y) {

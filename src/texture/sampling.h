@@ -1,8 +1,12 @@
 // texture/sampling.h — the inner loops every filter shares (private to texture/).
 //
-// All functions accumulate `weight × sample` into acc[0..S), S = the pyramid's texel stride, a
-// compile-time constant so that the channel loops vectorise. Positions are normalised (s, t)
-// already reduced by reduce_coordinate(); texel coordinates follow spec §1 (X = s·W − ½).
+// Lookups at random positions are bound by memory latency, and how many lookups the CPU can keep in
+// flight at once depends on how few instructions each one takes (footprint-bench texture). So these
+// loops are written lean: texel values are returned in registers (Texel<S>), the four bilinear taps
+// are addressed from one base pointer when they share a tile, and floor() is an integer conversion.
+// S is the pyramid's texel stride (1, 2, 4 or 8), a compile-time constant so the channel loops
+// vectorise. Positions are normalised (s, t) already reduced by reduce_coordinate(); texel
+// coordinates follow spec §1 (X = s·W − ½).
 #pragma once
 
 #include <cmath>
@@ -11,52 +15,92 @@
 
 namespace footprint::detail {
 
+// S floats in a GCC/Clang vector type: one SSE register for S = 4, so that a texel's arithmetic
+// is one instruction per operation (the auto-vectoriser does not reliably pack these loops).
+template <int S>
+struct Texel {
+    typedef float Vector __attribute__((vector_size(S * sizeof(float))));
+    Vector v{};
+
+    static Texel load(const float* p) {
+        Texel t;
+        __builtin_memcpy(&t.v, p, sizeof(Vector));  // unaligned load
+        return t;
+    }
+};
+
+template <int S>
+inline void add_scaled(Texel<S>& acc, float w, const Texel<S>& t) {
+    acc.v += w * t.v;
+}
+
+// ⌊x⌋ for |x| < 2^31 without a libm call (x86-64's baseline SSE2 has no rounding instruction).
+inline int floor_to_int(float x) {
+    const int i = static_cast<int>(x);
+    return i - (x < static_cast<float>(i));
+}
+
 // Bilinear sample of one level at (s, t).
 template <int S>
-inline void accumulate_bilinear(const MipPyramid::LevelView& level, WrapMode wrap_s,
-                                WrapMode wrap_t, float s, float t, float weight, float* acc) {
+inline Texel<S> sample_bilinear(const MipPyramid::LevelView& level, WrapMode wrap_s,
+                                WrapMode wrap_t, float s, float t) {
     const float x = s * static_cast<float>(level.width) - 0.5f;
     const float y = t * static_cast<float>(level.height) - 0.5f;
-    const float xf = std::floor(x), yf = std::floor(y);
-    const float fx = x - xf, fy = y - yf;
-    int x0 = static_cast<int>(xf), y0 = static_cast<int>(yf);
-    int x1 = x0 + 1, y1 = y0 + 1;
-    if (x0 < 0 || x1 >= level.width) {
-        x0 = wrap_index(x0, level.width, wrap_s);
-        x1 = wrap_index(x1, level.width, wrap_s);
+    const int x0 = floor_to_int(x), y0 = floor_to_int(y);
+    const float fx = x - static_cast<float>(x0), fy = y - static_cast<float>(y0);
+    const float* a;
+    const float *b, *c, *d;
+    const int mask = level.tile_mask;
+    if (x0 >= 0 && y0 >= 0 && x0 + 1 < level.width && y0 + 1 < level.height &&
+        (x0 & mask) != mask && (y0 & mask) != mask) {
+        // The common case: all four taps inside one tile (one row-major level is one tile).
+        a = level.texel(x0, y0);
+        b = a + S;
+        c = a + level.row_step;
+        d = c + S;
+    } else {
+        // Across a tile edge or the texture edge: address each tap (wrap only when outside).
+        const bool inside_x = x0 >= 0 && x0 + 1 < level.width,
+                   inside_y = y0 >= 0 && y0 + 1 < level.height;
+        const int xa = inside_x ? x0 : wrap_index(x0, level.width, wrap_s);
+        const int xb = inside_x ? x0 + 1 : wrap_index(x0 + 1, level.width, wrap_s);
+        const int ya = inside_y ? y0 : wrap_index(y0, level.height, wrap_t);
+        const int yb = inside_y ? y0 + 1 : wrap_index(y0 + 1, level.height, wrap_t);
+        a = level.texel(xa, ya);
+        b = level.texel(xb, ya);
+        c = level.texel(xa, yb);
+        d = level.texel(xb, yb);
     }
-    if (y0 < 0 || y1 >= level.height) {
-        y0 = wrap_index(y0, level.height, wrap_t);
-        y1 = wrap_index(y1, level.height, wrap_t);
-    }
-    const float* a = level.texel(x0, y0);
-    const float* b = level.texel(x1, y0);
-    const float* c = level.texel(x0, y1);
-    const float* d = level.texel(x1, y1);
-    const float wa = weight * (1 - fx) * (1 - fy), wb = weight * fx * (1 - fy);
-    const float wc = weight * (1 - fx) * fy, wd = weight * fx * fy;
-    for (int k = 0; k < S; ++k) acc[k] += wa * a[k] + wb * b[k] + wc * c[k] + wd * d[k];
+    const float wa = (1 - fx) * (1 - fy), wb = fx * (1 - fy), wc = (1 - fx) * fy, wd = fx * fy;
+    Texel<S> r;
+    r.v = wa * Texel<S>::load(a).v + wb * Texel<S>::load(b).v + wc * Texel<S>::load(c).v +
+          wd * Texel<S>::load(d).v;
+    return r;
 }
 
 // Blend weight of the finer level's successor at fractional lod L + w.
 inline float lod_blend_weight(float w, LodBlend blend) {
     // Spec §2.8: linear blending gives variance 4^L(1+3w)/4; w' = (4^w − 1)/3 gives 4^{L+w}/4.
-    return blend == LodBlend::linear ? w : (std::exp2(2.0f * w) - 1.0f) * (1.0f / 3.0f);
+    if (blend != LodBlend::variance_matched || w == 0.0f) return w;
+    return (std::exp2(2.0f * w) - 1.0f) * (1.0f / 3.0f);
 }
 
 // Trilinear probe at a fractional level lod ∈ [0, max_level].
 template <int S>
-inline void accumulate_trilinear(const MipPyramid& pyramid, float s, float t, float lod,
-                                 LodBlend blend, float weight, float* acc) {
+inline Texel<S> sample_trilinear(const MipPyramid& pyramid, float s, float t, float lod,
+                                 LodBlend blend) {
     const int max_level = pyramid.max_level();
     const int l0 = std::min(static_cast<int>(lod), max_level);
     const float w = l0 < max_level ? lod_blend_weight(lod - static_cast<float>(l0), blend) : 0.0f;
-    if (w < 1.0f)
-        accumulate_bilinear<S>(pyramid.level(l0), pyramid.wrap_s(), pyramid.wrap_t(), s, t,
-                               weight * (1 - w), acc);
-    if (w > 0.0f)
-        accumulate_bilinear<S>(pyramid.level(l0 + 1), pyramid.wrap_s(), pyramid.wrap_t(), s, t,
-                               weight * w, acc);
+    if (w == 0.0f)
+        return sample_bilinear<S>(pyramid.level(l0), pyramid.wrap_s(), pyramid.wrap_t(), s, t);
+    const Texel<S> fine =
+        sample_bilinear<S>(pyramid.level(l0), pyramid.wrap_s(), pyramid.wrap_t(), s, t);
+    const Texel<S> coarse =
+        sample_bilinear<S>(pyramid.level(l0 + 1), pyramid.wrap_s(), pyramid.wrap_t(), s, t);
+    Texel<S> r;
+    r.v = fine.v + w * (coarse.v - fine.v);
+    return r;
 }
 
 // Calls f.template operator()<S>() with the pyramid's stride as a compile-time constant.
@@ -76,6 +120,13 @@ inline void dispatch_stride(int stride, F&& f) {
             f.template operator()<8>();
             break;
     }
+}
+
+// Writes the first `channels` values of a texel.
+template <int S>
+inline void store(const Texel<S>& t, int channels, float* out) {
+    for (int k = 0; k < S; ++k)
+        if (k < channels) out[k] = t.v[k];
 }
 
 }  // namespace footprint::detail

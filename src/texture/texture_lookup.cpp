@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "texture/filters.h"
+#include "texture/footprint_assembly.h"
 #include "texture/sampling.h"
 #include "texture/summed_area_table.h"
 
@@ -91,9 +92,8 @@ void lookup_nearest(const MipPyramid& pyramid, float s, float t, float* out) {
 void lookup_trilinear(const MipPyramid& pyramid, float s, float t, float lod, LodBlend blend,
                       float* out) {
     detail::dispatch_stride(pyramid.stride(), [&]<int S>() {
-        float acc[S] = {};
-        detail::accumulate_trilinear<S>(pyramid, s, t, lod, blend, 1.0f, acc);
-        std::copy_n(acc, pyramid.channels(), out);
+        detail::store(detail::sample_trilinear<S>(pyramid, s, t, lod, blend), pyramid.channels(),
+                      out);
     });
 }
 
@@ -154,21 +154,61 @@ void texture_lookup(const MipPyramid& pyramid, float s, float t, const Footprint
 
 void texture_lookup(const MipPyramid& pyramid, const TextureCoords& c, const LookupOptions& options,
                     float* out) {
-    if (options.filter == TextureFilter::trilinear && std::isfinite(c.s) && std::isfinite(c.t)) {
+    if (!std::isfinite(c.s) || !std::isfinite(c.t)) {  // the ellipse overload returns the mean
+        texture_lookup(pyramid, c.s, c.t, FootprintEllipse{}, options, out);
+        return;
+    }
+    const float w0 = static_cast<float>(pyramid.width(0)),
+                h0 = static_cast<float>(pyramid.height(0));
+    const Vec2 d_dx{c.dsdx * w0, c.dtdx * h0}, d_dy{c.dsdy * w0, c.dtdy * h0};  // columns of D
+    const float len_x2 = dot(d_dx, d_dx), len_y2 = dot(d_dy, d_dy);
+    const bool mipmapped = options.filter == TextureFilter::trilinear ||
+                           options.filter == TextureFilter::footprint_assembly ||
+                           options.filter == TextureFilter::ewa;
+    // Magnification: a footprint inside one texel (trace K = |D|²_F ≤ 1 ⇒ λ1 ≤ 1) is one bilinear
+    // probe at level 0 for every mipmapping filter; skip the ellipse.
+    if (mipmapped && len_x2 + len_y2 <= 1.0f && options.lod_bias <= 0.0f) {
+        const float s = reduce_coordinate(c.s, pyramid.wrap_s()),
+                    t = reduce_coordinate(c.t, pyramid.wrap_t());
+        detail::dispatch_stride(pyramid.stride(), [&]<int S>() {
+            detail::store(detail::sample_bilinear<S>(pyramid.level(0), pyramid.wrap_s(),
+                                                     pyramid.wrap_t(), s, t),
+                          pyramid.channels(), out);
+        });
+        return;
+    }
+    if (!std::isfinite(len_x2 + len_y2) && std::isfinite(c.dsdx) && std::isfinite(c.dtdx) &&
+        std::isfinite(c.dsdy) && std::isfinite(c.dtdy)) {
+        // Finite derivatives whose footprint overflows float: larger than any texture.
+        constexpr float kHuge = 1e30f;
+        texture_lookup(pyramid, c.s, c.t, make_footprint_ellipse(kHuge, kHuge, 0.0f), options, out);
+        return;
+    }
+    if (options.filter == TextureFilter::trilinear && std::isfinite(len_x2 + len_y2)) {
         // GL rule (OpenGL 4.6 §8.14.1): ρ = max(|∂(X,Y)/∂x|, |∂(X,Y)/∂y|), lod = log2 ρ.
-        const float w0 = static_cast<float>(pyramid.width(0)),
-                    h0 = static_cast<float>(pyramid.height(0));
-        const float rho =
-            std::max(std::hypot(c.dsdx * w0, c.dtdx * h0), std::hypot(c.dsdy * w0, c.dtdy * h0));
-        const float lod =
-            std::isfinite(rho) ? std::log2(std::max(rho, 1e-30f)) + options.lod_bias : 0.0f;
+        const float rho_sq = std::max(len_x2, len_y2);
+        const float lod = 0.5f * std::log2(std::max(rho_sq, 1e-30f)) + options.lod_bias;
         lookup_trilinear(pyramid, reduce_coordinate(c.s, pyramid.wrap_s()),
                          reduce_coordinate(c.t, pyramid.wrap_t()),
                          std::clamp(lod, 0.0f, static_cast<float>(pyramid.max_level())),
                          LodBlend::linear, out);
         return;
     }
-    texture_lookup(pyramid, c.s, c.t, footprint_of(pyramid, c), options, out);
+    if (options.filter == TextureFilter::footprint_assembly &&
+        (options.probe_rule == ProbeRule::moment_matched ||
+         options.probe_rule == ProbeRule::gaussian)) {
+        // Near-isotropic footprints are one trilinear probe: skip the ellipse's axes.
+        const float lod =
+            single_probe_lod(footprint_matrix(d_dx, d_dy), options.lod_bias, pyramid.max_level());
+        if (lod >= 0.0f) {
+            const LodBlend blend =
+                options.lod_blend == LodBlend::automatic ? LodBlend::linear : options.lod_blend;
+            lookup_trilinear(pyramid, reduce_coordinate(c.s, pyramid.wrap_s()),
+                             reduce_coordinate(c.t, pyramid.wrap_t()), lod, blend, out);
+            return;
+        }
+    }
+    texture_lookup(pyramid, c.s, c.t, make_footprint_ellipse(d_dx, d_dy), options, out);
 }
 
 }  // namespace footprint
