@@ -1,0 +1,60 @@
+// footprint-bench — benchmarks measured as ratios against a peer or a baseline in the same run.
+//   footprint-bench texture [--json FILE]   our filters vs OpenImageIO's TextureSystem
+//   footprint-bench pyramid [--json FILE]   MIP pyramid build time and memory layouts
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+
+#include "pyramid_bench.h"
+#include "texture_bench.h"
+
+int main(int argc, char** argv) {
+    using namespace footprint::bench;
+    CLI::App app{"footprint-bench: texture filtering benchmarks"};
+    app.require_subcommand(1);
+
+    TextureBenchOptions texture;
+    CLI::App* tex =
+        app.add_subcommand("texture", "our filters against OpenImageIO's TextureSystem::texture()");
+    tex->add_option("--json", texture.json_path, "write the cases as JSON to this file");
+    tex->add_option("--size", texture.texture_size, "texture size (square)")
+        ->check(CLI::Range(64, 8192));
+    tex->add_option("--lookups", texture.lookups_per_regime, "pre-generated lookups per regime")
+        ->check(CLI::Range(1000, 100000000));
+    tex->add_option("--error-subset", texture.error_subset,
+                    "lookups per regime compared against the reference");
+    tex->add_option("--threads", texture.thread_counts, "thread counts to measure")
+        ->check(CLI::Range(1, 256));
+    tex->add_option("--filters", texture.filters, "filters: nearest bilinear trilinear fa ewa sat");
+    tex->add_option("--regimes", texture.regimes, "regimes: tiny moderate aniso32");
+    tex->add_option("--tile-log2", texture.tile_log2,
+                    "pyramid tile size 2^k (default: the library's)")
+        ->check(CLI::Range(0, 6));
+    tex->add_option("--max-probes", texture.max_probes, "footprint assembly probe budget")
+        ->check(CLI::Range(1, 1024));
+    tex->add_option("--probe-rule", texture.probe_rule, "footprint assembly probe rule")
+        ->check(CLI::IsMember({"b", "gaussian", "ext", "texram"}));
+    tex->add_option("--lod-blend", texture.lod_blend, "footprint assembly level blend")
+        ->check(CLI::IsMember({"linear", "variance", "automatic"}));
+    tex->add_flag("!--no-oiio", texture.with_oiio, "skip the OpenImageIO peer");
+    tex->add_flag("--quiet", texture.quiet, "no progress output");
+
+    PyramidBenchOptions pyramid;
+    CLI::App* pyr =
+        app.add_subcommand("pyramid", "MIP pyramid build time, and lookup speed per memory layout");
+    pyr->add_option("--json", pyramid.json_path, "write the results as JSON to this file");
+    pyr->add_option("--size", pyramid.build_size, "build benchmark image size (square, RGBA float)")
+        ->check(CLI::Range(64, 16384));
+    pyr->add_flag("--quiet", pyramid.quiet, "no progress output");
+
+    CLI11_PARSE(app, argc, argv);
+    try {
+        if (*tex) return run_texture_bench(texture);
+        if (*pyr) return run_pyramid_bench(pyramid);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "footprint-bench: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,62 @@
+// bench/bench_util.h — timing and reporting helpers shared by the benchmarks.
+//
+// Rates are measured as the best of several repetitions of a fixed batch (wall clock, steady
+// clock), after one warm-up pass over all items, with the batch sized from a short calibration run
+// so each repetition takes ~0.25 s. Best-of-N rejects interference from other processes.
+// Multi-threaded rates split the batch over std::threads, each with its own per-thread state.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace footprint::bench {
+
+using Clock = std::chrono::steady_clock;
+
+inline double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Runs work(thread_index, begin, end) over [0, count) split evenly across `threads` threads and
+// returns the wall-clock seconds.
+inline double run_split(std::size_t count, int threads,
+                        const std::function<void(int, std::size_t, std::size_t)>& work) {
+    const auto start = Clock::now();
+    if (threads <= 1) {
+        work(0, 0, count);
+    } else {
+        std::vector<std::thread> pool;
+        for (int i = 0; i < threads; ++i)
+            pool.emplace_back(work, i, count * i / threads, count * (i + 1) / threads);
+        for (std::thread& t : pool) t.join();
+    }
+    return seconds_since(start);
+}
+
+// Items per second of `work` over a pool of `available` pre-generated items (indices wrap):
+// calibrates the batch size to ~target_seconds, then keeps the best of `repetitions` runs.
+inline double measure_rate(std::size_t available, int threads,
+                           const std::function<void(int, std::size_t, std::size_t)>& work,
+                           double target_seconds = 0.25, int repetitions = 5) {
+    // Warm-up over every item: both sides are measured with their data in cache, whatever ran
+    // before.
+    run_split(available, threads, work);
+    std::size_t batch = std::min<std::size_t>(available, 2000);
+    double t = run_split(batch, threads, work);
+    while (t < 0.02 && batch < available) {
+        batch = std::min(available, batch * 4);
+        t = run_split(batch, threads, work);
+    }
+    const double rate_guess = double(batch) / std::max(t, 1e-9);
+    batch = std::clamp<std::size_t>(std::size_t(rate_guess * target_seconds), 1000, available);
+    double best = 1e300;
+    for (int r = 0; r < repetitions; ++r) best = std::min(best, run_split(batch, threads, work));
+    return double(batch) / best;
+}
+
+}  // namespace footprint::bench

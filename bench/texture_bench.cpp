@@ -1,0 +1,261 @@
+#include "texture_bench.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/texture.h>
+#include <tbb/parallel_for.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "bench_texture_content.h"
+#include "bench_util.h"
+#include "texture/reference_filter.h"
+#include "texture/texture_lookup.h"
+
+namespace footprint::bench {
+
+namespace {
+
+struct Regime {
+    const char* name;
+    float major, minor;  // texel lengths of the pixel-step images (columns of D)
+};
+constexpr Regime kRegimes[] = {{"tiny", 0.25f, 0.25f}, {"moderate", 4, 4}, {"aniso32", 32, 1}};
+
+struct Filter {
+    const char* name;
+    TextureFilter filter;
+};
+constexpr Filter kFilters[] = {{"nearest", TextureFilter::nearest},
+                               {"bilinear", TextureFilter::bilinear},
+                               {"trilinear", TextureFilter::trilinear},
+                               {"fa", TextureFilter::footprint_assembly},
+                               {"ewa", TextureFilter::ewa},
+                               {"sat", TextureFilter::summed_area}};
+
+bool selected(const std::vector<std::string>& list, const char* name) {
+    return list.empty() || std::find(list.begin(), list.end(), name) != list.end();
+}
+
+// Random positions and orientations; D = R(θ)·diag(major, minor)·2^u, u ∈ [−½, ½].
+std::vector<TextureCoords> make_lookups(const Regime& regime, std::size_t n, int size,
+                                        unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> unit(0, 1);
+    std::vector<TextureCoords> lookups(n);
+    const float inv = 1.0f / float(size);
+    for (TextureCoords& c : lookups) {
+        const float angle = 6.2831853f * unit(rng);
+        const float scale = std::exp2(unit(rng) - 0.5f);
+        const float ca = std::cos(angle), sa = std::sin(angle);
+        c.s = unit(rng);
+        c.t = unit(rng);
+        c.dsdx = regime.major * scale * ca * inv;
+        c.dtdx = regime.major * scale * sa * inv;
+        c.dsdy = -regime.minor * scale * sa * inv;
+        c.dtdy = regime.minor * scale * ca * inv;
+    }
+    return lookups;
+}
+
+double rmse(const std::vector<float>& a, const std::vector<float>& b) {
+    double sum = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) sum += double(a[i] - b[i]) * double(a[i] - b[i]);
+    return std::sqrt(sum / double(a.size()));
+}
+
+// OpenImageIO's TextureSystem over a .tx file made from the same pixels.
+class OiioPeer {
+  public:
+    OiioPeer(const Image& image, const std::filesystem::path& tx_path) : path_(tx_path) {
+        OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
+        OIIO::ImageBuf source(spec, const_cast<float*>(image.pixels.data()));
+        OIIO::ImageSpec config;
+        config.attribute("wrapmodes", "periodic,periodic");  // maketx --wrap periodic
+        if (!OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, source,
+                                              path_.string(), config))
+            throw std::runtime_error("make_texture failed: " + OIIO::geterror());
+        system_ = OIIO::TextureSystem::create(false);
+        system_->attribute("max_memory_MB",
+                           4096.0f);  // keep every tile resident: measure filtering, not I/O
+        handle_ = system_->get_texture_handle(OIIO::ustring(path_.string()));
+        if (!handle_) throw std::runtime_error("OIIO cannot open " + path_.string());
+    }
+    ~OiioPeer() {
+        OIIO::TextureSystem::destroy(system_);
+        std::error_code ec;
+        std::filesystem::remove(path_, ec);
+    }
+
+    void lookup(const TextureCoords& c, float* out) const {
+        OIIO::TextureOpt options;  // default: smart bicubic, anisotropic (up to 32 probes)
+        system_->texture(handle_, system_->get_perthread_info(), options, c.s, c.t, c.dsdx, c.dtdx,
+                         c.dsdy, c.dtdy, 3, out);
+    }
+
+  private:
+    std::filesystem::path path_;
+    OIIO::TextureSystem* system_ = nullptr;
+    OIIO::TextureSystem::TextureHandle* handle_ = nullptr;
+};
+
+struct Case {
+    std::string filter, regime;
+    int threads;
+    double ours_rate, oiio_rate;  // lookups/s
+    double ours_rmse, oiio_rmse;
+};
+
+}  // namespace
+
+int run_texture_bench(const TextureBenchOptions& opt) {
+    const bool progress = !opt.quiet && isatty(STDERR_FILENO);
+    auto note = [&](const std::string& what) {
+        if (progress) std::fprintf(stderr, "\r\033[K%s", what.c_str());
+    };
+
+    note("making the texture");
+    const Image image = make_benchmark_texture(opt.texture_size);
+    MipPyramidOptions po;
+    po.summed_area_table = selected(opt.filters, "sat");
+    if (opt.tile_log2 >= 0) po.tile_log2 = opt.tile_log2;
+    note("building the pyramid");
+    const auto build_start = Clock::now();
+    const MipPyramid pyramid = MipPyramid::build(image, po);
+    const double build_seconds = seconds_since(build_start);
+
+    std::unique_ptr<OiioPeer> oiio;
+    if (opt.with_oiio) {
+        note("making the OpenImageIO .tx");
+        const auto tx = std::filesystem::temp_directory_path() /
+                        ("footprint-bench-" + std::to_string(getpid()) + ".tx");
+        oiio = std::make_unique<OiioPeer>(image, tx);
+    }
+
+    std::vector<Case> cases;
+    for (const Regime& regime : kRegimes) {
+        if (!selected(opt.regimes, regime.name)) continue;
+        const std::vector<TextureCoords> lookups = make_lookups(
+            regime, opt.lookups_per_regime, opt.texture_size, 1234u + unsigned(regime.major * 8));
+        const std::size_t subset = std::min(opt.error_subset, lookups.size());
+
+        // The ground truth on the subset (slow: dense quadrature), in parallel.
+        note(std::string("reference for ") + regime.name);
+        std::vector<float> truth(subset * 3);
+        ReferenceOptions ro;
+        tbb::parallel_for(std::size_t(0), subset, [&](std::size_t i) {
+            reference_lookup(image, lookups[i].s, lookups[i].t, footprint_of(pyramid, lookups[i]),
+                             ro, &truth[i * 3]);
+        });
+
+        // The peer, once per regime and thread count (the same figures go into every filter's row).
+        double oiio_rmse = NAN;
+        std::vector<double> oiio_rate(opt.thread_counts.size(), NAN);
+        if (oiio) {
+            std::vector<float> got(subset * 3);
+            for (std::size_t i = 0; i < subset; ++i)
+                oiio->lookup(lookups[i], &got[i * 3]);  // also warms the cache
+            oiio_rmse = rmse(got, truth);
+            for (std::size_t k = 0; k < opt.thread_counts.size(); ++k) {
+                note(std::string("OpenImageIO, ") + regime.name);
+                oiio_rate[k] = measure_rate(lookups.size(), opt.thread_counts[k],
+                                            [&](int, std::size_t b, std::size_t e) {
+                                                float out[3], sink = 0;
+                                                for (std::size_t i = b; i < e; ++i) {
+                                                    oiio->lookup(lookups[i], out);
+                                                    sink += out[0];
+                                                }
+                                                volatile float keep = sink;
+                                                (void)keep;
+                                            });
+            }
+        }
+
+        for (const Filter& f : kFilters) {
+            if (!selected(opt.filters, f.name)) continue;
+            LookupOptions lo;
+            lo.filter = f.filter;
+            if (opt.max_probes > 0) lo.max_probes = opt.max_probes;
+            if (opt.probe_rule == "b") lo.probe_rule = ProbeRule::moment_matched;
+            if (opt.probe_rule == "gaussian") lo.probe_rule = ProbeRule::gaussian;
+            if (opt.probe_rule == "ext") lo.probe_rule = ProbeRule::ext;
+            if (opt.probe_rule == "texram") lo.probe_rule = ProbeRule::texram;
+            if (opt.lod_blend == "linear") lo.lod_blend = LodBlend::linear;
+            if (opt.lod_blend == "variance") lo.lod_blend = LodBlend::variance_matched;
+            if (opt.lod_blend == "automatic") lo.lod_blend = LodBlend::automatic;
+            std::vector<float> got(subset * 3);
+            for (std::size_t i = 0; i < subset; ++i)
+                texture_lookup(pyramid, lookups[i], lo, &got[i * 3]);
+            const double ours_rmse = rmse(got, truth);
+            for (std::size_t k = 0; k < opt.thread_counts.size(); ++k) {
+                note(std::string(f.name) + ", " + regime.name);
+                const double rate = measure_rate(
+                    lookups.size(), opt.thread_counts[k], [&](int, std::size_t b, std::size_t e) {
+                        float out[4], sink = 0;
+                        for (std::size_t i = b; i < e; ++i) {
+                            texture_lookup(pyramid, lookups[i], lo, out);
+                            sink += out[0];
+                        }
+                        volatile float keep = sink;
+                        (void)keep;
+                    });
+                cases.push_back({f.name, regime.name, opt.thread_counts[k], rate, oiio_rate[k],
+                                 ours_rmse, oiio_rmse});
+            }
+        }
+    }
+    note("");
+
+    std::printf("texture %d² float RGB; pyramid build %.3f s; RMSE on %zu lookups per regime\n",
+                opt.texture_size, build_seconds, opt.error_subset);
+    std::printf("%-10s %-9s %7s %12s %12s %8s %11s %11s\n", "filter", "regime", "threads",
+                "ours Ml/s", "OIIO Ml/s", "ratio", "ours RMSE", "OIIO RMSE");
+    for (const Case& c : cases)
+        std::printf("%-10s %-9s %7d %12.3f %12.3f %8.2f %11.5f %11.5f\n", c.filter.c_str(),
+                    c.regime.c_str(), c.threads, c.ours_rate / 1e6, c.oiio_rate / 1e6,
+                    c.ours_rate / c.oiio_rate, c.ours_rmse, c.oiio_rmse);
+
+    if (!opt.json_path.empty()) {
+        nlohmann::json j;
+        j["benchmark"] = "texture";
+        j["texture_size"] = opt.texture_size;
+        j["pyramid_build_seconds"] = build_seconds;
+        j["lookups_per_regime"] = opt.lookups_per_regime;
+        j["error_subset"] = opt.error_subset;
+        j["oiio_version"] = OIIO_VERSION_STRING;
+        j["hardware_threads"] = std::thread::hardware_concurrency();
+        for (const Case& c : cases) {
+            auto nan_to_null = [](double v) {
+                return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
+            };
+            j["cases"].push_back({{"filter", c.filter},
+                                  {"regime", c.regime},
+                                  {"threads", c.threads},
+                                  {"ours_mlookups_per_s", c.ours_rate / 1e6},
+                                  {"oiio_mlookups_per_s", nan_to_null(c.oiio_rate / 1e6)},
+                                  {"ours_rmse", c.ours_rmse},
+                                  {"oiio_rmse", nan_to_null(c.oiio_rmse)}});
+        }
+        const std::filesystem::path path(opt.json_path);
+        if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+        const std::filesystem::path tmp = path.string() + ".tmp";
+        {
+            std::ofstream out(tmp);
+            out << j.dump(2) << "\n";
+            if (!out) {
+                std::fprintf(stderr, "footprint-bench: cannot write '%s'\n", opt.json_path.c_str());
+                return 1;
+            }
+        }
+        std::filesystem::rename(tmp, path);
+    }
+    return 0;
+}
+
+}  // namespace footprint::bench
