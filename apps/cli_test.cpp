@@ -1,0 +1,196 @@
+// Tests of the `footprint demo` and `footprint plane` commands, called as functions (demo.h):
+// exit statuses, one-line error messages, and no output file on failure.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+#include "demo.h"
+#include "image/image_io.h"
+
+namespace footprint {
+namespace {
+
+namespace fs = std::filesystem;
+
+class CommandTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        std::random_device random;
+        dir_ = fs::temp_directory_path() / ("footprint-cli-test-" + std::to_string(random()));
+        fs::create_directories(dir_);
+        Image texture(16, 16, 3);
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 16; ++x)
+                for (int c = 0; c < 3; ++c) texture.at(x, y, c) = ((x + y) % 2) ? 0.9f : 0.1f;
+        texture_ = dir_ / "checker.png";
+        ASSERT_TRUE(save_image(texture, texture_).ok());
+    }
+    void TearDown() override {
+        std::error_code ignored;
+        fs::remove_all(dir_, ignored);
+    }
+    // Runs the plane command with stderr captured; returns the exit status.
+    int plane(PlaneCommandOptions options, std::string* err = nullptr) {
+        options.quiet = true;
+        ::testing::internal::CaptureStderr();
+        const int status = run_plane_command(options);
+        const std::string text = ::testing::internal::GetCapturedStderr();
+        if (err) *err = text;
+        return status;
+    }
+    // The directory holds nothing but the texture (no output, no temporary file).
+    bool only_texture_left() const {
+        int entries = 0;
+        for (const auto& e : fs::directory_iterator(dir_)) entries += e.path() != texture_ ? 1 : 0;
+        return entries == 0;
+    }
+    static bool one_line(const std::string& s) {
+        return !s.empty() && s.back() == '\n' && s.find('\n') == s.size() - 1;
+    }
+
+    fs::path dir_, texture_;
+};
+
+TEST_F(CommandTest, PlaneWritesTheImage) {
+    PlaneCommandOptions options;
+    options.texture = texture_;
+    options.output = dir_ / "plane.png";
+    options.width = 64;
+    options.filter = "ewa";
+    ASSERT_EQ(plane(options), 0);
+    Result<Image> image = load_image(options.output);
+    ASSERT_TRUE(image.ok()) << image.error().message;
+    EXPECT_EQ(image->width, 64);
+    EXPECT_EQ(image->height, 36);
+}
+
+TEST_F(CommandTest, PlaneWritesExrForEveryFilter) {
+    for (const char* filter : {"nearest", "bilinear", "trilinear", "fa", "ewa", "sat"}) {
+        PlaneCommandOptions options;
+        options.texture = texture_;
+        options.output = dir_ / (std::string(filter) + ".exr");
+        options.width = 32;
+        options.filter = filter;
+        EXPECT_EQ(plane(options), 0) << filter;
+        EXPECT_TRUE(fs::exists(options.output)) << filter;
+    }
+}
+
+TEST_F(CommandTest, MissingTextureFailsWithoutOutput) {
+    PlaneCommandOptions options;
+    options.texture = dir_ / "missing.png";
+    options.output = dir_ / "out.png";
+    std::string err;
+    EXPECT_EQ(plane(options, &err), 1);
+    EXPECT_TRUE(one_line(err)) << err;
+    EXPECT_NE(err.find("missing.png"), std::string::npos) << err;
+    EXPECT_TRUE(only_texture_left());
+}
+
+TEST_F(CommandTest, CorruptTextureFailsWithoutOutput) {
+    const fs::path bad = dir_ / "bad.png";
+    std::ofstream(bad, std::ios::binary) << "\x89PNG\r\n\x1a\n this is not a png";
+    PlaneCommandOptions options;
+    options.texture = bad;
+    options.output = dir_ / "out.png";
+    std::string err;
+    EXPECT_EQ(plane(options, &err), 1);
+    EXPECT_TRUE(one_line(err)) << err;
+    EXPECT_NE(err.find("bad.png"), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(options.output));
+}
+
+TEST_F(CommandTest, UnknownFilterListsTheValidOnes) {
+    PlaneCommandOptions options;
+    options.texture = texture_;
+    options.output = dir_ / "out.png";
+    options.filter = "anisotropic";
+    std::string err;
+    EXPECT_EQ(plane(options, &err), 1);
+    EXPECT_TRUE(one_line(err)) << err;
+    EXPECT_NE(err.find("anisotropic"), std::string::npos) << err;
+    EXPECT_NE(err.find("nearest, bilinear, trilinear, fa, ewa, sat"), std::string::npos) << err;
+    EXPECT_TRUE(only_texture_left());
+}
+
+TEST_F(CommandTest, BadOptionValuesFail) {
+    PlaneCommandOptions options;
+    options.texture = texture_;
+    options.output = dir_ / "out.png";
+    for (int width : {0, -5, 15, 100000}) {
+        options.width = width;
+        std::string err;
+        EXPECT_EQ(plane(options, &err), 1) << width;
+        EXPECT_NE(err.find("--size"), std::string::npos) << err;
+    }
+    options.width = 32;
+    for (double scale : {0.0, -1.0, std::nan(""), double(INFINITY)}) {
+        options.uv_scale = scale;
+        std::string err;
+        EXPECT_EQ(plane(options, &err), 1) << scale;
+        EXPECT_NE(err.find("--uv-scale"), std::string::npos) << err;
+    }
+    EXPECT_TRUE(only_texture_left());
+}
+
+TEST_F(CommandTest, BadOutputPathsFailBeforeRendering) {
+    PlaneCommandOptions options;
+    options.texture = texture_;
+    options.width = 32;
+    std::string err;
+    options.output = dir_ / "out.bmp";
+    EXPECT_EQ(plane(options, &err), 1);
+    EXPECT_NE(err.find("out.bmp"), std::string::npos) << err;
+    options.output = dir_ / "no_such_dir" / "out.png";
+    EXPECT_EQ(plane(options, &err), 1);
+    EXPECT_NE(err.find("no_such_dir"), std::string::npos) << err;
+    EXPECT_TRUE(one_line(err)) << err;
+    EXPECT_TRUE(only_texture_left());
+}
+
+TEST_F(CommandTest, DemoWritesEveryFile) {
+    DemoCommandOptions options;
+    options.out_dir = dir_ / "demo";  // created by the command
+    options.width = 32;
+    options.samples_per_axis = 2;
+    options.texture_size = 64;
+    options.quiet = true;
+    ::testing::internal::CaptureStdout();
+    const int status = run_demo_command(options);
+    const std::string table = ::testing::internal::GetCapturedStdout();
+    ASSERT_EQ(status, 0);
+    for (const char* name : {"reference", "nearest", "bilinear", "trilinear", "fa", "ewa", "sat"}) {
+        const fs::path file = options.out_dir / ("demo_" + std::string(name) + ".png");
+        EXPECT_TRUE(fs::exists(file)) << file;
+        EXPECT_NE(table.find(name), std::string::npos) << table;
+    }
+    Result<Image> sheet = load_image(options.out_dir / "demo_contact_sheet.png");
+    ASSERT_TRUE(sheet.ok());
+    EXPECT_EQ(sheet->width, 4 * 32 + 5 * 4);
+    EXPECT_EQ(sheet->height, 2 * 18 + 3 * 4);
+    std::ifstream json_file(options.out_dir / "demo.json");
+    const std::string json((std::istreambuf_iterator<char>(json_file)),
+                           std::istreambuf_iterator<char>());
+    EXPECT_NE(json.find("\"rmse\""), std::string::npos);
+    EXPECT_NE(json.find("\"order\": [\"reference\", \"nearest\""), std::string::npos) << json;
+    for (const auto& e : fs::directory_iterator(options.out_dir))
+        EXPECT_NE(e.path().filename().string().front(), '.') << "temporary file left: " << e.path();
+}
+
+TEST_F(CommandTest, DemoIntoAFileFails) {
+    DemoCommandOptions options;
+    options.out_dir = texture_;  // exists, not a directory
+    options.quiet = true;
+    ::testing::internal::CaptureStderr();
+    EXPECT_EQ(run_demo_command(options), 1);
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(err.find("checker.png"), std::string::npos) << err;
+    EXPECT_TRUE(one_line(err)) << err;
+}
+
+}  // namespace
+}  // namespace footprint
