@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "math/fast_log2.h"
+
 #include "texture/filters.h"
 #include "texture/sampling.h"
 
@@ -99,7 +101,7 @@ void filter_ewa(const MipPyramid& pyramid, float s, float t, const FootprintElli
         e.matrix = e.from_axes();
     }
     const float lod =
-        std::clamp(std::log2(std::max(e.minor_radius, 1e-30f)) - 1.5f + options.lod_bias, 0.0f,
+        std::clamp(fast_log2(std::max(e.minor_radius, 1e-30f)) - 1.5f + options.lod_bias, 0.0f,
                    static_cast<float>(pyramid.max_level()));
     const int l0 = static_cast<int>(lod);
     const float w = l0 < pyramid.max_level() ? lod - static_cast<float>(l0) : 0.0f;

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+
 #include <vector>
+#include "math/fast_log2.h"
 
 #include "texture/filters.h"
 #include "texture/sampling.h"
@@ -13,7 +15,7 @@ namespace {
 
 // The lod for a probe texel size, biased and clamped to the pyramid.
 float probe_lod(float texel_size, float lod_bias, int max_level) {
-    return std::clamp(std::log2(std::max(texel_size, 1.0f)) + lod_bias, 0.0f,
+    return std::clamp(fast_log2(std::max(texel_size, 1.0f)) + lod_bias, 0.0f,
                       static_cast<float>(max_level));
 }
 
@@ -53,7 +55,7 @@ float single_probe_lod(const Sym2& k, float lod_bias, int max_level) {
     const float minor_sq = major_sq > 0 ? std::max(0.0f, k.determinant()) / major_sq : 0.0f;
     const float tp_sq = std::max(minor_sq, 1.0f);  // T_p² = max(λ2, T_min)²
     if (!(major_sq <= kIsotropicRatio * kIsotropicRatio * tp_sq)) return -1.0f;
-    return std::clamp(0.5f * std::log2(tp_sq) + lod_bias, 0.0f, static_cast<float>(max_level));
+    return std::clamp(0.5f * fast_log2(tp_sq) + lod_bias, 0.0f, static_cast<float>(max_level));
 }
 
 ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max_probes,

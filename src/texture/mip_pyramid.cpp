@@ -88,52 +88,52 @@ double tap_variance(int src, int dst, DownsampleFilter filter) {
     return var;
 }
 
-// Separable downsampling of a row-major (width × height × stride) buffer.
-std::vector<float> downsample(const std::vector<float>& src, int sw, int sh, int dw, int dh,
-                              int stride, const MipPyramidOptions& options) {
+// Separable downsampling of a row-major (sw × sh × stride) buffer into a row-major (dw × dh ×
+// stride) buffer, fused per output row: the vertical taps combine source rows into one row of
+// scratch, then the horizontal taps read it. No level-sized temporary, and each source row is read
+// once per output row that needs it.
+void downsample(const float* src, int sw, int sh, float* dst, int dw, int dh, int stride,
+                const MipPyramidOptions& options) {
     const AxisTaps xt = make_axis_taps(sw, dw, options.downsample, options.wrap_s);
     const AxisTaps yt = make_axis_taps(sh, dh, options.downsample, options.wrap_t);
-
-    // Horizontal pass: sw × sh → dw × sh.
-    std::vector<float> mid(static_cast<std::size_t>(dw) * sh * stride);
-    tbb::parallel_for(tbb::blocked_range<int>(0, sh, 16), [&](const tbb::blocked_range<int>& rows) {
+    const std::size_t src_row = static_cast<std::size_t>(sw) * stride;
+    tbb::parallel_for(tbb::blocked_range<int>(0, dh, 8), [&](const tbb::blocked_range<int>& rows) {
+        std::vector<float> column_sum(src_row);
         float acc[MipPyramid::kMaxChannels];
         for (int y = rows.begin(); y < rows.end(); ++y) {
-            const float* in = src.data() + static_cast<std::size_t>(y) * sw * stride;
-            float* out = mid.data() + static_cast<std::size_t>(y) * dw * stride;
+            std::fill(column_sum.begin(), column_sum.end(), 0.0f);
+            for (int k = yt.first[y]; k < yt.first[y + 1]; ++k) {
+                const float w = yt.taps[k].weight;
+                const float* in = src + static_cast<std::size_t>(yt.taps[k].index) * src_row;
+                for (std::size_t i = 0; i < src_row; ++i) column_sum[i] += w * in[i];
+            }
+            float* out = dst + static_cast<std::size_t>(y) * dw * stride;
             for (int x = 0; x < dw; ++x) {
                 std::fill(acc, acc + stride, 0.0f);
                 for (int k = xt.first[x]; k < xt.first[x + 1]; ++k) {
-                    const float* t = in + static_cast<std::size_t>(xt.taps[k].index) * stride;
+                    const float* t =
+                        column_sum.data() + static_cast<std::size_t>(xt.taps[k].index) * stride;
                     for (int c = 0; c < stride; ++c) acc[c] += xt.taps[k].weight * t[c];
                 }
                 std::copy(acc, acc + stride, out + static_cast<std::size_t>(x) * stride);
             }
         }
     });
-
-    // Vertical pass: dw × sh → dw × dh, whole rows at a time (streams through memory).
-    std::vector<float> dst(static_cast<std::size_t>(dw) * dh * stride, 0.0f);
-    const std::size_t row_floats = static_cast<std::size_t>(dw) * stride;
-    tbb::parallel_for(tbb::blocked_range<int>(0, dh, 4), [&](const tbb::blocked_range<int>& rows) {
-        for (int y = rows.begin(); y < rows.end(); ++y) {
-            float* out = dst.data() + y * row_floats;
-            for (int k = yt.first[y]; k < yt.first[y + 1]; ++k) {
-                const float w = yt.taps[k].weight;
-                const float* in =
-                    mid.data() + static_cast<std::size_t>(yt.taps[k].index) * row_floats;
-                for (std::size_t i = 0; i < row_floats; ++i) out[i] += w * in[i];
-            }
-        }
-    });
-    return dst;
 }
 
 // The image's texels row-major with each texel padded from `channels` to `stride` floats.
+void copy_padded(const Image& image, int stride, float* padded) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, image.pixel_count(), 1 << 14),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t i = r.begin(); i < r.end(); ++i)
+                              std::copy_n(&image.pixels[i * image.channels], image.channels,
+                                          &padded[i * stride]);
+                      });
+}
+
 std::vector<float> padded_to_stride(const Image& image, int stride) {
     std::vector<float> padded(image.pixel_count() * stride, 0.0f);
-    for (std::size_t i = 0; i < image.pixel_count(); ++i)
-        std::copy_n(&image.pixels[i * image.channels], image.channels, &padded[i * stride]);
+    copy_padded(image, stride, padded.data());
     return padded;
 }
 
@@ -173,13 +173,28 @@ MipPyramid MipPyramid::build(const Image& level0, const MipPyramidOptions& optio
     MipPyramid p;
     p.allocate(level0.width, level0.height, level0.channels, options);
 
-    std::vector<float> current = padded_to_stride(level0, p.stride_);
-    p.store_level(0, current);
+    // Row-major storage is its own scratch: each level is downsampled straight from the previous
+    // one in place. Tiled layouts go through row-major buffers and are scattered into tiles.
+    const bool row_major = p.tile_log2_ == 0;
+    std::vector<float> current;
+    if (row_major) {
+        copy_padded(level0, p.stride_, p.storage_.data());
+    } else {
+        current = padded_to_stride(level0, p.stride_);
+        p.store_level(0, current);
+    }
 
     for (int l = 1; l < p.level_count(); ++l) {
-        current = downsample(current, p.width(l - 1), p.height(l - 1), p.width(l), p.height(l),
-                             p.stride_, options);
-        p.store_level(l, current);
+        const int sw = p.width(l - 1), sh = p.height(l - 1), dw = p.width(l), dh = p.height(l);
+        if (row_major) {
+            downsample(p.storage_.data() + p.levels_[l - 1].offset, sw, sh,
+                       p.storage_.data() + p.levels_[l].offset, dw, dh, p.stride_, options);
+        } else {
+            std::vector<float> next(static_cast<std::size_t>(dw) * dh * p.stride_);
+            downsample(current.data(), sw, sh, next.data(), dw, dh, p.stride_, options);
+            current = std::move(next);
+            p.store_level(l, current);
+        }
         // Variances add through the chain; a step's variance in level-0 units scales with the
         // source level's texel size squared.
         const double tx = double(level0.width) / p.width(l - 1),

@@ -91,6 +91,7 @@ class MipPyramid {
         int tile_mask;  // x & tile_mask == tile_mask: the last column of a tile (never, row-major)
         int row_step;   // floats from texel (x, y) to (x, y + 1) inside one tile
         const float* texel(int x, int y) const {
+            if (tile_log2 == 0) return base + (static_cast<std::size_t>(y) * width + x) * stride;
             const int m = (1 << tile_log2) - 1;
             const std::size_t tile =
                 static_cast<std::size_t>(y >> tile_log2) * tiles_x + (x >> tile_log2);

@@ -42,7 +42,7 @@ inline int floor_to_int(float x) {
 
 // Bilinear sample of one level at (s, t).
 template <int S>
-inline Texel<S> sample_bilinear(const MipPyramid::LevelView& level, WrapMode wrap_s,
+[[gnu::always_inline]] inline Texel<S> sample_bilinear(const MipPyramid::LevelView& level, WrapMode wrap_s,
                                 WrapMode wrap_t, float s, float t) {
     const float x = s * static_cast<float>(level.width) - 0.5f;
     const float y = t * static_cast<float>(level.height) - 0.5f;
@@ -87,7 +87,7 @@ inline float lod_blend_weight(float w, LodBlend blend) {
 
 // Trilinear probe at a fractional level lod ∈ [0, max_level].
 template <int S>
-inline Texel<S> sample_trilinear(const MipPyramid& pyramid, float s, float t, float lod,
+[[gnu::always_inline]] inline Texel<S> sample_trilinear(const MipPyramid& pyramid, float s, float t, float lod,
                                  LodBlend blend) {
     const int max_level = pyramid.max_level();
     const int l0 = std::min(static_cast<int>(lod), max_level);

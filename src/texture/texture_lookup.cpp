@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "math/fast_log2.h"
+
 #include "texture/filters.h"
 #include "texture/footprint_assembly.h"
 #include "texture/sampling.h"
@@ -135,7 +137,7 @@ void texture_lookup(const MipPyramid& pyramid, float s, float t, const Footprint
             return;
         case TextureFilter::trilinear: {
             // Isotropic: ρ = λ1 for an ellipse (the coords overload uses GL's column lengths).
-            const float lod = std::log2(std::max(e.major_radius, 1e-30f)) + options.lod_bias;
+            const float lod = fast_log2(std::max(e.major_radius, 1e-30f)) + options.lod_bias;
             lookup_trilinear(pyramid, s, t, std::clamp(lod, 0.0f, max_level), LodBlend::linear,
                              out);
             return;
@@ -187,7 +189,7 @@ void texture_lookup(const MipPyramid& pyramid, const TextureCoords& c, const Loo
     if (options.filter == TextureFilter::trilinear && std::isfinite(len_x2 + len_y2)) {
         // GL rule (OpenGL 4.6 §8.14.1): ρ = max(|∂(X,Y)/∂x|, |∂(X,Y)/∂y|), lod = log2 ρ.
         const float rho_sq = std::max(len_x2, len_y2);
-        const float lod = 0.5f * std::log2(std::max(rho_sq, 1e-30f)) + options.lod_bias;
+        const float lod = 0.5f * fast_log2(std::max(rho_sq, 1e-30f)) + options.lod_bias;
         lookup_trilinear(pyramid, reduce_coordinate(c.s, pyramid.wrap_s()),
                          reduce_coordinate(c.t, pyramid.wrap_t()),
                          std::clamp(lod, 0.0f, static_cast<float>(pyramid.max_level())),
