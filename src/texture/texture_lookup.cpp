@@ -160,6 +160,21 @@ void texture_lookup(const MipPyramid& pyramid, const TextureCoords& c, const Loo
         texture_lookup(pyramid, c.s, c.t, FootprintEllipse{}, options, out);
         return;
     }
+    if (options.filter == TextureFilter::nearest || options.filter == TextureFilter::bilinear) {
+        // The level-0 baselines need no footprint.
+        const float s = reduce_coordinate(c.s, pyramid.wrap_s()),
+                    t = reduce_coordinate(c.t, pyramid.wrap_t());
+        if (options.filter == TextureFilter::nearest) {
+            lookup_nearest(pyramid, s, t, out);
+            return;
+        }
+        detail::dispatch_stride(pyramid.stride(), [&]<int S>() {
+            detail::store(detail::sample_bilinear<S>(pyramid.level(0), pyramid.wrap_s(),
+                                                     pyramid.wrap_t(), s, t),
+                          pyramid.channels(), out);
+        });
+        return;
+    }
     const float w0 = static_cast<float>(pyramid.width(0)),
                 h0 = static_cast<float>(pyramid.height(0));
     const Vec2 d_dx{c.dsdx * w0, c.dtdx * h0}, d_dy{c.dsdy * w0, c.dtdy * h0};  // columns of D
