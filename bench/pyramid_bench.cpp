@@ -10,39 +10,12 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
+#include "bench_lookups.h"
 #include "bench_texture_content.h"
 #include "bench_util.h"
 #include "texture/texture_lookup.h"
 
 namespace footprint::bench {
-
-namespace {
-
-struct Regime {
-    const char* name;
-    float major, minor;
-};
-constexpr Regime kRegimes[] = {{"tiny", 0.25f, 0.25f}, {"moderate", 4, 4}, {"aniso32", 32, 1}};
-
-std::vector<TextureCoords> make_lookups(const Regime& regime, std::size_t n, int size,
-                                        unsigned seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> unit(0, 1);
-    std::vector<TextureCoords> lookups(n);
-    for (TextureCoords& c : lookups) {
-        const float angle = 6.2831853f * unit(rng),
-                    scale = std::exp2(unit(rng) - 0.5f) / float(size);
-        c = {unit(rng),
-             unit(rng),
-             regime.major * scale * std::cos(angle),
-             regime.major * scale * std::sin(angle),
-             -regime.minor * scale * std::sin(angle),
-             regime.minor * scale * std::cos(angle)};
-    }
-    return lookups;
-}
-
-}  // namespace
 
 int run_pyramid_bench(const PyramidBenchOptions& opt) {
     const bool progress = !opt.quiet && isatty(STDERR_FILENO);

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
+#include "bench_lookups.h"
 #include "bench_texture_content.h"
 #include "bench_util.h"
 #include "texture/reference_filter.h"
@@ -21,12 +22,6 @@
 namespace footprint::bench {
 
 namespace {
-
-struct Regime {
-    const char* name;
-    float major, minor;  // texel lengths of the pixel-step images (columns of D)
-};
-constexpr Regime kRegimes[] = {{"tiny", 0.25f, 0.25f}, {"moderate", 4, 4}, {"aniso32", 32, 1}};
 
 struct Filter {
     const char* name;
@@ -41,27 +36,6 @@ constexpr Filter kFilters[] = {{"nearest", TextureFilter::nearest},
 
 bool selected(const std::vector<std::string>& list, const char* name) {
     return list.empty() || std::find(list.begin(), list.end(), name) != list.end();
-}
-
-// Random positions and orientations; D = R(θ)·diag(major, minor)·2^u, u ∈ [−½, ½].
-std::vector<TextureCoords> make_lookups(const Regime& regime, std::size_t n, int size,
-                                        unsigned seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> unit(0, 1);
-    std::vector<TextureCoords> lookups(n);
-    const float inv = 1.0f / float(size);
-    for (TextureCoords& c : lookups) {
-        const float angle = 6.2831853f * unit(rng);
-        const float scale = std::exp2(unit(rng) - 0.5f);
-        const float ca = std::cos(angle), sa = std::sin(angle);
-        c.s = unit(rng);
-        c.t = unit(rng);
-        c.dsdx = regime.major * scale * ca * inv;
-        c.dtdx = regime.major * scale * sa * inv;
-        c.dsdy = -regime.minor * scale * sa * inv;
-        c.dtdy = regime.minor * scale * ca * inv;
-    }
-    return lookups;
 }
 
 double rmse(const std::vector<float>& a, const std::vector<float>& b) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <random>
 
+#include "image/test_images.h"
 #include "texture/kernel_moments.h"
 #include "texture/texture_lookup.h"
 
@@ -18,14 +19,6 @@ constexpr float kLevel0RelTolerance = 1e-5f;
 // by construction (prefilter variance + Gaussian = K/4); the residual is the sampled Gaussian's
 // deviation from its continuous variance (≤ 1 % at σ ≥ 0.6 texel) and the linear level blend.
 constexpr double kEwaCovarianceTolerance = 0.03;
-
-Image random_image(int w, int h, int channels, unsigned seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(0, 1);
-    Image image(w, h, channels);
-    for (float& v : image.pixels) v = u(rng);
-    return image;
-}
 
 TEST(Ewa, TruncationVarianceConstant) {
     // Numerically: the 2-D radial moments of w(r) = e^{−r²/2} − e^{−4.5} on r < 3.

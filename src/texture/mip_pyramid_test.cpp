@@ -1,4 +1,5 @@
 #include "texture/mip_pyramid.h"
+#include "image/test_images.h"
 
 #include <gtest/gtest.h>
 
@@ -12,14 +13,6 @@ namespace {
 constexpr double kMeanTolerance = 2e-6;
 // A box-pyramid texel against the double-precision mean of the level-0 texels it covers.
 constexpr double kBoxTexelTolerance = 2e-6;
-
-Image random_image(int w, int h, int channels, unsigned seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(0, 1);
-    Image image(w, h, channels);
-    for (float& v : image.pixels) v = u(rng);
-    return image;
-}
 
 std::vector<double> mean_of(const Image& image) {
     std::vector<double> mean(image.channels, 0.0);

@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "image/test_images.h"
 #include "texture/texture_lookup.h"
 
 namespace footprint {
@@ -21,8 +22,7 @@ TEST(SummedAreaTable, BoxMeanEqualsBruteForceForEveryWrapMode) {
     const int w = 37, h = 23;  // odd sizes
     std::mt19937 rng(1);
     std::uniform_real_distribution<float> u(0, 1);
-    Image image(w, h, 2);
-    for (float& v : image.pixels) v = u(rng);
+    const Image image = random_image(w, h, 2, 1234u);
     for (WrapMode ws : {WrapMode::repeat, WrapMode::clamp, WrapMode::mirror})
         for (WrapMode wt : {WrapMode::repeat, WrapMode::clamp, WrapMode::mirror}) {
             const SummedAreaTable sat = SummedAreaTable::build(image, ws, wt);
@@ -56,8 +56,7 @@ TEST(SummedAreaTable, LookupUsesTheEllipseBoundingRectangle) {
     const int size = 32;
     std::mt19937 rng(2);
     std::uniform_real_distribution<float> u(0, 1);
-    Image image(size, size, 1);
-    for (float& v : image.pixels) v = u(rng);
+    const Image image = random_image(size, size, 1, 1234u);
     MipPyramidOptions po;
     po.summed_area_table = true;
     const MipPyramid pyramid = MipPyramid::build(image, po);

@@ -6,6 +6,7 @@
 #include <limits>
 #include <random>
 
+#include "image/test_images.h"
 #include "texture/ewa.h"
 
 namespace footprint {
@@ -142,8 +143,7 @@ TEST(TextureLookup, WrapModesAtTheEdges) {
     const int w = 5, h = 4;
     std::mt19937 rng(8);
     std::uniform_real_distribution<float> u(0, 1);
-    Image image(w, h, 1);
-    for (float& v : image.pixels) v = u(rng);
+    const Image image = random_image(w, h, 1, 1234u);
     for (WrapMode ws : {WrapMode::repeat, WrapMode::clamp, WrapMode::mirror})
         for (WrapMode wt : {WrapMode::repeat, WrapMode::clamp, WrapMode::mirror}) {
             // 5×5 copies of the texture around the original, mirrored or clamped as the modes say.
@@ -203,8 +203,7 @@ TEST(TextureLookup, NearestAndBilinearAtTexelCentres) {
 TEST(TextureLookup, DegenerateInputsGiveFiniteValues) {
     std::mt19937 rng(4);
     std::uniform_real_distribution<float> u(0, 1);
-    Image image(33, 17, 3);
-    for (float& v : image.pixels) v = u(rng);
+    const Image image = random_image(33, 17, 3, 1234u);
     const float inf = std::numeric_limits<float>::infinity(),
                 nan = std::numeric_limits<float>::quiet_NaN();
     const float values[] = {0.0f, -0.0f, 1e-30f, -3.0f, 1e30f, -1e30f, inf, -inf, nan};
