@@ -8,120 +8,13 @@
 #include <cstring>
 #include <string>
 
+#include "texture/downsample.h"
 #include "texture/summed_area_table.h"
 
 namespace footprint {
 
 namespace {
 
-// One source texel's weight in a destination texel.
-struct Tap {
-    int index;
-    float weight;
-};
-
-// The taps of every destination texel along one axis (compressed rows: taps[first[i]..first[i+1])).
-struct AxisTaps {
-    std::vector<int> first;
-    std::vector<Tap> taps;
-};
-
-// Cumulative distribution of the downsampling kernel, in destination-texel units: box = B-spline of
-// order 0 (support ±½), tent = B-spline of order 1 (support ±1).
-double kernel_cdf(DownsampleFilter filter, double u) {
-    switch (filter) {
-        case DownsampleFilter::box:
-            return std::clamp(u + 0.5, 0.0, 1.0);
-        case DownsampleFilter::tent:
-            if (u <= -1) return 0;
-            if (u >= 1) return 1;
-            return u <= 0 ? 0.5 * (u + 1) * (u + 1) : 1 - 0.5 * (1 - u) * (1 - u);
-    }
-    return 0;
-}
-
-double kernel_radius(DownsampleFilter filter) {
-    return filter == DownsampleFilter::box ? 0.5 : 1.0;
-}
-
-// Exact integral of the kernel over each source texel [j, j+1), for destination texel centres at
-// (i + ½)·r in source units. Source indices outside [0, src) wrap with the pyramid's wrap mode.
-AxisTaps make_axis_taps(int src, int dst, DownsampleFilter filter, WrapMode wrap) {
-    AxisTaps axis;
-    const double r = static_cast<double>(src) / dst;
-    const double radius = kernel_radius(filter) * r;
-    axis.first.reserve(dst + 1);
-    for (int i = 0; i < dst; ++i) {
-        axis.first.push_back(static_cast<int>(axis.taps.size()));
-        const double centre = (i + 0.5) * r;
-        const int j0 = static_cast<int>(std::floor(centre - radius));
-        const int j1 = static_cast<int>(std::ceil(centre + radius));
-        double sum = 0;
-        const std::size_t begin = axis.taps.size();
-        for (int j = j0; j < j1; ++j) {
-            const double w =
-                kernel_cdf(filter, (j + 1 - centre) / r) - kernel_cdf(filter, (j - centre) / r);
-            if (w <= 1e-12) continue;
-            axis.taps.push_back({wrap_index(j, src, wrap), static_cast<float>(w)});
-            sum += w;
-        }
-        // The weights are a partition of unity analytically; renormalise away the rounding.
-        for (std::size_t k = begin; k < axis.taps.size(); ++k)
-            axis.taps[k].weight = static_cast<float>(axis.taps[k].weight / sum);
-    }
-    axis.first.push_back(static_cast<int>(axis.taps.size()));
-    return axis;
-}
-
-// Variance of one destination texel's taps about its centre, in source texels² (the variance the
-// downsampling step adds; for the box with r = 2 it is ¼, for the tent ¾).
-double tap_variance(int src, int dst, DownsampleFilter filter) {
-    if (src == dst) return 0;
-    const AxisTaps axis = make_axis_taps(src, dst, filter, WrapMode::repeat);
-    const int i = dst / 2;  // an interior texel (wrap cannot fold taps onto each other there)
-    const double centre = (i + 0.5) * src / dst - 0.5;  // in source texel-centre coordinates
-    double var = 0;
-    for (int k = axis.first[i]; k < axis.first[i + 1]; ++k) {
-        const double d = axis.taps[k].index - centre;
-        var += axis.taps[k].weight * d * d;
-    }
-    return var;
-}
-
-// Separable downsampling of a row-major (sw × sh × stride) buffer into a row-major (dw × dh ×
-// stride) buffer, fused per output row: the vertical taps combine source rows into one row of
-// scratch, then the horizontal taps read it. No level-sized temporary, and each source row is read
-// once per output row that needs it.
-void downsample(const float* src, int sw, int sh, float* dst, int dw, int dh, int stride,
-                const MipPyramidOptions& options) {
-    const AxisTaps xt = make_axis_taps(sw, dw, options.downsample, options.wrap_s);
-    const AxisTaps yt = make_axis_taps(sh, dh, options.downsample, options.wrap_t);
-    const std::size_t src_row = static_cast<std::size_t>(sw) * stride;
-    tbb::parallel_for(tbb::blocked_range<int>(0, dh, 8), [&](const tbb::blocked_range<int>& rows) {
-        std::vector<float> column_sum(src_row);
-        float acc[MipPyramid::kMaxChannels];
-        for (int y = rows.begin(); y < rows.end(); ++y) {
-            std::fill(column_sum.begin(), column_sum.end(), 0.0f);
-            for (int k = yt.first[y]; k < yt.first[y + 1]; ++k) {
-                const float w = yt.taps[k].weight;
-                const float* in = src + static_cast<std::size_t>(yt.taps[k].index) * src_row;
-                for (std::size_t i = 0; i < src_row; ++i) column_sum[i] += w * in[i];
-            }
-            float* out = dst + static_cast<std::size_t>(y) * dw * stride;
-            for (int x = 0; x < dw; ++x) {
-                std::fill(acc, acc + stride, 0.0f);
-                for (int k = xt.first[x]; k < xt.first[x + 1]; ++k) {
-                    const float* t =
-                        column_sum.data() + static_cast<std::size_t>(xt.taps[k].index) * stride;
-                    for (int c = 0; c < stride; ++c) acc[c] += xt.taps[k].weight * t[c];
-                }
-                std::copy(acc, acc + stride, out + static_cast<std::size_t>(x) * stride);
-            }
-        }
-    });
-}
-
-// The image's texels row-major with each texel padded from `channels` to `stride` floats.
 void copy_padded(const Image& image, int stride, float* padded) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, image.pixel_count(), 1 << 14),
                       [&](const tbb::blocked_range<std::size_t>& r) {
@@ -187,11 +80,13 @@ MipPyramid MipPyramid::build(const Image& level0, const MipPyramidOptions& optio
     for (int l = 1; l < p.level_count(); ++l) {
         const int sw = p.width(l - 1), sh = p.height(l - 1), dw = p.width(l), dh = p.height(l);
         if (row_major) {
-            downsample(p.storage_.data() + p.levels_[l - 1].offset, sw, sh,
-                       p.storage_.data() + p.levels_[l].offset, dw, dh, p.stride_, options);
+            detail::downsample<float>(p.storage_.data() + p.levels_[l - 1].offset, sw, sh,
+                                      p.storage_.data() + p.levels_[l].offset, dw, dh, p.stride_,
+                                      options);
         } else {
             std::vector<float> next(static_cast<std::size_t>(dw) * dh * p.stride_);
-            downsample(current.data(), sw, sh, next.data(), dw, dh, p.stride_, options);
+            detail::downsample<float>(current.data(), sw, sh, next.data(), dw, dh, p.stride_,
+                                      options);
             current = std::move(next);
             p.store_level(l, current);
         }
@@ -202,9 +97,10 @@ MipPyramid MipPyramid::build(const Image& level0, const MipPyramidOptions& optio
         const Vec2 before = p.levels_[l - 1].prefilter_variance;
         p.levels_[l].prefilter_variance = {
             float(before.x +
-                  tx * tx * tap_variance(p.width(l - 1), p.width(l), options.downsample)),
+                  tx * tx * detail::tap_variance(p.width(l - 1), p.width(l), options.downsample)),
             float(before.y +
-                  ty * ty * tap_variance(p.height(l - 1), p.height(l), options.downsample))};
+                  ty * ty *
+                      detail::tap_variance(p.height(l - 1), p.height(l), options.downsample))};
     }
 
     if (options.summed_area_table)

@@ -1,0 +1,21 @@
+// texture/downsample.h — one MIP level from the previous one (private to texture/ and bump/).
+//
+// The downsampling filters of mip_pyramid.h (box, tent), integrated exactly over the source texels
+// for any size ratio, applied separably and fused per output row. Buffers are row-major,
+// `stride` values per texel. float builds colour pyramids; double builds the bump pyramid's moments
+// (bump/bump_pyramid.h), where the second moments must survive the subtraction K = M2 − μμᵀ.
+#pragma once
+
+#include "texture/mip_pyramid.h"
+
+namespace footprint::detail {
+
+template <class T>
+void downsample(const T* src, int sw, int sh, T* dst, int dw, int dh, int stride,
+                const MipPyramidOptions& options);
+
+// Variance of one destination texel's taps about its centre, in source texels² (what one
+// downsampling step adds: ¼ for the box with ratio 2, ¾ for the tent).
+double tap_variance(int src, int dst, DownsampleFilter filter);
+
+}  // namespace footprint::detail
