@@ -109,9 +109,9 @@ void write_with_oiio(const fs::path& file, int width, int height, int channels,
 // The file name as error messages quote it. Built with += : GCC 12 gives a false -Wrestrict
 // for "'" + std::string at -O3.
 std::string quoted(const fs::path& file) {
-    std::string s = "'";
-    s += file.string();
-    s += '\'';
+    const std::string name = file.string();
+    std::string s(name.size() + 2, '\'');
+    name.copy(s.data() + 1, name.size());
     return s;
 }
 

@@ -89,8 +89,8 @@ double tap_variance(int src, int dst, DownsampleFilter filter) {
 // stride) buffer, fused per output row: the vertical taps combine source rows into one row of
 // scratch, then the horizontal taps read it. No level-sized temporary, and each source row is read
 // once per output row that needs it.
-template <class T>
-void downsample(const T* src, int sw, int sh, T* dst, int dw, int dh, int stride,
+template <class In, class T>
+void downsample(const In* src, int sw, int sh, T* dst, int dw, int dh, int stride,
                 const MipPyramidOptions& options) {
     const AxisTaps xt = make_axis_taps(sw, dw, options.downsample, options.wrap_s);
     const AxisTaps yt = make_axis_taps(sh, dh, options.downsample, options.wrap_t);
@@ -102,8 +102,9 @@ void downsample(const T* src, int sw, int sh, T* dst, int dw, int dh, int stride
             std::fill(column_sum.begin(), column_sum.end(), T(0));
             for (int k = yt.first[y]; k < yt.first[y + 1]; ++k) {
                 const T w = static_cast<T>(yt.taps[k].weight);
-                const T* in = src + static_cast<std::size_t>(yt.taps[k].index) * src_row;
-                for (std::size_t i = 0; i < src_row; ++i) column_sum[i] += w * in[i];
+                const In* in = src + static_cast<std::size_t>(yt.taps[k].index) * src_row;
+                for (std::size_t i = 0; i < src_row; ++i)
+                    column_sum[i] += w * static_cast<T>(in[i]);
             }
             T* out = dst + static_cast<std::size_t>(y) * dw * stride;
             for (int x = 0; x < dw; ++x) {
@@ -120,9 +121,11 @@ void downsample(const T* src, int sw, int sh, T* dst, int dw, int dh, int stride
     });
 }
 
-template void downsample<float>(const float*, int, int, float*, int, int, int,
-                                const MipPyramidOptions&);
-template void downsample<double>(const double*, int, int, double*, int, int, int,
-                                 const MipPyramidOptions&);
+template void downsample<float, float>(const float*, int, int, float*, int, int, int,
+                                       const MipPyramidOptions&);
+template void downsample<float, double>(const float*, int, int, double*, int, int, int,
+                                        const MipPyramidOptions&);
+template void downsample<double, double>(const double*, int, int, double*, int, int, int,
+                                         const MipPyramidOptions&);
 
 }  // namespace footprint::detail

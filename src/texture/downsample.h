@@ -10,8 +10,9 @@
 
 namespace footprint::detail {
 
-template <class T>
-void downsample(const T* src, int sw, int sh, T* dst, int dw, int dh, int stride,
+// Reads In, accumulates and writes T (float → float, float → double, double → double).
+template <class In, class T>
+void downsample(const In* src, int sw, int sh, T* dst, int dw, int dh, int stride,
                 const MipPyramidOptions& options);
 
 // Variance of one destination texel's taps about its centre, in source texels² (what one

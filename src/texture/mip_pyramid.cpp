@@ -15,6 +15,7 @@ namespace footprint {
 
 namespace {
 
+// The image's texels row-major with each texel padded from `channels` to `stride` floats.
 void copy_padded(const Image& image, int stride, float* padded) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, image.pixel_count(), 1 << 14),
                       [&](const tbb::blocked_range<std::size_t>& r) {
@@ -80,13 +81,13 @@ MipPyramid MipPyramid::build(const Image& level0, const MipPyramidOptions& optio
     for (int l = 1; l < p.level_count(); ++l) {
         const int sw = p.width(l - 1), sh = p.height(l - 1), dw = p.width(l), dh = p.height(l);
         if (row_major) {
-            detail::downsample<float>(p.storage_.data() + p.levels_[l - 1].offset, sw, sh,
-                                      p.storage_.data() + p.levels_[l].offset, dw, dh, p.stride_,
-                                      options);
+            detail::downsample<float, float>(p.storage_.data() + p.levels_[l - 1].offset, sw, sh,
+                                             p.storage_.data() + p.levels_[l].offset, dw, dh,
+                                             p.stride_, options);
         } else {
             std::vector<float> next(static_cast<std::size_t>(dw) * dh * p.stride_);
-            detail::downsample<float>(current.data(), sw, sh, next.data(), dw, dh, p.stride_,
-                                      options);
+            detail::downsample<float, float>(current.data(), sw, sh, next.data(), dw, dh, p.stride_,
+                                             options);
             current = std::move(next);
             p.store_level(l, current);
         }

@@ -1,0 +1,122 @@
+#include "bump/bump_pyramid.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "texture/downsample.h"
+
+namespace footprint {
+
+namespace {
+
+constexpr int kMomentChannels = 5;  // μ'1, μ'2, M2'11, M2'12, M2'22
+
+std::string texel_name(int x, int y) {
+    return "(" + std::to_string(x) + ", " + std::to_string(y) + ")";
+}
+
+}  // namespace
+
+Result<BumpPyramid> BumpPyramid::build(const Image& slopes, const BumpPyramidOptions& options) {
+    if (slopes.empty() || slopes.width < 1 || slopes.height < 1) return Error{"slope map is empty"};
+    if (slopes.channels != 2)
+        return Error{"slope map has " + std::to_string(slopes.channels) +
+                     " channels; expected 2 (b1, b2)"};
+    const Sym2 k0 = options.micro_roughness;
+    if (!k0.is_finite() || k0.xx < 0 || k0.yy < 0 || k0.determinant() < -1e-12f * (k0.xx + k0.yy))
+        return Error{"micro-roughness [[" + std::to_string(k0.xx) + ", " + std::to_string(k0.xy) +
+                     "], [" + std::to_string(k0.xy) + ", " + std::to_string(k0.yy) +
+                     "]] is not a covariance (PSD)"};
+
+    // The mean slope, in double.
+    double mean[2] = {0, 0};
+    for (int y = 0; y < slopes.height; ++y)
+        for (int x = 0; x < slopes.width; ++x)
+            for (int c = 0; c < 2; ++c) {
+                const float v = slopes.at(x, y, c);
+                if (!std::isfinite(v))
+                    return Error{"slope map texel " + texel_name(x, y) +
+                                 " has a non-finite slope (" + std::to_string(v) + ")"};
+                mean[c] += v;
+            }
+    const double n = double(slopes.pixel_count());
+    mean[0] /= n;
+    mean[1] /= n;
+
+    BumpPyramid p;
+    p.options_ = options;
+    p.offset_ = {float(mean[0]), float(mean[1])};
+
+    // Level 0: μ' and M2' = μ'μ'ᵀ + K_0, computed in double, stored as float.
+    std::vector<Image> levels;
+    levels.emplace_back(slopes.width, slopes.height, kMomentChannels);
+    {
+        Image& l0 = levels.back();
+        for (std::size_t i = 0; i < slopes.pixel_count(); ++i) {
+            const double m1 = slopes.pixels[2 * i] - double(p.offset_.x);
+            const double m2 = slopes.pixels[2 * i + 1] - double(p.offset_.y);
+            float* o = &l0.pixels[i * kMomentChannels];
+            o[0] = float(m1);
+            o[1] = float(m2);
+            o[2] = float(m1 * m1 + k0.xx);
+            o[3] = float(m1 * m2 + k0.xy);
+            o[4] = float(m2 * m2 + k0.yy);
+        }
+    }
+
+    // Coarser levels: the linear moment form of §5.3 in double, from the previous level.
+    MipPyramidOptions po;
+    po.wrap_s = options.wrap_s;
+    po.wrap_t = options.wrap_t;
+    po.downsample = options.downsample;
+    std::vector<double> previous;  // level l−1 in double (empty for level 0: read the floats)
+    int w = slopes.width, h = slopes.height;
+    while (w > 1 || h > 1) {
+        const int nw = std::max(1, w / 2), nh = std::max(1, h / 2);
+        std::vector<double> next(std::size_t(nw) * nh * kMomentChannels);
+        if (previous.empty())
+            detail::downsample<float, double>(levels[0].pixels.data(), w, h, next.data(), nw, nh,
+                                              kMomentChannels, po);
+        else
+            detail::downsample<double, double>(previous.data(), w, h, next.data(), nw, nh,
+                                               kMomentChannels, po);
+        Image level(nw, nh, kMomentChannels);
+        for (std::size_t i = 0; i < next.size(); ++i) level.pixels[i] = float(next[i]);
+        levels.push_back(std::move(level));
+        previous = std::move(next);
+        w = nw;
+        h = nh;
+    }
+    Result<MipPyramid> pyramid = MipPyramid::from_levels(levels, po);
+    if (!pyramid) return pyramid.error();
+    p.moments_ = std::move(*pyramid);
+    return p;
+}
+
+SlopeStatistics BumpPyramid::from_moments(const float* m) const {
+    // K = M2' − μ'μ'ᵀ (the offset cancels: K is invariant to a shift of the slopes).
+    const double m1 = m[0], m2 = m[1];
+    const Sym2 k{float(m[2] - m1 * m1), float(m[3] - m1 * m2), float(m[4] - m2 * m2)};
+    return {Vec2{float(m1 + offset_.x), float(m2 + offset_.y)}, clamp_to_psd(k)};
+}
+
+SlopeStatistics BumpPyramid::statistics(int level, int x, int y) const {
+    return from_moments(moments_.texel(level, x, y));
+}
+
+SlopeStatistics bump_lookup(const BumpPyramid& pyramid, const TextureCoords& coords,
+                            const LookupOptions& options) {
+    float m[kMomentChannels];
+    texture_lookup(pyramid.moments(), coords, options, m);
+    return pyramid.from_moments(m);
+}
+
+SlopeStatistics bump_lookup(const BumpPyramid& pyramid, float s, float t,
+                            const FootprintEllipse& footprint, const LookupOptions& options) {
+    float m[kMomentChannels];
+    texture_lookup(pyramid.moments(), s, t, footprint, options, m);
+    return pyramid.from_moments(m);
+}
+
+}  // namespace footprint

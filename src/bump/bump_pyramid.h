@@ -1,0 +1,85 @@
+// bump/bump_pyramid.h — the bump pyramid (mean slopes) and the roughness pyramid (slope
+// covariance) as one MIP pyramid of slope moments, and filtered bump lookups.
+//
+// Spec §5 (corrects [S97b] §3–4). For the finest-level slopes f_i (2-vectors b in the tangent
+// frame, bump/slope_map.h) covered by a texel, the bump pyramid holds μ = (1/n) Σ f_i and the
+// roughness pyramid K_b = (1/n) Σ (f_i − μ)(f_i − μ)ᵀ (population normalisation, §5.1), level by
+// level through §5.3's recursion
+//     μ_l = ¼ Σ μ_{l−1,n},   K_l = ¼ Σ K_{l−1,n} + ¼ Σ (μ_{l−1,n} − μ_l)(μ_{l−1,n} − μ_l)ᵀ
+// (the "+" the paper texts lose). It is computed in its equivalent linear form ([R2m]): filter the
+// first moments μ and the second moments M2 = K + μμᵀ with the same weights, then K = M2 − μμᵀ. For
+// the 2×2 box this is the recursion exactly; for the tent and for odd sizes (fractional box
+// weights) it is the covariance of the weighted mixture, which is what §5.3 prescribes for non-box
+// filters. The finest level starts at K_0 = the optional micro-roughness (an artist-supplied
+// constant covariance of the slopes below the map's resolution).
+//
+// Storage: one float MipPyramid with 5 channels (μ'1, μ'2, M2'11, M2'12, M2'22), where
+// μ' = μ − slope_offset() is centred on the map's mean slope (so that M2' − μ'μ'ᵀ cancels only the
+// slope *variation*, not the mean tilt). Levels are computed in double and rounded once; K is
+// recovered to ~1e−7·(tr K + |μ'|²). The spec's stored factor B = (d1, d2, d3) and the isotropic l1
+// are derived from K on demand (bump/roughness.h): filtering never blends them (§5.4, [R3]).
+//
+// Filtered lookups (§5.4): any texture filter (trilinear, footprint assembly, EWA, …) blends the
+// five channels with its weights w_j, which is exactly
+//     μ = Σ w_j μ_j,   M2 = Σ w_j M2_j,   K_b = M2 − μμᵀ  (clamped to PSD)
+// = the mean and covariance of all finest-level slopes (plus micro-roughness) in the filtered
+// region, weighted by the filter's kernel.
+#pragma once
+
+#include "bump/roughness.h"
+#include "core/result.h"
+#include "image/image.h"
+#include "math/footprint_ellipse.h"
+#include "texture/mip_pyramid.h"
+#include "texture/texture_lookup.h"
+
+namespace footprint {
+
+struct SlopeStatistics {
+    Vec2 mean;        // μ: mean slope (b1, b2)
+    Sym2 covariance;  // K_b, slope units²
+};
+
+struct BumpPyramidOptions {
+    WrapMode wrap_s = WrapMode::repeat;
+    WrapMode wrap_t = WrapMode::repeat;
+    DownsampleFilter downsample = DownsampleFilter::box;  // box: §5.3 exactly; tent: mixture form
+    Sym2 micro_roughness;  // K_0 of every finest texel (PSD, slope units²); default none
+};
+
+class BumpPyramid {
+  public:
+    // From a 2-channel slope map (b1, b2) of any size ≥ 1×1. Errors name the problem: a wrong
+    // channel count, a non-finite slope (with its texel), a micro-roughness that is not PSD.
+    static Result<BumpPyramid> build(const Image& slopes, const BumpPyramidOptions& options = {});
+
+    int level_count() const { return moments_.level_count(); }
+    int width(int level) const { return moments_.width(level); }
+    int height(int level) const { return moments_.height(level); }
+    const BumpPyramidOptions& options() const { return options_; }
+
+    // μ and K_b of one texel of one level (§5.1, §5.3).
+    SlopeStatistics statistics(int level, int x, int y) const;
+
+    // The moment pyramid the filters read (channels μ'1, μ'2, M2'11, M2'12, M2'22; see above) and
+    // the offset μ = μ' + slope_offset().
+    const MipPyramid& moments() const { return moments_; }
+    Vec2 slope_offset() const { return offset_; }
+
+    // μ and K_b from the 5 moment channels a lookup returned.
+    SlopeStatistics from_moments(const float* m) const;
+
+  private:
+    MipPyramid moments_;
+    Vec2 offset_;
+    BumpPyramidOptions options_;
+};
+
+// Filtered bump lookup (§5.4): the mean slope and the slope covariance K_b of the whole filtered
+// region, with any filter of texture_lookup() (LookupOptions::filter), in the same conventions.
+SlopeStatistics bump_lookup(const BumpPyramid& pyramid, const TextureCoords& coords,
+                            const LookupOptions& options);
+SlopeStatistics bump_lookup(const BumpPyramid& pyramid, float s, float t,
+                            const FootprintEllipse& footprint, const LookupOptions& options);
+
+}  // namespace footprint
