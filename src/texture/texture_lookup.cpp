@@ -88,7 +88,8 @@ void lookup_nearest(const MipPyramid& pyramid, float s, float t, float* out) {
                              level.width, pyramid.wrap_s());
     const int y = wrap_index(static_cast<int>(std::floor(t * static_cast<float>(level.height))),
                              level.height, pyramid.wrap_t());
-    std::copy_n(level.texel(x, y), pyramid.channels(), out);
+    const float* texel = level.texel(x, y);
+    for (int c = 0; c < pyramid.channels(); ++c) out[c] = texel[c];
 }
 
 void lookup_trilinear(const MipPyramid& pyramid, float s, float t, float lod, LodBlend blend,
