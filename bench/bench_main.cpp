@@ -1,11 +1,13 @@
 // footprint-bench — benchmarks measured as ratios against a peer or a baseline in the same run.
 //   footprint-bench texture [--json FILE]   our filters vs OpenImageIO's TextureSystem
 //   footprint-bench pyramid [--json FILE]   MIP pyramid build time and memory layouts
+//   footprint-bench bump [--json FILE]      bump/roughness pyramid build and filtered bump lookups
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <exception>
 
+#include "bump_bench.h"
 #include "pyramid_bench.h"
 #include "texture_bench.h"
 
@@ -48,10 +50,21 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(64, 16384));
     pyr->add_flag("--quiet", pyramid.quiet, "no progress output");
 
+    BumpBenchOptions bump;
+    CLI::App* bmp =
+        app.add_subcommand("bump", "bump/roughness pyramid build time and filtered bump lookups");
+    bmp->add_option("--json", bump.json_path, "write the results as JSON to this file");
+    bmp->add_option("--size", bump.build_size, "height map size for the build benchmark")
+        ->check(CLI::Range(16, 16384));
+    bmp->add_option("--lookup-size", bump.lookup_size, "bump map size for the lookups")
+        ->check(CLI::Range(16, 8192));
+    bmp->add_flag("--quiet", bump.quiet, "no progress output");
+
     CLI11_PARSE(app, argc, argv);
     try {
         if (*tex) return run_texture_bench(texture);
         if (*pyr) return run_pyramid_bench(pyramid);
+        if (*bmp) return run_bump_bench(bump);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "footprint-bench: %s\n", e.what());
         return 1;
