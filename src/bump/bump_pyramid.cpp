@@ -1,5 +1,7 @@
 #include "bump/bump_pyramid.h"
 
+#include <tbb/parallel_for.h>
+
 #include <cmath>
 #include <string>
 #include <vector>
@@ -29,21 +31,30 @@ Result<BumpPyramid> BumpPyramid::build(const Image& slopes, const BumpPyramidOpt
                      "], [" + std::to_string(k0.xy) + ", " + std::to_string(k0.yy) +
                      "]] is not a covariance (PSD)"};
 
-    // The mean slope, in double.
+    // The mean slope, in double (rows in parallel, combined in row order: deterministic).
+    std::vector<double> row_sums(std::size_t(slopes.height) * 2, 0.0);
+    tbb::parallel_for(0, slopes.height, [&](int y) {
+        double s0 = 0, s1 = 0;
+        for (int x = 0; x < slopes.width; ++x) {
+            s0 += slopes.at(x, y, 0);
+            s1 += slopes.at(x, y, 1);
+        }
+        row_sums[2 * y] = s0;
+        row_sums[2 * y + 1] = s1;
+    });
     double mean[2] = {0, 0};
-    for (int y = 0; y < slopes.height; ++y)
-        for (int x = 0; x < slopes.width; ++x)
-            for (int c = 0; c < 2; ++c) {
-                const float v = slopes.at(x, y, c);
-                if (!std::isfinite(v))
-                    return Error{"slope map texel " + texel_name(x, y) +
-                                 " has a non-finite slope (" + std::to_string(v) + ")"};
-                mean[c] += v;
-            }
-    const double n = double(slopes.pixel_count());
-    mean[0] /= n;
-    mean[1] /= n;
-
+    for (int y = 0; y < slopes.height; ++y) {
+        mean[0] += row_sums[2 * y];
+        mean[1] += row_sums[2 * y + 1];
+    }
+    if (!std::isfinite(mean[0]) || !std::isfinite(mean[1]))
+        for (int y = 0; y < slopes.height; ++y)
+            for (int x = 0; x < slopes.width; ++x)
+                for (int c = 0; c < 2; ++c)
+                    if (!std::isfinite(slopes.at(x, y, c)))
+                        return Error{"slope map texel " + texel_name(x, y) +
+                                     " has a non-finite slope (" +
+                                     std::to_string(slopes.at(x, y, c)) + ")"};
     BumpPyramid p;
     p.options_ = options;
     p.offset_ = {float(mean[0]), float(mean[1])};
@@ -53,7 +64,7 @@ Result<BumpPyramid> BumpPyramid::build(const Image& slopes, const BumpPyramidOpt
     levels.emplace_back(slopes.width, slopes.height, kMomentChannels);
     {
         Image& l0 = levels.back();
-        for (std::size_t i = 0; i < slopes.pixel_count(); ++i) {
+        tbb::parallel_for(std::size_t(0), slopes.pixel_count(), [&](std::size_t i) {
             const double m1 = slopes.pixels[2 * i] - double(p.offset_.x);
             const double m2 = slopes.pixels[2 * i + 1] - double(p.offset_.y);
             float* o = &l0.pixels[i * kMomentChannels];
@@ -62,7 +73,7 @@ Result<BumpPyramid> BumpPyramid::build(const Image& slopes, const BumpPyramidOpt
             o[2] = float(m1 * m1 + k0.xx);
             o[3] = float(m1 * m2 + k0.xy);
             o[4] = float(m2 * m2 + k0.yy);
-        }
+        });
     }
 
     // Coarser levels: the linear moment form of §5.3 in double, from the previous level.
@@ -82,7 +93,8 @@ Result<BumpPyramid> BumpPyramid::build(const Image& slopes, const BumpPyramidOpt
             detail::downsample<double, double>(previous.data(), w, h, next.data(), nw, nh,
                                                kMomentChannels, po);
         Image level(nw, nh, kMomentChannels);
-        for (std::size_t i = 0; i < next.size(); ++i) level.pixels[i] = float(next[i]);
+        tbb::parallel_for(std::size_t(0), next.size(),
+                          [&](std::size_t i) { level.pixels[i] = float(next[i]); });
         levels.push_back(std::move(level));
         previous = std::move(next);
         w = nw;
