@@ -9,10 +9,16 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <functional>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
+
+#include <unistd.h>
 
 namespace footprint::bench {
 
@@ -57,6 +63,32 @@ inline double measure_rate(std::size_t available, int threads,
     double best = 1e300;
     for (int r = 0; r < repetitions; ++r) best = std::min(best, run_split(batch, threads, work));
     return double(batch) / best;
+}
+
+// One line of progress on stderr, redrawn in place; silent unless stderr is a terminal.
+class ProgressNote {
+  public:
+    explicit ProgressNote(bool quiet) : enabled_(!quiet && isatty(STDERR_FILENO)) {}
+    ~ProgressNote() { operator()(""); }
+    void operator()(const std::string& what) const {
+        if (enabled_) std::fprintf(stderr, "\r\033[K%s", what.c_str());
+    }
+
+  private:
+    bool enabled_;
+};
+
+// Writes JSON to a temporary file beside `path` and renames it into place (never a partial file).
+inline void write_json(const std::string& path, const nlohmann::json& j) {
+    const std::filesystem::path target(path);
+    if (target.has_parent_path()) std::filesystem::create_directories(target.parent_path());
+    const std::filesystem::path tmp = target.string() + ".tmp";
+    {
+        std::ofstream out(tmp);
+        out << j.dump(2) << "\n";
+        if (!out) throw std::runtime_error("cannot write '" + path + "'");
+    }
+    std::filesystem::rename(tmp, target);
 }
 
 }  // namespace footprint::bench

@@ -18,10 +18,7 @@
 namespace footprint::bench {
 
 int run_pyramid_bench(const PyramidBenchOptions& opt) {
-    const bool progress = !opt.quiet && isatty(STDERR_FILENO);
-    auto note = [&](const std::string& what) {
-        if (progress) std::fprintf(stderr, "\r\033[K%s", what.c_str());
-    };
+    const ProgressNote note(opt.quiet);
     nlohmann::json j;
     j["benchmark"] = "pyramid";
 
@@ -103,12 +100,8 @@ int run_pyramid_bench(const PyramidBenchOptions& opt) {
             }
             std::printf("\n");
         }
-    note("");
     if (!opt.json_path.empty()) {
-        const std::filesystem::path path(opt.json_path);
-        if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-        std::ofstream(path.string() + ".tmp") << j.dump(2) << "\n";
-        std::filesystem::rename(path.string() + ".tmp", path);
+        write_json(opt.json_path, j);
     }
     return 0;
 }

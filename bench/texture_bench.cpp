@@ -89,10 +89,7 @@ struct Case {
 }  // namespace
 
 int run_texture_bench(const TextureBenchOptions& opt) {
-    const bool progress = !opt.quiet && isatty(STDERR_FILENO);
-    auto note = [&](const std::string& what) {
-        if (progress) std::fprintf(stderr, "\r\033[K%s", what.c_str());
-    };
+    const ProgressNote note(opt.quiet);
 
     note("making the texture");
     const Image image = make_benchmark_texture(opt.texture_size);
@@ -188,7 +185,6 @@ int run_texture_bench(const TextureBenchOptions& opt) {
             }
         }
     }
-    note("");
 
     std::printf("texture %d² float RGB; pyramid build %.3f s; RMSE on %zu lookups per regime\n",
                 opt.texture_size, build_seconds, opt.error_subset);
@@ -220,18 +216,7 @@ int run_texture_bench(const TextureBenchOptions& opt) {
                                   {"ours_rmse", c.ours_rmse},
                                   {"oiio_rmse", nan_to_null(c.oiio_rmse)}});
         }
-        const std::filesystem::path path(opt.json_path);
-        if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-        const std::filesystem::path tmp = path.string() + ".tmp";
-        {
-            std::ofstream out(tmp);
-            out << j.dump(2) << "\n";
-            if (!out) {
-                std::fprintf(stderr, "footprint-bench: cannot write '%s'\n", opt.json_path.c_str());
-                return 1;
-            }
-        }
-        std::filesystem::rename(tmp, path);
+        write_json(opt.json_path, j);
     }
     return 0;
 }
