@@ -1,0 +1,202 @@
+#include "envmap/env_footprint.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace footprint {
+namespace {
+
+// Chain-rule D against central differences of the whole pipeline pixel → v, n → v_r → (s, t),
+// evaluated in float: a step of 0.05 px gives a difference error of ~eps·S/h ≈ 1e−3 texel/px (plus
+// h²-truncation, far smaller), against |D| of order 0.1–10: a wrong sign (erratum 2) or a
+// transposed term misses by ≥ 50 %.
+constexpr float kChainRuleRelTolerance = 5e-3f;
+constexpr float kChainRuleAbsTolerance = 3e-3f;
+constexpr float kPixelStep = 0.05f;
+
+struct Case {
+    EnvLayout layout;
+    Vec2 scale;  // S
+};
+constexpr Case kLayouts[] = {{EnvLayout::cube, {512, 512}},
+                             {EnvLayout::latlong, {2048, 1024}},
+                             {EnvLayout::sphere, {1024, 1024}},
+                             {EnvLayout::paraboloid, {512, 512}}};
+
+// The paper's camera: eye at the origin looking along +z, focal distance z0 pixels; v = −(x, y,
+// z0).
+constexpr float kZ0 = 400;
+Vec3 view(float x, float y) {
+    return {-x, -y, -kZ0};
+}
+
+// A smooth normal field over the screen (curvature), facing the eye.
+struct NormalField {
+    Vec3 n0, ax, ay;
+    Vec3 operator()(float x, float y) const { return n0 + x * ax + y * ay; }
+};
+
+Vec2 map_position(EnvLayout layout, Vec2 scale, const ReflectionGeometry& g, int* face) {
+    const EnvFootprint f = compute_env_footprint(layout, scale, g);
+    *face = f.coords.face;
+    return {f.coords.s * scale.x, f.coords.t * scale.y};
+}
+
+TEST(EnvFootprint, ChainRuleMatchesFiniteDifferencesInEveryLayout) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(-1, 1);
+    for (const Case& c : kLayouts) {
+        int checked = 0;
+        for (int i = 0; i < 4000 && checked < 300; ++i) {
+            const float x = 200 * u(rng), y = 200 * u(rng);
+            NormalField field{{0.6f * u(rng), 0.6f * u(rng), -1.0f},
+                              {2e-3f * u(rng), 2e-3f * u(rng), 1e-3f * u(rng)},
+                              {2e-3f * u(rng), 2e-3f * u(rng), 1e-3f * u(rng)}};
+            field.n0 = 1.7f * field.n0;  // any scale
+            auto geometry = [&](float px, float py) {
+                ReflectionGeometry g;
+                g.v = view(px, py);
+                g.n = field(px, py);
+                g.dn_dx = field.ax;
+                g.dn_dy = field.ay;
+                return g;
+            };
+            const ReflectionGeometry g = geometry(x, y);
+            const EnvFootprint f = compute_env_footprint(c.layout, c.scale, g);
+            if (f.bump_dropped || f.normal_clamped) continue;
+            int faces[4];
+            const Vec2 px0 =
+                map_position(c.layout, c.scale, geometry(x - kPixelStep, y), &faces[0]);
+            const Vec2 px1 =
+                map_position(c.layout, c.scale, geometry(x + kPixelStep, y), &faces[1]);
+            const Vec2 py0 =
+                map_position(c.layout, c.scale, geometry(x, y - kPixelStep), &faces[2]);
+            const Vec2 py1 =
+                map_position(c.layout, c.scale, geometry(x, y + kPixelStep), &faces[3]);
+            // Stay away from face changes, the lat-long seam and its poles (finite differences
+            // jump).
+            if (faces[0] != f.coords.face || faces[1] != f.coords.face ||
+                faces[2] != f.coords.face || faces[3] != f.coords.face)
+                continue;
+            const Vec2 fd_x = (px1 - px0) / (2 * kPixelStep), fd_y = (py1 - py0) / (2 * kPixelStep);
+            if (length(fd_x) > 50 || length(fd_y) > 50)
+                continue;  // a seam or a pole inside the step
+            const float tol_x = kChainRuleRelTolerance * length(fd_x) + kChainRuleAbsTolerance;
+            const float tol_y = kChainRuleRelTolerance * length(fd_y) + kChainRuleAbsTolerance;
+            EXPECT_NEAR(f.d_dx.x, fd_x.x, tol_x) << int(c.layout) << " case " << i;
+            EXPECT_NEAR(f.d_dx.y, fd_x.y, tol_x) << int(c.layout) << " case " << i;
+            EXPECT_NEAR(f.d_dy.x, fd_y.x, tol_y) << int(c.layout) << " case " << i;
+            EXPECT_NEAR(f.d_dy.y, fd_y.y, tol_y) << int(c.layout) << " case " << i;
+            ++checked;
+        }
+        EXPECT_GE(checked, 100) << "layout " << int(c.layout);
+    }
+}
+
+TEST(EnvFootprint, ParabolicMirrorSeenFromItsFocusHasNoFootprint) {
+    // [E7b]: the mirror z = f − (x² + y²)/(4f) with its focus at the eye reflects every view ray to
+    // −z, so D = 0. With the paper's printed ∂v/∂x = +e_x it would come out ~1 texel/px.
+    const double focal = 50;
+    auto surface = [&](double px, double py, Vec3* normal) {
+        // Ray (px, py, z0) from the focus: τ z0 − f + τ²(px² + py²)/(4f) = 0.
+        const double a = (px * px + py * py) / (4 * focal), b = kZ0, c = -focal;
+        const double tau = a > 0 ? (-b + std::sqrt(b * b - 4 * a * c)) / (2 * a) : -c / b;
+        const double x = tau * px, y = tau * py;
+        *normal =
+            Vec3{float(-x / (2 * focal)), float(-y / (2 * focal)), -1.0f};  // −∇F, towards the eye
+        return tau;
+    };
+    const Vec2 scale{2048, 1024};
+    for (double px : {-150.0, -40.0, 0.0, 75.0})
+        for (double py : {-120.0, 10.0, 90.0}) {
+            ReflectionGeometry g;
+            g.v = view(float(px), float(py));
+            surface(px, py, &g.n);
+            const double h = 1e-3;
+            Vec3 n_px0, n_px1, n_py0, n_py1;
+            surface(px - h, py, &n_px0);
+            surface(px + h, py, &n_px1);
+            surface(px, py - h, &n_py0);
+            surface(px, py + h, &n_py1);
+            g.dn_dx = (n_px1 - n_px0) / float(2 * h);
+            g.dn_dy = (n_py1 - n_py0) / float(2 * h);
+            const EnvFootprint f = compute_env_footprint(EnvLayout::latlong, scale, g);
+            EXPECT_LT(length(f.d_dx) + length(f.d_dy), 2e-2f) << px << "," << py;
+            // The paper's sign: the two terms add instead of cancelling.
+            ReflectionGeometry wrong = g;
+            wrong.dv_dx = {1, 0, 0};
+            wrong.dv_dy = {0, 1, 0};
+            const EnvFootprint w = compute_env_footprint(EnvLayout::latlong, scale, wrong);
+            EXPECT_GT(length(w.d_dx) + length(w.d_dy), 0.5f) << px << "," << py;
+        }
+}
+
+TEST(EnvFootprint, RoughnessTermIsTheSlopeJacobianTimesB) {
+    // K3 = (M E B)(M E B)ᵀ: the columns of M E are the map motion per unit slope, ∂(S·P(v_r))/∂b —
+    // checked by finite differences over b — and K3 is the covariance of the texel position under
+    // slope noise N(0, B Bᵀ) to first order.
+    std::mt19937 rng(8);
+    std::uniform_real_distribution<float> u(-1, 1);
+    const Vec2 scale{2048, 1024};
+    for (int i = 0; i < 200; ++i) {
+        ReflectionGeometry g;
+        g.v = view(150 * u(rng), 150 * u(rng));
+        g.n = {0.4f * u(rng), 0.4f * u(rng), -1.3f};
+        g.t1 = {1, 0, 0.4f * u(rng)};
+        g.t2 = {0, 1, 0.4f * u(rng)};
+        g.roughness = roughness_factor(Sym2{0.02f, 0.005f, 0.01f});
+        const EnvFootprint f = compute_env_footprint(EnvLayout::latlong, scale, g);
+        const float h = 1e-3f;
+        int face;
+        Vec2 cols[2];
+        for (int k = 0; k < 2; ++k) {
+            ReflectionGeometry lo = g, hi = g;
+            (k == 0 ? lo.bump_slope.x : lo.bump_slope.y) -= h;
+            (k == 0 ? hi.bump_slope.x : hi.bump_slope.y) += h;
+            cols[k] = (map_position(EnvLayout::latlong, scale, hi, &face) -
+                       map_position(EnvLayout::latlong, scale, lo, &face)) /
+                      (2 * h);
+        }
+        if (length(cols[0]) > 1e4f || length(cols[1]) > 1e4f) continue;  // the seam
+        // B' = (M E) B with B = [[d1, d2], [0, d3]].
+        const RoughnessFactor& b = g.roughness;
+        const Vec2 b1 = b.d1 * cols[0], b2 = b.d2 * cols[0] + b.d3 * cols[1];
+        const Sym2 want = footprint_matrix(b1, b2);
+        const float scale_k = want.trace();
+        EXPECT_NEAR(f.roughness.xx, want.xx, 5e-3f * scale_k) << i;
+        EXPECT_NEAR(f.roughness.xy, want.xy, 5e-3f * scale_k) << i;
+        EXPECT_NEAR(f.roughness.yy, want.yy, 5e-3f * scale_k) << i;
+        // K = K12 + κ² K3 with κ = 2.
+        EXPECT_NEAR(f.matrix.xx, f.curvature.xx + 4 * f.roughness.xx,
+                    1e-4f * (f.matrix.trace() + 1));
+    }
+}
+
+TEST(EnvFootprint, DegenerateInputsStayFinite) {
+    const float nan = std::nanf(""), inf = INFINITY;
+    const Vec3 bad[] = {{0, 0, 0}, {nan, 0, 1}, {inf, 0, 0}, {0, 0, 1e-30f}};
+    for (const Case& c : kLayouts)
+        for (const Vec3 v : bad)
+            for (const Vec3 n : bad) {
+                ReflectionGeometry g;
+                g.v = v;
+                g.n = n;
+                const EnvFootprint f = compute_env_footprint(c.layout, c.scale, g);
+                EXPECT_TRUE(f.matrix.is_finite());
+                EXPECT_TRUE(std::isfinite(f.coords.s) && std::isfinite(f.coords.t));
+            }
+    // A normal facing away from the eye (silhouette): clamped, finite, flagged.
+    ReflectionGeometry g;
+    g.v = view(10, 20);
+    g.n = {0, 0, 1};  // away from the eye at the origin
+    g.bump_slope = {0.5f, 0.2f};
+    const EnvFootprint f = compute_env_footprint(EnvLayout::cube, {256, 256}, g);
+    EXPECT_TRUE(f.normal_clamped);
+    EXPECT_TRUE(f.matrix.is_finite());
+    EXPECT_GT(dot(f.reflected, f.reflected), 0.0f);
+}
+
+}  // namespace
+}  // namespace footprint

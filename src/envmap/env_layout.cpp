@@ -1,0 +1,389 @@
+#include "envmap/env_layout.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace footprint {
+
+namespace {
+
+template <class T>
+constexpr T kPi = T(3.14159265358979323846);
+
+template <class T>
+T component(Vec3T<T> a, int i) {
+    return i == 0 ? a.x : i == 1 ? a.y : a.z;
+}
+template <class T>
+Vec3T<T> axis(int i, T sign) {
+    return {i == 0 ? sign : T(0), i == 1 ? sign : T(0), i == 2 ? sign : T(0)};
+}
+
+// A direction made safe to evaluate: `r` has its largest |component| in [1, 2) (an exact
+// power-of-two rescaling of the input by 2^-exponent), so nothing below under- or overflows.
+template <class T>
+struct Prepared {
+    Vec3T<T> r;
+    int exponent = 0;       // input = 2^exponent · r
+    bool usable = true;     // false: r = 0 or NaN → the fallback direction, J = 0
+    bool infinite = false;  // an infinite component: r = its signs, J = 0
+};
+
+template <class T>
+Prepared<T> prepare(Vec3T<T> r) {
+    Prepared<T> p;
+    if (std::isnan(r.x) || std::isnan(r.y) || std::isnan(r.z)) {
+        p.r = kEnvFallbackDirection<T>;
+        p.usable = false;
+        return p;
+    }
+    if (std::isinf(r.x) || std::isinf(r.y) || std::isinf(r.z)) {
+        auto sign_if_inf = [](T c) { return std::isinf(c) ? std::copysign(T(1), c) : T(0); };
+        p.r = {sign_if_inf(r.x), sign_if_inf(r.y), sign_if_inf(r.z)};
+        p.infinite = true;
+        return p;
+    }
+    const T m = max_abs_component(r);
+    if (m == 0) {
+        p.r = kEnvFallbackDirection<T>;
+        p.usable = false;
+        return p;
+    }
+    p.exponent = std::ilogb(m);
+    p.r = {std::ldexp(r.x, -p.exponent), std::ldexp(r.y, -p.exponent),
+           std::ldexp(r.z, -p.exponent)};
+    return p;
+}
+
+template <class T>
+T clamp_finite(T x) {
+    constexpr T kMax = std::numeric_limits<T>::max();
+    return std::clamp(x, -kMax, kMax);  // x is never NaN here
+}
+
+// J(input) = J(r)·2^-exponent, entries clamped to the finite range; 0 where J is not defined.
+template <class T>
+Jacobian23T<T> finish(const Prepared<T>& p, Jacobian23T<T> j) {
+    if (!p.usable || p.infinite) return {};
+    auto scale = [&](Vec3T<T> v) {
+        return Vec3T<T>{clamp_finite(std::ldexp(v.x, -p.exponent)),
+                        clamp_finite(std::ldexp(v.y, -p.exponent)),
+                        clamp_finite(std::ldexp(v.z, -p.exponent))};
+    };
+    return {scale(j.ds), scale(j.dt)};
+}
+
+// 1/x for x > 0, clamped to the finite range (so that 0·(1/x) stays 0, never NaN).
+template <class T>
+T safe_inverse(T x) {
+    return clamp_finite(T(1) / x);
+}
+
+// ---- Cube: the OpenGL face table (§3.1).
+struct CubeFace {
+    int axis;    // a
+    int s_axis;  // g_s = s_sign · e_{s_axis}
+    int s_sign;
+    int t_axis;  // g_t = t_sign · e_{t_axis}
+    int t_sign;
+};
+constexpr CubeFace kCubeFaces[6] = {
+    {0, 2, -1, 1, -1},  // +X: sc = −r_z, tc = −r_y
+    {0, 2, +1, 1, -1},  // −X: sc = +r_z, tc = −r_y
+    {1, 0, +1, 2, +1},  // +Y: sc = +r_x, tc = +r_z
+    {1, 0, +1, 2, -1},  // −Y: sc = +r_x, tc = −r_z
+    {2, 0, +1, 1, -1},  // +Z: sc = +r_x, tc = −r_y
+    {2, 0, -1, 1, -1},  // −Z: sc = −r_x, tc = −r_y
+};
+
+template <class T>
+int cube_face_of(Vec3T<T> r) {
+    int a = 0;
+    if (std::abs(r.y) > std::abs(r.x)) a = 1;
+    if (std::abs(r.z) > std::abs(component(r, a))) a = 2;
+    return 2 * a + (component(r, a) < 0 ? 1 : 0);
+}
+
+bool valid_face(int face, int count) {
+    return face >= 0 && face < count;
+}
+
+template <class T>
+bool finite2(T s, T t) {
+    return std::isfinite(s) && std::isfinite(t);
+}
+
+}  // namespace
+
+int face_count(EnvLayout layout) {
+    switch (layout) {
+        case EnvLayout::cube:
+            return 6;
+        case EnvLayout::paraboloid:
+            return 2;
+        case EnvLayout::latlong:
+        case EnvLayout::sphere:
+            return 1;
+    }
+    return 1;
+}
+
+// ---------------------------------------------------------------------------------------- cube
+
+template <class T>
+CubeCoordsT<T> cube_coords(Vec3T<T> r_in) {
+    const Vec3T<T> r = prepare(r_in).r;
+    const int face = cube_face_of(r);
+    const CubeFace& f = kCubeFaces[face];
+    const T ma = std::abs(component(r, f.axis));  // in [1, 2) after prepare()
+    const T sc = T(f.s_sign) * component(r, f.s_axis), tc = T(f.t_sign) * component(r, f.t_axis);
+    return {face, T(0.5) * (sc / ma + 1), T(0.5) * (tc / ma + 1)};
+}
+
+template <class T>
+Jacobian23T<T> cube_jacobian(Vec3T<T> r_in) {
+    const Prepared<T> p = prepare(r_in);
+    const Vec3T<T> r = p.r;
+    const int face = cube_face_of(r);
+    const CubeFace& f = kCubeFaces[face];
+    const T ma = std::abs(component(r, f.axis)), sigma = face % 2 == 0 ? T(1) : T(-1);
+    const Vec3T<T> gs = axis(f.s_axis, T(f.s_sign)), gt = axis(f.t_axis, T(f.t_sign));
+    const Vec3T<T> ea = axis(f.axis, sigma);  // σ e_a
+    const T sp = dot(gs, r) / ma, tp = dot(gt, r) / ma;
+    const T k = 1 / (2 * ma);
+    return finish(p, {k * (gs - sp * ea), k * (gt - tp * ea)});
+}
+
+template <class T>
+Vec3T<T> cube_direction(int face, T s, T t) {
+    if (!valid_face(face, 6) || !finite2(s, t)) return kEnvFallbackDirection<T>;
+    const CubeFace& f = kCubeFaces[face];
+    const T sigma = face % 2 == 0 ? T(1) : T(-1);
+    const Vec3T<T> gs = axis(f.s_axis, T(f.s_sign)), gt = axis(f.t_axis, T(f.t_sign));
+    const Vec3T<T> r = axis(f.axis, sigma) + (2 * s - 1) * gs + (2 * t - 1) * gt;
+    if (is_finite(r)) return r;
+    // 2s − 1 overflowed: the same direction at half the scale (s − ½ is finite for finite s).
+    return axis(f.axis, sigma / 2) + (s - T(0.5)) * gs + (t - T(0.5)) * gt;
+}
+
+template <class T>
+CubeCoordsT<T> cube_reproject(int face, T s, T t) {
+    return cube_coords(cube_direction(face, s, t));
+}
+
+// ------------------------------------------------------------------------------------ lat-long
+
+template <class T>
+Vec2T<T> latlong_coords(Vec3T<T> r_in) {
+    const Vec3T<T> r = prepare(r_in).r;
+    const T rho = std::hypot(r.x, r.z);
+    const T t = std::atan2(rho, r.y) / kPi<T>;  // = arccos(r_y/|r|)/π, accurate at the poles too
+    if (rho == 0) return {T(0.5), t};           // pole: s undefined, ½ by convention
+    const T s = T(0.5) + std::atan2(r.x, -r.z) / (2 * kPi<T>);
+    return {std::clamp(s, T(0), T(1)), std::clamp(t, T(0), T(1))};
+}
+
+template <class T>
+Jacobian23T<T> latlong_jacobian(Vec3T<T> r_in) {
+    const Prepared<T> p = prepare(r_in);
+    const Vec3T<T> r = p.r;
+    const T rho = std::hypot(r.x, r.z);
+    if (rho == 0) return {};  // pole: J undefined, the caller takes the isotropic fallback (§3.4)
+    const T cx = r.x / rho, cz = r.z / rho, inv_rho = safe_inverse(rho);
+    const T p2 = dot(r, r);  // in [1, 12]
+    // ∂s/∂r = (−r_z, 0, r_x)/(2πρ²); ∂t/∂r = −(e_y − r_y r/|r|²)/(πρ) = (r_y r_x/ρ, −ρ, r_y
+    // r_z/ρ)/(π|r|²).
+    const Vec3T<T> ds = (inv_rho / (2 * kPi<T>)) * Vec3T<T>{-cz, 0, cx};
+    const Vec3T<T> dt = (1 / (kPi<T> * p2)) * Vec3T<T>{r.y * cx, -rho, r.y * cz};
+    return finish(p, {ds, dt});
+}
+
+template <class T>
+Vec3T<T> latlong_direction(T s, T t) {
+    if (!finite2(s, t)) return kEnvFallbackDirection<T>;
+    // Reduce before multiplying by π so that huge s, t stay accurate and finite.
+    const T phi = 2 * kPi<T> * std::remainder(s - T(0.5), T(1));
+    const T theta = kPi<T> * std::remainder(t, T(2));
+    const T st = std::sin(theta);
+    return {st * std::sin(phi), std::cos(theta), -st * std::cos(phi)};
+}
+
+// -------------------------------------------------------------------------------------- sphere
+
+namespace {
+
+// The stable pieces of the sphere map at a prepared r: m, (a, b) = (r_x, r_y)/m, c = w/m.
+template <class T>
+struct SphereParts {
+    T p, m, a, b, c;
+};
+
+template <class T>
+SphereParts<T> sphere_parts(Vec3T<T> r) {
+    SphereParts<T> q;
+    q.p = length(r);
+    const T h = std::hypot(r.x, r.y);
+    if (r.z >= 0) {
+        const T w = r.z + q.p;
+        q.m = std::sqrt(2 * q.p * w);
+        q.c = std::sqrt(w / (2 * q.p));
+    } else {
+        // w = r_z + p = h²/(p − r_z) without cancellation; m = √(2pw) = h·√(2p/(p − r_z)).
+        q.m = h * std::sqrt(2 * q.p / (q.p - r.z));
+        q.c = h / std::sqrt(2 * q.p * (q.p - r.z));
+    }
+    if (q.m == 0) {  // rim: r̂ = −e_z
+        q.a = 1, q.b = 0;
+        return q;
+    }
+    q.a = std::clamp(r.x / q.m, T(-1), T(1));
+    q.b = std::clamp(r.y / q.m, T(-1), T(1));
+    return q;
+}
+
+}  // namespace
+
+template <class T>
+Vec2T<T> sphere_coords(Vec3T<T> r_in) {
+    const SphereParts<T> q = sphere_parts(prepare(r_in).r);
+    return {T(0.5) * (q.a + 1), T(0.5) * (q.b + 1)};
+}
+
+template <class T>
+Jacobian23T<T> sphere_jacobian(Vec3T<T> r_in) {
+    const Prepared<T> p = prepare(r_in);
+    const Vec3T<T> r = p.r;
+    const SphereParts<T> q = sphere_parts(r);
+    if (q.m == 0) return {};  // rim: singular (§3.2)
+    // ∇m = (r_x e_x + r_y e_y + w(e_z + r/p))/m = (a, b, c) + c r/p;
+    // ∂s/∂r = ½(e_x − a ∇m)/m, ∂t/∂r = ½(e_y − b ∇m)/m.
+    const Vec3T<T> grad_m = Vec3T<T>{q.a, q.b, q.c} + (q.c / q.p) * r;
+    const T k = T(0.5) * safe_inverse(q.m);
+    return finish(p,
+                  {k * (Vec3T<T>{1, 0, 0} - q.a * grad_m), k * (Vec3T<T>{0, 1, 0} - q.b * grad_m)});
+}
+
+template <class T>
+Vec3T<T> sphere_direction(T s, T t) {
+    if (!finite2(s, t)) return kEnvFallbackDirection<T>;
+    T a = 2 * s - 1, b = 2 * t - 1;
+    T rho = std::hypot(a, b);
+    if (!(rho < 2)) return {0, 0, -1};  // also catches an overflowed 2s − 1
+    if (rho > 1) {                      // fold back through the rim: ρ → 2 − ρ, azimuth + π
+        const T k = -(2 - rho) / rho;
+        a *= k, b *= k;
+        rho = 2 - rho;
+    }
+    const T nz = std::sqrt(std::max(T(0), (1 - rho) * (1 + rho)));
+    return {2 * a * nz, 2 * b * nz, 1 - 2 * rho * rho};
+}
+
+// ---------------------------------------------------------------------------------- paraboloid
+
+template <class T>
+EnvCoordsT<T> paraboloid_coords(Vec3T<T> r_in) {
+    const Vec3T<T> r = prepare(r_in).r;
+    const int face = r.z >= 0 ? 0 : 1;
+    const T delta = length(r) + std::abs(r.z);  // |r| ± r_z, no cancellation; ≥ 1
+    return {face, T(0.5) * (r.x / delta + 1), T(0.5) * (r.y / delta + 1)};
+}
+
+template <class T>
+Jacobian23T<T> paraboloid_jacobian(Vec3T<T> r_in) {
+    const Prepared<T> p = prepare(r_in);
+    const Vec3T<T> r = p.r;
+    const T pr = length(r), sign = r.z >= 0 ? T(1) : T(-1);
+    const T delta = pr + std::abs(r.z);
+    const T x = r.x / delta, y = r.y / delta;
+    // ∂x/∂r = (e_x − x (r/|r| ± e_z))/δ; ∂s = ½ ∂x.
+    const Vec3T<T> g = (1 / pr) * r + Vec3T<T>{0, 0, sign};
+    const T k = 1 / (2 * delta);
+    return finish(p, {k * (Vec3T<T>{1, 0, 0} - x * g), k * (Vec3T<T>{0, 1, 0} - y * g)});
+}
+
+template <class T>
+Vec3T<T> paraboloid_direction(int face, T s, T t) {
+    if (!valid_face(face, 2) || !finite2(s, t)) return kEnvFallbackDirection<T>;
+    const T x = 2 * s - 1, y = 2 * t - 1, sign = face == 0 ? T(1) : T(-1);
+    const T k = x * x + y * y;
+    if (!std::isfinite(k)) return {0, 0, -sign};  // infinitely far out: the other pole
+    const T inv = 1 / (1 + k);
+    return {2 * x * inv, 2 * y * inv, sign * (1 - k) * inv};
+}
+
+// ---------------------------------------------------------------------------------- any layout
+
+template <class T>
+EnvCoordsT<T> env_coords(EnvLayout layout, Vec3T<T> r) {
+    switch (layout) {
+        case EnvLayout::cube:
+            return cube_coords(r);
+        case EnvLayout::paraboloid:
+            return paraboloid_coords(r);
+        case EnvLayout::latlong: {
+            const Vec2T<T> st = latlong_coords(r);
+            return {0, st.x, st.y};
+        }
+        case EnvLayout::sphere: {
+            const Vec2T<T> st = sphere_coords(r);
+            return {0, st.x, st.y};
+        }
+    }
+    return {};
+}
+
+template <class T>
+Jacobian23T<T> env_jacobian(EnvLayout layout, Vec3T<T> r) {
+    switch (layout) {
+        case EnvLayout::cube:
+            return cube_jacobian(r);
+        case EnvLayout::paraboloid:
+            return paraboloid_jacobian(r);
+        case EnvLayout::latlong:
+            return latlong_jacobian(r);
+        case EnvLayout::sphere:
+            return sphere_jacobian(r);
+    }
+    return {};
+}
+
+template <class T>
+Vec3T<T> env_direction(EnvLayout layout, int face, T s, T t) {
+    switch (layout) {
+        case EnvLayout::cube:
+            return cube_direction(face, s, t);
+        case EnvLayout::paraboloid:
+            return paraboloid_direction(face, s, t);
+        case EnvLayout::latlong:
+            return latlong_direction(s, t);
+        case EnvLayout::sphere:
+            return sphere_direction(s, t);
+    }
+    return kEnvFallbackDirection<T>;
+}
+
+#define FOOTPRINT_ENV_LAYOUT_INSTANTIATE(T)                    \
+    template CubeCoordsT<T> cube_coords(Vec3T<T>);             \
+    template Jacobian23T<T> cube_jacobian(Vec3T<T>);           \
+    template Vec3T<T> cube_direction(int, T, T);               \
+    template CubeCoordsT<T> cube_reproject(int, T, T);         \
+    template Vec2T<T> latlong_coords(Vec3T<T>);                \
+    template Jacobian23T<T> latlong_jacobian(Vec3T<T>);        \
+    template Vec3T<T> latlong_direction(T, T);                 \
+    template Vec2T<T> sphere_coords(Vec3T<T>);                 \
+    template Jacobian23T<T> sphere_jacobian(Vec3T<T>);         \
+    template Vec3T<T> sphere_direction(T, T);                  \
+    template EnvCoordsT<T> paraboloid_coords(Vec3T<T>);        \
+    template Jacobian23T<T> paraboloid_jacobian(Vec3T<T>);     \
+    template Vec3T<T> paraboloid_direction(int, T, T);         \
+    template EnvCoordsT<T> env_coords(EnvLayout, Vec3T<T>);    \
+    template Jacobian23T<T> env_jacobian(EnvLayout, Vec3T<T>); \
+    template Vec3T<T> env_direction(EnvLayout, int, T, T);
+
+FOOTPRINT_ENV_LAYOUT_INSTANTIATE(float)
+FOOTPRINT_ENV_LAYOUT_INSTANTIATE(double)
+
+#undef FOOTPRINT_ENV_LAYOUT_INSTANTIATE
+
+}  // namespace footprint
