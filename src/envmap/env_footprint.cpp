@@ -17,6 +17,30 @@ bool finite(Vec2 a) {
 
 }  // namespace
 
+EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, Vec3 dr_dx,
+                                   Vec3 dr_dy, const Mat3& rotation) {
+    EnvFootprint f;
+    const bool usable = is_finite(r) && norm(r) > 0;
+    f.reflected = usable ? r : Vec3{0, 0, 1};
+    f.map_direction = rotation * f.reflected;
+    f.coords = env_coords(layout, f.map_direction);
+    if (!usable || !is_finite(dr_dx) || !is_finite(dr_dy)) return f;
+    const Jacobian23 j = env_jacobian(layout, f.map_direction);
+    auto G = [&](Vec3 x) {
+        const Vec3 ax = rotation * x;
+        return Vec2{texel_scale.x * dot(j.ds, ax), texel_scale.y * dot(j.dt, ax)};
+    };
+    f.d_dx = G(dr_dx);
+    f.d_dy = G(dr_dy);
+    f.curvature = footprint_matrix(f.d_dx, f.d_dy);
+    f.matrix = f.curvature;
+    if (!finite(f.d_dx) || !finite(f.d_dy) || !f.matrix.is_finite()) {
+        f.d_dx = f.d_dy = {};
+        f.curvature = f.matrix = {};
+    }
+    return f;
+}
+
 EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, const ReflectionGeometry& g,
                                    const EnvFootprintOptions& options) {
     EnvFootprint f;

@@ -72,7 +72,14 @@ struct EnvFootprint {
     bool isotropic_fallback = false;  // D or K was not finite
 };
 
-// `texel_scale` = S = (W0, H0) of level 0 (a cube map's face size for both).
+// Form (a), like OpenImageIO's environment(): the footprint of a lookup direction r and its ray
+// differentials ∂r/∂x, ∂r/∂y (any common scale of r): D = S J_P(A r) A [∂r/∂x, ∂r/∂y], K = D Dᵀ.
+// For r = v_r and ∂r = ∂v_r this is exactly form (b)'s curvature term K12. Non-finite input gives a
+// zero footprint (a point lookup) in the direction r (or +z).
+EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, Vec3 dr_dx,
+                                   Vec3 dr_dy, const Mat3& rotation = Mat3{});
+
+// Form (b), Schilling's. `texel_scale` = S = (W0, H0) of level 0 (a cube map's face size for both).
 EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale,
                                    const ReflectionGeometry& geometry,
                                    const EnvFootprintOptions& options = {});

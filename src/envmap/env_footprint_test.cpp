@@ -174,6 +174,52 @@ TEST(EnvFootprint, RoughnessTermIsTheSlopeJacobianTimesB) {
     }
 }
 
+TEST(EnvFootprint, RayDifferentialFormAgreesWithSchillingsForm) {
+    // Form (a) with r = v_r and ∂r/∂x = A_v ∂v/∂x + A_n ∂n/∂x (computed here by finite differences
+    // of v_r over the pixel) gives form (b)'s D; with an environment rotation as well.
+    std::mt19937 rng(12);
+    std::uniform_real_distribution<float> u(-1, 1);
+    const Mat3 rotation = rotation_xyz_degrees(20, -35, 70);
+    for (const Case& c : kLayouts)
+        for (int i = 0; i < 200; ++i) {
+            const float x = 150 * u(rng), y = 150 * u(rng);
+            const NormalField field{{0.5f * u(rng), 0.5f * u(rng), -1},
+                                    {1e-3f * u(rng), 1e-3f * u(rng), 0},
+                                    {1e-3f * u(rng), 1e-3f * u(rng), 0}};
+            // v_r in double: the finite differences must not drown in float rounding of |v_r| ≈
+            // 500.
+            auto reflect_d = [&](double px, double py) {
+                const Vec3d v{-px, -py, -double(kZ0)};
+                const Vec3d n{field.n0.x + px * field.ax.x + py * field.ay.x,
+                              field.n0.y + px * field.ax.y + py * field.ay.y,
+                              field.n0.z + px * field.ax.z + py * field.ay.z};
+                return 2 * dot(n, v) * n - dot(n, n) * v;
+            };
+            auto to_float = [](Vec3d a) { return Vec3{float(a.x), float(a.y), float(a.z)}; };
+            ReflectionGeometry g;
+            g.v = view(x, y);
+            g.n = field(x, y);
+            g.dn_dx = field.ax;
+            g.dn_dy = field.ay;
+            EnvFootprintOptions options;
+            options.rotation = rotation;
+            const EnvFootprint b = compute_env_footprint(c.layout, c.scale, g, options);
+            const double h = 0.01;
+            const Vec3 dr_dx = to_float((reflect_d(x + h, y) - reflect_d(x - h, y)) / (2 * h));
+            const Vec3 dr_dy = to_float((reflect_d(x, y + h) - reflect_d(x, y - h)) / (2 * h));
+            const EnvFootprint a = compute_env_footprint(
+                c.layout, c.scale, to_float(reflect_d(x, y)), dr_dx, dr_dy, rotation);
+            EXPECT_EQ(a.coords.face, b.coords.face);
+            const float tol = 2e-3f * (length(b.d_dx) + length(b.d_dy)) + 1e-3f;
+            EXPECT_NEAR(a.d_dx.x, b.d_dx.x, tol) << int(c.layout) << " " << i;
+            EXPECT_NEAR(a.d_dx.y, b.d_dx.y, tol) << int(c.layout) << " " << i;
+            EXPECT_NEAR(a.d_dy.x, b.d_dy.x, tol) << int(c.layout) << " " << i;
+            EXPECT_NEAR(a.d_dy.y, b.d_dy.y, tol) << int(c.layout) << " " << i;
+        }
+    const EnvFootprint bad = compute_env_footprint(EnvLayout::cube, {64, 64}, {NAN, 0, 0}, {}, {});
+    EXPECT_TRUE(bad.matrix.is_finite());
+}
+
 TEST(EnvFootprint, DegenerateInputsStayFinite) {
     const float nan = std::nanf(""), inf = INFINITY;
     const Vec3 bad[] = {{0, 0, 0}, {nan, 0, 1}, {inf, 0, 0}, {0, 0, 1e-30f}};
