@@ -49,6 +49,30 @@ int floor_power_of_two(int n) {
 
 }  // namespace
 
+void probe_weights(const ProbePlan& plan, float* weights) {
+    // From the centre out by the recurrence w_{k+1} = w_k·r_k, r_{k+1} = r_k·e^{−a²}, mirrored, so
+    // that the weights are exactly symmetric (the kernel mean stays on the centre) without an exp
+    // per probe.
+    const float a2 = plan.weight_falloff * plan.weight_falloff;
+    const int half = plan.count / 2;                            // probes on each side of the centre
+    float wk = plan.count % 2 ? 1.0f : std::exp(-0.125f * a2);  // k = 0 or ½
+    float rk = plan.count % 2 ? std::exp(-0.5f * a2) : std::exp(-a2);  // w_{k+1}/w_k
+    const float r_step = std::exp(-a2);
+    if (plan.count % 2) weights[half] = 1.0f;
+    for (int j = 0; j < half; ++j) {
+        if (j > 0 || plan.count % 2) {
+            wk *= rk;
+            rk *= r_step;
+        }
+        weights[half - 1 - j] = weights[plan.count - half + j] = wk;
+    }
+}
+
+LodBlend effective_lod_blend(const ProbePlan& plan, LodBlend blend) {
+    if (blend != LodBlend::automatic) return blend;
+    return plan.count == 1 ? LodBlend::linear : LodBlend::variance_matched;
+}
+
 float single_probe_lod(const Sym2& k, float lod_bias, int max_level) {
     const float w = std::sqrt((k.xx - k.yy) * (k.xx - k.yy) + 4 * k.xy * k.xy);  // spec §2.7
     const float major_sq = 0.5f * (k.xx + k.yy + w);
@@ -63,7 +87,7 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
     constexpr float kMinTexelSize = 1.0f;  // T_min: smaller footprints are magnification
     const float l1 = footprint.major_radius, l2 = footprint.minor_radius;
     const Vec2 r1 = footprint.major_axis;
-    max_probes = std::clamp(max_probes, 1, 1024);
+    max_probes = std::clamp(max_probes, 1, kMaxProbeCount);
     ProbePlan plan;
 
     switch (rule) {
@@ -154,9 +178,7 @@ void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
     const float first = -0.5f * static_cast<float>(plan.count - 1);
     const int max_level = pyramid.max_level();
     const int l0 = std::min(static_cast<int>(plan.lod), max_level);
-    LodBlend blend = options.lod_blend;
-    if (blend == LodBlend::automatic)
-        blend = plan.count == 1 ? LodBlend::linear : LodBlend::variance_matched;
+    const LodBlend blend = effective_lod_blend(plan, options.lod_blend);
     const float w =
         l0 < max_level ? lod_blend_weight(plan.lod - static_cast<float>(l0), blend) : 0.0f;
     if (plan.count == 1) {  // one isotropic probe: both levels' taps issued together
@@ -167,23 +189,8 @@ void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
     }
     dispatch_stride(pyramid.stride(), [&]<int S>() {
         // C = Σ w_i trilinear(c + o_i) / Σ w_i (spec §2.9), summed level by level for locality.
-        // Probe weights: equal, or Gaussian exp(−½(a·k)²), k = i − (N−1)/2, from the centre out by
-        // the recurrence w_{k+1} = w_k·r_k, r_{k+1} = r_k·e^{−a²} and mirrored, so that they are
-        // exactly symmetric (the kernel mean stays on the centre) without an exp per probe.
-        float weights[1024];
-        const float a2 = plan.weight_falloff * plan.weight_falloff;
-        const int half = plan.count / 2;  // probes on each side of the centre
-        float wk = plan.count % 2 ? 1.0f : std::exp(-0.125f * a2);         // k = 0 or ½
-        float rk = plan.count % 2 ? std::exp(-0.5f * a2) : std::exp(-a2);  // w_{k+1}/w_k
-        const float r_step = std::exp(-a2);
-        if (plan.count % 2) weights[half] = 1.0f;
-        for (int j = 0; j < half; ++j) {
-            if (j > 0 || plan.count % 2) {
-                wk *= rk;
-                rk *= r_step;
-            }
-            weights[half - 1 - j] = weights[plan.count - half + j] = wk;
-        }
+        float weights[kMaxProbeCount];
+        probe_weights(plan, weights);
         float weight_sum = 0;
         for (int i = 0; i < plan.count; ++i) weight_sum += weights[i];
         // Every probe's texels are known up front: ask for all their cache lines first, so the

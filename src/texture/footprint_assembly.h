@@ -49,6 +49,15 @@ constexpr float kIsotropicRatio = 1.001f;
 // of λ — so texture_lookup() can skip the ellipse for the common near-isotropic case.
 float single_probe_lod(const Sym2& k, float lod_bias, int max_level);
 
+// The most probes a plan holds (max_probes is clamped to it).
+constexpr int kMaxProbeCount = 1024;
+
+// The (unnormalised) weight of each of plan.count probes: 1, or exp(−½(a·k)²), k = i − (N−1)/2.
+void probe_weights(const ProbePlan& plan, float* weights);
+
+// LodBlend::automatic resolved for a plan: linear for one probe, variance-matched for several.
+LodBlend effective_lod_blend(const ProbePlan& plan, LodBlend blend);
+
 // The probes for a footprint ellipse (finite, λ1 ≥ λ2 ≥ 0). max_probes ≥ 1; max_level = the
 // pyramid's coarsest level. lod_bias is added before clamping.
 ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max_probes,
