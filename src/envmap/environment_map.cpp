@@ -1,5 +1,6 @@
 #include "envmap/environment_map.h"
 
+#include <algorithm>
 #include <string>
 
 #include "texture/footprint_assembly.h"
@@ -17,6 +18,55 @@ Status check_image(const Image& image, const std::string& what) {
     if (image.pixels.size() != image.pixel_count() * image.channels)
         return Error{what + " is malformed"};
     return {};
+}
+
+// One texel of a cube face level, where (x, y) may lie one texel beyond the face: such a tap is
+// taken from the neighbour face that owns the direction of its centre (seamless filtering).
+const float* cube_texel(const EnvironmentMap& map, int face, int level, int x, int y) {
+    const MipPyramid::LevelView view = map.face(face).level(level);
+    const int n = view.width;
+    if (x >= 0 && y >= 0 && x < n && y < n) return view.texel(x, y);
+    const float fn = static_cast<float>(n);
+    const EnvCoords c = cube_reproject(face, (static_cast<float>(x) + 0.5f) / fn,
+                                       (static_cast<float>(y) + 0.5f) / fn);
+    const MipPyramid::LevelView other = map.face(c.face).level(level);
+    const int xo = std::clamp(static_cast<int>(c.s * fn), 0, n - 1);
+    const int yo = std::clamp(static_cast<int>(c.t * fn), 0, n - 1);
+    return other.texel(xo, yo);
+}
+
+// Bilinear on a cube face level with taps across the face's edges (spec §3.1: seamless filtering).
+template <int S>
+detail::Texel<S> cube_bilinear(const EnvironmentMap& map, int face, int level, float s, float t) {
+    const float n = static_cast<float>(map.face(face).width(level));
+    const float x = s * n - 0.5f, y = t * n - 0.5f;
+    const int x0 = detail::floor_to_int(x), y0 = detail::floor_to_int(y);
+    const float fx = x - static_cast<float>(x0), fy = y - static_cast<float>(y0);
+    detail::Texel<S> r{};
+    detail::add_scaled(r, (1 - fx) * (1 - fy),
+                       detail::Texel<S>::load(cube_texel(map, face, level, x0, y0)));
+    detail::add_scaled(r, fx * (1 - fy),
+                       detail::Texel<S>::load(cube_texel(map, face, level, x0 + 1, y0)));
+    detail::add_scaled(r, (1 - fx) * fy,
+                       detail::Texel<S>::load(cube_texel(map, face, level, x0, y0 + 1)));
+    detail::add_scaled(r, fx * fy,
+                       detail::Texel<S>::load(cube_texel(map, face, level, x0 + 1, y0 + 1)));
+    return r;
+}
+
+template <int S>
+detail::Texel<S> cube_trilinear(const EnvironmentMap& map, int face, float s, float t, float lod,
+                                LodBlend blend) {
+    const int max_level = map.face(face).max_level();
+    const int l0 = std::min(static_cast<int>(lod), max_level);
+    const float w =
+        l0 < max_level ? detail::lod_blend_weight(lod - static_cast<float>(l0), blend) : 0.0f;
+    detail::Texel<S> r = cube_bilinear<S>(map, face, l0, s, t);
+    if (w > 0.0f) {
+        const detail::Texel<S> coarse = cube_bilinear<S>(map, face, l0 + 1, s, t);
+        r.v += w * (coarse.v - r.v);
+    }
+    return r;
 }
 
 }  // namespace
@@ -85,9 +135,8 @@ void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint
                 const EnvCoords moved = cube_reproject(c.face, s, t);
                 face = moved.face, s = moved.s, t = moved.t;
             }
-            const MipPyramid& p = map.face(face);
             detail::add_scaled(sum, weights[i],
-                               detail::sample_trilinear<S>(p, s, t, plan.lod, blend));
+                               cube_trilinear<S>(map, face, s, t, plan.lod, blend));
             weight_sum += weights[i];
         }
         sum.v *= 1.0f / weight_sum;

@@ -128,6 +128,42 @@ TEST(EnvironmentMap, LookupsAgreeAcrossCubeEdges) {
     EXPECT_LT(seamless, 0.01);
 }
 
+TEST(EnvironmentMap, BilinearTapsCrossCubeEdges) {
+    // Point lookups a hundredth of a texel either side of a face edge: each side's bilinear taps
+    // straddle the edge, so both blend the same two edge texels and agree to ~1 % of a texel step —
+    // where clamping to the own face's edge would read two unrelated texels (noise σ = 0.29).
+    const int size = 32;
+    const EnvironmentMap cube = noise_cube(size, 5);
+    std::mt19937 rng(6);
+    std::uniform_real_distribution<float> u(0.1f, 0.9f);
+    double seamless = 0, confined = 0;
+    int n = 0;
+    for (int face = 0; face < 6; ++face)
+        for (int k = 0; k < 20; ++k) {
+            const float along = u(rng), eps = 0.01f / size;
+            const EnvFootprint a =
+                footprint_around(cube, env_direction(EnvLayout::cube, face, 1 - eps, along), 1e-5f);
+            const EnvFootprint b =
+                footprint_around(cube, env_direction(EnvLayout::cube, face, 1 + eps, along), 1e-5f);
+            float va, vb, ca, cb;
+            environment_lookup(cube, a, LookupOptions{}, &va);
+            environment_lookup(cube, b, LookupOptions{}, &vb);
+            texture_lookup(cube.face(a.coords.face), a.coords.s, a.coords.t, FootprintEllipse{},
+                           LookupOptions{}, &ca);
+            texture_lookup(cube.face(b.coords.face), b.coords.s, b.coords.t, FootprintEllipse{},
+                           LookupOptions{}, &cb);
+            seamless += std::fabs(va - vb);
+            confined += std::fabs(ca - cb);
+            ++n;
+        }
+    seamless /= n;
+    confined /= n;
+    std::printf("point lookups across an edge: seamless %.4f, clamped to the face %.4f\n", seamless,
+                confined);
+    EXPECT_LT(seamless, 0.02);
+    EXPECT_GT(confined, 0.1);
+}
+
 TEST(EnvironmentMap, BadFacesAreErrors) {
     std::array<Image, 6> faces;
     for (Image& f : faces) f = Image(8, 8, 3);
