@@ -11,9 +11,17 @@ float norm(Vec3 a) {
     return std::sqrt(dot(a, a));
 }
 
-bool finite(Vec2 a) {
-    return std::isfinite(a.x) && std::isfinite(a.y);
-}
+// G = S · J_P(A r) · A (spec §2.3): map motion in level-0 texels per unit change of r.
+struct MapJacobian {
+    Vec2 texel_scale;
+    Jacobian23 j;
+    const Mat3& rotation;
+
+    Vec2 operator()(Vec3 x) const {
+        const Vec3 ax = rotation * x;
+        return {texel_scale.x * dot(j.ds, ax), texel_scale.y * dot(j.dt, ax)};
+    }
+};
 
 }  // namespace
 
@@ -26,15 +34,12 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, V
     f.coords = env_coords(layout, f.map_direction);
     if (!usable || !is_finite(dr_dx) || !is_finite(dr_dy)) return f;
     const Jacobian23 j = env_jacobian(layout, f.map_direction);
-    auto G = [&](Vec3 x) {
-        const Vec3 ax = rotation * x;
-        return Vec2{texel_scale.x * dot(j.ds, ax), texel_scale.y * dot(j.dt, ax)};
-    };
+    const MapJacobian G{texel_scale, j, rotation};
     f.d_dx = G(dr_dx);
     f.d_dy = G(dr_dy);
     f.curvature = footprint_matrix(f.d_dx, f.d_dy);
     f.matrix = f.curvature;
-    if (!finite(f.d_dx) || !finite(f.d_dy) || !f.matrix.is_finite()) {
+    if (!is_finite(f.d_dx) || !is_finite(f.d_dy) || !f.matrix.is_finite()) {
         f.d_dx = f.d_dy = {};
         f.curvature = f.matrix = {};
     }
@@ -77,11 +82,7 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, const Ref
     f.map_direction = options.rotation * f.reflected;
     f.coords = env_coords(layout, f.map_direction);
     const Jacobian23 j = env_jacobian(layout, f.map_direction);
-    // G = S J_P(A v_r) A (§2.3).
-    auto G = [&](Vec3 x) {
-        const Vec3 ax = options.rotation * x;
-        return Vec2{texel_scale.x * dot(j.ds, ax), texel_scale.y * dot(j.dt, ax)};
-    };
+    const MapJacobian G{texel_scale, j, options.rotation};
 
     // Eq. 5 / §2.4: D's columns, K12 = D Dᵀ.
     f.d_dx = G(a_v(g.dv_dx) + a_n(g.dn_dx));
@@ -97,7 +98,7 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, const Ref
 
     const float kappa2 = options.kappa * options.kappa;
     f.matrix = f.curvature + kappa2 * f.roughness;  // eq. 13, K = D Dᵀ + κ² K3 (§2.6)
-    if (!finite(f.d_dx) || !finite(f.d_dy) || !f.matrix.is_finite()) {
+    if (!is_finite(f.d_dx) || !is_finite(f.d_dy) || !f.matrix.is_finite()) {
         // §4: isotropic fallback from roughness only, T_p = max(1, κ·‖G A_n E‖·l1).
         const FootprintEllipse gae =
             make_footprint_ellipse(G(a_n(n_len * g.t1)), G(a_n(n_len * g.t2)));

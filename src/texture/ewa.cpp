@@ -88,10 +88,7 @@ void filter_ewa(const MipPyramid& pyramid, float s, float t, const FootprintElli
                 const LookupOptions& options, float* out) {
     FootprintEllipse e = footprint;
     if (e.major_radius <= 1.0f) {  // magnification: reconstruct, don't blur
-        dispatch_stride(pyramid.stride(), [&]<int S>() {
-            store(sample_bilinear<S>(pyramid.level(0), pyramid.wrap_s(), pyramid.wrap_t(), s, t),
-                  pyramid.channels(), out);
-        });
+        lookup_level0_bilinear(pyramid, s, t, out);
         return;
     }
     // Clamp the anisotropy by growing the minor axis (pbrt-v4).

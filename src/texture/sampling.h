@@ -42,8 +42,9 @@ inline int floor_to_int(float x) {
 
 // Bilinear sample of one level at (s, t).
 template <int S>
-[[gnu::always_inline]] inline Texel<S> sample_bilinear(const MipPyramid::LevelView& level, WrapMode wrap_s,
-                                WrapMode wrap_t, float s, float t) {
+[[gnu::always_inline]] inline Texel<S> sample_bilinear(const MipPyramid::LevelView& level,
+                                                       WrapMode wrap_s, WrapMode wrap_t, float s,
+                                                       float t) {
     const float x = s * static_cast<float>(level.width) - 0.5f;
     const float y = t * static_cast<float>(level.height) - 0.5f;
     const int x0 = floor_to_int(x), y0 = floor_to_int(y);
@@ -87,8 +88,8 @@ inline float lod_blend_weight(float w, LodBlend blend) {
 
 // Trilinear probe at a fractional level lod ∈ [0, max_level].
 template <int S>
-[[gnu::always_inline]] inline Texel<S> sample_trilinear(const MipPyramid& pyramid, float s, float t, float lod,
-                                 LodBlend blend) {
+[[gnu::always_inline]] inline Texel<S> sample_trilinear(const MipPyramid& pyramid, float s, float t,
+                                                        float lod, LodBlend blend) {
     const int max_level = pyramid.max_level();
     const int l0 = std::min(static_cast<int>(lod), max_level);
     const float w = l0 < max_level ? lod_blend_weight(lod - static_cast<float>(l0), blend) : 0.0f;
@@ -101,6 +102,13 @@ template <int S>
     Texel<S> r;
     r.v = fine.v + w * (coarse.v - fine.v);
     return r;
+}
+
+// Writes the first `channels` values of a texel.
+template <int S>
+inline void store(const Texel<S>& t, int channels, float* out) {
+    for (int k = 0; k < S; ++k)
+        if (k < channels) out[k] = t.v[k];
 }
 
 // Calls f.template operator()<S>() with the pyramid's stride as a compile-time constant.
@@ -122,11 +130,13 @@ inline void dispatch_stride(int stride, F&& f) {
     }
 }
 
-// Writes the first `channels` values of a texel.
-template <int S>
-inline void store(const Texel<S>& t, int channels, float* out) {
-    for (int k = 0; k < S; ++k)
-        if (k < channels) out[k] = t.v[k];
+// A bilinear sample of level 0 at reduced (s, t), written to out: the magnification and
+// no-MIP path of every filter.
+inline void lookup_level0_bilinear(const MipPyramid& pyramid, float s, float t, float* out) {
+    dispatch_stride(pyramid.stride(), [&]<int S>() {
+        store(sample_bilinear<S>(pyramid.level(0), pyramid.wrap_s(), pyramid.wrap_t(), s, t),
+              pyramid.channels(), out);
+    });
 }
 
 }  // namespace footprint::detail

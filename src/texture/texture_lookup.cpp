@@ -161,38 +161,24 @@ void texture_lookup(const MipPyramid& pyramid, const TextureCoords& c, const Loo
         texture_lookup(pyramid, c.s, c.t, FootprintEllipse{}, options, out);
         return;
     }
-    if (options.filter == TextureFilter::nearest || options.filter == TextureFilter::bilinear) {
-        // The level-0 baselines need no footprint.
-        const float s = reduce_coordinate(c.s, pyramid.wrap_s()),
-                    t = reduce_coordinate(c.t, pyramid.wrap_t());
-        if (options.filter == TextureFilter::nearest) {
-            lookup_nearest(pyramid, s, t, out);
-            return;
-        }
-        detail::dispatch_stride(pyramid.stride(), [&]<int S>() {
-            detail::store(detail::sample_bilinear<S>(pyramid.level(0), pyramid.wrap_s(),
-                                                     pyramid.wrap_t(), s, t),
-                          pyramid.channels(), out);
-        });
-        return;
-    }
     const float w0 = static_cast<float>(pyramid.width(0)),
                 h0 = static_cast<float>(pyramid.height(0));
     const Vec2 d_dx{c.dsdx * w0, c.dtdx * h0}, d_dy{c.dsdy * w0, c.dtdy * h0};  // columns of D
     const float len_x2 = dot(d_dx, d_dx), len_y2 = dot(d_dy, d_dy);
+    // No footprint needed: the level-0 baselines, and magnification — a footprint inside one texel
+    // (trace K = |D|²_F ≤ 1 ⇒ λ1 ≤ 1) is one bilinear probe at level 0 for every mipmapping filter.
     const bool mipmapped = options.filter == TextureFilter::trilinear ||
                            options.filter == TextureFilter::footprint_assembly ||
                            options.filter == TextureFilter::ewa;
-    // Magnification: a footprint inside one texel (trace K = |D|²_F ≤ 1 ⇒ λ1 ≤ 1) is one bilinear
-    // probe at level 0 for every mipmapping filter; skip the ellipse.
-    if (mipmapped && len_x2 + len_y2 <= 1.0f && options.lod_bias <= 0.0f) {
+    const bool magnified = mipmapped && len_x2 + len_y2 <= 1.0f && options.lod_bias <= 0.0f;
+    if (options.filter == TextureFilter::nearest || options.filter == TextureFilter::bilinear ||
+        magnified) {
         const float s = reduce_coordinate(c.s, pyramid.wrap_s()),
                     t = reduce_coordinate(c.t, pyramid.wrap_t());
-        detail::dispatch_stride(pyramid.stride(), [&]<int S>() {
-            detail::store(detail::sample_bilinear<S>(pyramid.level(0), pyramid.wrap_s(),
-                                                     pyramid.wrap_t(), s, t),
-                          pyramid.channels(), out);
-        });
+        if (options.filter == TextureFilter::nearest)
+            lookup_nearest(pyramid, s, t, out);
+        else
+            detail::lookup_level0_bilinear(pyramid, s, t, out);
         return;
     }
     if (!std::isfinite(len_x2 + len_y2) && std::isfinite(c.dsdx) && std::isfinite(c.dtdx) &&
