@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace footprint {
 
@@ -23,6 +24,46 @@ struct MapJacobian {
     }
 };
 
+// The largest singular value of the 3×2 matrix [a b] with both columns projected onto the plane
+// ⟂ r̂ (the angular size of a spread of directions around r, times |r|).
+float largest_tangent_singular_value(Vec3 r, Vec3 a, Vec3 b) {
+    const Vec3 r_hat = r / norm(r);
+    a = a - dot(a, r_hat) * r_hat;
+    b = b - dot(b, r_hat) * r_hat;
+    return make_footprint_ellipse(Sym2{dot(a, a), dot(a, b), dot(b, b)}).major_radius;
+}
+
+// Where the footprint is one isotropic probe of T_p = (texels per radian)·θ_fp instead of the
+// ellipse of J_P: where J_P is undefined — the lat-long poles (§3.4) and the sphere map's rim
+// direction −Z (§3.2), for which env_jacobian() returns 0 — and, for the lat-long map, wherever
+// the footprint (to θ_fp, i.e. 2σ of the K/4 kernel) reaches a pole: there the linearisation in (s,
+// t) fails (the s-row grows as 1/ρ, and Rule B's probe budget would blur t by the anisotropy
+// instead), while the probe's bilinear taps continue over the pole.
+bool use_isotropic_footprint(EnvLayout layout, const Jacobian23& j, Vec3 map_direction,
+                             float theta_fp) {
+    if (layout != EnvLayout::latlong && layout != EnvLayout::sphere) return false;
+    if (dot(j.ds, j.ds) == 0 && dot(j.dt, j.dt) == 0) return true;
+    if (layout != EnvLayout::latlong) return false;
+    const float rho = std::hypot(map_direction.x, map_direction.z);
+    const float reach = std::min(theta_fp, std::numbers::pi_v<float> / 2);
+    return rho < std::sin(reach) * norm(map_direction);
+}
+
+void set_isotropic_pole_footprint(EnvFootprint& f, EnvLayout layout, Vec2 texel_scale,
+                                  float angular_radius) {
+    const float texels_per_radian = layout == EnvLayout::latlong
+                                        ? texel_scale.y / std::numbers::pi_v<float>
+                                        : 0.25f * texel_scale.x;
+    float tp = texels_per_radian * angular_radius;
+    if (!std::isfinite(tp)) tp = 0;
+    f.d_dx = {tp, 0};
+    f.d_dy = {0, tp};
+    f.curvature = footprint_matrix(f.d_dx, f.d_dy);
+    f.roughness = {};
+    f.matrix = f.curvature;
+    f.isotropic_fallback = true;
+}
+
 }  // namespace
 
 EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, Vec3 dr_dx,
@@ -34,6 +75,13 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, V
     f.coords = env_coords(layout, f.map_direction);
     if (!usable || !is_finite(dr_dx) || !is_finite(dr_dy)) return f;
     const Jacobian23 j = env_jacobian(layout, f.map_direction);
+    if (layout == EnvLayout::latlong || layout == EnvLayout::sphere) {
+        const float theta = largest_tangent_singular_value(r, dr_dx, dr_dy) / norm(r);
+        if (use_isotropic_footprint(layout, j, f.map_direction, theta)) {
+            set_isotropic_pole_footprint(f, layout, texel_scale, theta);
+            return f;
+        }
+    }
     const MapJacobian G{texel_scale, j, rotation};
     f.d_dx = G(dr_dx);
     f.d_dy = G(dr_dy);
@@ -98,6 +146,21 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, const Ref
 
     const float kappa2 = options.kappa * options.kappa;
     f.matrix = f.curvature + kappa2 * f.roughness;  // eq. 13, K = D Dᵀ + κ² K3 (§2.6)
+    if (layout == EnvLayout::latlong || layout == EnvLayout::sphere) {
+        // §3.4: θ_fp from the spread of v_r per pixel, enlarged by κ·(angular roughness).
+        const Vec3 dvr_dx = a_v(g.dv_dx) + a_n(g.dn_dx), dvr_dy = a_v(g.dv_dy) + a_n(g.dn_dy);
+        const Vec3 rough1 = a_n(n_len * b.d1 * g.t1);
+        const Vec3 rough2 = a_n(n_len * (b.d2 * g.t1 + b.d3 * g.t2));
+        const float vr_len = norm(f.reflected);
+        const float theta =
+            (largest_tangent_singular_value(f.reflected, dvr_dx, dvr_dy) +
+             options.kappa * largest_tangent_singular_value(f.reflected, rough1, rough2)) /
+            vr_len;
+        if (use_isotropic_footprint(layout, j, f.map_direction, theta)) {
+            set_isotropic_pole_footprint(f, layout, texel_scale, theta);
+            return f;
+        }
+    }
     if (!is_finite(f.d_dx) || !is_finite(f.d_dy) || !f.matrix.is_finite()) {
         // §4: isotropic fallback from roughness only, T_p = max(1, κ·‖G A_n E‖·l1).
         const FootprintEllipse gae =

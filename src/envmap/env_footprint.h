@@ -29,9 +29,13 @@
 //
 // Degenerate cases (spec §4): n_m·v ≤ 0 drops the bump (b = 0); if then n·v ≤ 0 (an interpolated
 // normal at a silhouette) n is clamped towards v until n̂·v̂ = ε. A non-finite D or K falls back to
-// an isotropic footprint from the roughness alone, T_p = max(1, κ·‖G A_n E‖·l1). Nothing here
-// produces NaN from finite input; non-finite input gives a zero footprint in direction v_r = −v
-// (or +z if v is unusable).
+// an isotropic footprint from the roughness alone, T_p = max(1, κ·‖G A_n E‖·l1). Where J_P is
+// undefined — exactly at a lat-long pole (§3.4) or the sphere map's rim direction −Z (§3.2) — and
+// wherever a lat-long footprint reaches a pole (within θ_fp, 2σ), the footprint is isotropic with
+// T_p = (texels per radian)·θ_fp, θ_fp the largest singular value of the tangential part of
+// [∂v_r/∂x, ∂v_r/∂y]/|v_r|, enlarged by κ·(angular roughness) in form (b); texels per radian = H0/π
+// (lat-long) or W0/4 (sphere, the centre's scale). Nothing here produces NaN from finite input;
+// non-finite input gives a zero footprint in direction v_r = −v (or +z if v is unusable).
 #pragma once
 
 #include "bump/roughness.h"
@@ -69,7 +73,7 @@ struct EnvFootprint {
     Sym2 matrix;                      // K = K12 + κ² K3
     bool bump_dropped = false;        // n_m·v ≤ 0: b ignored
     bool normal_clamped = false;      // n·v ≤ 0: n clamped towards v
-    bool isotropic_fallback = false;  // D or K was not finite
+    bool isotropic_fallback = false;  // D or K was not finite, or J_P undefined (pole, rim)
 };
 
 // Form (a), like OpenImageIO's environment(): the footprint of a lookup direction r and its ray

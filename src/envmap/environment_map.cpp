@@ -20,55 +20,164 @@ Status check_image(const Image& image, const std::string& what) {
     return {};
 }
 
-// One texel of a cube face level, where (x, y) may lie one texel beyond the face: such a tap is
-// taken from the neighbour face that owns the direction of its centre (seamless filtering).
-const float* cube_texel(const EnvironmentMap& map, int face, int level, int x, int y) {
+// One texel of a level of `face`, where (x, y) may lie beyond the level's edge: such a tap is taken
+// from wherever the direction of its centre lies — the neighbour cube face (seamless cube
+// filtering, §3.1), across a lat-long pole (the seam wraps the same way), back through the sphere
+// map's rim, or on the other paraboloid hemisphere.
+const float* env_texel(const EnvironmentMap& map, int face, int level, int x, int y) {
     const MipPyramid::LevelView view = map.face(face).level(level);
-    const int n = view.width;
-    if (x >= 0 && y >= 0 && x < n && y < n) return view.texel(x, y);
-    const float fn = static_cast<float>(n);
-    const EnvCoords c = cube_reproject(face, (static_cast<float>(x) + 0.5f) / fn,
-                                       (static_cast<float>(y) + 0.5f) / fn);
+    if (x >= 0 && y >= 0 && x < view.width && y < view.height) return view.texel(x, y);
+    const float w = static_cast<float>(view.width), h = static_cast<float>(view.height);
+    const EnvCoords c = env_coords(
+        map.layout(), env_direction(map.layout(), face, (static_cast<float>(x) + 0.5f) / w,
+                                    (static_cast<float>(y) + 0.5f) / h));
     const MipPyramid::LevelView other = map.face(c.face).level(level);
-    const int xo = std::clamp(static_cast<int>(c.s * fn), 0, n - 1);
-    const int yo = std::clamp(static_cast<int>(c.t * fn), 0, n - 1);
-    return other.texel(xo, yo);
+    return other.texel(std::clamp(static_cast<int>(c.s * w), 0, view.width - 1),
+                       std::clamp(static_cast<int>(c.t * h), 0, view.height - 1));
 }
 
-// Bilinear on a cube face level with taps across the face's edges (spec §3.1: seamless filtering).
+// Bilinear on a level of `face`, with taps beyond its edges read by direction (env_texel).
 template <int S>
-detail::Texel<S> cube_bilinear(const EnvironmentMap& map, int face, int level, float s, float t) {
-    const float n = static_cast<float>(map.face(face).width(level));
-    const float x = s * n - 0.5f, y = t * n - 0.5f;
+detail::Texel<S> env_bilinear(const EnvironmentMap& map, int face, int level, float s, float t) {
+    const MipPyramid& pyramid = map.face(face);
+    const MipPyramid::LevelView view = pyramid.level(level);
+    const float x = s * static_cast<float>(view.width) - 0.5f;
+    const float y = t * static_cast<float>(view.height) - 0.5f;
     const int x0 = detail::floor_to_int(x), y0 = detail::floor_to_int(y);
+    if (x0 >= 0 && y0 >= 0 && x0 + 1 < view.width && y0 + 1 < view.height)
+        return detail::sample_bilinear<S>(view, pyramid.wrap_s(), pyramid.wrap_t(), s, t);
     const float fx = x - static_cast<float>(x0), fy = y - static_cast<float>(y0);
     detail::Texel<S> r{};
     detail::add_scaled(r, (1 - fx) * (1 - fy),
-                       detail::Texel<S>::load(cube_texel(map, face, level, x0, y0)));
+                       detail::Texel<S>::load(env_texel(map, face, level, x0, y0)));
     detail::add_scaled(r, fx * (1 - fy),
-                       detail::Texel<S>::load(cube_texel(map, face, level, x0 + 1, y0)));
+                       detail::Texel<S>::load(env_texel(map, face, level, x0 + 1, y0)));
     detail::add_scaled(r, (1 - fx) * fy,
-                       detail::Texel<S>::load(cube_texel(map, face, level, x0, y0 + 1)));
+                       detail::Texel<S>::load(env_texel(map, face, level, x0, y0 + 1)));
     detail::add_scaled(r, fx * fy,
-                       detail::Texel<S>::load(cube_texel(map, face, level, x0 + 1, y0 + 1)));
+                       detail::Texel<S>::load(env_texel(map, face, level, x0 + 1, y0 + 1)));
     return r;
 }
 
+// Probe placement on the sphere for the curved layouts (lat-long, sphere, paraboloid): a probe
+// offset o (level-0 texels, along r1) is taken back to the tangent plane at r̂ through the inverse
+// of the tangent Jacobian J_t = S·J_P·[e1 e2] and placed at the direction r̂ + J_t⁻¹o (the gnomonic
+// point, so the probes lie on the great circle through r̂ — exactly what the cube's face-plane
+// offsets are). In (s, t) the probes then follow the map's own curvature: latitude circles near
+// the poles, the sphere map's bent iso-lines near its rim, the paraboloid's other hemisphere.
+struct TangentProbes {
+    bool valid = false;
+    Vec3 centre, e1, e2;   // r̂ and a tangent basis
+    float inv[2][2] = {};  // J_t⁻¹ (radians per texel)
+
+    static TangentProbes at(const EnvironmentMap& map, Vec3 direction) {
+        TangentProbes p;
+        if (map.layout() == EnvLayout::cube) return p;  // face-plane offsets are already gnomonic
+        const float len = std::sqrt(dot(direction, direction));
+        if (!(len > 0) || !std::isfinite(len)) return p;
+        p.centre = direction / len;
+        Vec3 a = std::fabs(p.centre.x) < 0.9f ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+        a = a - dot(a, p.centre) * p.centre;
+        p.e1 = a / std::sqrt(dot(a, a));
+        p.e2 = cross(p.centre, p.e1);
+        const Jacobian23 j = env_jacobian(map.layout(), p.centre);
+        const Vec2 scale = map.texel_scale();
+        const float j11 = scale.x * dot(j.ds, p.e1), j12 = scale.x * dot(j.ds, p.e2);
+        const float j21 = scale.y * dot(j.dt, p.e1), j22 = scale.y * dot(j.dt, p.e2);
+        const float det = j11 * j22 - j12 * j21;
+        if (!(std::fabs(det) > 1e-12f * (j11 * j11 + j12 * j12 + j21 * j21 + j22 * j22)) ||
+            !std::isfinite(det))
+            return p;
+        p.inv[0][0] = j22 / det, p.inv[0][1] = -j12 / det;
+        p.inv[1][0] = -j21 / det, p.inv[1][1] = j11 / det;
+        p.valid = true;
+        return p;
+    }
+
+    EnvCoords place(EnvLayout layout, Vec2 offset) const {
+        const float a = inv[0][0] * offset.x + inv[0][1] * offset.y;
+        const float b = inv[1][0] * offset.x + inv[1][1] * offset.y;
+        return env_coords(layout, centre + a * e1 + b * e2);
+    }
+};
+
 template <int S>
-detail::Texel<S> cube_trilinear(const EnvironmentMap& map, int face, float s, float t, float lod,
-                                LodBlend blend) {
-    const int max_level = map.face(face).max_level();
+detail::Texel<S> env_trilinear(const EnvironmentMap& map, const EnvCoords& c, float lod,
+                               LodBlend blend) {
+    const int max_level = map.face(c.face).max_level();
     const int l0 = std::min(static_cast<int>(lod), max_level);
     const float w =
         l0 < max_level ? detail::lod_blend_weight(lod - static_cast<float>(l0), blend) : 0.0f;
-    detail::Texel<S> r = cube_bilinear<S>(map, face, l0, s, t);
+    detail::Texel<S> r = env_bilinear<S>(map, c.face, l0, c.s, c.t);
     if (w > 0.0f) {
-        const detail::Texel<S> coarse = cube_bilinear<S>(map, face, l0 + 1, s, t);
+        const detail::Texel<S> coarse = env_bilinear<S>(map, c.face, l0 + 1, c.s, c.t);
         r.v += w * (coarse.v - r.v);
     }
     return r;
 }
 
+// Where a probe centre (s, t) of `face` lands: itself while it lies on the face's valid region,
+// otherwise the face and (s, t) that own its direction (spec §3.1 [E6s], §3.3, §3.4): cube
+// probes move to the neighbour face, lat-long probes beyond a pole continue over it along the
+// great circle (the seam s = 0 ≡ 1 wraps in the pyramid itself), sphere-map probes beyond the rim
+// fold back into the disk, and paraboloid probes beyond the equator move to the other hemisphere.
+EnvCoords place_probe(EnvLayout layout, int face, float s, float t) {
+    switch (layout) {
+        case EnvLayout::cube:
+            if (s < 0 || s > 1 || t < 0 || t > 1) return cube_reproject(face, s, t);
+            break;
+        case EnvLayout::latlong:
+            if (t < 0 || t > 1) {
+                const Vec2 st = latlong_coords(latlong_direction(s, t));
+                return {0, st.x, st.y};
+            }
+            break;
+        case EnvLayout::sphere:
+        case EnvLayout::paraboloid: {
+            const float a = 2 * s - 1, b = 2 * t - 1;
+            if (a * a + b * b > 1) return env_coords(layout, env_direction(layout, face, s, t));
+            break;
+        }
+    }
+    return {face, s, t};
+}
+
+// Bilinear sample of `image` at (s, t) with clamp-to-edge (building the disk exteriors).
+void image_bilinear(const Image& image, float s, float t, float* out) {
+    const float x = std::clamp(s * static_cast<float>(image.width) - 0.5f, 0.0f,
+                               static_cast<float>(image.width - 1));
+    const float y = std::clamp(t * static_cast<float>(image.height) - 0.5f, 0.0f,
+                               static_cast<float>(image.height - 1));
+    const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+    const int x1 = std::min(x0 + 1, image.width - 1), y1 = std::min(y0 + 1, image.height - 1);
+    const float fx = x - static_cast<float>(x0), fy = y - static_cast<float>(y0);
+    for (int c = 0; c < image.channels; ++c)
+        out[c] = (1 - fy) * ((1 - fx) * image.at(x0, y0, c) + fx * image.at(x1, y0, c)) +
+                 fy * ((1 - fx) * image.at(x0, y1, c) + fx * image.at(x1, y1, c));
+}
+
+// Sphere and paraboloid images hold the sphere in a disk; the texels outside it (the corners of
+// the square) are unused by point lookups but read by bilinear taps at the rim and averaged into
+// the coarser levels. They are filled with the environment's own continuation — the direction
+// env_direction() gives them (the sphere map folded back through its rim, the paraboloid's
+// other hemisphere) — so that taps, probes and pyramid levels stay seamless across the rim.
+std::vector<Image> with_continued_exterior(EnvLayout layout, const std::vector<Image>& faces) {
+    std::vector<Image> result = faces;
+    for (int f = 0; f < static_cast<int>(faces.size()); ++f) {
+        Image& image = result[f];
+        const float w = static_cast<float>(image.width), h = static_cast<float>(image.height);
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x) {
+                const float s = (static_cast<float>(x) + 0.5f) / w;
+                const float t = (static_cast<float>(y) + 0.5f) / h;
+                const float a = 2 * s - 1, b = 2 * t - 1;
+                if (a * a + b * b <= 1) continue;
+                const EnvCoords c = env_coords(layout, env_direction(layout, f, s, t));
+                image_bilinear(faces[c.face], c.s, c.t, image.at(x, y));
+            }
+    }
+    return result;
+}
 }  // namespace
 
 Vec2 EnvironmentMap::texel_scale() const {
@@ -106,41 +215,93 @@ Result<EnvironmentMap> EnvironmentMap::from_cube_faces(const std::array<Image, 6
     return map;
 }
 
+Result<EnvironmentMap> EnvironmentMap::from_sphere(const Image& image) {
+    if (Status s = check_image(image, "sphere map"); !s) return s.error();
+    if (image.width != image.height)
+        return Error{"sphere map is " + std::to_string(image.width) + "x" +
+                     std::to_string(image.height) + ", not square"};
+    EnvironmentMap map;
+    map.layout_ = EnvLayout::sphere;
+    MipPyramidOptions options;
+    options.wrap_s = options.wrap_t = WrapMode::clamp;
+    map.faces_.push_back(
+        MipPyramid::build(with_continued_exterior(EnvLayout::sphere, {image})[0], options));
+    return map;
+}
+
+Result<EnvironmentMap> EnvironmentMap::from_paraboloid(const Image& front, const Image& back) {
+    if (Status s = check_image(front, "paraboloid front map"); !s) return s.error();
+    if (Status s = check_image(back, "paraboloid back map"); !s) return s.error();
+    if (front.width != front.height)
+        return Error{"paraboloid front map is " + std::to_string(front.width) + "x" +
+                     std::to_string(front.height) + ", not square"};
+    if (back.width != front.width || back.height != front.height || back.channels != front.channels)
+        return Error{"paraboloid back map differs in size or channels from the front map"};
+    EnvironmentMap map;
+    map.layout_ = EnvLayout::paraboloid;
+    MipPyramidOptions options;
+    options.wrap_s = options.wrap_t = WrapMode::clamp;
+    for (const Image& face : with_continued_exterior(EnvLayout::paraboloid, {front, back}))
+        map.faces_.push_back(MipPyramid::build(face, options));
+    return map;
+}
+
 void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
                         const LookupOptions& options, float* out) {
     const EnvCoords& c = footprint.coords;
     const MipPyramid& centre = map.face(c.face);
-    const FootprintEllipse ellipse = make_footprint_ellipse(footprint.matrix);
-    if (map.layout() != EnvLayout::cube || options.filter != TextureFilter::footprint_assembly) {
-        texture_lookup(centre, c.s, c.t, ellipse, options, out);
+    FootprintEllipse e = footprint.matrix.is_finite() ? make_footprint_ellipse(footprint.matrix)
+                                                      : FootprintEllipse{};
+    const Vec2 size = map.texel_scale();
+    if (map.layout() == EnvLayout::sphere && e.major_radius > 0.5f * size.x) {
+        // §3.2: towards the singular rim the anisotropy grows without bound; clamp λ1 ≤ W/2.
+        e.major_radius = 0.5f * size.x;
+        e.minor_radius = std::min(e.minor_radius, e.major_radius);
+        e.matrix = e.from_axes();
+    }
+    if (options.filter != TextureFilter::footprint_assembly) {
+        texture_lookup(centre, c.s, c.t, e, options, out);  // on the centre face only
         return;
     }
-    // Footprint assembly across cube faces (spec §2.8, §3.1): probes along r1 on the centre face's
-    // plane, each re-projected onto the face that owns its direction, all at the centre face's lod.
-    const FootprintEllipse e = ellipse.matrix.is_finite() ? ellipse : FootprintEllipse{};
+    // Footprint assembly (spec §2.8–2.9): probes along r1 on the centre face's (s, t) plane, each
+    // placed on the face that owns its direction (place_probe), all at the centre face's lod.
     const ProbePlan plan = plan_probes(e, options.probe_rule, options.max_probes,
                                        centre.max_level(), options.lod_bias);
     const LodBlend blend = effective_lod_blend(plan, options.lod_blend);
     float weights[kMaxProbeCount];
     probe_weights(plan, weights);
-    const float size = static_cast<float>(centre.width(0));
+    const TangentProbes tangent =
+        plan.count > 1 ? TangentProbes::at(map, footprint.map_direction) : TangentProbes{};
     detail::dispatch_stride(centre.stride(), [&]<int S>() {
         detail::Texel<S> sum{};
         float weight_sum = 0;
         for (int i = 0; i < plan.count; ++i) {
             const Vec2 o = plan.offset(i);
-            float s = c.s + o.x / size, t = c.t + o.y / size;
-            int face = c.face;
-            if (s < 0 || s > 1 || t < 0 || t > 1) {
-                const EnvCoords moved = cube_reproject(c.face, s, t);
-                face = moved.face, s = moved.s, t = moved.t;
-            }
-            detail::add_scaled(sum, weights[i],
-                               cube_trilinear<S>(map, face, s, t, plan.lod, blend));
+            const EnvCoords probe =
+                tangent.valid
+                    ? tangent.place(map.layout(), o)
+                    : place_probe(map.layout(), c.face, c.s + o.x / size.x, c.t + o.y / size.y);
+            detail::add_scaled(sum, weights[i], env_trilinear<S>(map, probe, plan.lod, blend));
             weight_sum += weights[i];
         }
         sum.v *= 1.0f / weight_sum;
         detail::store(sum, centre.channels(), out);
+    });
+}
+
+void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
+                        const LookupOptions& options, float* out, const Mat3& rotation) {
+    environment_lookup(
+        map, compute_env_footprint(map.layout(), map.texel_scale(), r, dr_dx, dr_dy, rotation),
+        options, out);
+}
+
+void environment_bilinear(const EnvironmentMap& map, Vec3 r, int level, float* out) {
+    const EnvCoords c = env_coords(map.layout(), r);
+    const MipPyramid& pyramid = map.face(c.face);
+    level = std::clamp(level, 0, pyramid.max_level());
+    detail::dispatch_stride(pyramid.stride(), [&]<int S>() {
+        detail::store(env_bilinear<S>(map, c.face, level, c.s, c.t), pyramid.channels(), out);
     });
 }
 

@@ -9,10 +9,16 @@
 // re-projected onto the face that owns its direction (spec §3.1 [E6s]); every probe reads the
 // centre face's lod.
 //
-// Not yet (issue 4): bilinear taps that cross a cube-face edge read the edge texel of their own
-// face (clamp-to-edge) rather than the neighbour's texels; the lat-long poles use the plain
-// footprint (no spec §3.4 isotropic pole fallback); sphere and paraboloid maps; filters other than
-// footprint assembly fall back to texture_lookup() on the centre face.
+// Sphere and paraboloid maps keep the sphere in a disk; the texels outside it are filled with the
+// environment's continuation (the sphere map folded back through its rim, the paraboloid's other
+// hemisphere) so that bilinear taps and coarse levels are seamless across the rim. Probes that
+// leave the valid region are placed by direction: cube probes on the neighbour face (§3.1),
+// lat-long probes over the pole (the seam wraps in the pyramid), sphere-map probes folded back
+// through the rim (§3.2, where λ1 is also clamped to W/2), paraboloid probes onto the other
+// hemisphere (§3.3). Bilinear taps cross cube-face edges (seamless cube filtering).
+//
+// Filters other than footprint assembly (trilinear, EWA, …) run texture_lookup() on the centre
+// face only, without re-projection: use them for comparisons, not across cube edges.
 #pragma once
 
 #include <array>
@@ -32,6 +38,10 @@ class EnvironmentMap {
     static Result<EnvironmentMap> from_latlong(const Image& image);
     // Six square faces of one size and channel count, in the order +X −X +Y −Y +Z −Z.
     static Result<EnvironmentMap> from_cube_faces(const std::array<Image, 6>& faces);
+    // A square sphere map (spec §3.2; env_layout.h's orientation).
+    static Result<EnvironmentMap> from_sphere(const Image& image);
+    // Two square paraboloid maps of one size: front (+Z hemisphere) and back (spec §3.3).
+    static Result<EnvironmentMap> from_paraboloid(const Image& front, const Image& back);
 
     EnvLayout layout() const { return layout_; }
     int face_count() const { return static_cast<int>(faces_.size()); }
@@ -48,5 +58,15 @@ class EnvironmentMap {
 // texel_scale()): channels() floats to out.
 void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
                         const LookupOptions& options, float* out);
+
+// Form (a), like OpenImageIO's environment(): the map filtered over the footprint of direction r
+// with ray differentials ∂r/∂x, ∂r/∂y (compute_env_footprint form (a)), `rotation` = A.
+void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
+                        const LookupOptions& options, float* out, const Mat3& rotation = Mat3{});
+
+// A point sample: bilinear interpolation of level `level` at the direction r (any nonzero
+// length), seamless across cube-face edges and the lat-long seam. The building block of the
+// brute-force reference (env_reference.h).
+void environment_bilinear(const EnvironmentMap& map, Vec3 r, int level, float* out);
 
 }  // namespace footprint

@@ -1,7 +1,10 @@
 #include "envmap/environment_map.h"
 
+#include "envmap/env_test_maps.h"
+
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -162,6 +165,84 @@ TEST(EnvironmentMap, BilinearTapsCrossCubeEdges) {
                 confined);
     EXPECT_LT(seamless, 0.02);
     EXPECT_GT(confined, 0.1);
+}
+
+TEST(EnvironmentMap, SmallFootprintsReproduceASmoothEnvironmentInEveryLayout) {
+    // Sphere and paraboloid maps, and the lat-long poles, with footprints of ~1–2 texels: the error
+    // is bilinear reconstruction of a linear function of direction on a curved map (measured
+    // ≤ 2.2e−3 at 128 texels). The sphere map is left out within 25° of its singular rim
+    // (−Z), where one texel spans ever more solid angle in one direction.
+    constexpr float kTolerance = 4e-3f;
+    std::mt19937 rng(21);
+    std::normal_distribution<float> g(0, 1);
+    for (EnvLayout layout : test::kAllEnvLayouts) {
+        const EnvironmentMap map = test::env_map(layout, 128, [](Vec3 r) { return smooth(r); });
+        float worst = 0;
+        for (int i = 0; i < 2000; ++i) {
+            Vec3 r{g(rng), g(rng), g(rng)};
+            if (i < 20) r = {0.001f * g(rng), i % 2 ? 1.0f : -1.0f, 0.001f * g(rng)};  // poles
+            r = r / std::sqrt(dot(r, r));
+            if (layout == EnvLayout::sphere && r.z < -std::cos(25 * 3.14159265f / 180)) continue;
+            Vec3 dx, dy;
+            test::isotropic_differentials(r, 0.01f, dx, dy);
+            float v;
+            environment_lookup(map, r, dx, dy, LookupOptions{}, &v);
+            worst = std::max(worst, std::fabs(v - smooth(r)));
+        }
+        std::printf("%s: max |error| %.4f\n", test::layout_name(layout), worst);
+        EXPECT_LT(worst, kTolerance) << test::layout_name(layout);
+    }
+}
+
+TEST(EnvironmentMap, ParaboloidLookupsAgreeAcrossTheEquator) {
+    // Directions a fraction of a texel either side of the equator land on different faces; with
+    // the disk exteriors filled by the other hemisphere and probes moved onto it, both read nearly
+    // the same texels (noise of σ = 0.29 per texel). Confined to their own face they do not.
+    const int size = 64;
+    const EnvironmentMap map = test::env_noise_map(EnvLayout::paraboloid, size, 22);
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<float> u(0, 2 * 3.14159265f);
+    double seamless = 0, confined = 0;
+    const int n = 200;
+    for (int k = 0; k < n; ++k) {
+        const float phi = u(rng), eps = 0.2f / size;
+        const Vec3 above{std::cos(phi), std::sin(phi), eps},
+            below{std::cos(phi), std::sin(phi), -eps};
+        Vec3 dx, dy;
+        test::isotropic_differentials(above, 8.0f * 4 / size, dx, dy);  // ~8 texels at the rim
+        const EnvFootprint a =
+            compute_env_footprint(EnvLayout::paraboloid, map.texel_scale(), above, dx, dy);
+        const EnvFootprint b =
+            compute_env_footprint(EnvLayout::paraboloid, map.texel_scale(), below, dx, dy);
+        ASSERT_NE(a.coords.face, b.coords.face);
+        float va, vb, ca, cb;
+        environment_lookup(map, a, LookupOptions{}, &va);
+        environment_lookup(map, b, LookupOptions{}, &vb);
+        seamless += std::fabs(va - vb);
+        texture_lookup(map.face(a.coords.face), a.coords.s, a.coords.t,
+                       make_footprint_ellipse(a.matrix), LookupOptions{}, &ca);
+        texture_lookup(map.face(b.coords.face), b.coords.s, b.coords.t,
+                       make_footprint_ellipse(b.matrix), LookupOptions{}, &cb);
+        confined += std::fabs(ca - cb);
+    }
+    seamless /= n;
+    confined /= n;
+    std::printf("mean |difference| across the equator: seamless %.4f, confined %.4f\n", seamless,
+                confined);
+    // Measured 0.0058 vs 0.0153: what remains is the exterior texels being a resampled (bilinear)
+    // copy of the other hemisphere rather than its texels.
+    EXPECT_LT(seamless, 0.5 * confined);
+    EXPECT_LT(seamless, 0.008);
+}
+
+TEST(EnvironmentMap, SphereAndParaboloidImagesAreChecked) {
+    EXPECT_FALSE(EnvironmentMap::from_sphere(Image(8, 4, 3)).ok());
+    EXPECT_FALSE(EnvironmentMap::from_sphere(Image()).ok());
+    EXPECT_TRUE(EnvironmentMap::from_sphere(Image(8, 8, 3)).ok());
+    EXPECT_FALSE(EnvironmentMap::from_paraboloid(Image(8, 8, 3), Image(8, 8, 1)).ok());
+    EXPECT_FALSE(EnvironmentMap::from_paraboloid(Image(8, 8, 3), Image(16, 16, 3)).ok());
+    EXPECT_FALSE(EnvironmentMap::from_paraboloid(Image(8, 4, 3), Image(8, 4, 3)).ok());
+    EXPECT_TRUE(EnvironmentMap::from_paraboloid(Image(8, 8, 3), Image(8, 8, 3)).ok());
 }
 
 TEST(EnvironmentMap, BadFacesAreErrors) {
