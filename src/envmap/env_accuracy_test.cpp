@@ -189,8 +189,9 @@ void check_group(const char* name, const EnvironmentMap& map, const std::vector<
         name, lookups.size(), e.rmse, bounds.rmse, e.max, bounds.max, wrong.rmse);
     EXPECT_LT(e.rmse, bounds.rmse) << name;
     EXPECT_LT(e.max, bounds.max) << name;
-    if (bound_catches_mistake)
+    if (bound_catches_mistake) {
         EXPECT_GT(wrong.rmse, 2 * bounds.rmse) << name << ": the bound would not catch the mistake";
+    }
 }
 
 Vec3d random_direction(std::mt19937& rng) {
