@@ -1,14 +1,19 @@
-// footprint — the command-line program: argument parsing only; the commands live in demo.cpp.
+// footprint — the command-line program: argument parsing only; the commands live in demo.cpp and
+// env_command.cpp.
 //   footprint demo  [--out DIR] [--size N] [--samples N] [--quiet]
 //   footprint plane TEXTURE -o OUT [--filter F] [--size N] [--uv-scale X] [--quiet]
+//   footprint env convert IN [IN...] --to LAYOUT -o OUT [-o OUT...] [--size N] [--from LAYOUT]
+//                         [--from-cube-layout A] [--cube-layout A] [--quiet]
 // Exit status: 0 success, 1 bad input or failure (one line on stderr), 2 command-line usage error.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <vector>
 
 #include "demo.h"
+#include "env_command.h"
 
 namespace {
 
@@ -46,6 +51,40 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     plane_cmd->add_flag("--quiet,-q", plane.quiet, "No progress output");
 
+    footprint::EnvConvertCommandOptions convert;
+    std::vector<std::string> convert_inputs, convert_outputs;
+    CLI::App* env_cmd = app.add_subcommand("env", "Environment maps");
+    env_cmd->require_subcommand(1);
+    CLI::App* convert_cmd = env_cmd->add_subcommand(
+        "convert", "Convert an environment map to another layout, filtered (not point-sampled)");
+    convert_cmd
+        ->add_option("inputs", convert_inputs,
+                     "1 file (lat-long, sphere, cube cross/strip, OpenEXR envmap), 2 (paraboloid "
+                     "front, back) or 6 (cube faces +X -X +Y -Y +Z -Z)")
+        ->required();
+    convert_cmd->add_option("--to", convert.to, "cube|latlong|sphere|paraboloid")->required();
+    convert_cmd
+        ->add_option("-o,--out", convert_outputs,
+                     "Output file; cube: 1 or 6 (-o per face), paraboloid: 1 (side by side) or 2")
+        ->required()
+        ->allow_extra_args(false);
+    convert_cmd
+        ->add_option("--size", convert.size,
+                     "Cube face / lat-long width / sphere / paraboloid face size; 0: keep the "
+                     "source's angular resolution")
+        ->capture_default_str();
+    convert_cmd->add_option("--from", convert.from,
+                            "Input layout cube|latlong|sphere|paraboloid (default: detect)");
+    convert_cmd
+        ->add_option("--from-cube-layout", convert.from_cube_layout,
+                     "Input cube image: auto|hcross|vcross|3x2|2x3|column|row|openexr")
+        ->capture_default_str();
+    convert_cmd
+        ->add_option("--cube-layout", convert.cube_layout,
+                     "Output cube image: hcross|vcross|3x2|2x3|column|row")
+        ->capture_default_str();
+    convert_cmd->add_flag("--quiet,-q", convert.quiet, "No progress or summary output");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -60,6 +99,11 @@ int run(int argc, char** argv) {
     if (*demo_cmd) {
         demo.out_dir = demo_out;
         return footprint::run_demo_command(demo);
+    }
+    if (*env_cmd) {
+        convert.inputs.assign(convert_inputs.begin(), convert_inputs.end());
+        convert.outputs.assign(convert_outputs.begin(), convert_outputs.end());
+        return footprint::run_env_convert_command(convert);
     }
     plane.texture = plane_texture;
     plane.output = plane_output;

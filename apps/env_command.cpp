@@ -1,0 +1,146 @@
+#include "env_command.h"
+
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <optional>
+#include <system_error>
+
+#include "envmap/env_convert.h"
+#include "envmap/env_image_io.h"
+#include "image/image_io.h"
+#include "progress.h"
+
+namespace footprint {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kLayoutNames = "cube, latlong, sphere, paraboloid";
+constexpr const char* kArrangementNames = "hcross, vcross, 3x2, 2x3, column, row";
+
+int fail(const std::string& message) {
+    std::cerr << "footprint: " << message << "\n";
+    return 1;
+}
+
+std::string quoted(const fs::path& p) {
+    return "'" + p.string() + "'";
+}
+
+// Fails if `file` cannot be written (before any work is done).
+std::optional<std::string> output_file_problem(const fs::path& file) {
+    if (file.empty() || file.filename().empty())
+        return "cannot write " + quoted(file) + ": not a file name";
+    if (!is_supported_image_extension(file))
+        return "cannot write " + quoted(file) + ": unsupported extension '" +
+               file.extension().string() + "' (supported: .png .jpg .jpeg .exr .hdr .tif .tiff)";
+    std::error_code ec;
+    const fs::path dir = file.parent_path();
+    if (!dir.empty() && !fs::is_directory(dir, ec))
+        return "cannot write " + quoted(file) + ": directory " + quoted(dir) + " does not exist";
+    if (fs::is_directory(file, ec)) return "cannot write " + quoted(file) + ": it is a directory";
+    return std::nullopt;
+}
+
+std::string size_text(const EnvImages& images) {
+    const Image& f = images.faces[0];
+    std::string text = std::string(env_layout_name(images.layout)) + " ";
+    if (images.faces.size() > 1) text += std::to_string(images.faces.size()) + " x ";
+    return text + std::to_string(f.width) + "x" + std::to_string(f.height);
+}
+
+int env_convert(const EnvConvertCommandOptions& options) {
+    const std::optional<EnvLayout> to = parse_env_layout(options.to);
+    if (!to) return fail("--to: unknown layout '" + options.to + "' (valid: " + kLayoutNames + ")");
+    EnvImageOptions load_options;
+    if (!options.from.empty()) {
+        load_options.layout = parse_env_layout(options.from);
+        if (!load_options.layout)
+            return fail("--from: unknown layout '" + options.from + "' (valid: " + kLayoutNames +
+                        ")");
+    }
+    const std::optional<CubeArrangement> from_arrangement =
+        parse_cube_arrangement(options.from_cube_layout);
+    if (!from_arrangement)
+        return fail("--from-cube-layout: unknown cube layout '" + options.from_cube_layout +
+                    "' (valid: auto, " + kArrangementNames + ", openexr)");
+    load_options.cube_arrangement = *from_arrangement;
+    if (*from_arrangement != CubeArrangement::automatic && !load_options.layout)
+        load_options.layout = EnvLayout::cube;
+    std::optional<CubeArrangement> arrangement = parse_cube_arrangement(options.cube_layout);
+    if (!arrangement || *arrangement == CubeArrangement::openexr_column)
+        return fail("--cube-layout: unknown output cube layout '" + options.cube_layout +
+                    "' (valid: " + kArrangementNames + ")");
+    if (options.size < 0 || options.size > 16384)
+        return fail("--size " + std::to_string(options.size) +
+                    " is out of range (1 to 16384, or 0 for the source's resolution)");
+    if (*to == EnvLayout::latlong && options.size % 2 != 0)
+        return fail("--size " + std::to_string(options.size) +
+                    " is odd; a lat-long map is N x N/2 with N even");
+    if (options.inputs.empty()) return fail("no input file given");
+
+    const std::size_t outputs = options.outputs.size();
+    const bool outputs_fit = *to == EnvLayout::cube         ? outputs == 1 || outputs == 6
+                             : *to == EnvLayout::paraboloid ? outputs == 1 || outputs == 2
+                                                            : outputs == 1;
+    if (!outputs_fit)
+        return fail(std::string("-o: a ") + env_layout_name(*to) + " map is written to " +
+                    (*to == EnvLayout::cube ? "1 file (a cross or strip) or 6 (one per face)"
+                     : *to == EnvLayout::paraboloid ? "1 file (front | back) or 2 (front, back)"
+                                                    : "1 file") +
+                    ", not " + std::to_string(outputs));
+    for (const fs::path& file : options.outputs)
+        if (const auto problem = output_file_problem(file)) return fail(*problem);
+
+    Result<EnvImages> source_images = load_environment_images(options.inputs, load_options);
+    if (!source_images) return fail(source_images.error().message);
+    Result<EnvironmentMap> source = make_environment_map(*source_images);
+    if (!source)
+        return fail("cannot use " + quoted(options.inputs[0]) + ": " + source.error().message);
+
+    EnvConvertOptions convert_options;
+    convert_options.size = options.size == 0 ? default_env_size(*source, *to) : options.size;
+    Progress progress("convert",
+                      static_cast<std::uint64_t>(env_output_rows(*to, convert_options.size)),
+                      !options.quiet && Progress::stderr_is_terminal());
+    convert_options.on_row = [&progress] { progress.advance(); };
+    Result<EnvImages> converted = convert_environment(*source, *to, convert_options);
+    progress.finish();
+    if (!converted) return fail(converted.error().message);
+
+    EnvSaveOptions save_options;
+    save_options.cube_arrangement = *arrangement;
+    if (const Status saved = save_environment_images(*converted, options.outputs, save_options);
+        !saved)
+        return fail(saved.error().message);
+    if (!options.quiet) {
+        std::string written;
+        for (const fs::path& file : options.outputs)
+            written += (written.empty() ? "" : ", ") + quoted(file);
+        const CubeArrangement shown = *arrangement == CubeArrangement::automatic
+                                          ? CubeArrangement::horizontal_cross
+                                          : *arrangement;
+        const std::string how = *to == EnvLayout::cube && outputs == 1
+                                    ? std::string(", ") + cube_arrangement_name(shown)
+                                    : std::string();
+        std::printf("converted %s (%s) to %s%s: %s\n", quoted(options.inputs[0]).c_str(),
+                    size_text(*source_images).c_str(), size_text(*converted).c_str(), how.c_str(),
+                    written.c_str());
+        std::fflush(stdout);
+    }
+    return 0;
+}
+
+}  // namespace
+
+int run_env_convert_command(const EnvConvertCommandOptions& options) {
+    try {
+        return env_convert(options);
+    } catch (const std::exception& e) {
+        return fail(std::string("env convert failed: ") + e.what());
+    }
+}
+
+}  // namespace footprint
