@@ -1,8 +1,13 @@
 #include "envmap/env_layout.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <type_traits>
+
+#include "math/fast_atan2.h"
 
 namespace footprint {
 
@@ -30,6 +35,21 @@ struct Prepared {
     bool infinite = false;  // an infinite component: r = its signs, J = 0
 };
 
+// ⌊log2 m⌋ for a positive normal m, and 2^e for |e| ≤ 126, both from the IEEE-754 bits.
+inline int binary_exponent(float m) {
+    return static_cast<int>(std::bit_cast<std::uint32_t>(m) >> 23) - 127;
+}
+inline int binary_exponent(double m) {
+    return static_cast<int>(std::bit_cast<std::uint64_t>(m) >> 52) - 1023;
+}
+template <class T>
+T power_of_two(int e) {
+    if constexpr (std::is_same_v<T, float>)
+        return std::bit_cast<float>(static_cast<std::uint32_t>(e + 127) << 23);
+    else
+        return std::bit_cast<double>(static_cast<std::uint64_t>(e + 1023) << 52);
+}
+
 template <class T>
 Prepared<T> prepare(Vec3T<T> r) {
     Prepared<T> p;
@@ -45,6 +65,14 @@ Prepared<T> prepare(Vec3T<T> r) {
         return p;
     }
     const T m = max_abs_component(r);
+    if (m >= T(0x1p-100) && m <= T(0x1p100)) {
+        // The common case, without libm: the exponent from the bits, and an exact multiplication
+        // by the power of two (the same result as ldexp, a fraction of the cost).
+        p.exponent = binary_exponent(m);
+        const T scale = power_of_two<T>(-p.exponent);
+        p.r = {r.x * scale, r.y * scale, r.z * scale};
+        return p;
+    }
     if (m == 0) {
         p.r = kEnvFallbackDirection<T>;
         p.usable = false;
@@ -54,6 +82,15 @@ Prepared<T> prepare(Vec3T<T> r) {
     p.r = {std::ldexp(r.x, -p.exponent), std::ldexp(r.y, -p.exponent),
            std::ldexp(r.z, -p.exponent)};
     return p;
+}
+
+// atan2: inline and libm-free in float (math/fast_atan2.h, float rounding), std::atan2 in double.
+template <class T>
+T any_atan2(T y, T x) {
+    if constexpr (std::is_same_v<T, float>)
+        return fast_atan2(y, x);
+    else
+        return std::atan2(y, x);
 }
 
 template <class T>
@@ -66,6 +103,10 @@ T clamp_finite(T x) {
 template <class T>
 Jacobian23T<T> finish(const Prepared<T>& p, Jacobian23T<T> j) {
     if (!p.usable || p.infinite) return {};
+    if (p.exponent >= -100 && p.exponent <= 100) {  // exact, and J ~ 1/|r| stays finite
+        const T scale = power_of_two<T>(-p.exponent);
+        return {j.ds * scale, j.dt * scale};
+    }
     auto scale = [&](Vec3T<T> v) {
         return Vec3T<T>{clamp_finite(std::ldexp(v.x, -p.exponent)),
                         clamp_finite(std::ldexp(v.y, -p.exponent)),
@@ -177,10 +218,10 @@ CubeCoordsT<T> cube_reproject(int face, T s, T t) {
 template <class T>
 Vec2T<T> latlong_coords(Vec3T<T> r_in) {
     const Vec3T<T> r = prepare(r_in).r;
-    const T rho = std::hypot(r.x, r.z);
-    const T t = std::atan2(rho, r.y) / kPi<T>;  // = arccos(r_y/|r|)/π, accurate at the poles too
-    if (rho == 0) return {T(0.5), t};           // pole: s undefined, ½ by convention
-    const T s = T(0.5) + std::atan2(r.x, -r.z) / (2 * kPi<T>);
+    const T rho = std::sqrt(r.x * r.x + r.z * r.z);  // no overflow: |r_i| < 2 after prepare()
+    const T t = any_atan2(rho, r.y) / kPi<T>;  // = arccos(r_y/|r|)/π, accurate at the poles too
+    if (rho == 0) return {T(0.5), t};          // pole: s undefined, ½ by convention
+    const T s = T(0.5) + any_atan2(r.x, -r.z) / (2 * kPi<T>);
     return {std::clamp(s, T(0), T(1)), std::clamp(t, T(0), T(1))};
 }
 
@@ -188,7 +229,7 @@ template <class T>
 Jacobian23T<T> latlong_jacobian(Vec3T<T> r_in) {
     const Prepared<T> p = prepare(r_in);
     const Vec3T<T> r = p.r;
-    const T rho = std::hypot(r.x, r.z);
+    const T rho = std::sqrt(r.x * r.x + r.z * r.z);
     if (rho == 0) return {};  // pole: J undefined, the caller takes the isotropic fallback (§3.4)
     const T cx = r.x / rho, cz = r.z / rho, inv_rho = safe_inverse(rho);
     const T p2 = dot(r, r);  // in [1, 12]
