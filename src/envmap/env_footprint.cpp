@@ -75,7 +75,13 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, V
     f.coords = env_coords(layout, f.map_direction);
     if (!usable || !is_finite(dr_dx) || !is_finite(dr_dy)) return f;
     const Jacobian23 j = env_jacobian(layout, f.map_direction);
-    if (layout == EnvLayout::latlong || layout == EnvLayout::sphere) {
+    // The pole test needs θ_fp only where the footprint could reach a pole: ρ < sin θ_fp·|r| needs
+    // ρ² < |∂r/∂x|² + |∂r/∂y|² (θ_fp|r| ≤ the Frobenius norm), and J = 0 (the exact pole) has ρ =
+    // 0.
+    const float rho2 =
+        f.map_direction.x * f.map_direction.x + f.map_direction.z * f.map_direction.z;
+    if ((layout == EnvLayout::latlong && rho2 < dot(dr_dx, dr_dx) + dot(dr_dy, dr_dy)) ||
+        (layout == EnvLayout::sphere && dot(j.ds, j.ds) == 0 && dot(j.dt, j.dt) == 0)) {
         const float theta = largest_tangent_singular_value(r, dr_dx, dr_dy) / norm(r);
         if (use_isotropic_footprint(layout, j, f.map_direction, theta)) {
             set_isotropic_pole_footprint(f, layout, texel_scale, theta);

@@ -27,6 +27,17 @@ Status check_image(const Image& image, const std::string& what) {
 const float* env_texel(const EnvironmentMap& map, int face, int level, int x, int y) {
     const MipPyramid::LevelView view = map.face(face).level(level);
     if (x >= 0 && y >= 0 && x < view.width && y < view.height) return view.texel(x, y);
+    if (map.layout() == EnvLayout::latlong) {
+        // Over a pole, row −1 − k is row k half a turn around; the seam wraps (exact for texel
+        // centres, and no trigonometry).
+        if (y < 0 || y >= view.height) {
+            y = y < 0 ? -1 - y : 2 * view.height - 1 - y;
+            x += view.width / 2;
+        }
+        x %= view.width;
+        if (x < 0) x += view.width;
+        return view.texel(x, std::clamp(y, 0, view.height - 1));
+    }
     const float w = static_cast<float>(view.width), h = static_cast<float>(view.height);
     const EnvCoords c = env_coords(
         map.layout(), env_direction(map.layout(), face, (static_cast<float>(x) + 0.5f) / w,
@@ -38,7 +49,8 @@ const float* env_texel(const EnvironmentMap& map, int face, int level, int x, in
 
 // Bilinear on a level of `face`, with taps beyond its edges read by direction (env_texel).
 template <int S>
-detail::Texel<S> env_bilinear(const EnvironmentMap& map, int face, int level, float s, float t) {
+[[gnu::always_inline]] inline detail::Texel<S> env_bilinear(const EnvironmentMap& map, int face,
+                                                            int level, float s, float t) {
     const MipPyramid& pyramid = map.face(face);
     const MipPyramid::LevelView view = pyramid.level(level);
     const float x = s * static_cast<float>(view.width) - 0.5f;
@@ -101,9 +113,44 @@ struct TangentProbes {
     }
 };
 
+// The lat-long probes' great circle without trigonometry per probe: placed exactly at both ends
+// (TangentProbes) and interpolated quadratically through them and the centre in (s, t),
+// p(u) = c + u·h + u²·q, u ∈ [−1, 1]. Over the extent of a probe line away from the poles (the
+// pole fallback takes footprints that reach one) the cubic remainder is a small fraction of a
+// texel; probes that would cross a pole are placed exactly.
+struct QuadraticPath {
+    bool valid = false;
+    Vec2 centre, h, q;  // (s, t), and the linear and quadratic terms
+
+    static QuadraticPath through(const TangentProbes& tangent, const EnvCoords& c, Vec2 end) {
+        const EnvCoords a = tangent.place(EnvLayout::latlong, end);
+        const EnvCoords b = tangent.place(EnvLayout::latlong, -end);
+        auto unwrapped = [](float ds) { return ds - std::nearbyint(ds); };  // across the seam
+        const Vec2 da{unwrapped(a.s - c.s), a.t - c.t}, db{unwrapped(b.s - c.s), b.t - c.t};
+        QuadraticPath p;
+        p.centre = {c.s, c.t};
+        p.h = 0.5f * (da - db);
+        p.q = 0.5f * (da + db);
+        p.valid = true;
+        return p;
+    }
+
+    // Probe i of n; false when it would leave t ∈ [0, 1] (over a pole).
+    bool place(int i, int n, EnvCoords& out) const {
+        const float half = 0.5f * static_cast<float>(n - 1);
+        const float u = (static_cast<float>(i) - half) / half;
+        const float t = centre.y + u * (h.y + u * q.y);
+        if (!(t >= 0.0f && t <= 1.0f)) return false;
+        const float s = centre.x + u * (h.x + u * q.x);
+        out = {0, s - std::floor(s), t};
+        return true;
+    }
+};
+
 template <int S>
-detail::Texel<S> env_trilinear(const EnvironmentMap& map, const EnvCoords& c, float lod,
-                               LodBlend blend) {
+[[gnu::always_inline]] inline detail::Texel<S> env_trilinear(const EnvironmentMap& map,
+                                                             const EnvCoords& c, float lod,
+                                                             LodBlend blend) {
     const int max_level = map.face(c.face).max_level();
     const int l0 = std::min(static_cast<int>(lod), max_level);
     const float w =
@@ -250,9 +297,26 @@ void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint
                         const LookupOptions& options, float* out) {
     const EnvCoords& c = footprint.coords;
     const MipPyramid& centre = map.face(c.face);
+    const Vec2 size = map.texel_scale();
+    if (options.filter == TextureFilter::footprint_assembly &&
+        (options.probe_rule == ProbeRule::moment_matched ||
+         options.probe_rule == ProbeRule::gaussian) &&
+        footprint.matrix.is_finite() &&
+        (map.layout() != EnvLayout::sphere ||
+         footprint.matrix.trace() <= 0.25f * size.x * size.x)) {
+        // Near-isotropic footprints are one trilinear probe at the centre: skip the ellipse's axes.
+        const float lod = single_probe_lod(footprint.matrix, options.lod_bias, centre.max_level());
+        if (lod >= 0.0f) {
+            const LodBlend blend =
+                options.lod_blend == LodBlend::automatic ? LodBlend::linear : options.lod_blend;
+            detail::dispatch_stride(centre.stride(), [&]<int S>() {
+                detail::store(env_trilinear<S>(map, c, lod, blend), centre.channels(), out);
+            });
+            return;
+        }
+    }
     FootprintEllipse e = footprint.matrix.is_finite() ? make_footprint_ellipse(footprint.matrix)
                                                       : FootprintEllipse{};
-    const Vec2 size = map.texel_scale();
     if (map.layout() == EnvLayout::sphere && e.major_radius > 0.5f * size.x) {
         // §3.2: towards the singular rim the anisotropy grows without bound; clamp λ1 ≤ W/2.
         e.major_radius = 0.5f * size.x;
@@ -272,15 +336,21 @@ void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint
     probe_weights(plan, weights);
     const TangentProbes tangent =
         plan.count > 1 ? TangentProbes::at(map, footprint.map_direction) : TangentProbes{};
+    const QuadraticPath path = map.layout() == EnvLayout::latlong && tangent.valid && plan.count > 2
+                                   ? QuadraticPath::through(tangent, c, plan.offset(plan.count - 1))
+                                   : QuadraticPath{};
     detail::dispatch_stride(centre.stride(), [&]<int S>() {
         detail::Texel<S> sum{};
         float weight_sum = 0;
         for (int i = 0; i < plan.count; ++i) {
             const Vec2 o = plan.offset(i);
-            const EnvCoords probe =
-                tangent.valid
-                    ? tangent.place(map.layout(), o)
-                    : place_probe(map.layout(), c.face, c.s + o.x / size.x, c.t + o.y / size.y);
+            EnvCoords probe;
+            if (path.valid && path.place(i, plan.count, probe)) {
+            } else if (tangent.valid) {
+                probe = tangent.place(map.layout(), o);
+            } else {
+                probe = place_probe(map.layout(), c.face, c.s + o.x / size.x, c.t + o.y / size.y);
+            }
             detail::add_scaled(sum, weights[i], env_trilinear<S>(map, probe, plan.lod, blend));
             weight_sum += weights[i];
         }
