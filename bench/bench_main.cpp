@@ -2,12 +2,14 @@
 //   footprint-bench texture [--json FILE]   our filters vs OpenImageIO's TextureSystem
 //   footprint-bench pyramid [--json FILE]   MIP pyramid build time and memory layouts
 //   footprint-bench bump [--json FILE]      bump/roughness pyramid build and filtered bump lookups
+//   footprint-bench env [--json FILE]       environment-map lookups vs OpenImageIO's environment()
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <exception>
 
 #include "bump_bench.h"
+#include "env_bench.h"
 #include "pyramid_bench.h"
 #include "texture_bench.h"
 
@@ -60,11 +62,27 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(16, 8192));
     bmp->add_flag("--quiet", bump.quiet, "no progress output");
 
+    EnvBenchOptions env;
+    CLI::App* envc = app.add_subcommand(
+        "env", "environment-map lookups against OpenImageIO's TextureSystem::environment()");
+    envc->add_option("--json", env.json_path, "write the cases as JSON to this file");
+    envc->add_option("--lookups", env.lookups_per_regime, "pre-generated lookups per regime")
+        ->check(CLI::Range(1000, 100000000));
+    envc->add_option("--error-subset", env.error_subset,
+                     "lookups per regime compared against the reference");
+    envc->add_option("--threads", env.thread_counts, "thread counts to measure")
+        ->check(CLI::Range(1, 256));
+    envc->add_option("--regimes", env.regimes, "regimes: tiny moderate aniso32 pole_band")
+        ->check(CLI::IsMember({"tiny", "moderate", "aniso32", "pole_band"}));
+    envc->add_flag("!--no-oiio", env.with_oiio, "skip the OpenImageIO peer");
+    envc->add_flag("--quiet", env.quiet, "no progress output");
+
     CLI11_PARSE(app, argc, argv);
     try {
         if (*tex) return run_texture_bench(texture);
         if (*pyr) return run_pyramid_bench(pyramid);
         if (*bmp) return run_bump_bench(bump);
+        if (*envc) return run_env_bench(env);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "footprint-bench: %s\n", e.what());
         return 1;

@@ -1,0 +1,481 @@
+#include "env_bench.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/texture.h>
+#include <tbb/parallel_for.h>
+#include <unistd.h>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <stdexcept>
+
+#include "bench_util.h"
+#include "envmap/env_convert.h"
+#include "envmap/env_layout.h"
+#include "envmap/env_reference.h"
+#include "envmap/environment_map.h"
+
+namespace footprint::bench {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// ---- The environment: a function of direction with content at every scale.
+
+std::uint32_t hash3(std::int64_t x, std::int64_t y, std::int64_t z, std::uint32_t seed) {
+    std::uint32_t h = static_cast<std::uint32_t>(x) * 0x8da6b343u ^
+                      static_cast<std::uint32_t>(y) * 0xd8163841u ^
+                      static_cast<std::uint32_t>(z) * 0xcb1ab31fu ^ seed;
+    h ^= h >> 13;
+    h *= 0x5bd1e995u;
+    h ^= h >> 15;
+    return h;
+}
+
+double lattice3(std::int64_t x, std::int64_t y, std::int64_t z, std::uint32_t seed) {
+    return double(hash3(x, y, z, seed) & 0xffffffu) / double(0x1000000);
+}
+
+// Smooth (C¹) value noise in 3-D with unit cells, in [0, 1).
+double value_noise3(double x, double y, double z, std::uint32_t seed) {
+    const double fx0 = std::floor(x), fy0 = std::floor(y), fz0 = std::floor(z);
+    const auto ix = static_cast<std::int64_t>(fx0), iy = static_cast<std::int64_t>(fy0),
+               iz = static_cast<std::int64_t>(fz0);
+    auto smooth = [](double f) { return f * f * (3 - 2 * f); };
+    const double sx = smooth(x - fx0), sy = smooth(y - fy0), sz = smooth(z - fz0);
+    auto lerp = [](double a, double b, double w) { return a + w * (b - a); };
+    double face[2];
+    for (int k = 0; k < 2; ++k) {
+        const double a =
+            lerp(lattice3(ix, iy, iz + k, seed), lattice3(ix + 1, iy, iz + k, seed), sx);
+        const double b =
+            lerp(lattice3(ix, iy + 1, iz + k, seed), lattice3(ix + 1, iy + 1, iz + k, seed), sx);
+        face[k] = lerp(a, b, sy);
+    }
+    return lerp(face[0], face[1], sz);
+}
+
+// Linear-light RGB of the unit direction d; `texel` is the angle of one lat-long texel (π/H).
+// red: octaves of value noise (cells of 256…4 texels) plus hard-edged cells of 8 texels (the
+// parity of a 3-D lattice on the sphere); green: two plane-wave gratings of period 3.3 texels (near
+// the lat-long Nyquist rate, so under-filtering aliases); blue: fine noise (2-texel cells) over a
+// gradient in y. The angular content is the same everywhere on the sphere: only its lat-long image
+// is stretched towards the poles.
+void environment_colour(const Vec3d& d, double texel, float* rgb) {
+    double noise = 0, amplitude = 0.5;
+    for (int cells = 256; cells >= 4; cells /= 4, amplitude *= 0.6) {
+        const double k = 1.0 / (cells * texel);
+        noise += amplitude * value_noise3(d.x * k, d.y * k, d.z * k, 17u + cells);
+    }
+    const double c = 1.0 / (8 * texel);
+    const auto parity =
+        static_cast<std::int64_t>(std::floor(d.x * c) + std::floor(d.y * c) + std::floor(d.z * c));
+    rgb[0] = float(0.45 * noise + ((parity & 1) ? 0.4 : 0.0));
+    const double k = 2 * kPi / (3.3 * texel);
+    const Vec3d a = normalize(Vec3d{0.48, 0.6, 0.64}), b = normalize(Vec3d{-0.8, 0.1, 0.59});
+    rgb[1] = float(0.5 + 0.225 * (std::sin(k * dot(a, d)) + std::sin(k * dot(b, d) + 1.0)));
+    const double fine = 1.0 / (2 * texel);
+    rgb[2] = float(0.2 + 0.25 * (d.y + 1) +
+                   0.25 * (value_noise3(d.x * fine, d.y * fine, d.z * fine, 99u) - 0.5));
+}
+
+Image make_latlong_image(int width, int height) {
+    Image image(width, height, 3);
+    const double texel = kPi / height;
+    tbb::parallel_for(0, height, [&](int y) {
+        for (int x = 0; x < width; ++x) {
+            const Vec3d d = latlong_direction((x + 0.5) / width, (y + 0.5) / height);
+            environment_colour(normalize(d), texel, image.at(x, y));
+        }
+    });
+    return image;
+}
+
+// ---- Lookups.
+
+struct EnvLookup {
+    Vec3 r, dr_dx, dr_dy;
+};
+
+struct EnvRegime {
+    const char* name;
+    float major,
+        minor;  // lat-long texel lengths of the pixel-step images (pole_band: on the sphere)
+    double lat_min, lat_max;  // |latitude| range, degrees
+    bool isotropic_on_sphere;
+};
+constexpr EnvRegime kEnvRegimes[] = {{"tiny", 0.25f, 0.25f, 0, 60, false},
+                                     {"moderate", 4, 4, 0, 60, false},
+                                     {"aniso32", 32, 1, 0, 60, false},
+                                     {"pole_band", 4, 4, 60, 85, true}};
+
+Vec3 to_float(const Vec3d& v) {
+    return {float(v.x), float(v.y), float(v.z)};
+}
+Vec3d to_double(const Vec3& v) {
+    return {v.x, v.y, v.z};
+}
+
+// The lat-long direction of (s, t) and its derivatives ∂/∂s, ∂/∂t (env_layout.h §3.4's inverse:
+// φ = 2π(s − ½), θ = πt, r = (sin θ sin φ, cos θ, −sin θ cos φ)).
+struct LatlongFrame {
+    Vec3d r, d_ds, d_dt;
+};
+LatlongFrame latlong_frame(double s, double t) {
+    const double phi = 2 * kPi * (s - 0.5), theta = kPi * t;
+    const double sp = std::sin(phi), cp = std::cos(phi), st = std::sin(theta), ct = std::cos(theta);
+    return {{st * sp, ct, -st * cp},
+            {2 * kPi * st * cp, 0, 2 * kPi * st * sp},
+            {kPi * ct * sp, -kPi * st, -kPi * ct * cp}};
+}
+
+// Random lookups of a regime on a width × height lat-long map. Lat-long regimes: the footprint's
+// texel-space columns D = R(α)·diag(major, minor)·2^u are mapped to ray differentials through the
+// inverse map, dr = ∂r/∂s·D_s/W + ∂r/∂t·D_t/H, so compute_env_footprint recovers D (to first
+// order). pole_band: ∂r/∂x, ∂r/∂y orthogonal tangent vectors of length major·(π/H)·2^u.
+std::vector<EnvLookup> make_env_lookups(const EnvRegime& regime, std::size_t n, int width,
+                                        int height, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> unit(0, 1);
+    std::vector<EnvLookup> lookups(n);
+    for (EnvLookup& q : lookups) {
+        const double angle = 2 * kPi * unit(rng);
+        const double scale = std::exp2(unit(rng) - 0.5);
+        const double ca = std::cos(angle), sa = std::sin(angle);
+        const double s = unit(rng);
+        double latitude = regime.lat_min + (regime.lat_max - regime.lat_min) * unit(rng);
+        if (unit(rng) < 0.5) latitude = -latitude;  // both hemispheres
+        const double t = 0.5 - latitude / 180.0;
+        const LatlongFrame f = latlong_frame(s, t);
+        Vec3d dx, dy;
+        if (regime.isotropic_on_sphere) {
+            const double rho = regime.major * (kPi / height) * scale;
+            const Vec3d e_s = normalize(f.d_ds), e_t = normalize(f.d_dt);
+            dx = rho * (ca * e_s + sa * e_t);
+            dy = rho * (ca * e_t - sa * e_s);
+        } else {
+            // Columns of D in texels, then in (s, t) units.
+            const double xs = regime.major * scale * ca, xt = regime.major * scale * sa;
+            const double ys = -regime.minor * scale * sa, yt = regime.minor * scale * ca;
+            dx = (xs / width) * f.d_ds + (xt / height) * f.d_dt;
+            dy = (ys / width) * f.d_ds + (yt / height) * f.d_dt;
+        }
+        q = {to_float(f.r), to_float(dx), to_float(dy)};
+    }
+    return lookups;
+}
+
+// ---- Ours: form (a), the footprint computed from the ray differentials inside the call (as
+// OpenImageIO's environment() does).
+
+void ours_lookup(const EnvironmentMap& map, const EnvLookup& q, const LookupOptions& options,
+                 float* out) {
+    environment_lookup(map, q.r, q.dr_dx, q.dr_dy, options, out);
+}
+
+// ---- OpenImageIO.
+
+// OpenImageIO's lat-long convention (environment.cpp, vector_to_latlong, y up):
+//   s = ½ + atan2(−R_x, R_z)/(2π),  t = ½ − atan2(R_y, hypot(R_z, R_x))/π;
+// ours (env_layout.h §3.4): s = ½ + atan2(r_x, −r_z)/(2π), t = arccos(r_y/|r|)/π. Both put t = 0 at
+// +Y and texel i's centre at s·W − ½, so R = (−r_x, r_y, −r_z) maps one onto the other; the
+// start-up check verifies it on the actual files.
+OIIO::V3fParam to_oiio(const Vec3& v) {
+    return {-v.x, v.y, -v.z};
+}
+
+class OiioEnvPeer {
+  public:
+    OiioEnvPeer(const Image& latlong, const std::filesystem::path& tx_path) : path_(tx_path) {
+        OIIO::ImageSpec spec(latlong.width, latlong.height, latlong.channels,
+                             OIIO::TypeDesc::FLOAT);
+        OIIO::ImageBuf source(spec, const_cast<float*>(latlong.pixels.data()));
+        OIIO::ImageSpec config;
+        if (!OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxEnvLatl, source,
+                                              path_.string(), config))
+            throw std::runtime_error("make_texture(MakeTxEnvLatl) failed: " + OIIO::geterror());
+        system_ = OIIO::TextureSystem::create(false);
+        system_->attribute("max_memory_MB",
+                           4096.0f);  // keep every tile resident: measure filtering, not I/O
+        handle_ = system_->get_texture_handle(OIIO::ustring(path_.string()));
+        if (!handle_) throw std::runtime_error("OIIO cannot open " + path_.string());
+    }
+    ~OiioEnvPeer() {
+        OIIO::TextureSystem::destroy(system_);
+        std::error_code ec;
+        std::filesystem::remove(path_, ec);
+    }
+    OiioEnvPeer(const OiioEnvPeer&) = delete;
+    OiioEnvPeer& operator=(const OiioEnvPeer&) = delete;
+
+    // A default TextureOpt (smart bicubic, anisotropic up to 32 probes), as the texture benchmark.
+    void lookup(const EnvLookup& q, float* out) const {
+        OIIO::TextureOpt options;
+        system_->environment(handle_, system_->get_perthread_info(), options, to_oiio(q.r),
+                             to_oiio(q.dr_dx), to_oiio(q.dr_dy), 3, out);
+    }
+    // A bilinear point sample of level 0 (for the convention check), in OIIO's own direction
+    // convention.
+    void point(OIIO::V3fParam r, float* out) const {
+        OIIO::TextureOpt options;
+        options.interpmode = OIIO::TextureOpt::InterpBilinear;
+        system_->environment(handle_, system_->get_perthread_info(), options, r, {0, 0, 0},
+                             {0, 0, 0}, 3, out);
+    }
+
+  private:
+    std::filesystem::path path_;
+    OIIO::TextureSystem* system_ = nullptr;
+    OIIO::TextureSystem::TextureHandle* handle_ = nullptr;
+};
+
+double rmse(const std::vector<float>& a, const std::vector<float>& b) {
+    double sum = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) sum += double(a[i] - b[i]) * double(a[i] - b[i]);
+    return std::sqrt(sum / double(a.size()));
+}
+
+bool selected(const std::vector<std::string>& list, const char* name) {
+    return list.empty() || std::find(list.begin(), list.end(), name) != list.end();
+}
+
+// Proves the direction mapping to_oiio(): point lookups of OIIO (bilinear, zero differentials) at
+// random directions must match our point lookups on the same pixels. Returns the RMSE of the
+// mapping used and of the unmapped directions (which must differ, or the check proves nothing).
+struct ConventionCheck {
+    double mapped_rmse, unmapped_rmse;
+};
+ConventionCheck check_oiio_convention(const EnvironmentMap& latlong, const OiioEnvPeer& oiio) {
+    constexpr int kDirections = 1000;
+    std::mt19937 rng(4242u);
+    std::normal_distribution<float> normal;
+    std::vector<float> ours(kDirections * 3), mapped(kDirections * 3), unmapped(kDirections * 3);
+    LookupOptions point;
+    for (int i = 0; i < kDirections; ++i) {
+        const Vec3 r{normal(rng), normal(rng), normal(rng)};
+        ours_lookup(latlong, {r, {}, {}}, point, &ours[i * 3]);
+        oiio.point(to_oiio(r), &mapped[i * 3]);
+        oiio.point(OIIO::V3fParam(r.x, r.y, r.z), &unmapped[i * 3]);
+    }
+    return {rmse(ours, mapped), rmse(ours, unmapped)};
+}
+
+struct Case {
+    std::string filter, regime;
+    int threads;
+    double ours_rate, oiio_rate;  // lookups/s
+    double ours_rmse, oiio_rmse;
+};
+
+// Lookups/s of `lookup` over `lookups`, the best of `rounds` measure_rate rounds (a rate disturbed
+// by what ran just before is re-measured).
+template <class F>
+double lookup_rate(const std::vector<EnvLookup>& lookups, int threads, int rounds,
+                   const F& lookup) {
+    double rate = 0;
+    for (int round = 0; round < rounds; ++round)
+        rate = std::max(
+            rate, measure_rate(lookups.size(), threads, [&](int, std::size_t b, std::size_t e) {
+                float out[4], sink = 0;
+                for (std::size_t i = b; i < e; ++i) {
+                    lookup(lookups[i], out);
+                    sink += out[0];
+                }
+                volatile float keep = sink;
+                (void)keep;
+            }));
+    return rate;
+}
+
+}  // namespace
+
+int run_env_bench(const EnvBenchOptions& opt) {
+    const ProgressNote note(opt.quiet);
+    const int width = opt.latlong_width, height = opt.latlong_width / 2;
+
+    note("making the lat-long map");
+    const Image latlong_image = make_latlong_image(width, height);
+
+    note("building the lat-long pyramid");
+    auto start = Clock::now();
+    Result<EnvironmentMap> latlong_result = EnvironmentMap::from_latlong(latlong_image);
+    if (!latlong_result) throw std::runtime_error(latlong_result.error().message);
+    const double latlong_build_seconds = seconds_since(start);
+    const EnvironmentMap& latlong = latlong_result.value();
+
+    // The cube map: the lat-long map resampled by convert_environment (each cube texel the lat-long
+    // map filtered over its footprint), then its pyramids.
+    note("converting to a cube map");
+    start = Clock::now();
+    EnvConvertOptions convert;
+    convert.size = opt.cube_size;
+    Result<EnvImages> cube_images = convert_environment(latlong, EnvLayout::cube, convert);
+    if (!cube_images) throw std::runtime_error(cube_images.error().message);
+    const double convert_seconds = seconds_since(start);
+    note("building the cube pyramids");
+    start = Clock::now();
+    Result<EnvironmentMap> cube_result = make_environment_map(cube_images.value());
+    if (!cube_result) throw std::runtime_error(cube_result.error().message);
+    const double cube_build_seconds = seconds_since(start);
+    const EnvironmentMap& cube = cube_result.value();
+
+    std::unique_ptr<OiioEnvPeer> oiio;
+    ConventionCheck convention{NAN, NAN};
+    if (opt.with_oiio) {
+        note("making the OpenImageIO .tx (maketx --envlatl)");
+        const auto tx = std::filesystem::temp_directory_path() /
+                        ("footprint-bench-env-" + std::to_string(getpid()) + ".tx");
+        oiio = std::make_unique<OiioEnvPeer>(latlong_image, tx);
+        note("checking OpenImageIO's direction convention");
+        convention = check_oiio_convention(latlong, *oiio);
+        if (!(convention.mapped_rmse < 1e-4) || !(convention.unmapped_rmse > 1e-2))
+            throw std::runtime_error(
+                "OpenImageIO direction convention check failed: point lookups with R = (-x, y, "
+                "-z) differ from ours by RMSE " +
+                std::to_string(convention.mapped_rmse) +
+                " (unmapped: " + std::to_string(convention.unmapped_rmse) + ")");
+    }
+
+    LookupOptions lo;  // footprint assembly, the library defaults
+    struct Layout {
+        const char* filter;
+        const EnvironmentMap* map;
+    };
+    const Layout layouts[] = {{"latlong-fa", &latlong}, {"cube-fa", &cube}};
+
+    std::vector<Case> cases;
+    for (const EnvRegime& regime : kEnvRegimes) {
+        if (!selected(opt.regimes, regime.name)) continue;
+        const std::vector<EnvLookup> lookups =
+            make_env_lookups(regime, opt.lookups_per_regime, width, height,
+                             4321u + unsigned(regime.major * 8) + unsigned(regime.lat_min));
+        const std::size_t subset = std::min(opt.error_subset, lookups.size());
+
+        // The ground truth on the subset (slow: dense quadrature), in parallel.
+        note(std::string("reference for ") + regime.name);
+        std::vector<float> truth(subset * 3);
+        tbb::parallel_for(std::size_t(0), subset, [&](std::size_t i) {
+            const EnvLookup& q = lookups[i];
+            const SphereGaussian g = sphere_gaussian_from_ray_differentials(
+                to_double(q.r), to_double(q.dr_dx), to_double(q.dr_dy));
+            environment_reference(latlong, g, &truth[i * 3]);
+        });
+
+        // The peer, once per regime and thread count (the same figures go into every row); like
+        // ours the best of two measure_rate rounds, so that noise favours neither side.
+        double oiio_rmse = NAN;
+        std::vector<double> oiio_rate(opt.thread_counts.size(), NAN);
+        if (oiio) {
+            std::vector<float> got(subset * 3);
+            for (std::size_t i = 0; i < subset; ++i) oiio->lookup(lookups[i], &got[i * 3]);
+            oiio_rmse = rmse(got, truth);
+            for (std::size_t k = 0; k < opt.thread_counts.size(); ++k) {
+                note(std::string("OpenImageIO, ") + regime.name + ", " +
+                     std::to_string(opt.thread_counts[k]) + " thread(s)");
+                oiio_rate[k] =
+                    lookup_rate(lookups, opt.thread_counts[k], 2,
+                                [&](const EnvLookup& q, float* out) { oiio->lookup(q, out); });
+            }
+        }
+
+        for (const Layout& layout : layouts) {
+            std::vector<float> got(subset * 3);
+            for (std::size_t i = 0; i < subset; ++i)
+                ours_lookup(*layout.map, lookups[i], lo, &got[i * 3]);
+            const double ours_rmse = rmse(got, truth);
+            for (std::size_t k = 0; k < opt.thread_counts.size(); ++k) {
+                note(std::string(layout.filter) + ", " + regime.name + ", " +
+                     std::to_string(opt.thread_counts[k]) + " thread(s)");
+                const double rate = lookup_rate(
+                    lookups, opt.thread_counts[k], 2,
+                    [&](const EnvLookup& q, float* out) { ours_lookup(*layout.map, q, lo, out); });
+                cases.push_back({layout.filter, regime.name, opt.thread_counts[k], rate,
+                                 oiio_rate[k], ours_rmse, oiio_rmse});
+            }
+        }
+    }
+
+    std::printf(
+        "environment: lat-long %d×%d float RGB (pyramid %.3f s); cube 6×%d² converted from it "
+        "(%.3f s, pyramids %.3f s); RMSE against environment_reference() on the lat-long map, %zu "
+        "lookups per regime\n",
+        width, height, latlong_build_seconds, opt.cube_size, convert_seconds, cube_build_seconds,
+        opt.error_subset);
+    if (oiio)
+        std::printf(
+            "OpenImageIO direction R = (-x, y, -z): point-lookup RMSE %.2g vs ours (unmapped R: "
+            "%.2g)\n",
+            convention.mapped_rmse, convention.unmapped_rmse);
+    std::printf("%-11s %-9s %7s %12s %12s %8s %11s %11s\n", "filter", "regime", "threads",
+                "ours Ml/s", "OIIO Ml/s", "ratio", "ours RMSE", "OIIO RMSE");
+    for (const Case& c : cases)
+        std::printf("%-11s %-9s %7d %12.3f %12.3f %8.2f %11.5f %11.5f\n", c.filter.c_str(),
+                    c.regime.c_str(), c.threads, c.ours_rate / 1e6, c.oiio_rate / 1e6,
+                    c.ours_rate / c.oiio_rate, c.ours_rmse, c.oiio_rmse);
+
+    // The targets: ≥ 5× OpenImageIO's single-thread rate in every regime; in pole_band an RMSE of
+    // at most ¼ of OpenImageIO's.
+    nlohmann::json targets = nlohmann::json::array();
+    if (oiio) {
+        std::printf("targets (1 thread: ours ≥ 5× OIIO; pole_band: ours RMSE ≤ ¼ OIIO's):\n");
+        for (const Case& c : cases) {
+            if (c.threads != 1) continue;
+            const double ratio = c.ours_rate / c.oiio_rate;
+            const bool speed_met = ratio >= 5;
+            std::printf("  %-11s %-9s speed %6.2f× %-7s", c.filter.c_str(), c.regime.c_str(), ratio,
+                        speed_met ? "met" : "NOT met");
+            nlohmann::json t = {{"filter", c.filter},
+                                {"regime", c.regime},
+                                {"speed_ratio", ratio},
+                                {"speed_met", speed_met}};
+            if (c.regime == "pole_band") {
+                const double error_ratio = c.ours_rmse / c.oiio_rmse;
+                const bool error_met = error_ratio <= 0.25;
+                std::printf("  RMSE ratio %.3f %s", error_ratio, error_met ? "met" : "NOT met");
+                t["rmse_ratio"] = error_ratio;
+                t["rmse_met"] = error_met;
+            }
+            std::printf("\n");
+            targets.push_back(t);
+        }
+    }
+
+    if (!opt.json_path.empty()) {
+        auto nan_to_null = [](double v) {
+            return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
+        };
+        nlohmann::json j;
+        j["benchmark"] = "env";
+        j["latlong_width"] = width;
+        j["latlong_height"] = height;
+        j["cube_size"] = opt.cube_size;
+        j["latlong_build_seconds"] = latlong_build_seconds;
+        j["cube_convert_seconds"] = convert_seconds;
+        j["cube_build_seconds"] = cube_build_seconds;
+        j["lookups_per_regime"] = opt.lookups_per_regime;
+        j["error_subset"] = opt.error_subset;
+        j["oiio_version"] = OIIO_VERSION_STRING;
+        j["oiio_convention_rmse"] = nan_to_null(convention.mapped_rmse);
+        j["hardware_threads"] = std::thread::hardware_concurrency();
+        for (const Case& c : cases)
+            j["cases"].push_back({{"filter", c.filter},
+                                  {"regime", c.regime},
+                                  {"threads", c.threads},
+                                  {"ours_mlookups_per_s", c.ours_rate / 1e6},
+                                  {"oiio_mlookups_per_s", nan_to_null(c.oiio_rate / 1e6)},
+                                  {"ours_rmse", c.ours_rmse},
+                                  {"oiio_rmse", nan_to_null(c.oiio_rmse)}});
+        j["targets"] = targets;
+        write_json(opt.json_path, j);
+    }
+    return 0;
+}
+
+}  // namespace footprint::bench
