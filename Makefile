@@ -2,7 +2,7 @@
 #   make        Release build with debug info into build/ (build/footprint, build/footprint-bench)
 #   make demo   ... then runs the demo on the built-in image (writes out/)
 #   make test   ... then runs the unit tests, in Release and under ASan+UBSan (build-asan/)
-#   make bench  ... then runs the texture benchmark (writes bench-out/texture.json)
+#   make bench  ... then runs the texture and environment benchmarks (bench-out/texture.json, env.json)
 #   make format clang-formats the sources
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
@@ -37,6 +37,7 @@ test: test-release test-asan
 
 bench: build
 	./build/footprint-bench texture --json bench-out/texture.json
+	./build/footprint-bench env --json bench-out/env.json
 
 format:
 	clang-format -i $$(git ls-files '*.h' '*.cpp')
