@@ -75,6 +75,8 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, V
     f.coords = env_coords(layout, f.map_direction);
     if (!usable || !is_finite(dr_dx) || !is_finite(dr_dy)) return f;
     const Jacobian23 j = env_jacobian(layout, f.map_direction);
+    f.map_dr_dx = rotation * dr_dx;
+    f.map_dr_dy = rotation * dr_dy;
     // The pole test needs θ_fp only where the footprint could reach a pole: ρ < sin θ_fp·|r| needs
     // ρ² < |∂r/∂x|² + |∂r/∂y|² (θ_fp|r| ≤ the Frobenius norm), and J = 0 (the exact pole) has ρ =
     // 0.
@@ -96,6 +98,7 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, V
     if (!is_finite(f.d_dx) || !is_finite(f.d_dy) || !f.matrix.is_finite()) {
         f.d_dx = f.d_dy = {};
         f.curvature = f.matrix = {};
+        f.map_dr_dx = f.map_dr_dy = {};
     }
     return f;
 }
@@ -139,24 +142,26 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, const Ref
     const MapJacobian G{texel_scale, j, options.rotation};
 
     // Eq. 5 / §2.4: D's columns, K12 = D Dᵀ.
-    f.d_dx = G(a_v(g.dv_dx) + a_n(g.dn_dx));
-    f.d_dy = G(a_v(g.dv_dy) + a_n(g.dn_dy));
+    const Vec3 dvr_dx = a_v(g.dv_dx) + a_n(g.dn_dx), dvr_dy = a_v(g.dv_dy) + a_n(g.dn_dy);
+    f.d_dx = G(dvr_dx);
+    f.d_dy = G(dvr_dy);
+    f.map_dr_dx = options.rotation * dvr_dx;
+    f.map_dr_dy = options.rotation * dvr_dy;
     f.curvature = footprint_matrix(f.d_dx, f.d_dy);
 
     // Eqs. 10–12 / §2.5: B' = G A_n E B with E = |n| T, B = [[d1, d2], [0, d3]]: its columns are
     // G A_n (|n| d1 t1) and G A_n (|n| (d2 t1 + d3 t2)); K3 = B'B'ᵀ.
     const RoughnessFactor& b = g.roughness;
-    const Vec2 b_col1 = G(a_n(n_len * b.d1 * g.t1));
-    const Vec2 b_col2 = G(a_n(n_len * (b.d2 * g.t1 + b.d3 * g.t2)));
-    f.roughness = footprint_matrix(b_col1, b_col2);
+    const Vec3 rough1 = a_n(n_len * b.d1 * g.t1);
+    const Vec3 rough2 = a_n(n_len * (b.d2 * g.t1 + b.d3 * g.t2));
+    f.roughness = footprint_matrix(G(rough1), G(rough2));
+    f.map_roughness1 = options.kappa * (options.rotation * rough1);
+    f.map_roughness2 = options.kappa * (options.rotation * rough2);
 
     const float kappa2 = options.kappa * options.kappa;
     f.matrix = f.curvature + kappa2 * f.roughness;  // eq. 13, K = D Dᵀ + κ² K3 (§2.6)
     if (layout == EnvLayout::latlong || layout == EnvLayout::sphere) {
         // §3.4: θ_fp from the spread of v_r per pixel, enlarged by κ·(angular roughness).
-        const Vec3 dvr_dx = a_v(g.dv_dx) + a_n(g.dn_dx), dvr_dy = a_v(g.dv_dy) + a_n(g.dn_dy);
-        const Vec3 rough1 = a_n(n_len * b.d1 * g.t1);
-        const Vec3 rough2 = a_n(n_len * (b.d2 * g.t1 + b.d3 * g.t2));
         const float vr_len = norm(f.reflected);
         const float theta =
             (largest_tangent_singular_value(f.reflected, dvr_dx, dvr_dy) +
@@ -178,6 +183,7 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, const Ref
         f.curvature = footprint_matrix(f.d_dx, f.d_dy);
         f.roughness = {};
         f.matrix = f.curvature;
+        f.map_dr_dx = f.map_dr_dy = f.map_roughness1 = f.map_roughness2 = {};
         f.isotropic_fallback = true;
     }
     return f;

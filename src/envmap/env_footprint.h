@@ -64,13 +64,18 @@ struct EnvFootprintOptions {
 };
 
 struct EnvFootprint {
-    Vec3 reflected;                   // v_r in world space (unnormalised)
-    Vec3 map_direction;               // A v_r
-    EnvCoords coords;                 // where A v_r lands on the map
-    Vec2 d_dx, d_dy;                  // D's columns, level-0 texels per pixel
-    Sym2 curvature;                   // K12 = D Dᵀ
-    Sym2 roughness;                   // K3 = B'B'ᵀ
-    Sym2 matrix;                      // K = K12 + κ² K3
+    Vec3 reflected;      // v_r in world space (unnormalised)
+    Vec3 map_direction;  // A v_r
+    EnvCoords coords;    // where A v_r lands on the map
+    Vec2 d_dx, d_dy;     // D's columns, level-0 texels per pixel
+    Sym2 curvature;      // K12 = D Dᵀ
+    Sym2 roughness;      // K3 = B'B'ᵀ
+    Sym2 matrix;         // K = K12 + κ² K3
+    // The same footprint as directions, in map space (A applied): ∂v_r/∂x, ∂v_r/∂y, and the
+    // columns of A_n E B scaled by κ, so that for ANY map Jacobian G' = S' J_P'(A v_r),
+    // K' = G'(dx dxᵀ + dy dyᵀ + r1 r1ᵀ + r2 r2ᵀ)G'ᵀ — how a lat-long lookup moves its footprint
+    // onto a polar cap (environment_map.h). Zero where K is a fallback from non-finite input.
+    Vec3 map_dr_dx, map_dr_dy, map_roughness1, map_roughness2;
     bool bump_dropped = false;        // n_m·v ≤ 0: b ignored
     bool normal_clamped = false;      // n·v ≤ 0: n clamped towards v
     bool isotropic_fallback = false;  // D or K was not finite, or J_P undefined (pole, rim)

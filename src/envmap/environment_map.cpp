@@ -1,7 +1,12 @@
 #include "envmap/environment_map.h"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <string>
+#include <vector>
+
+#include <tbb/parallel_for.h>
 
 #include "texture/footprint_assembly.h"
 #include "texture/sampling.h"
@@ -225,6 +230,82 @@ std::vector<Image> with_continued_exterior(EnvLayout layout, const std::vector<I
     }
     return result;
 }
+// ---- Lat-long polar caps (environment_map.h).
+
+constexpr double kPi = std::numbers::pi;
+
+constexpr float kPolarCapCosine = 0.8660254f;  // cos 30°: caps serve footprints centred above 60°
+
+int polar_cap_size(int latlong_height) {
+    // 1.5× the lat-long t-resolution at the pole: a cap face of n texels has n/2 texels per radian
+    // at its centre, the lat-long map H/π.
+    constexpr double kCapResolution = 1.5;
+    return std::max(2, static_cast<int>(std::ceil(kCapResolution * 2 * latlong_height / kPi)));
+}
+
+// The cap face (2: +Y, 3: −Y) of `map` (lat-long, level 0 built): each texel the average of
+// environment_bilinear() over a k × k grid in the texel, k chosen so that the samples lie no more
+// than half a lat-long texel apart (near the pole a cap texel spans many lat-long columns).
+Image polar_cap_image(const EnvironmentMap& map, int face, int size) {
+    const int channels = map.channels();
+    const Vec2 latlong_size = map.texel_scale();
+    Image cap(size, size, channels);
+    const double n = size;
+    tbb::parallel_for(0, size, [&](int y) {
+        std::vector<double> sum(static_cast<std::size_t>(channels));
+        std::vector<float> sample(static_cast<std::size_t>(channels));
+        for (int x = 0; x < size; ++x) {
+            const Vec3d d = cube_direction<double>(face, (x + 0.5) / n, (y + 0.5) / n);
+            const double len = std::sqrt(dot(d, d));
+            const double sin_colatitude = std::hypot(d.x, d.z) / len,
+                         cos_colatitude = std::fabs(d.y) / len;
+            const double texel_angle = 2 / n * cos_colatitude;  // the larger (tangential) side
+            const double latlong_angle =
+                std::min(2 * kPi * sin_colatitude / latlong_size.x, kPi / latlong_size.y);
+            const int k =
+                std::clamp(static_cast<int>(std::ceil(2 * texel_angle / latlong_angle)), 2, 64);
+            std::fill(sum.begin(), sum.end(), 0.0);
+            for (int j = 0; j < k; ++j)
+                for (int i = 0; i < k; ++i) {
+                    const Vec3d p = cube_direction<double>(face, (x + (i + 0.5) / k) / n,
+                                                           (y + (j + 0.5) / k) / n);
+                    environment_bilinear(map, Vec3{float(p.x), float(p.y), float(p.z)}, 0,
+                                         sample.data());
+                    for (int c = 0; c < channels; ++c) sum[c] += sample[c];
+                }
+            for (int c = 0; c < channels; ++c)
+                cap.at(x, y, c) = static_cast<float>(sum[c] / (k * k));
+        }
+    });
+    return cap;
+}
+
+// The footprint carried onto a polar cap and filtered there; false when the lookup is not for the
+// caps (centre more than 30° from the pole, or the footprint would leave the cap's face).
+bool polar_cap_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
+                      const LookupOptions& options, float* out) {
+    const Vec3 r = footprint.map_direction;
+    const float len = std::sqrt(dot(r, r));
+    if (!(len > 0) || !(std::fabs(r.y) >= kPolarCapCosine * len)) return false;
+    const MipPyramid& cap = *map.polar_cap(r.y > 0 ? 0 : 1);
+    const float n = static_cast<float>(cap.width(0));
+    const EnvCoords c = cube_coords(r);  // face 2 or 3: |r_y| is the major axis within 30°
+    // K on the cap from the footprint's map-space direction differentials (env_footprint.h): this
+    // keeps the anisotropy even where the lat-long footprint fell back to an isotropic one.
+    const Jacobian23 jc = cube_jacobian(r);
+    auto on_cap = [&](Vec3 w) { return Vec2{n * dot(jc.ds, w), n * dot(jc.dt, w)}; };
+    Sym2 k_cap =
+        footprint_matrix(on_cap(footprint.map_dr_dx), on_cap(footprint.map_dr_dy)) +
+        footprint_matrix(on_cap(footprint.map_roughness1), on_cap(footprint.map_roughness2));
+    if (!k_cap.is_finite()) return false;
+    const FootprintEllipse e = make_footprint_ellipse(k_cap);
+    // Stay on the face: the probes and their kernels reach about 2λ1 from the centre.
+    const float reach = (2 * e.major_radius + 1) / n;
+    if (c.s - reach < 0 || c.s + reach > 1 || c.t - reach < 0 || c.t + reach > 1) return false;
+    texture_lookup(cap, c.s, c.t, e, options, out);
+    return true;
+}
+
 }  // namespace
 
 Vec2 EnvironmentMap::texel_scale() const {
@@ -240,6 +321,12 @@ Result<EnvironmentMap> EnvironmentMap::from_latlong(const Image& image) {
     options.wrap_s = WrapMode::repeat;  // the seam
     options.wrap_t = WrapMode::clamp;   // the poles
     map.faces_.push_back(MipPyramid::build(image, options));
+    MipPyramidOptions cap_options;
+    cap_options.wrap_s = cap_options.wrap_t = WrapMode::clamp;
+    const int cap_size = polar_cap_size(image.height);
+    for (int face : {2, 3})  // +Y, −Y
+        map.polar_caps_.push_back(
+            MipPyramid::build(polar_cap_image(map, face, cap_size), cap_options));
     return map;
 }
 
@@ -295,6 +382,9 @@ Result<EnvironmentMap> EnvironmentMap::from_paraboloid(const Image& front, const
 
 void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
                         const LookupOptions& options, float* out) {
+    if (map.layout() == EnvLayout::latlong && map.polar_cap(0) &&
+        polar_cap_lookup(map, footprint, options, out))
+        return;
     const EnvCoords& c = footprint.coords;
     const MipPyramid& centre = map.face(c.face);
     const Vec2 size = map.texel_scale();

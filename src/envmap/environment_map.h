@@ -17,6 +17,18 @@
 // through the rim (§3.2, where λ1 is also clamped to W/2), paraboloid probes onto the other
 // hemisphere (§3.3). Bilinear taps cross cube-face edges (seamless cube filtering).
 //
+// Lat-long polar caps (beyond the spec's §3.4). Towards a pole a lat-long texel shrinks to nothing
+// in s, a footprint there is 1/sin θ long in s (Rule B needs that many probes, and its probe budget
+// then blurs t instead), and a footprint that reaches the pole has no (s, t) ellipse at all — the
+// spec's isotropic probe there covers a narrow wedge of azimuths, not the polar cap. A lat-long map
+// therefore also holds its two polar caps as gnomonic faces (the cube's ±Y faces, where the sphere
+// is nearly isotropic: at most 1.15:1 within 30° of the pole), each texel the box-filtered average
+// of the map's bilinear reconstruction over it (supersampled finely enough to resolve the lat-long
+// texels), ⌈3H/π⌉ texels wide (1.5× the map's t-resolution at the pole; 60 % more memory). A lookup
+// whose footprint centre lies within 30° of a pole, and whose footprint stays on the cap's face,
+// filters the cap instead: K is carried over through the tangent plane, K_cap = M K Mᵀ with
+// M = J_cap J_latlong⁻¹.
+//
 // Filters other than footprint assembly (trilinear, EWA, …) run texture_lookup() on the centre
 // face only, without re-projection: use them for comparisons, not across cube edges.
 #pragma once
@@ -48,10 +60,16 @@ class EnvironmentMap {
     int channels() const { return faces_.empty() ? 0 : faces_[0].channels(); }
     Vec2 texel_scale() const;  // S = (W0, H0) of a face's level 0
     const MipPyramid& face(int i) const { return faces_[i]; }
+    // A lat-long map's polar caps: the +Y (pole 0) and −Y (pole 1) faces of a cube (env_layout.h's
+    // face table), resampled from level 0 at build time; nullptr for other layouts.
+    const MipPyramid* polar_cap(int pole) const {
+        return polar_caps_.empty() ? nullptr : &polar_caps_[pole];
+    }
 
   private:
     EnvLayout layout_ = EnvLayout::latlong;
     std::vector<MipPyramid> faces_;
+    std::vector<MipPyramid> polar_caps_;  // lat-long only: +Y, −Y
 };
 
 // The map filtered over `footprint` (from compute_env_footprint with this map's layout and
