@@ -20,6 +20,7 @@
 #include "envmap/env_layout.h"
 #include "envmap/env_reference.h"
 #include "envmap/environment_map.h"
+#include "oiio_texture_file.h"
 
 namespace footprint::bench {
 
@@ -193,47 +194,28 @@ OIIO::V3fParam to_oiio(const Vec3& v) {
 
 class OiioEnvPeer {
   public:
-    OiioEnvPeer(const Image& latlong, const std::filesystem::path& tx_path) : path_(tx_path) {
-        OIIO::ImageSpec spec(latlong.width, latlong.height, latlong.channels,
-                             OIIO::TypeDesc::FLOAT);
-        OIIO::ImageBuf source(spec, const_cast<float*>(latlong.pixels.data()));
-        OIIO::ImageSpec config;
-        if (!OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxEnvLatl, source,
-                                              path_.string(), config))
-            throw std::runtime_error("make_texture(MakeTxEnvLatl) failed: " + OIIO::geterror());
-        system_ = OIIO::TextureSystem::create(false);
-        system_->attribute("max_memory_MB",
-                           4096.0f);  // keep every tile resident: measure filtering, not I/O
-        handle_ = system_->get_texture_handle(OIIO::ustring(path_.string()));
-        if (!handle_) throw std::runtime_error("OIIO cannot open " + path_.string());
-    }
-    ~OiioEnvPeer() {
-        OIIO::TextureSystem::destroy(system_);
-        std::error_code ec;
-        std::filesystem::remove(path_, ec);
-    }
-    OiioEnvPeer(const OiioEnvPeer&) = delete;
-    OiioEnvPeer& operator=(const OiioEnvPeer&) = delete;
+    OiioEnvPeer(const Image& latlong, const std::filesystem::path& tx_path)
+        : file_(latlong, tx_path, OIIO::ImageBufAlgo::MakeTxEnvLatl) {}
 
     // A default TextureOpt (smart bicubic, anisotropic up to 32 probes), as the texture benchmark.
     void lookup(const EnvLookup& q, float* out) const {
         OIIO::TextureOpt options;
-        system_->environment(handle_, system_->get_perthread_info(), options, to_oiio(q.r),
-                             to_oiio(q.dr_dx), to_oiio(q.dr_dy), 3, out);
+        OIIO::TextureSystem& ts = file_.system();
+        ts.environment(file_.handle(), ts.get_perthread_info(), options, to_oiio(q.r),
+                       to_oiio(q.dr_dx), to_oiio(q.dr_dy), 3, out);
     }
     // A bilinear point sample of level 0 (for the convention check), in OIIO's own direction
     // convention.
     void point(OIIO::V3fParam r, float* out) const {
         OIIO::TextureOpt options;
         options.interpmode = OIIO::TextureOpt::InterpBilinear;
-        system_->environment(handle_, system_->get_perthread_info(), options, r, {0, 0, 0},
-                             {0, 0, 0}, 3, out);
+        OIIO::TextureSystem& ts = file_.system();
+        ts.environment(file_.handle(), ts.get_perthread_info(), options, r, {0, 0, 0}, {0, 0, 0}, 3,
+                       out);
     }
 
   private:
-    std::filesystem::path path_;
-    OIIO::TextureSystem* system_ = nullptr;
-    OIIO::TextureSystem::TextureHandle* handle_ = nullptr;
+    OiioTextureFile file_;
 };
 
 double rmse(const std::vector<float>& a, const std::vector<float>& b) {

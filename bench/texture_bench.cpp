@@ -16,6 +16,7 @@
 #include "bench_lookups.h"
 #include "bench_texture_content.h"
 #include "bench_util.h"
+#include "oiio_texture_file.h"
 #include "texture/reference_filter.h"
 #include "texture/texture_lookup.h"
 
@@ -47,36 +48,23 @@ double rmse(const std::vector<float>& a, const std::vector<float>& b) {
 // OpenImageIO's TextureSystem over a .tx file made from the same pixels.
 class OiioPeer {
   public:
-    OiioPeer(const Image& image, const std::filesystem::path& tx_path) : path_(tx_path) {
-        OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
-        OIIO::ImageBuf source(spec, const_cast<float*>(image.pixels.data()));
-        OIIO::ImageSpec config;
-        config.attribute("wrapmodes", "periodic,periodic");  // maketx --wrap periodic
-        if (!OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, source,
-                                              path_.string(), config))
-            throw std::runtime_error("make_texture failed: " + OIIO::geterror());
-        system_ = OIIO::TextureSystem::create(false);
-        system_->attribute("max_memory_MB",
-                           4096.0f);  // keep every tile resident: measure filtering, not I/O
-        handle_ = system_->get_texture_handle(OIIO::ustring(path_.string()));
-        if (!handle_) throw std::runtime_error("OIIO cannot open " + path_.string());
-    }
-    ~OiioPeer() {
-        OIIO::TextureSystem::destroy(system_);
-        std::error_code ec;
-        std::filesystem::remove(path_, ec);
-    }
+    OiioPeer(const Image& image, const std::filesystem::path& tx_path)
+        : file_(image, tx_path, OIIO::ImageBufAlgo::MakeTxTexture, periodic()) {}
 
     void lookup(const TextureCoords& c, float* out) const {
         OIIO::TextureOpt options;  // default: smart bicubic, anisotropic (up to 32 probes)
-        system_->texture(handle_, system_->get_perthread_info(), options, c.s, c.t, c.dsdx, c.dtdx,
-                         c.dsdy, c.dtdy, 3, out);
+        OIIO::TextureSystem& ts = file_.system();
+        ts.texture(file_.handle(), ts.get_perthread_info(), options, c.s, c.t, c.dsdx, c.dtdx,
+                   c.dsdy, c.dtdy, 3, out);
     }
 
   private:
-    std::filesystem::path path_;
-    OIIO::TextureSystem* system_ = nullptr;
-    OIIO::TextureSystem::TextureHandle* handle_ = nullptr;
+    static OIIO::ImageSpec periodic() {
+        OIIO::ImageSpec config;
+        config.attribute("wrapmodes", "periodic,periodic");  // maketx --wrap periodic
+        return config;
+    }
+    OiioTextureFile file_;
 };
 
 struct Case {

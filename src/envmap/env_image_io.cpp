@@ -193,27 +193,6 @@ std::optional<CubeArrangement> parse_cube_arrangement(std::string_view name) {
     return std::nullopt;
 }
 
-const char* env_layout_name(EnvLayout layout) {
-    switch (layout) {
-        case EnvLayout::cube:
-            return "cube";
-        case EnvLayout::latlong:
-            return "latlong";
-        case EnvLayout::sphere:
-            return "sphere";
-        case EnvLayout::paraboloid:
-            return "paraboloid";
-    }
-    return "?";
-}
-
-std::optional<EnvLayout> parse_env_layout(std::string_view name) {
-    for (EnvLayout l :
-         {EnvLayout::cube, EnvLayout::latlong, EnvLayout::sphere, EnvLayout::paraboloid})
-        if (name == env_layout_name(l)) return l;
-    return std::nullopt;
-}
-
 std::optional<CubeArrangement> cube_arrangement_from_size(int width, int height) {
     if (width <= 0 || height <= 0) return std::nullopt;
     if (3 * width == 4 * height) return CubeArrangement::horizontal_cross;

@@ -87,9 +87,6 @@ enum class CubeArrangement {
 // "hcross", "vcross", "3x2", "2x3", "column", "row", "openexr" (and "auto" for automatic).
 const char* cube_arrangement_name(CubeArrangement arrangement);
 std::optional<CubeArrangement> parse_cube_arrangement(std::string_view name);
-// "cube", "latlong", "sphere", "paraboloid".
-const char* env_layout_name(EnvLayout layout);
-std::optional<EnvLayout> parse_env_layout(std::string_view name);
 
 // The level-0 images of an environment map in this library's conventions (see above).
 struct EnvImages {

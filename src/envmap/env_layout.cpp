@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
+#include <string_view>
 #include <type_traits>
 
 #include "math/fast_atan2.h"
@@ -168,6 +170,27 @@ int face_count(EnvLayout layout) {
             return 1;
     }
     return 1;
+}
+
+const char* env_layout_name(EnvLayout layout) {
+    switch (layout) {
+        case EnvLayout::cube:
+            return "cube";
+        case EnvLayout::latlong:
+            return "latlong";
+        case EnvLayout::sphere:
+            return "sphere";
+        case EnvLayout::paraboloid:
+            return "paraboloid";
+    }
+    return "?";
+}
+
+std::optional<EnvLayout> parse_env_layout(std::string_view name) {
+    for (EnvLayout l :
+         {EnvLayout::cube, EnvLayout::latlong, EnvLayout::sphere, EnvLayout::paraboloid})
+        if (name == env_layout_name(l)) return l;
+    return std::nullopt;
 }
 
 // ---------------------------------------------------------------------------------------- cube

@@ -105,6 +105,9 @@
 // tests), explicitly instantiated for float and double in env_layout.cpp.
 #pragma once
 
+#include <optional>
+#include <string_view>
+
 #include "math/vec.h"
 #include "math/vec3.h"
 
@@ -137,6 +140,11 @@ using Jacobian23d = Jacobian23T<double>;
 
 // Number of faces: 6 (cube), 2 (paraboloid), 1 (lat-long, sphere).
 int face_count(EnvLayout layout);
+
+// "cube", "latlong", "sphere", "paraboloid" (the command line's and the scene files' names), and
+// back; nullopt for any other name.
+const char* env_layout_name(EnvLayout layout);
+std::optional<EnvLayout> parse_env_layout(std::string_view name);
 
 // ---- Cube (§3.1).
 template <class T>

@@ -45,17 +45,7 @@ constexpr EnvLayout kLayouts[] = {EnvLayout::cube, EnvLayout::latlong, EnvLayout
 constexpr int kSamples = 3000;
 
 const char* name(EnvLayout l) {
-    switch (l) {
-        case EnvLayout::cube:
-            return "cube";
-        case EnvLayout::latlong:
-            return "latlong";
-        case EnvLayout::sphere:
-            return "sphere";
-        case EnvLayout::paraboloid:
-            return "paraboloid";
-    }
-    return "?";
+    return env_layout_name(l);
 }
 
 double norm(Vec3d a) {

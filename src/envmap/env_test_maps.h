@@ -77,17 +77,7 @@ inline constexpr EnvLayout kAllEnvLayouts[] = {EnvLayout::cube, EnvLayout::latlo
                                                EnvLayout::sphere, EnvLayout::paraboloid};
 
 inline const char* layout_name(EnvLayout layout) {
-    switch (layout) {
-        case EnvLayout::cube:
-            return "cube";
-        case EnvLayout::latlong:
-            return "latlong";
-        case EnvLayout::sphere:
-            return "sphere";
-        case EnvLayout::paraboloid:
-            return "paraboloid";
-    }
-    return "?";
+    return env_layout_name(layout);
 }
 
 }  // namespace footprint::test
