@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -76,6 +77,30 @@ class ProgressNote {
 
   private:
     bool enabled_;
+};
+
+// null for NaN/Inf (a peer that was not measured), the number otherwise.
+inline nlohmann::json number_or_null(double v) {
+    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
+}
+
+// One measured case of a benchmark against OpenImageIO: ours and the peer on the same lookups.
+struct PeerCase {
+    std::string filter, regime;
+    int threads;
+    double ours_rate, oiio_rate;  // lookups/s (oiio: NaN when not measured)
+    double ours_rmse, oiio_rmse;
+
+    // The JSON shape every peer benchmark writes (README, Performance).
+    nlohmann::json to_json() const {
+        return {{"filter", filter},
+                {"regime", regime},
+                {"threads", threads},
+                {"ours_mlookups_per_s", ours_rate / 1e6},
+                {"oiio_mlookups_per_s", number_or_null(oiio_rate / 1e6)},
+                {"ours_rmse", ours_rmse},
+                {"oiio_rmse", number_or_null(oiio_rmse)}};
+    }
 };
 
 // Writes JSON to a temporary file beside `path` and renames it into place (never a partial file).

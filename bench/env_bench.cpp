@@ -249,12 +249,7 @@ ConventionCheck check_oiio_convention(const EnvironmentMap& latlong, const OiioE
     return {rmse(ours, mapped), rmse(ours, unmapped)};
 }
 
-struct Case {
-    std::string filter, regime;
-    int threads;
-    double ours_rate, oiio_rate;  // lookups/s
-    double ours_rmse, oiio_rmse;
-};
+using Case = PeerCase;
 
 // Lookups/s of `lookup` over `lookups`, the best of `rounds` measure_rate rounds (a rate disturbed
 // by what ran just before is re-measured).
@@ -430,9 +425,6 @@ int run_env_bench(const EnvBenchOptions& opt) {
     }
 
     if (!opt.json_path.empty()) {
-        auto nan_to_null = [](double v) {
-            return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
-        };
         nlohmann::json j;
         j["benchmark"] = "env";
         j["latlong_width"] = width;
@@ -444,16 +436,9 @@ int run_env_bench(const EnvBenchOptions& opt) {
         j["lookups_per_regime"] = opt.lookups_per_regime;
         j["error_subset"] = opt.error_subset;
         j["oiio_version"] = OIIO_VERSION_STRING;
-        j["oiio_convention_rmse"] = nan_to_null(convention.mapped_rmse);
+        j["oiio_convention_rmse"] = number_or_null(convention.mapped_rmse);
         j["hardware_threads"] = std::thread::hardware_concurrency();
-        for (const Case& c : cases)
-            j["cases"].push_back({{"filter", c.filter},
-                                  {"regime", c.regime},
-                                  {"threads", c.threads},
-                                  {"ours_mlookups_per_s", c.ours_rate / 1e6},
-                                  {"oiio_mlookups_per_s", nan_to_null(c.oiio_rate / 1e6)},
-                                  {"ours_rmse", c.ours_rmse},
-                                  {"oiio_rmse", nan_to_null(c.oiio_rmse)}});
+        for (const Case& c : cases) j["cases"].push_back(c.to_json());
         j["targets"] = targets;
         write_json(opt.json_path, j);
     }

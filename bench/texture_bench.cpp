@@ -67,12 +67,7 @@ class OiioPeer {
     OiioTextureFile file_;
 };
 
-struct Case {
-    std::string filter, regime;
-    int threads;
-    double ours_rate, oiio_rate;  // lookups/s
-    double ours_rmse, oiio_rmse;
-};
+using Case = PeerCase;
 
 }  // namespace
 
@@ -192,18 +187,7 @@ int run_texture_bench(const TextureBenchOptions& opt) {
         j["error_subset"] = opt.error_subset;
         j["oiio_version"] = OIIO_VERSION_STRING;
         j["hardware_threads"] = std::thread::hardware_concurrency();
-        for (const Case& c : cases) {
-            auto nan_to_null = [](double v) {
-                return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
-            };
-            j["cases"].push_back({{"filter", c.filter},
-                                  {"regime", c.regime},
-                                  {"threads", c.threads},
-                                  {"ours_mlookups_per_s", c.ours_rate / 1e6},
-                                  {"oiio_mlookups_per_s", nan_to_null(c.oiio_rate / 1e6)},
-                                  {"ours_rmse", c.ours_rmse},
-                                  {"oiio_rmse", nan_to_null(c.oiio_rmse)}});
-        }
+        for (const Case& c : cases) j["cases"].push_back(c.to_json());
         write_json(opt.json_path, j);
     }
     return 0;

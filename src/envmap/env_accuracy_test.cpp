@@ -99,11 +99,6 @@ struct Lookup {
     Vec3 r, dr_dx, dr_dy;
 };
 
-void tangent_basis(Vec3d n, Vec3d& u, Vec3d& v) {
-    u = normalize(cross(n, std::abs(n.x) < 0.6 ? Vec3d{1, 0, 0} : Vec3d{0, 1, 0}));
-    v = cross(n, u);
-}
-
 // Angular footprint: standard deviations sigma1 ≥ sigma2 (radians, K/4 measure: |dr|/2 for unit
 // r), major axis at `angle` in the tangent plane.
 Lookup angular_lookup(Vec3d r, double sigma1, double sigma2, double angle) {

@@ -12,8 +12,9 @@ namespace {
 
 // A unit vector ⟂ unit n (any one).
 Vec3d perpendicular(Vec3d n) {
-    const Vec3d helper = std::abs(n.x) < 0.6 ? Vec3d{1, 0, 0} : Vec3d{0, 1, 0};
-    return normalize(cross(n, helper));
+    Vec3d u, v;
+    tangent_basis(n, u, v);
+    return u;
 }
 
 // Level-0 texels per unit step of the node coordinate along `axis` at the (unnormalised) node

@@ -107,12 +107,6 @@ std::array<double, kChannels> gaussian_integral(const SphereGaussian& g) {
     return sum;
 }
 
-// A unit tangent basis (u, v) at unit n.
-void tangent_basis(Vec3d n, Vec3d& u, Vec3d& v) {
-    u = normalize(cross(n, std::abs(n.x) < 0.6 ? Vec3d{1, 0, 0} : Vec3d{0, 1, 0}));
-    v = cross(n, u);
-}
-
 // A footprint at r with standard deviations sigma1 ≥ sigma2 (radians), major axis at `angle` in
 // the tangent basis.
 SphereGaussian gaussian_at(Vec3d r, double sigma1, double sigma2, double angle) {

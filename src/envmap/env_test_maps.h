@@ -65,12 +65,10 @@ inline EnvironmentMap env_noise_map(EnvLayout layout, int size, unsigned seed) {
 // The ray differentials of a footprint of angular radius `angle` (radians) around r: two
 // orthogonal tangent vectors of length `angle` (an isotropic footprint on the sphere).
 inline void isotropic_differentials(Vec3 r, float angle, Vec3& dr_dx, Vec3& dr_dy) {
-    r = r / std::sqrt(dot(r, r));
-    Vec3 a = std::fabs(r.x) < 0.9f ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-    a = a - dot(a, r) * r;
-    a = a / std::sqrt(dot(a, a));
-    dr_dx = angle * a;
-    dr_dy = angle * cross(r, a);
+    Vec3 u, v;
+    tangent_basis(normalize(r), u, v);
+    dr_dx = angle * u;
+    dr_dy = angle * v;
 }
 
 inline constexpr EnvLayout kAllEnvLayouts[] = {EnvLayout::cube, EnvLayout::latlong,

@@ -93,10 +93,7 @@ struct TangentProbes {
         const float len = std::sqrt(dot(direction, direction));
         if (!(len > 0) || !std::isfinite(len)) return p;
         p.centre = direction / len;
-        Vec3 a = std::fabs(p.centre.x) < 0.9f ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-        a = a - dot(a, p.centre) * p.centre;
-        p.e1 = a / std::sqrt(dot(a, a));
-        p.e2 = cross(p.centre, p.e1);
+        tangent_basis(p.centre, p.e1, p.e2);
         const Jacobian23 j = env_jacobian(map.layout(), p.centre);
         const Vec2 scale = map.texel_scale();
         const float j11 = scale.x * dot(j.ds, p.e1), j12 = scale.x * dot(j.ds, p.e2);

@@ -42,12 +42,9 @@ EnvironmentMap noise_cube(int size, unsigned seed) {
 
 // A footprint of angular radius `angle` (radians) around direction r, as ray differentials.
 EnvFootprint footprint_around(const EnvironmentMap& map, Vec3 r, float angle) {
-    r = r / std::sqrt(dot(r, r));
-    Vec3 a = std::fabs(r.x) < 0.9f ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-    a = a - dot(a, r) * r;
-    a = a / std::sqrt(dot(a, a));
-    const Vec3 b = cross(r, a);
-    return compute_env_footprint(map.layout(), map.texel_scale(), r, angle * a, angle * b);
+    Vec3 dx, dy;
+    test::isotropic_differentials(r, angle, dx, dy);
+    return compute_env_footprint(map.layout(), map.texel_scale(), r, dx, dy);
 }
 
 TEST(EnvironmentMap, ConstantMapsStayConstantAcrossFaces) {

@@ -80,6 +80,13 @@ inline Vec3T<T> normalize(Vec3T<T> a) {
     const Vec3T<T> b = a / scale;
     return b / std::sqrt(dot(b, b));
 }
+// A right-handed unit tangent basis (u, v) at the unit vector n (u × v = n): u ⟂ n built from the
+// x axis, or the y axis where n is within 53° of ±x (|n_x| ≥ 0.6), so u never degenerates.
+template <class T>
+inline void tangent_basis(Vec3T<T> n, Vec3T<T>& u, Vec3T<T>& v) {
+    u = normalize(cross(n, std::abs(n.x) < T(0.6) ? Vec3T<T>{1, 0, 0} : Vec3T<T>{0, 1, 0}));
+    v = cross(n, u);
+}
 template <class To, class From>
 constexpr Vec3T<To> vec3_cast(Vec3T<From> a) {
     return {static_cast<To>(a.x), static_cast<To>(a.y), static_cast<To>(a.z)};
