@@ -8,6 +8,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "math/fast_atan2.h"
 #include "texture/footprint_assembly.h"
 #include "texture/sampling.h"
 
@@ -240,39 +241,44 @@ int polar_cap_size(int latlong_height) {
     return std::max(2, static_cast<int>(std::ceil(kCapResolution * 2 * latlong_height / kPi)));
 }
 
-// The cap face (2: +Y, 3: −Y) of `map` (lat-long, level 0 built): each texel the average of
-// environment_bilinear() over a k × k grid in the texel, k chosen so that the samples lie no more
-// than half a lat-long texel apart (near the pole a cap texel spans many lat-long columns).
+// The cap face (2: +Y, 3: −Y) of `map` (lat-long, level 0 built): each texel the average of the
+// map's bilinear reconstruction over a k × k grid in the texel, k chosen so that the samples lie
+// no more than one lat-long texel apart (near the pole a cap texel spans many lat-long columns).
+// The face is gnomonic, so a sample's direction is (2s − 1, ±1, ±(2t − 1)) without trigonometry,
+// and its lat-long position needs two inline atan2.
 Image polar_cap_image(const EnvironmentMap& map, int face, int size) {
     const int channels = map.channels();
     const Vec2 latlong_size = map.texel_scale();
+    const MipPyramid& level0 = map.face(0);
     Image cap(size, size, channels);
-    const double n = size;
-    tbb::parallel_for(0, size, [&](int y) {
-        std::vector<double> sum(static_cast<std::size_t>(channels));
-        std::vector<float> sample(static_cast<std::size_t>(channels));
-        for (int x = 0; x < size; ++x) {
-            const Vec3d d = cube_direction<double>(face, (x + 0.5) / n, (y + 0.5) / n);
-            const double len = std::sqrt(dot(d, d));
-            const double sin_colatitude = std::hypot(d.x, d.z) / len,
-                         cos_colatitude = std::fabs(d.y) / len;
-            const double texel_angle = 2 / n * cos_colatitude;  // the larger (tangential) side
-            const double latlong_angle =
-                std::min(2 * kPi * sin_colatitude / latlong_size.x, kPi / latlong_size.y);
-            const int k =
-                std::clamp(static_cast<int>(std::ceil(2 * texel_angle / latlong_angle)), 2, 64);
-            std::fill(sum.begin(), sum.end(), 0.0);
-            for (int j = 0; j < k; ++j)
-                for (int i = 0; i < k; ++i) {
-                    const Vec3d p = cube_direction<double>(face, (x + (i + 0.5) / k) / n,
-                                                           (y + (j + 0.5) / k) / n);
-                    environment_bilinear(map, Vec3{float(p.x), float(p.y), float(p.z)}, 0,
-                                         sample.data());
-                    for (int c = 0; c < channels; ++c) sum[c] += sample[c];
-                }
-            for (int c = 0; c < channels; ++c)
-                cap.at(x, y, c) = static_cast<float>(sum[c] / (k * k));
-        }
+    const float n = static_cast<float>(size);
+    const float inv_pi = 1.0f / std::numbers::pi_v<float>;
+    detail::dispatch_stride(level0.stride(), [&]<int S>() {
+        tbb::parallel_for(0, size, [&](int y) {
+            for (int x = 0; x < size; ++x) {
+                const Vec3 d = cube_direction<float>(face, (x + 0.5f) / n, (y + 0.5f) / n);
+                const float len = std::sqrt(dot(d, d));
+                const float sin_colatitude = std::sqrt(d.x * d.x + d.z * d.z) / len;
+                const float texel_angle = 2 / n * std::fabs(d.y) / len;  // the tangential side
+                const float latlong_angle =
+                    std::min(2 * std::numbers::pi_v<float> * sin_colatitude / latlong_size.x,
+                             std::numbers::pi_v<float> / latlong_size.y);
+                const int k =
+                    std::clamp(static_cast<int>(std::ceil(texel_angle / latlong_angle)), 2, 64);
+                detail::Texel<S> sum{};
+                for (int j = 0; j < k; ++j)
+                    for (int i = 0; i < k; ++i) {
+                        const Vec3 p = cube_direction<float>(face, (x + (i + 0.5f) / k) / n,
+                                                             (y + (j + 0.5f) / k) / n);
+                        const float rho = std::sqrt(p.x * p.x + p.z * p.z);
+                        const float t = fast_atan2(rho, p.y) * inv_pi;
+                        const float s = 0.5f + 0.5f * fast_atan2(p.x, -p.z) * inv_pi;
+                        detail::add_scaled(sum, 1.0f, env_bilinear<S>(map, 0, 0, s, t));
+                    }
+                sum.v *= 1.0f / static_cast<float>(k * k);
+                detail::store(sum, channels, cap.at(x, y));
+            }
+        });
     });
     return cap;
 }
