@@ -235,10 +235,10 @@ constexpr double kPi = std::numbers::pi;
 constexpr float kPolarCapCosine = 0.8660254f;  // cos 30°: caps serve footprints centred above 60°
 
 int polar_cap_size(int latlong_height) {
-    // 1.5× the lat-long t-resolution at the pole: a cap face of n texels has n/2 texels per radian
-    // at its centre, the lat-long map H/π.
-    constexpr double kCapResolution = 1.5;
-    return std::max(2, static_cast<int>(std::ceil(kCapResolution * 2 * latlong_height / kPi)));
+    // The lat-long t-resolution at the pole: a cap face of n texels has n/2 texels per radian at
+    // its centre, the lat-long map H/π. (1.5× finer caps measured no more accurate against the
+    // reference, env_accuracy_test.cpp, for 2.25× the memory.)
+    return std::max(2, static_cast<int>(std::ceil(2 * latlong_height / kPi)));
 }
 
 // The cap face (2: +Y, 3: −Y) of `map` (lat-long, level 0 built): each texel the average of the

@@ -24,7 +24,7 @@
 // therefore also holds its two polar caps as gnomonic faces (the cube's ±Y faces, where the sphere
 // is nearly isotropic: at most 1.15:1 within 30° of the pole), each texel the box-filtered average
 // of the map's bilinear reconstruction over it (supersampled finely enough to resolve the lat-long
-// texels), ⌈3H/π⌉ texels wide (1.5× the map's t-resolution at the pole; 60 % more memory). A lookup
+// texels), ⌈2H/π⌉ texels wide (the map's t-resolution at the pole; 40 % more memory). A lookup
 // whose footprint centre lies within 30° of a pole, and whose footprint stays on the cap's face,
 // filters the cap instead: K is carried over through the tangent plane, K_cap = M K Mᵀ with
 // M = J_cap J_latlong⁻¹.
