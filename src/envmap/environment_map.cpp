@@ -234,11 +234,9 @@ constexpr double kPi = std::numbers::pi;
 
 constexpr float kPolarCapCosine = 0.8660254f;  // cos 30°: caps serve footprints centred above 60°
 
-int polar_cap_size(int latlong_height) {
-    // The lat-long t-resolution at the pole: a cap face of n texels has n/2 texels per radian at
-    // its centre, the lat-long map H/π. (1.5× finer caps measured no more accurate against the
-    // reference, env_accuracy_test.cpp, for 2.25× the memory.)
-    return std::max(2, static_cast<int>(std::ceil(2 * latlong_height / kPi)));
+int polar_cap_size(int latlong_height, float resolution) {
+    // A cap face of n texels has n/2 texels per radian at its centre, the lat-long map H/π.
+    return std::max(2, static_cast<int>(std::ceil(resolution * 2 * latlong_height / kPi)));
 }
 
 // The cap face (2: +Y, 3: −Y) of `map` (lat-long, level 0 built): each texel the average of the
@@ -316,7 +314,8 @@ Vec2 EnvironmentMap::texel_scale() const {
     return {static_cast<float>(faces_[0].width(0)), static_cast<float>(faces_[0].height(0))};
 }
 
-Result<EnvironmentMap> EnvironmentMap::from_latlong(const Image& image) {
+Result<EnvironmentMap> EnvironmentMap::from_latlong(const Image& image,
+                                                    const LatLongOptions& latlong_options) {
     if (Status s = check_image(image, "lat-long map"); !s) return s.error();
     EnvironmentMap map;
     map.layout_ = EnvLayout::latlong;
@@ -324,9 +323,13 @@ Result<EnvironmentMap> EnvironmentMap::from_latlong(const Image& image) {
     options.wrap_s = WrapMode::repeat;  // the seam
     options.wrap_t = WrapMode::clamp;   // the poles
     map.faces_.push_back(MipPyramid::build(image, options));
+    if (!latlong_options.polar_caps) return map;
+    if (!(latlong_options.polar_cap_resolution > 0 && latlong_options.polar_cap_resolution <= 4))
+        return Error{"lat-long polar cap resolution " +
+                     std::to_string(latlong_options.polar_cap_resolution) + " is outside (0, 4]"};
     MipPyramidOptions cap_options;
     cap_options.wrap_s = cap_options.wrap_t = WrapMode::clamp;
-    const int cap_size = polar_cap_size(image.height);
+    const int cap_size = polar_cap_size(image.height, latlong_options.polar_cap_resolution);
     for (int face : {2, 3})  // +Y, −Y
         map.polar_caps_.push_back(
             MipPyramid::build(polar_cap_image(map, face, cap_size), cap_options));

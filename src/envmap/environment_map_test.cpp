@@ -238,7 +238,7 @@ TEST(EnvironmentMap, LatLongPolarCapsHoldTheMapAndJoinItSmoothly) {
     const EnvironmentMap map =
         test::env_map(EnvLayout::latlong, 128, [](Vec3 r) { return smooth(r); });
     ASSERT_NE(map.polar_cap(0), nullptr);
-    EXPECT_EQ(map.polar_cap(0)->width(0), 82);  // ⌈2·128/π⌉
+    EXPECT_EQ(map.polar_cap(0)->width(0), 123);  // ⌈1.5·2·128/π⌉
     std::mt19937 rng(24);
     std::uniform_real_distribution<float> u(0, 2 * 3.14159265f);
     float worst_value = 0, worst_jump = 0;
@@ -271,6 +271,21 @@ TEST(EnvironmentMap, LatLongPolarCapsHoldTheMapAndJoinItSmoothly) {
     // Measured 1e−4 and 3e−4; a cap mirrored or turned by 90° errs by ~0.1.
     EXPECT_LT(worst_value, 1e-3f);
     EXPECT_LT(worst_jump, 1.5e-3f);
+}
+
+TEST(EnvironmentMap, PolarCapsCanBeTurnedOff) {
+    // Without caps a lookup at the pole is the spec's §3.4 isotropic probe on the lat-long map.
+    Image image(64, 32, 1, 0.25f);
+    LatLongOptions no_caps;
+    no_caps.polar_caps = false;
+    const EnvironmentMap map = std::move(EnvironmentMap::from_latlong(image, no_caps).value());
+    EXPECT_EQ(map.polar_cap(0), nullptr);
+    float v;
+    environment_lookup(map, {0, 1, 0}, {0.1f, 0, 0}, {0, 0, 0.1f}, LookupOptions{}, &v);
+    EXPECT_FLOAT_EQ(v, 0.25f);
+    LatLongOptions bad;
+    bad.polar_cap_resolution = 0;
+    EXPECT_FALSE(EnvironmentMap::from_latlong(image, bad).ok());
 }
 
 TEST(EnvironmentMap, SphereAndParaboloidImagesAreChecked) {
