@@ -2,13 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <string>
 #include <vector>
 
-#include <tbb/parallel_for.h>
-
-#include "math/fast_atan2.h"
+#include "envmap/env_sampling.h"
+#include "envmap/polar_caps.h"
 #include "texture/footprint_assembly.h"
 #include "texture/sampling.h"
 
@@ -24,57 +22,6 @@ Status check_image(const Image& image, const std::string& what) {
     if (image.pixels.size() != image.pixel_count() * image.channels)
         return Error{what + " is malformed"};
     return {};
-}
-
-// One texel of a level of `face`, where (x, y) may lie beyond the level's edge: such a tap is taken
-// from wherever the direction of its centre lies — the neighbour cube face (seamless cube
-// filtering, §3.1), across a lat-long pole (the seam wraps the same way), back through the sphere
-// map's rim, or on the other paraboloid hemisphere.
-const float* env_texel(const EnvironmentMap& map, int face, int level, int x, int y) {
-    const MipPyramid::LevelView view = map.face(face).level(level);
-    if (x >= 0 && y >= 0 && x < view.width && y < view.height) return view.texel(x, y);
-    if (map.layout() == EnvLayout::latlong) {
-        // Over a pole, row −1 − k is row k half a turn around; the seam wraps (exact for texel
-        // centres, and no trigonometry).
-        if (y < 0 || y >= view.height) {
-            y = y < 0 ? -1 - y : 2 * view.height - 1 - y;
-            x += view.width / 2;
-        }
-        x %= view.width;
-        if (x < 0) x += view.width;
-        return view.texel(x, std::clamp(y, 0, view.height - 1));
-    }
-    const float w = static_cast<float>(view.width), h = static_cast<float>(view.height);
-    const EnvCoords c = env_coords(
-        map.layout(), env_direction(map.layout(), face, (static_cast<float>(x) + 0.5f) / w,
-                                    (static_cast<float>(y) + 0.5f) / h));
-    const MipPyramid::LevelView other = map.face(c.face).level(level);
-    return other.texel(std::clamp(static_cast<int>(c.s * w), 0, view.width - 1),
-                       std::clamp(static_cast<int>(c.t * h), 0, view.height - 1));
-}
-
-// Bilinear on a level of `face`, with taps beyond its edges read by direction (env_texel).
-template <int S>
-[[gnu::always_inline]] inline detail::Texel<S> env_bilinear(const EnvironmentMap& map, int face,
-                                                            int level, float s, float t) {
-    const MipPyramid& pyramid = map.face(face);
-    const MipPyramid::LevelView view = pyramid.level(level);
-    const float x = s * static_cast<float>(view.width) - 0.5f;
-    const float y = t * static_cast<float>(view.height) - 0.5f;
-    const int x0 = detail::floor_to_int(x), y0 = detail::floor_to_int(y);
-    if (x0 >= 0 && y0 >= 0 && x0 + 1 < view.width && y0 + 1 < view.height)
-        return detail::sample_bilinear<S>(view, pyramid.wrap_s(), pyramid.wrap_t(), s, t);
-    const float fx = x - static_cast<float>(x0), fy = y - static_cast<float>(y0);
-    detail::Texel<S> r{};
-    detail::add_scaled(r, (1 - fx) * (1 - fy),
-                       detail::Texel<S>::load(env_texel(map, face, level, x0, y0)));
-    detail::add_scaled(r, fx * (1 - fy),
-                       detail::Texel<S>::load(env_texel(map, face, level, x0 + 1, y0)));
-    detail::add_scaled(r, (1 - fx) * fy,
-                       detail::Texel<S>::load(env_texel(map, face, level, x0, y0 + 1)));
-    detail::add_scaled(r, fx * fy,
-                       detail::Texel<S>::load(env_texel(map, face, level, x0 + 1, y0 + 1)));
-    return r;
 }
 
 // Probe placement on the sphere for the curved layouts (lat-long, sphere, paraboloid): a probe
@@ -150,22 +97,6 @@ struct QuadraticPath {
     }
 };
 
-template <int S>
-[[gnu::always_inline]] inline detail::Texel<S> env_trilinear(const EnvironmentMap& map,
-                                                             const EnvCoords& c, float lod,
-                                                             LodBlend blend) {
-    const int max_level = map.face(c.face).max_level();
-    const int l0 = std::min(static_cast<int>(lod), max_level);
-    const float w =
-        l0 < max_level ? detail::lod_blend_weight(lod - static_cast<float>(l0), blend) : 0.0f;
-    detail::Texel<S> r = env_bilinear<S>(map, c.face, l0, c.s, c.t);
-    if (w > 0.0f) {
-        const detail::Texel<S> coarse = env_bilinear<S>(map, c.face, l0 + 1, c.s, c.t);
-        r.v += w * (coarse.v - r.v);
-    }
-    return r;
-}
-
 // Where a probe centre (s, t) of `face` lands: itself while it lies on the face's valid region,
 // otherwise the face and (s, t) that own its direction (spec §3.1 [E6s], §3.3, §3.4): cube
 // probes move to the neighbour face, lat-long probes beyond a pole continue over it along the
@@ -228,85 +159,6 @@ std::vector<Image> with_continued_exterior(EnvLayout layout, const std::vector<I
     }
     return result;
 }
-// ---- Lat-long polar caps (environment_map.h).
-
-constexpr double kPi = std::numbers::pi;
-
-constexpr float kPolarCapCosine = 0.8660254f;  // cos 30°: caps serve footprints centred above 60°
-
-int polar_cap_size(int latlong_height, float resolution) {
-    // A cap face of n texels has n/2 texels per radian at its centre, the lat-long map H/π.
-    return std::max(2, static_cast<int>(std::ceil(resolution * 2 * latlong_height / kPi)));
-}
-
-// The cap face (2: +Y, 3: −Y) of `map` (lat-long, level 0 built): each texel the average of the
-// map's bilinear reconstruction over a k × k grid in the texel, k chosen so that the samples lie
-// no more than one lat-long texel apart (near the pole a cap texel spans many lat-long columns).
-// The face is gnomonic, so a sample's direction is (2s − 1, ±1, ±(2t − 1)) without trigonometry,
-// and its lat-long position needs two inline atan2.
-Image polar_cap_image(const EnvironmentMap& map, int face, int size) {
-    const int channels = map.channels();
-    const Vec2 latlong_size = map.texel_scale();
-    const MipPyramid& level0 = map.face(0);
-    Image cap(size, size, channels);
-    const float n = static_cast<float>(size);
-    const float inv_pi = 1.0f / std::numbers::pi_v<float>;
-    detail::dispatch_stride(level0.stride(), [&]<int S>() {
-        tbb::parallel_for(0, size, [&](int y) {
-            for (int x = 0; x < size; ++x) {
-                const Vec3 d = cube_direction<float>(face, (x + 0.5f) / n, (y + 0.5f) / n);
-                const float len = std::sqrt(dot(d, d));
-                const float sin_colatitude = std::sqrt(d.x * d.x + d.z * d.z) / len;
-                const float texel_angle = 2 / n * std::fabs(d.y) / len;  // the tangential side
-                const float latlong_angle =
-                    std::min(2 * std::numbers::pi_v<float> * sin_colatitude / latlong_size.x,
-                             std::numbers::pi_v<float> / latlong_size.y);
-                const int k =
-                    std::clamp(static_cast<int>(std::ceil(texel_angle / latlong_angle)), 2, 64);
-                detail::Texel<S> sum{};
-                for (int j = 0; j < k; ++j)
-                    for (int i = 0; i < k; ++i) {
-                        const Vec3 p = cube_direction<float>(face, (x + (i + 0.5f) / k) / n,
-                                                             (y + (j + 0.5f) / k) / n);
-                        const float rho = std::sqrt(p.x * p.x + p.z * p.z);
-                        const float t = fast_atan2(rho, p.y) * inv_pi;
-                        const float s = 0.5f + 0.5f * fast_atan2(p.x, -p.z) * inv_pi;
-                        detail::add_scaled(sum, 1.0f, env_bilinear<S>(map, 0, 0, s, t));
-                    }
-                sum.v *= 1.0f / static_cast<float>(k * k);
-                detail::store(sum, channels, cap.at(x, y));
-            }
-        });
-    });
-    return cap;
-}
-
-// The footprint carried onto a polar cap and filtered there; false when the lookup is not for the
-// caps (centre more than 30° from the pole, or the footprint would leave the cap's face).
-bool polar_cap_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
-                      const LookupOptions& options, float* out) {
-    const Vec3 r = footprint.map_direction;
-    const float len = std::sqrt(dot(r, r));
-    if (!(len > 0) || !(std::fabs(r.y) >= kPolarCapCosine * len)) return false;
-    const MipPyramid& cap = *map.polar_cap(r.y > 0 ? 0 : 1);
-    const float n = static_cast<float>(cap.width(0));
-    const EnvCoords c = cube_coords(r);  // face 2 or 3: |r_y| is the major axis within 30°
-    // K on the cap from the footprint's map-space direction differentials (env_footprint.h): this
-    // keeps the anisotropy even where the lat-long footprint fell back to an isotropic one.
-    const Jacobian23 jc = cube_jacobian(r);
-    auto on_cap = [&](Vec3 w) { return Vec2{n * dot(jc.ds, w), n * dot(jc.dt, w)}; };
-    Sym2 k_cap =
-        footprint_matrix(on_cap(footprint.map_dr_dx), on_cap(footprint.map_dr_dy)) +
-        footprint_matrix(on_cap(footprint.map_roughness1), on_cap(footprint.map_roughness2));
-    if (!k_cap.is_finite()) return false;
-    const FootprintEllipse e = make_footprint_ellipse(k_cap);
-    // Stay on the face: the probes and their kernels reach about 2λ1 from the centre.
-    const float reach = (2 * e.major_radius + 1) / n;
-    if (c.s - reach < 0 || c.s + reach > 1 || c.t - reach < 0 || c.t + reach > 1) return false;
-    texture_lookup(cap, c.s, c.t, e, options, out);
-    return true;
-}
-
 }  // namespace
 
 Vec2 EnvironmentMap::texel_scale() const {
@@ -406,7 +258,7 @@ void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint
             const LodBlend blend =
                 options.lod_blend == LodBlend::automatic ? LodBlend::linear : options.lod_blend;
             detail::dispatch_stride(centre.stride(), [&]<int S>() {
-                detail::store(env_trilinear<S>(map, c, lod, blend), centre.channels(), out);
+                detail::store(detail::env_trilinear<S>(map, c, lod, blend), centre.channels(), out);
             });
             return;
         }
@@ -447,7 +299,8 @@ void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint
             } else {
                 probe = place_probe(map.layout(), c.face, c.s + o.x / size.x, c.t + o.y / size.y);
             }
-            detail::add_scaled(sum, weights[i], env_trilinear<S>(map, probe, plan.lod, blend));
+            detail::add_scaled(sum, weights[i],
+                               detail::env_trilinear<S>(map, probe, plan.lod, blend));
             weight_sum += weights[i];
         }
         sum.v *= 1.0f / weight_sum;
@@ -467,7 +320,8 @@ void environment_bilinear(const EnvironmentMap& map, Vec3 r, int level, float* o
     const MipPyramid& pyramid = map.face(c.face);
     level = std::clamp(level, 0, pyramid.max_level());
     detail::dispatch_stride(pyramid.stride(), [&]<int S>() {
-        detail::store(env_bilinear<S>(map, c.face, level, c.s, c.t), pyramid.channels(), out);
+        detail::store(detail::env_bilinear<S>(map, c.face, level, c.s, c.t), pyramid.channels(),
+                      out);
     });
 }
 

@@ -1,0 +1,95 @@
+#include "envmap/polar_caps.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <tbb/parallel_for.h>
+
+#include "envmap/env_sampling.h"
+#include "math/fast_atan2.h"
+#include "texture/texture_lookup.h"
+
+namespace footprint {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr float kPolarCapCosine = 0.8660254f;  // cos 30°: caps serve footprints centred above 60°
+
+}  // namespace
+
+int polar_cap_size(int latlong_height, float resolution) {
+    // A cap face of n texels has n/2 texels per radian at its centre, the lat-long map H/π.
+    return std::max(2, static_cast<int>(std::ceil(resolution * 2 * latlong_height / kPi)));
+}
+
+// The cap face (2: +Y, 3: −Y) of `map` (lat-long, level 0 built): each texel the average of the
+// map's bilinear reconstruction over a k × k grid in the texel, k chosen so that the samples lie
+// no more than one lat-long texel apart (near the pole a cap texel spans many lat-long columns).
+// The face is gnomonic, so a sample's direction is (2s − 1, ±1, ±(2t − 1)) without trigonometry,
+// and its lat-long position needs two inline atan2.
+Image polar_cap_image(const EnvironmentMap& map, int face, int size) {
+    const int channels = map.channels();
+    const Vec2 latlong_size = map.texel_scale();
+    const MipPyramid& level0 = map.face(0);
+    Image cap(size, size, channels);
+    const float n = static_cast<float>(size);
+    const float inv_pi = 1.0f / std::numbers::pi_v<float>;
+    detail::dispatch_stride(level0.stride(), [&]<int S>() {
+        tbb::parallel_for(0, size, [&](int y) {
+            for (int x = 0; x < size; ++x) {
+                const Vec3 d = cube_direction<float>(face, (x + 0.5f) / n, (y + 0.5f) / n);
+                const float len = std::sqrt(dot(d, d));
+                const float sin_colatitude = std::sqrt(d.x * d.x + d.z * d.z) / len;
+                const float texel_angle = 2 / n * std::fabs(d.y) / len;  // the tangential side
+                const float latlong_angle =
+                    std::min(2 * std::numbers::pi_v<float> * sin_colatitude / latlong_size.x,
+                             std::numbers::pi_v<float> / latlong_size.y);
+                const int k =
+                    std::clamp(static_cast<int>(std::ceil(texel_angle / latlong_angle)), 2, 64);
+                detail::Texel<S> sum{};
+                for (int j = 0; j < k; ++j)
+                    for (int i = 0; i < k; ++i) {
+                        const Vec3 p = cube_direction<float>(face, (x + (i + 0.5f) / k) / n,
+                                                             (y + (j + 0.5f) / k) / n);
+                        const float rho = std::sqrt(p.x * p.x + p.z * p.z);
+                        const float t = fast_atan2(rho, p.y) * inv_pi;
+                        const float s = 0.5f + 0.5f * fast_atan2(p.x, -p.z) * inv_pi;
+                        detail::add_scaled(sum, 1.0f, detail::env_bilinear<S>(map, 0, 0, s, t));
+                    }
+                sum.v *= 1.0f / static_cast<float>(k * k);
+                detail::store(sum, channels, cap.at(x, y));
+            }
+        });
+    });
+    return cap;
+}
+
+// The footprint carried onto a polar cap and filtered there; false when the lookup is not for the
+// caps (centre more than 30° from the pole, or the footprint would leave the cap's face).
+bool polar_cap_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
+                      const LookupOptions& options, float* out) {
+    const Vec3 r = footprint.map_direction;
+    const float len = std::sqrt(dot(r, r));
+    if (!(len > 0) || !(std::fabs(r.y) >= kPolarCapCosine * len)) return false;
+    const MipPyramid& cap = *map.polar_cap(r.y > 0 ? 0 : 1);
+    const float n = static_cast<float>(cap.width(0));
+    const EnvCoords c = cube_coords(r);  // face 2 or 3: |r_y| is the major axis within 30°
+    // K on the cap from the footprint's map-space direction differentials (env_footprint.h): this
+    // keeps the anisotropy even where the lat-long footprint fell back to an isotropic one.
+    const Jacobian23 jc = cube_jacobian(r);
+    auto on_cap = [&](Vec3 w) { return Vec2{n * dot(jc.ds, w), n * dot(jc.dt, w)}; };
+    Sym2 k_cap =
+        footprint_matrix(on_cap(footprint.map_dr_dx), on_cap(footprint.map_dr_dy)) +
+        footprint_matrix(on_cap(footprint.map_roughness1), on_cap(footprint.map_roughness2));
+    if (!k_cap.is_finite()) return false;
+    const FootprintEllipse e = make_footprint_ellipse(k_cap);
+    // Stay on the face: the probes and their kernels reach about 2λ1 from the centre.
+    const float reach = (2 * e.major_radius + 1) / n;
+    if (c.s - reach < 0 || c.s + reach > 1 || c.t - reach < 0 || c.t + reach > 1) return false;
+    texture_lookup(cap, c.s, c.t, e, options, out);
+    return true;
+}
+
+}  // namespace footprint

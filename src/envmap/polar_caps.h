@@ -1,0 +1,28 @@
+// envmap/polar_caps.h — (private to envmap) a lat-long map's polar caps: the two gnomonic faces
+// (a cube's ±Y faces) that EnvironmentMap keeps beside a lat-long pyramid and filters footprints
+// near the poles on (environment_map.h, "Lat-long polar caps", explains why). A footprint comes
+// onto a cap from its map-space direction differentials (EnvFootprint::map_dr_dx …), so its
+// anisotropy survives even where the lat-long footprint fell back to an isotropic one (§3.4).
+#pragma once
+
+#include "envmap/env_footprint.h"
+#include "envmap/environment_map.h"
+#include "image/image.h"
+#include "texture/texture_lookup.h"
+
+namespace footprint {
+
+// Cap face size for a lat-long map of height H: ⌈resolution · 2H/π⌉ (a cap of n texels has n/2
+// texels per radian at its centre, the lat-long map H/π).
+int polar_cap_size(int latlong_height, float resolution);
+
+// The cap face (2: +Y, 3: −Y) of `map` (a lat-long map whose level 0 is built), `size` texels
+// wide: each texel the average of the map's bilinear reconstruction over it.
+Image polar_cap_image(const EnvironmentMap& map, int face, int size);
+
+// Filters `footprint` on the cap of its pole and returns true; false (out untouched) when the
+// footprint's centre lies more than 30° from a pole or its probes would leave the cap's face.
+bool polar_cap_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
+                      const LookupOptions& options, float* out);
+
+}  // namespace footprint
