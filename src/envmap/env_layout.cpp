@@ -311,7 +311,7 @@ SphereParts<T> sphere_parts(Vec3T<T> r) {
 template <class T>
 Vec2T<T> sphere_coords(Vec3T<T> r_in) {
     const SphereParts<T> q = sphere_parts(prepare(r_in).r);
-    return {T(0.5) * (q.a + 1), T(0.5) * (q.b + 1)};
+    return {T(0.5) * (q.a + 1), T(0.5) * (1 - q.b)};  // t = 0 the top row: +Y up in the image
 }
 
 template <class T>
@@ -321,17 +321,17 @@ Jacobian23T<T> sphere_jacobian(Vec3T<T> r_in) {
     const SphereParts<T> q = sphere_parts(r);
     if (q.m == 0) return {};  // rim: singular (§3.2)
     // ∇m = (r_x e_x + r_y e_y + w(e_z + r/p))/m = (a, b, c) + c r/p;
-    // ∂s/∂r = ½(e_x − a ∇m)/m, ∂t/∂r = ½(e_y − b ∇m)/m.
+    // ∂s/∂r = ½(e_x − a ∇m)/m, ∂t/∂r = −½(e_y − b ∇m)/m (t = ½(1 − b): the image's rows).
     const Vec3T<T> grad_m = Vec3T<T>{q.a, q.b, q.c} + (q.c / q.p) * r;
     const T k = T(0.5) * safe_inverse(q.m);
-    return finish(p,
-                  {k * (Vec3T<T>{1, 0, 0} - q.a * grad_m), k * (Vec3T<T>{0, 1, 0} - q.b * grad_m)});
+    return finish(
+        p, {k * (Vec3T<T>{1, 0, 0} - q.a * grad_m), -k * (Vec3T<T>{0, 1, 0} - q.b * grad_m)});
 }
 
 template <class T>
 Vec3T<T> sphere_direction(T s, T t) {
     if (!finite2(s, t)) return kEnvFallbackDirection<T>;
-    T a = 2 * s - 1, b = 2 * t - 1;
+    T a = 2 * s - 1, b = 1 - 2 * t;
     T rho = std::hypot(a, b);
     if (!(rho < 2)) return {0, 0, -1};  // also catches an overflowed 2s − 1
     if (rho > 1) {                      // fold back through the rim: ρ → 2 − ρ, azimuth + π
@@ -350,7 +350,7 @@ EnvCoordsT<T> paraboloid_coords(Vec3T<T> r_in) {
     const Vec3T<T> r = prepare(r_in).r;
     const int face = r.z >= 0 ? 0 : 1;
     const T delta = length(r) + std::abs(r.z);  // |r| ± r_z, no cancellation; ≥ 1
-    return {face, T(0.5) * (r.x / delta + 1), T(0.5) * (r.y / delta + 1)};
+    return {face, T(0.5) * (r.x / delta + 1), T(0.5) * (1 - r.y / delta)};  // +Y up in the image
 }
 
 template <class T>
@@ -360,16 +360,16 @@ Jacobian23T<T> paraboloid_jacobian(Vec3T<T> r_in) {
     const T pr = length(r), sign = r.z >= 0 ? T(1) : T(-1);
     const T delta = pr + std::abs(r.z);
     const T x = r.x / delta, y = r.y / delta;
-    // ∂x/∂r = (e_x − x (r/|r| ± e_z))/δ; ∂s = ½ ∂x.
+    // ∂x/∂r = (e_x − x (r/|r| ± e_z))/δ; ∂s = ½ ∂x, ∂t = −½ ∂y (t = ½(1 − y): the image's rows).
     const Vec3T<T> g = (1 / pr) * r + Vec3T<T>{0, 0, sign};
     const T k = 1 / (2 * delta);
-    return finish(p, {k * (Vec3T<T>{1, 0, 0} - x * g), k * (Vec3T<T>{0, 1, 0} - y * g)});
+    return finish(p, {k * (Vec3T<T>{1, 0, 0} - x * g), -k * (Vec3T<T>{0, 1, 0} - y * g)});
 }
 
 template <class T>
 Vec3T<T> paraboloid_direction(int face, T s, T t) {
     if (!valid_face(face, 2) || !finite2(s, t)) return kEnvFallbackDirection<T>;
-    const T x = 2 * s - 1, y = 2 * t - 1, sign = face == 0 ? T(1) : T(-1);
+    const T x = 2 * s - 1, y = 1 - 2 * t, sign = face == 0 ? T(1) : T(-1);
     const T k = x * x + y * y;
     if (!std::isfinite(k)) return {0, 0, -sign};  // infinitely far out: the other pole
     const T inv = 1 / (1 + k);

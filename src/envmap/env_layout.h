@@ -48,40 +48,45 @@
 //   continues over the pole along the great circle.
 //
 // ---- Sphere map (§3.2, OpenGL SPHERE_MAP, eye space, homogeneous form):
-//   p = |r|, w = r_z + p, m = √(r_x² + r_y² + w²) = √(2pw), s = ½(r_x/m + 1), t = ½(r_y/m + 1).
+//   p = |r|, w = r_z + p, m = √(r_x² + r_y² + w²) = √(2pw), s = ½(r_x/m + 1), t = ½(1 − r_y/m).
+//   (The spec's t = ½(r_y/m + 1) is OpenGL's, whose row 0 is the image's BOTTOM row; here t = 0 is
+//   the top row, as in every layout of this library, so +Y is up in the image file — the way a
+//   mirror-ball photograph or any sphere map on disk is drawn. Only the sign of ∂t/∂r changes.)
 //
 //        s=0            s=½            s=1
 //   t=0   +-----------------------------+        a disk of radius ½ about (½, ½):
 //         |         .--''''''--.        |          centre  +Z
-//         |      .'      −Y      '.     |          −Y at (½, ½ − √2/4), +Y at (½, ½ + √2/4)
+//         |      .'      +Y      '.     |          +Y at (½, ½ − √2/4), −Y at (½, ½ + √2/4)
 //         |     /                  \    |          −X at (½ − √2/4, ½), +X at (½ + √2/4, ½)
 //   t=½   |    |  −X     +Z     +X  |   |          the rim circle: −Z (singular)
-//         |     \                  /    |        (+Y is BELOW the centre in an image with t = 0
-//         |      '.      +Y      .'     |         at the top: the spec's t grows with r_y)
+//         |     \                  /    |
+//         |      '.      −Y      .'     |
 //         |         '--......--'        |
 //   t=1   +-----------------------------+
-//   ∇m = (r_x e_x + r_y e_y + w(e_z + r/p))/m, ∂s/∂r = ½(e_x/m − r_x ∇m/m²), ∂t/∂r likewise with y.
+//   ∇m = (r_x e_x + r_y e_y + w(e_z + r/p))/m, ∂s/∂r = ½(e_x/m − r_x ∇m/m²),
+//   ∂t/∂r = −½(e_y/m − r_y ∇m/m²).
 //   Equal-area (Lambert azimuthal): |det J_tangent| = 1/16 per steradian ([P1a]); the anisotropy
-//   grows without bound towards the rim r̂ → −e_z. Inverse: (a, b) = (2s − 1, 2t − 1), k = a² + b²,
+//   grows without bound towards the rim r̂ → −e_z. Inverse: (a, b) = (2s − 1, 1 − 2t), k = a² + b²,
 //   n_z = √(1 − k), r = (2a n_z, 2b n_z, 1 − 2k); points with 1 < √k < 2 are folded back into the
 //   disk through the rim (√k → 2 − √k, azimuth + π, so a probe path crosses −Z continuously);
 //   √k ≥ 2 gives −e_z.
 //
 // ---- Dual paraboloid (§3.3, Heidrich–Seidel 1998): face 0 = front (r_z ≥ 0, δ = |r| + r_z),
-//   face 1 = back (r_z < 0, δ = |r| − r_z); (x, y) = (r_x, r_y)/δ, s = ½(x + 1), t = ½(y + 1).
+//   face 1 = back (r_z < 0, δ = |r| − r_z); (x, y) = (r_x, r_y)/δ, s = ½(x + 1), t = ½(1 − y)
+//   (+Y up in the image, as for the sphere map).
 //
 //        front (face 0)                 back (face 1)           each face a disk of radius ½:
 //   t=0  +---------------+         +---------------+            centre +Z (front), −Z (back);
-//        |    .-'−Y'-.   |         |    .-'−Y'-.   |            the rim circle = the equator
+//        |    .-'+Y'-.   |         |    .-'+Y'-.   |            the rim circle = the equator
 //        |  /         \  |         |  /         \  |            r_z = 0 (shared by both faces);
-//   t=½  | −X   +Z    +X |         | −X   −Z    +X |            ±X at s = ½ ± ½, ±Y at t = ½ ± ½
+//   t=½  | −X   +Z    +X |         | −X   −Z    +X |            ±X at s = ½ ± ½, ±Y at t = ½ ∓ ½
 //        |  \         /  |         |  \         /  |            on both faces (the back face is
-//        |    '-.+Y.-'   |         |    '-.+Y.-'   |            NOT mirrored in x).
+//        |    '-.−Y.-'   |         |    '-.−Y.-'   |            NOT mirrored in x).
 //   t=1  +---------------+         +---------------+
-//   ∂x/∂r = e_x/δ − r_x (r/|r| ± e_z)/δ², ∂y/∂r likewise (+ front, − back); ∂s = ½∂x, ∂t = ½∂y.
+//   ∂x/∂r = e_x/δ − r_x (r/|r| ± e_z)/δ², ∂y/∂r likewise (+ front, − back); ∂s = ½∂x, ∂t = −½∂y.
 //   Conformal (stereographic): J_t J_tᵀ = c² I, c = 1/(2(1 + |r̂_z|)) ([P2c]).
-//   Inverse r = (2x, 2y, ±(1 − x² − y²))/(1 + x² + y²) (+ front, − back); x² + y² > 1 continues
-//   into the other hemisphere (spec §3.3).
+//   Inverse r = (2x, 2y, ±(1 − x² − y²))/(1 + x² + y²) (+ front, − back), y = 1 − 2t; x² + y² > 1
+//   continues into the other hemisphere (spec §3.3).
 //
 // ---- Degenerate input. Nothing here returns NaN or ±Inf:
 //   * r = 0 or with a NaN component: the direction is taken as the fallback +e_z

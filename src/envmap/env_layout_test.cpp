@@ -538,8 +538,8 @@ TEST(EnvLayout, SphereLandmarksAndRim) {
     } marks[] = {{{0, 0, 1}, 0.5, 0.5},
                  {{1, 0, 0}, 0.5 + q, 0.5},
                  {{-1, 0, 0}, 0.5 - q, 0.5},
-                 {{0, 1, 0}, 0.5, 0.5 + q},
-                 {{0, -1, 0}, 0.5, 0.5 - q}};
+                 {{0, 1, 0}, 0.5, 0.5 - q},  // +Y up in the image (t = 0 the top row)
+                 {{0, -1, 0}, 0.5, 0.5 + q}};
     for (const auto& m : marks) {
         const Vec2d st = sphere_coords(3.0 * m.r);
         EXPECT_NEAR(st.x, m.s, 1e-15);
@@ -555,7 +555,7 @@ TEST(EnvLayout, SphereLandmarksAndRim) {
         const Vec3d r{std::sin(e) * std::cos(phi), std::sin(e) * std::sin(phi), -std::cos(e)};
         const Vec2d st = sphere_coords(r);
         EXPECT_NEAR(st.x, 0.5 + 0.5 * std::cos(phi), 1e-9);
-        EXPECT_NEAR(st.y, 0.5 + 0.5 * std::sin(phi), 1e-9);
+        EXPECT_NEAR(st.y, 0.5 - 0.5 * std::sin(phi), 1e-9);
         const Jacobian23d j = sphere_jacobian(r);
         EXPECT_TRUE(is_finite(j.ds) && is_finite(j.dt));
         EXPECT_GT(frob(j), 1e5);  // ∝ 1/m: large, finite
@@ -622,7 +622,7 @@ TEST(EnvLayout, ParaboloidFacesAgreeOnTheEquator) {
         EXPECT_NEAR(front.s, back.s, 1e-11);
         EXPECT_NEAR(front.t, back.t, 1e-11);
         EXPECT_NEAR(front.s, 0.5 + 0.5 * std::cos(phi), 1e-15);  // on the unit circle
-        EXPECT_NEAR(front.t, 0.5 + 0.5 * std::sin(phi), 1e-15);
+        EXPECT_NEAR(front.t, 0.5 - 0.5 * std::sin(phi), 1e-15);  // +Y up in the image
         EXPECT_LT(dir_err(paraboloid_direction(0, front.s, front.t),
                           paraboloid_direction(1, front.s, front.t)),
                   1e-15);
@@ -630,10 +630,10 @@ TEST(EnvLayout, ParaboloidFacesAgreeOnTheEquator) {
         // k = x² + y² > 1 is back (x, y)/k.
         const double x = 1.2 * std::cos(phi), y = 1.2 * std::sin(phi), k = 1.44;
         const EnvCoordsd other =
-            paraboloid_coords(paraboloid_direction(0, 0.5 * (x + 1), 0.5 * (y + 1)));
+            paraboloid_coords(paraboloid_direction(0, 0.5 * (x + 1), 0.5 * (1 - y)));
         EXPECT_EQ(other.face, 1);
         EXPECT_NEAR(other.s, 0.5 * (x / k + 1), 1e-14);
-        EXPECT_NEAR(other.t, 0.5 * (y / k + 1), 1e-14);
+        EXPECT_NEAR(other.t, 0.5 * (1 - y / k), 1e-14);
     }
 }
 
