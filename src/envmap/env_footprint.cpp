@@ -39,14 +39,20 @@ float largest_tangent_singular_value(Vec3 r, Vec3 a, Vec3 b) {
 // the footprint (to θ_fp, i.e. 2σ of the K/4 kernel) reaches a pole: there the linearisation in (s,
 // t) fails (the s-row grows as 1/ρ, and Rule B's probe budget would blur t by the anisotropy
 // instead), while the probe's bilinear taps continue over the pole.
-bool use_isotropic_footprint(EnvLayout layout, const Jacobian23& j, Vec3 map_direction,
-                             float theta_fp) {
-    if (layout != EnvLayout::latlong && layout != EnvLayout::sphere) return false;
-    if (dot(j.ds, j.ds) == 0 && dot(j.dt, j.dt) == 0) return true;
-    if (layout != EnvLayout::latlong) return false;
+// Returns θ_fp there, and a negative value elsewhere. θ_fp (`theta()`, singular values) is only
+// evaluated where it can matter: `spread_bound` ≥ θ_fp·|r| (a Frobenius norm of the spread), and a
+// footprint reaches the pole only if ρ < sin(θ_fp)·|r| ≤ spread_bound.
+template <class Theta>
+float isotropic_footprint_radius(EnvLayout layout, const Jacobian23& j, Vec3 map_direction,
+                                 float spread_bound, Theta&& theta) {
+    if (layout != EnvLayout::latlong && layout != EnvLayout::sphere) return -1;
+    if (dot(j.ds, j.ds) == 0 && dot(j.dt, j.dt) == 0) return theta();
+    if (layout != EnvLayout::latlong) return -1;
     const float rho = std::hypot(map_direction.x, map_direction.z);
+    if (!(rho < spread_bound)) return -1;
+    const float theta_fp = theta();
     const float reach = std::min(theta_fp, std::numbers::pi_v<float> / 2);
-    return rho < std::sin(reach) * norm(map_direction);
+    return rho < std::sin(reach) * norm(map_direction) ? theta_fp : -1;
 }
 
 void set_isotropic_pole_footprint(EnvFootprint& f, EnvLayout layout, Vec2 texel_scale,
@@ -77,18 +83,12 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, V
     const Jacobian23 j = env_jacobian(layout, f.map_direction);
     f.map_dr_dx = rotation * dr_dx;
     f.map_dr_dy = rotation * dr_dy;
-    // The pole test needs θ_fp only where the footprint could reach a pole: ρ < sin θ_fp·|r| needs
-    // ρ² < |∂r/∂x|² + |∂r/∂y|² (θ_fp|r| ≤ the Frobenius norm), and J = 0 (the exact pole) has ρ =
-    // 0.
-    const float rho2 =
-        f.map_direction.x * f.map_direction.x + f.map_direction.z * f.map_direction.z;
-    if ((layout == EnvLayout::latlong && rho2 < dot(dr_dx, dr_dx) + dot(dr_dy, dr_dy)) ||
-        (layout == EnvLayout::sphere && dot(j.ds, j.ds) == 0 && dot(j.dt, j.dt) == 0)) {
-        const float theta = largest_tangent_singular_value(r, dr_dx, dr_dy) / norm(r);
-        if (use_isotropic_footprint(layout, j, f.map_direction, theta)) {
-            set_isotropic_pole_footprint(f, layout, texel_scale, theta);
-            return f;
-        }
+    const float theta = isotropic_footprint_radius(
+        layout, j, f.map_direction, std::sqrt(dot(dr_dx, dr_dx) + dot(dr_dy, dr_dy)),
+        [&] { return largest_tangent_singular_value(r, dr_dx, dr_dy) / norm(r); });
+    if (theta >= 0) {
+        set_isotropic_pole_footprint(f, layout, texel_scale, theta);
+        return f;
     }
     const MapJacobian G{texel_scale, j, rotation};
     f.d_dx = G(dr_dx);
@@ -160,17 +160,19 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, const Ref
 
     const float kappa2 = options.kappa * options.kappa;
     f.matrix = f.curvature + kappa2 * f.roughness;  // eq. 13, K = D Dᵀ + κ² K3 (§2.6)
-    if (layout == EnvLayout::latlong || layout == EnvLayout::sphere) {
-        // §3.4: θ_fp from the spread of v_r per pixel, enlarged by κ·(angular roughness).
-        const float vr_len = norm(f.reflected);
-        const float theta =
-            (largest_tangent_singular_value(f.reflected, dvr_dx, dvr_dy) +
-             options.kappa * largest_tangent_singular_value(f.reflected, rough1, rough2)) /
-            vr_len;
-        if (use_isotropic_footprint(layout, j, f.map_direction, theta)) {
-            set_isotropic_pole_footprint(f, layout, texel_scale, theta);
-            return f;
-        }
+    // §3.4: θ_fp from the spread of v_r per pixel, enlarged by κ·(angular roughness).
+    const float theta = isotropic_footprint_radius(
+        layout, j, f.map_direction,
+        std::sqrt(dot(dvr_dx, dvr_dx) + dot(dvr_dy, dvr_dy)) +
+            std::fabs(options.kappa) * std::sqrt(dot(rough1, rough1) + dot(rough2, rough2)),
+        [&] {
+            return (largest_tangent_singular_value(f.reflected, dvr_dx, dvr_dy) +
+                    options.kappa * largest_tangent_singular_value(f.reflected, rough1, rough2)) /
+                   norm(f.reflected);
+        });
+    if (theta >= 0) {
+        set_isotropic_pole_footprint(f, layout, texel_scale, theta);
+        return f;
     }
     if (!is_finite(f.d_dx) || !is_finite(f.d_dy) || !f.matrix.is_finite()) {
         // §4: isotropic fallback from roughness only, T_p = max(1, κ·‖G A_n E‖·l1).
