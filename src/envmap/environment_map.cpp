@@ -169,6 +169,10 @@ Vec2 EnvironmentMap::texel_scale() const {
 Result<EnvironmentMap> EnvironmentMap::from_latlong(const Image& image,
                                                     const LatLongOptions& latlong_options) {
     if (Status s = check_image(image, "lat-long map"); !s) return s.error();
+    if (latlong_options.polar_caps &&
+        !(latlong_options.polar_cap_resolution > 0 && latlong_options.polar_cap_resolution <= 4))
+        return Error{"lat-long polar cap resolution " +
+                     std::to_string(latlong_options.polar_cap_resolution) + " is outside (0, 4]"};
     EnvironmentMap map;
     map.layout_ = EnvLayout::latlong;
     MipPyramidOptions options;
@@ -176,9 +180,6 @@ Result<EnvironmentMap> EnvironmentMap::from_latlong(const Image& image,
     options.wrap_t = WrapMode::clamp;   // the poles
     map.faces_.push_back(MipPyramid::build(image, options));
     if (!latlong_options.polar_caps) return map;
-    if (!(latlong_options.polar_cap_resolution > 0 && latlong_options.polar_cap_resolution <= 4))
-        return Error{"lat-long polar cap resolution " +
-                     std::to_string(latlong_options.polar_cap_resolution) + " is outside (0, 4]"};
     MipPyramidOptions cap_options;
     cap_options.wrap_s = cap_options.wrap_t = WrapMode::clamp;
     const int cap_size = polar_cap_size(image.height, latlong_options.polar_cap_resolution);
