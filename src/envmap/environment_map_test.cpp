@@ -273,6 +273,34 @@ TEST(EnvironmentMap, LatLongPolarCapsHoldTheMapAndJoinItSmoothly) {
     EXPECT_LT(worst_jump, 1.5e-3f);
 }
 
+TEST(EnvironmentMap, PolarCapsKeepTheRoughnessFallbackOfNonFiniteInput) {
+    // A non-finite ∂n/∂x near a pole leaves §4's isotropic fallback from the roughness alone, in
+    // lat-long texels and without direction differentials: the caps must not turn it into a point
+    // lookup, so the lookup equals that of the same map without caps.
+    const EnvironmentMap noise = test::env_noise_map(EnvLayout::latlong, 64, 25);
+    Image image(128, 64, 1);
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 128; ++x) image.at(x, y, 0) = noise.face(0).level(0).texel(x, y)[0];
+    LatLongOptions no_caps;
+    no_caps.polar_caps = false;
+    const EnvironmentMap with = std::move(EnvironmentMap::from_latlong(image).value());
+    const EnvironmentMap without = std::move(EnvironmentMap::from_latlong(image, no_caps).value());
+    ReflectionGeometry g;
+    g.v = {0, 1, 0.05f};
+    g.n = {0, 1, 0};
+    g.t1 = {1, 0, 0};
+    g.t2 = {0, 0, 1};
+    g.dn_dx = {INFINITY, 0, 0};
+    g.roughness = roughness_factor(Sym2{0.01f, 0, 0.01f});
+    const EnvFootprint f = compute_env_footprint(EnvLayout::latlong, with.texel_scale(), g);
+    ASSERT_TRUE(f.isotropic_fallback);
+    ASSERT_GT(f.matrix.trace(), 2.0f);  // more than one texel: not a point lookup
+    float a, b;
+    environment_lookup(with, f, LookupOptions{}, &a);
+    environment_lookup(without, f, LookupOptions{}, &b);
+    EXPECT_EQ(a, b);
+}
+
 TEST(EnvironmentMap, PolarCapsCanBeTurnedOff) {
     // Without caps a lookup at the pole is the spec's §3.4 isotropic probe on the lat-long map.
     Image image(64, 32, 1, 0.25f);

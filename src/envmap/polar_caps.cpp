@@ -83,7 +83,9 @@ bool polar_cap_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
     Sym2 k_cap =
         footprint_matrix(on_cap(footprint.map_dr_dx), on_cap(footprint.map_dr_dy)) +
         footprint_matrix(on_cap(footprint.map_roughness1), on_cap(footprint.map_roughness2));
-    if (!k_cap.is_finite()) return false;
+    // Non-finite input left no differentials (env_footprint.h) but a roughness-only fallback K:
+    // that K lives in lat-long texels, so the lat-long path filters it.
+    if (!k_cap.is_finite() || (k_cap.trace() == 0 && footprint.matrix.trace() > 0)) return false;
     const FootprintEllipse e = make_footprint_ellipse(k_cap);
     // Stay on the face: the probes and their kernels reach about 2λ1 from the centre.
     const float reach = (2 * e.major_radius + 1) / n;
