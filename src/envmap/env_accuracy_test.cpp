@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "envmap/env_reference.h"
+#include "envmap/env_test_maps.h"
 #include "envmap/environment_map.h"
 
 namespace footprint {
@@ -57,38 +58,34 @@ float environment(Vec3d r, int channel) {
         v += w.amplitude * std::sin(w.frequency * dot(w.k, d) + w.phase);
     return static_cast<float>(v);
 }
-std::vector<Image> sampled_faces(EnvLayout layout, int width, int height) {
-    std::vector<Image> faces(face_count(layout), Image(width, height, kChannels));
-    for (int f = 0; f < face_count(layout); ++f)
-        for (int y = 0; y < height; ++y)
-            for (int x = 0; x < width; ++x) {
-                const Vec3d d = env_direction(layout, f, (x + 0.5) / width, (y + 0.5) / height);
-                for (int c = 0; c < kChannels; ++c) faces[f].at(x, y, c) = environment(d, c);
-            }
-    return faces;
+// Texels = the environment at the direction of each texel centre, faces `size` texels high.
+std::vector<Image> sampled_faces(EnvLayout layout, int size) {
+    return test::env_images<double>(layout, size, kChannels, [](Vec3d d, float* out) {
+        for (int c = 0; c < kChannels; ++c) out[c] = environment(d, c);
+    });
 }
 
 const EnvironmentMap& cube_map() {
     static const EnvironmentMap map = [] {
-        const std::vector<Image> f = sampled_faces(EnvLayout::cube, 128, 128);
+        const std::vector<Image> f = sampled_faces(EnvLayout::cube, 128);
         return std::move(
             EnvironmentMap::from_cube_faces({f[0], f[1], f[2], f[3], f[4], f[5]}).value());
     }();
     return map;
 }
 const EnvironmentMap& latlong_map() {
-    static const EnvironmentMap map = std::move(
-        EnvironmentMap::from_latlong(sampled_faces(EnvLayout::latlong, 512, 256)[0]).value());
+    static const EnvironmentMap map =
+        std::move(EnvironmentMap::from_latlong(sampled_faces(EnvLayout::latlong, 256)[0]).value());
     return map;
 }
 const EnvironmentMap& sphere_map() {
-    static const EnvironmentMap map = std::move(
-        EnvironmentMap::from_sphere(sampled_faces(EnvLayout::sphere, 256, 256)[0]).value());
+    static const EnvironmentMap map =
+        std::move(EnvironmentMap::from_sphere(sampled_faces(EnvLayout::sphere, 256)[0]).value());
     return map;
 }
 const EnvironmentMap& paraboloid_map() {
     static const EnvironmentMap map = [] {
-        const std::vector<Image> f = sampled_faces(EnvLayout::paraboloid, 256, 256);
+        const std::vector<Image> f = sampled_faces(EnvLayout::paraboloid, 256);
         return std::move(EnvironmentMap::from_paraboloid(f[0], f[1]).value());
     }();
     return map;

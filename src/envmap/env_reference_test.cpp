@@ -1,4 +1,5 @@
 #include "envmap/env_reference.h"
+#include "envmap/env_test_maps.h"
 
 #include <gtest/gtest.h>
 
@@ -27,26 +28,20 @@ std::array<double, kChannels> analytic(Vec3d r) {
             0.5 + 0.5 * std::sin(20 * d.x + 3) * std::sin(17 * d.y)};
 }
 
-// Texels = f at the direction of each texel centre (env_direction), all faces of `layout`.
-std::vector<Image> sampled_faces(EnvLayout layout, int width, int height) {
-    std::vector<Image> faces(face_count(layout), Image(width, height, kChannels));
-    for (int f = 0; f < face_count(layout); ++f)
-        for (int y = 0; y < height; ++y)
-            for (int x = 0; x < width; ++x) {
-                const Vec3d d = env_direction(layout, f, (x + 0.5) / width, (y + 0.5) / height);
-                const auto v = analytic(d);
-                for (int c = 0; c < kChannels; ++c) faces[f].at(x, y, c) = static_cast<float>(v[c]);
-            }
-    return faces;
+// Texels = f at the direction of each texel centre (env_direction), faces `size` texels high.
+std::vector<Image> sampled_faces(EnvLayout layout, int size) {
+    return test::env_images<double>(layout, size, kChannels, [](Vec3d d, float* out) {
+        const auto v = analytic(d);
+        for (int c = 0; c < kChannels; ++c) out[c] = static_cast<float>(v[c]);
+    });
 }
 
 EnvironmentMap analytic_latlong(int width) {
     return std::move(
-        EnvironmentMap::from_latlong(sampled_faces(EnvLayout::latlong, width, width / 2)[0])
-            .value());
+        EnvironmentMap::from_latlong(sampled_faces(EnvLayout::latlong, width / 2)[0]).value());
 }
 EnvironmentMap analytic_cube(int size) {
-    const std::vector<Image> f = sampled_faces(EnvLayout::cube, size, size);
+    const std::vector<Image> f = sampled_faces(EnvLayout::cube, size);
     return std::move(EnvironmentMap::from_cube_faces({f[0], f[1], f[2], f[3], f[4], f[5]}).value());
 }
 

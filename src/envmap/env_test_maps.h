@@ -11,8 +11,9 @@
 namespace footprint::test {
 
 // The images of `layout` (cube: 6 faces; paraboloid: front, back; otherwise one) with `size` texels
-// per face side (lat-long: 2·size × size), texel (x, y) of face f = value(direction of its centre).
-template <class F>
+// per face side (lat-long: 2·size × size), texel (x, y) of face f = value(unit direction of its
+// centre, out), the direction computed in precision T (float, or double for reference tests).
+template <class T = float, class F>
 std::vector<Image> env_images(EnvLayout layout, int size, int channels, F&& value) {
     const int faces = face_count(layout);
     const int width = layout == EnvLayout::latlong ? 2 * size : size;
@@ -21,8 +22,8 @@ std::vector<Image> env_images(EnvLayout layout, int size, int channels, F&& valu
         Image image(width, size, channels);
         for (int y = 0; y < size; ++y)
             for (int x = 0; x < width; ++x) {
-                const Vec3 r = env_direction(layout, f, (x + 0.5f) / static_cast<float>(width),
-                                             (y + 0.5f) / static_cast<float>(size));
+                const Vec3T<T> r =
+                    env_direction(layout, f, (T(x) + T(0.5)) / T(width), (T(y) + T(0.5)) / T(size));
                 value(r / std::sqrt(dot(r, r)), image.at(x, y));
             }
         images.push_back(std::move(image));
