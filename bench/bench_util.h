@@ -103,6 +103,16 @@ struct PeerCase {
     }
 };
 
+// The terminal table of a peer benchmark's cases (the filter column `filter_width` wide).
+inline void print_peer_cases(const std::vector<PeerCase>& cases, int filter_width) {
+    std::printf("%-*s %-9s %7s %12s %12s %8s %11s %11s\n", filter_width, "filter", "regime",
+                "threads", "ours Ml/s", "OIIO Ml/s", "ratio", "ours RMSE", "OIIO RMSE");
+    for (const PeerCase& c : cases)
+        std::printf("%-*s %-9s %7d %12.3f %12.3f %8.2f %11.5f %11.5f\n", filter_width,
+                    c.filter.c_str(), c.regime.c_str(), c.threads, c.ours_rate / 1e6,
+                    c.oiio_rate / 1e6, c.ours_rate / c.oiio_rate, c.ours_rmse, c.oiio_rmse);
+}
+
 // Writes JSON to a temporary file beside `path` and renames it into place (never a partial file).
 inline void write_json(const std::string& path, const nlohmann::json& j) {
     const std::filesystem::path target(path);

@@ -390,12 +390,7 @@ int run_env_bench(const EnvBenchOptions& opt) {
             "OpenImageIO direction R = (-x, y, -z): point-lookup RMSE %.2g vs ours (unmapped R: "
             "%.2g)\n",
             convention.mapped_rmse, convention.unmapped_rmse);
-    std::printf("%-11s %-9s %7s %12s %12s %8s %11s %11s\n", "filter", "regime", "threads",
-                "ours Ml/s", "OIIO Ml/s", "ratio", "ours RMSE", "OIIO RMSE");
-    for (const Case& c : cases)
-        std::printf("%-11s %-9s %7d %12.3f %12.3f %8.2f %11.5f %11.5f\n", c.filter.c_str(),
-                    c.regime.c_str(), c.threads, c.ours_rate / 1e6, c.oiio_rate / 1e6,
-                    c.ours_rate / c.oiio_rate, c.ours_rmse, c.oiio_rmse);
+    print_peer_cases(cases, 11);
 
     // The targets: ≥ 5× OpenImageIO's single-thread rate in every regime; in pole_band an RMSE of
     // at most ¼ of OpenImageIO's.

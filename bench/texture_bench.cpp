@@ -171,12 +171,7 @@ int run_texture_bench(const TextureBenchOptions& opt) {
 
     std::printf("texture %d² float RGB; pyramid build %.3f s; RMSE on %zu lookups per regime\n",
                 opt.texture_size, build_seconds, opt.error_subset);
-    std::printf("%-10s %-9s %7s %12s %12s %8s %11s %11s\n", "filter", "regime", "threads",
-                "ours Ml/s", "OIIO Ml/s", "ratio", "ours RMSE", "OIIO RMSE");
-    for (const Case& c : cases)
-        std::printf("%-10s %-9s %7d %12.3f %12.3f %8.2f %11.5f %11.5f\n", c.filter.c_str(),
-                    c.regime.c_str(), c.threads, c.ours_rate / 1e6, c.oiio_rate / 1e6,
-                    c.ours_rate / c.oiio_rate, c.ours_rmse, c.oiio_rmse);
+    print_peer_cases(cases, 10);
 
     if (!opt.json_path.empty()) {
         nlohmann::json j;
