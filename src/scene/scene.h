@@ -1,0 +1,153 @@
+// scene/scene.h — what a scene is: camera, environment, lights and objects with materials.
+//
+// Plain data, in world units, y up by convention (nothing depends on it). A scene comes from a
+// JSON file (scene/scene_file.h, the keys are the same as the field names below) or is built in
+// code (the built-in demos). Images a scene refers to are either files (resolved against the
+// scene file's folder by the parser, loaded by the renderer) or images already in memory (demos
+// generate theirs): ImageSource holds one or the other.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "envmap/env_layout.h"
+#include "image/image.h"
+#include "math/vec.h"
+#include "math/vec3.h"
+
+namespace footprint {
+
+// An image given by file or in memory. `file` is absolute or relative to the working directory
+// once a scene is parsed. `name` labels an in-memory image in messages.
+struct ImageSource {
+    std::filesystem::path file;
+    std::shared_ptr<const Image> image;
+    std::string name;
+
+    bool empty() const { return file.empty() && !image; }
+    std::string label() const { return image ? name : file.string(); }
+};
+
+struct CameraDesc {
+    Vec3d position{0, 1, 5};
+    Vec3d look_at{0, 0, 0};
+    Vec3d up{0, 1, 0};
+    double fov_y_deg = 40;  // vertical field of view, (0, 180)
+};
+
+struct EnvironmentDesc {
+    // 1 file (lat-long, sphere, cube cross/strip), 2 (paraboloid front, back) or 6 (cube faces
+    // +X −X +Y −Y +Z −Z); in-memory images likewise (`images`, one per face).
+    std::vector<ImageSource> images;
+    EnvLayout layout = EnvLayout::latlong;
+    Vec3d rotation_deg{0, 0,
+                       0};  // world → map: rotation_xyz_degrees (math/mat3.h), x then y then z
+    float intensity = 1;    // multiplies every texel (linear)
+};
+
+enum class LightType { directional, point };
+
+struct LightDesc {
+    LightType type = LightType::directional;
+    Vec3d direction{0, -1, 0};  // directional: the direction the light travels (towards the scene)
+    Vec3d position{0, 5, 0};    // point
+    Vec3 color{1, 1, 1};        // linear RGB; irradiance (directional) or intensity (point, /d²)
+};
+
+enum class BumpFrame {
+    natural,         // spec §6.1: n' = n + f_u s_u + f_v s_v (height derivatives per parameter)
+    normalized,      // the natural frame's directions, normalised: T = (ŝ_u, ŝ_v)
+    main_direction,  // spec §6.2: orthonormal (e1, e2) from `main_direction` m
+};
+
+struct BumpDesc {
+    enum class Source { none, height_map, normal_map };
+    Source source = Source::none;
+    ImageSource map;     // a height map (channel 0) or a tangent-space normal map (OpenGL)
+    float strength = 1;  // height scale (height map: world height per map unit) or slope factor
+    BumpFrame frame = BumpFrame::main_direction;
+    // m for frame = main_direction (world space); zero: the surface's own ∂p/∂v at each point
+    Vec3d main_direction{0, 0, 0};
+};
+
+struct MaterialDesc {
+    Vec3 base_color{0.8f, 0.8f, 0.8f};  // linear RGB; multiplied by base_color_map where given
+    ImageSource base_color_map;         // sRGB-decoded on load (colour)
+    float diffuse = 1;                  // Lambert weight
+    float specular = 0;                 // Blinn-Phong weight
+    float shininess = 50;               // Blinn-Phong exponent m
+    float mirror = 0;                   // environment reflection weight (× Fresnel)
+    float fresnel_f0 = 1;               // Schlick's F0; 1 = a perfect mirror
+    BumpDesc bump;
+    float micro_roughness = 0;  // slope standard deviation below the bump map's resolution
+};
+
+struct PlaneShape {
+    Vec3d center{0, 0, 0};
+    Vec3d normal{0, 1, 0};
+    Vec2d size{1, 1};  // extent along the plane's u and v axes (ignored if infinite)
+    bool infinite = false;
+    double uv_scale = 1;  // texture repeats per world unit
+};
+
+struct SphereShape {
+    Vec3d center{0, 0, 0};
+    double radius = 1;
+};
+
+struct CylinderShape {      // open tube, no caps
+    Vec3d center{0, 0, 0};  // centre of the axis segment
+    Vec3d axis{0, 1, 0};
+    double radius = 1;
+    double height = 2;
+};
+
+struct ParaboloidShape {  // a parabolic mirror: reflects rays from its focus parallel to its axis
+    Vec3d focus{0, 0, 0};
+    Vec3d axis{0, 0, 1};  // direction the mirror opens towards (from the vertex through the focus)
+    double focal_length = 1;
+    double radius = 1;  // aperture radius, measured perpendicular to the axis
+};
+
+struct TorusShape {
+    Vec3d center{0, 0, 0};
+    Vec3d axis{0, 1, 0};
+    double major_radius = 1;
+    double minor_radius = 0.25;
+};
+
+struct MeshTransform {
+    Vec3d translate{0, 0, 0};
+    Vec3d rotate_deg{0, 0, 0};  // x then y then z, as rotation_xyz_degrees
+    Vec3d scale{1, 1, 1};
+};
+
+struct MeshShape {
+    std::filesystem::path file;  // .obj, .gltf, .glb
+    MeshTransform transform;
+};
+
+using ShapeDesc =
+    std::variant<PlaneShape, SphereShape, CylinderShape, ParaboloidShape, TorusShape, MeshShape>;
+
+struct ObjectDesc {
+    std::string name;  // for messages ("objects[2]" if unnamed)
+    ShapeDesc shape;
+    MaterialDesc material;
+};
+
+struct SceneDesc {
+    int width = 640, height = 360;
+    CameraDesc camera;
+    std::optional<EnvironmentDesc> environment;  // none: black background, no reflections
+    Vec3 background{0, 0, 0};  // seen where rays escape and there is no environment
+    std::vector<LightDesc> lights;
+    std::vector<ObjectDesc> objects;
+    std::filesystem::path source;  // the scene file (empty for built-in scenes)
+};
+
+}  // namespace footprint

@@ -1,0 +1,701 @@
+#include "scene/scene_file.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cfloat>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace footprint {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+using Keys = std::vector<std::string_view>;
+
+// Thrown inside the parser, turned into an Error by parse_scene (never escapes this file).
+struct Failure {
+    std::string message;
+};
+// A key given twice in one object (thrown by KeyTracker while nlohmann parses).
+struct DuplicateKey {
+    std::string path;
+};
+
+std::string quoted(const std::string& s) {
+    return "'" + s + "'";
+}
+
+std::string member(const std::string& path, std::string_view key) {
+    return path.empty() ? std::string(key) : path + "." + std::string(key);
+}
+std::string element(const std::string& path, std::size_t i) {
+    return path + "[" + std::to_string(i) + "]";
+}
+
+std::string format_number(double v) {
+    std::ostringstream out;
+    out.precision(10);
+    out << v;
+    return out.str();
+}
+
+// "a string", "an array of 2 elements", … for "expected X, got <this>".
+std::string describe(const json& j) {
+    switch (j.type()) {
+        case json::value_t::null:
+            return "null";
+        case json::value_t::object:
+            return "an object";
+        case json::value_t::array:
+            return "an array of " + std::to_string(j.size()) +
+                   (j.size() == 1 ? " element" : " elements");
+        case json::value_t::string:
+            return "a string";
+        case json::value_t::boolean:
+            return "a boolean";
+        case json::value_t::number_integer:
+        case json::value_t::number_unsigned:
+        case json::value_t::number_float:
+            return "a number";
+        default:
+            return std::string("a ") + j.type_name();
+    }
+}
+
+std::string join_names(Keys names, const char* last_separator) {
+    std::string out;
+    std::size_t i = 0;
+    for (std::string_view name : names) {
+        if (i > 0) out += (i + 1 == names.size()) ? last_separator : ", ";
+        out += name;
+        ++i;
+    }
+    return out;
+}
+
+// Optimal string alignment distance (Levenshtein with adjacent transpositions).
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+    const std::size_t n = a.size(), m = b.size();
+    std::vector<std::size_t> d((n + 1) * (m + 1));
+    auto at = [m, &d](std::size_t i, std::size_t j) -> std::size_t& { return d[i * (m + 1) + j]; };
+    for (std::size_t i = 0; i <= n; ++i) at(i, 0) = i;
+    for (std::size_t j = 0; j <= m; ++j) at(0, j) = j;
+    for (std::size_t i = 1; i <= n; ++i) {
+        for (std::size_t j = 1; j <= m; ++j) {
+            const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
+            at(i, j) = std::min({at(i - 1, j) + 1, at(i, j - 1) + 1, at(i - 1, j - 1) + cost});
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+                at(i, j) = std::min(at(i, j), at(i - 2, j - 2) + 1);
+        }
+    }
+    return at(n, m);
+}
+
+// " (did you mean 'x'?)" for the closest candidate within a third of the word's length (at least
+// 1, at most 3 edits) or one that starts with the word or the word with it ("rotation" →
+// "rotation_deg", "cubemap" → "cube"), otherwise " (expected one of: a, b, c)".
+std::string suggest(std::string_view word, Keys candidates) {
+    std::string_view best;
+    std::size_t best_distance = std::numeric_limits<std::size_t>::max();
+    const std::size_t limit = std::clamp<std::size_t>(word.size() / 3, 1, 3);
+    for (std::string_view c : candidates) {
+        std::size_t dist = edit_distance(word, c);
+        const bool prefix =
+            std::min(word.size(), c.size()) >= 3 && (c.starts_with(word) || word.starts_with(c));
+        if (prefix) dist = std::min(dist, limit);
+        if (dist < best_distance) best = c, best_distance = dist;
+    }
+    if (best_distance <= limit) return " (did you mean " + quoted(std::string(best)) + "?)";
+    return " (expected one of: " + join_names(candidates, ", ") + ")";
+}
+
+bool contains(Keys keys, std::string_view key) {
+    return std::find(keys.begin(), keys.end(), key) != keys.end();
+}
+
+std::string lowercase(std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+// The key path of the value being parsed, tracked through nlohmann's parser callback: rejects
+// duplicate keys (nlohmann would silently keep the last) and names the key of a number that
+// overflows.
+class KeyTracker {
+  public:
+    // Always true (nothing is filtered out); throws DuplicateKey on a duplicate key.
+    bool event(json::parse_event_t event, const json& parsed) {
+        switch (event) {
+            case json::parse_event_t::object_start:
+                frames_.push_back({false, 0, {}, {}});
+                break;
+            case json::parse_event_t::array_start:
+                frames_.push_back({true, 0, {}, {}});
+                break;
+            case json::parse_event_t::key: {
+                Frame& top = frames_.back();
+                top.key = parsed.get<std::string>();
+                if (!top.keys.insert(top.key).second) throw DuplicateKey{path()};
+                break;
+            }
+            case json::parse_event_t::object_end:
+            case json::parse_event_t::array_end:
+                frames_.pop_back();
+                element_done();
+                break;
+            case json::parse_event_t::value:
+                element_done();
+                break;
+        }
+        return true;
+    }
+    // The path of the value being read ("" at the top level).
+    std::string path() const {
+        std::string out;
+        for (const Frame& f : frames_) out = f.array ? element(out, f.index) : member(out, f.key);
+        return out;
+    }
+
+  private:
+    struct Frame {
+        bool array;
+        std::size_t index;
+        std::string key;
+        std::set<std::string> keys;
+    };
+    void element_done() {
+        if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+    }
+    std::vector<Frame> frames_;
+};
+
+// "line L, column C" of the 0-based byte offset `pos` (clamped to the text).
+std::string line_column(std::string_view text, std::size_t pos) {
+    pos = std::min(pos, text.size());
+    const std::size_t line = 1 + static_cast<std::size_t>(std::count(
+                                     text.begin(), text.begin() + static_cast<long>(pos), '\n'));
+    const std::size_t newline = pos == 0 ? std::string_view::npos : text.rfind('\n', pos - 1);
+    const std::size_t column = newline == std::string_view::npos ? pos + 1 : pos - newline;
+    return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+// nlohmann's message without its "[json.exception.…] parse error at line L, column C: " prefix.
+std::string parse_error_reason(const std::string& what) {
+    std::size_t start = what.find("] ");
+    start = start == std::string::npos ? 0 : start + 2;
+    const std::size_t column = what.find("column", start);
+    if (column != std::string::npos) {
+        const std::size_t colon = what.find(": ", column);
+        if (colon != std::string::npos) return what.substr(colon + 2);
+    }
+    return what.substr(start);
+}
+
+class SceneParser {
+  public:
+    SceneParser(const fs::path& file, const SceneParseOptions& options)
+        : file_(file), base_dir_(file.parent_path()), options_(options) {}
+
+    SceneDesc parse(const json& root) {
+        if (!root.is_object())
+            fail("", "expected a JSON object at the top level, got " + describe(root));
+        check_keys(root, "", {"image", "camera", "environment", "background", "lights", "objects"});
+        SceneDesc scene;
+        scene.source = file_;
+        if (const json* image = find(root, "image")) parse_image(*image, "image", scene);
+        parse_camera(require(root, "", "camera"), "camera", scene.camera);
+        if (const json* env = find(root, "environment"))
+            scene.environment = parse_environment(*env, "environment");
+        if (const json* background = find(root, "background"))
+            scene.background = color(*background, "background");
+        if (const json* lights = find(root, "lights")) {
+            expect_array(*lights, "lights");
+            for (std::size_t i = 0; i < lights->size(); ++i)
+                scene.lights.push_back(parse_light((*lights)[i], element("lights", i)));
+        }
+        const json& objects = require(root, "", "objects");
+        expect_array(objects, "objects");
+        for (std::size_t i = 0; i < objects.size(); ++i)
+            scene.objects.push_back(parse_object(objects[i], element("objects", i)));
+        return scene;
+    }
+
+  private:
+    [[noreturn]] void fail(const std::string& path, const std::string& what) const {
+        throw Failure{file_.string() + ": " + (path.empty() ? "" : path + ": ") + what};
+    }
+
+    // ---- Structure.
+
+    static const json* find(const json& object, std::string_view key) {
+        const auto it = object.find(std::string(key));
+        return it == object.end() ? nullptr : &*it;
+    }
+    const json& require(const json& object, const std::string& path, std::string_view key) const {
+        const json* value = find(object, key);
+        if (!value) fail(member(path, key), "required key is missing");
+        return *value;
+    }
+    void expect_object(const json& j, const std::string& path) const {
+        if (!j.is_object()) fail(path, "expected an object, got " + describe(j));
+    }
+    void expect_array(const json& j, const std::string& path) const {
+        if (!j.is_array()) fail(path, "expected an array, got " + describe(j));
+    }
+    // `j` must be an object whose keys are all in `keys`.
+    void check_keys(const json& j, const std::string& path, Keys keys) const {
+        expect_object(j, path);
+        for (const auto& item : j.items())
+            if (!contains(keys, item.key()))
+                fail(member(path, item.key()), "unknown key" + suggest(item.key(), keys));
+    }
+
+    // ---- Values.
+
+    std::string string(const json& j, const std::string& path) const {
+        if (!j.is_string()) fail(path, "expected a string, got " + describe(j));
+        return j.get<std::string>();
+    }
+    double number(const json& j, const std::string& path) const {
+        if (!j.is_number()) fail(path, "expected a number, got " + describe(j));
+        const double v = j.get<double>();
+        if (!std::isfinite(v)) fail(path, "must be finite");
+        return v;
+    }
+    double positive(const json& j, const std::string& path) const {
+        const double v = number(j, path);
+        if (!(v > 0)) fail(path, "must be > 0, got " + format_number(v));
+        return v;
+    }
+    static float narrow(double v) { return static_cast<float>(v); }
+    // A float field: finite in float too.
+    float single(const json& j, const std::string& path) const {
+        const double v = number(j, path);
+        if (std::abs(v) > FLT_MAX) fail(path, "is too large (" + format_number(v) + ")");
+        return narrow(v);
+    }
+    float non_negative(const json& j, const std::string& path) const {
+        const float v = single(j, path);
+        if (!(v >= 0)) fail(path, "must be >= 0, got " + format_number(v));
+        return v;
+    }
+    int integer(const json& j, const std::string& path, int lo, int hi) const {
+        const double v = number(j, path);
+        if (v != std::floor(v)) fail(path, "expected an integer, got " + format_number(v));
+        if (v < lo || v > hi)
+            fail(path, "must be in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " +
+                           format_number(v));
+        return static_cast<int>(v);
+    }
+    Vec3d vec3(const json& j, const std::string& path) const {
+        if (!j.is_array() || j.size() != 3)
+            fail(path, "expected an array of 3 numbers, got " + describe(j));
+        return {number(j[0], element(path, 0)), number(j[1], element(path, 1)),
+                number(j[2], element(path, 2))};
+    }
+    Vec3d nonzero_vec3(const json& j, const std::string& path) const {
+        const Vec3d v = vec3(j, path);
+        if (v.x == 0 && v.y == 0 && v.z == 0) fail(path, "must be nonzero");
+        return v;
+    }
+    Vec3 color(const json& j, const std::string& path) const {
+        if (!j.is_array() || j.size() != 3)
+            fail(path, "expected an array of 3 numbers [r, g, b], got " + describe(j));
+        return {non_negative(j[0], element(path, 0)), non_negative(j[1], element(path, 1)),
+                non_negative(j[2], element(path, 2))};
+    }
+    // A file name, resolved against the scene file's folder, checked for existence.
+    fs::path file(const json& j, const std::string& path) const {
+        const std::string name = string(j, path);
+        if (name.empty()) fail(path, "expected a file name, got an empty string");
+        const fs::path given(name);
+        const fs::path resolved =
+            (given.is_absolute() ? given : base_dir_ / given).lexically_normal();
+        if (options_.check_files) {
+            std::error_code error;
+            const fs::file_status status = fs::status(resolved, error);
+            fs::path absolute = fs::absolute(resolved, error);
+            if (error) absolute = resolved;
+            const std::string where = " (resolved to " + quoted(absolute.string()) + ")";
+            if (!fs::exists(status)) fail(path, "file " + quoted(name) + " not found" + where);
+            if (fs::is_directory(status))
+                fail(path, "file " + quoted(name) + " is a directory" + where);
+        }
+        return resolved;
+    }
+    ImageSource image_file(const json& j, const std::string& path) const {
+        ImageSource source;
+        source.file = file(j, path);
+        return source;
+    }
+
+    // ---- Sections.
+
+    void parse_image(const json& j, const std::string& path, SceneDesc& scene) const {
+        check_keys(j, path, {"width", "height"});
+        if (const json* w = find(j, "width"))
+            scene.width = integer(*w, member(path, "width"), 1, 16384);
+        if (const json* h = find(j, "height"))
+            scene.height = integer(*h, member(path, "height"), 1, 16384);
+    }
+
+    void parse_camera(const json& j, const std::string& path, CameraDesc& camera) const {
+        check_keys(j, path, {"position", "look_at", "up", "fov_y_deg"});
+        if (const json* v = find(j, "position"))
+            camera.position = vec3(*v, member(path, "position"));
+        if (const json* v = find(j, "look_at")) camera.look_at = vec3(*v, member(path, "look_at"));
+        if (const json* v = find(j, "up")) camera.up = nonzero_vec3(*v, member(path, "up"));
+        if (const json* v = find(j, "fov_y_deg")) {
+            camera.fov_y_deg = number(*v, member(path, "fov_y_deg"));
+            if (!(camera.fov_y_deg > 0 && camera.fov_y_deg < 180))
+                fail(member(path, "fov_y_deg"),
+                     "must be in (0, 180) degrees, got " + format_number(camera.fov_y_deg));
+        }
+        const Vec3d& p = camera.position;
+        const Vec3d& a = camera.look_at;
+        if (p.x == a.x && p.y == a.y && p.z == a.z)
+            fail(member(path, "look_at"), "equals camera.position (no view direction)");
+        Vec3d view = normalize(a * 0.5 - p * 0.5);  // halved: no overflow
+        if (view.x == 0 && view.y == 0 && view.z == 0) view = normalize(a - p);
+        if (length(cross(normalize(camera.up), view)) < 1e-6)
+            fail(member(path, "up"), "is parallel to the view direction (look_at - position)");
+    }
+
+    EnvironmentDesc parse_environment(const json& j, const std::string& path) const {
+        check_keys(j, path, {"file", "layout", "rotation_deg", "intensity"});
+        EnvironmentDesc env;
+        const std::string file_path = member(path, "file");
+        const json& files = require(j, path, "file");
+        if (files.is_string()) {
+            env.images.push_back(image_file(files, file_path));
+        } else if (files.is_array() && (files.size() == 2 || files.size() == 6)) {
+            for (std::size_t i = 0; i < files.size(); ++i)
+                env.images.push_back(image_file(files[i], element(file_path, i)));
+        } else {
+            fail(file_path,
+                 "expected a file name or an array of 2 (paraboloid front, back) or 6 (cube faces "
+                 "+X -X +Y -Y +Z -Z) file names, got " +
+                     describe(files));
+        }
+        const std::size_t n = env.images.size();
+        env.layout = n == 1 ? EnvLayout::latlong : n == 2 ? EnvLayout::paraboloid : EnvLayout::cube;
+        if (const json* layout = find(j, "layout")) {
+            const std::string layout_path = member(path, "layout");
+            const std::string name = string(*layout, layout_path);
+            const std::optional<EnvLayout> parsed = parse_env_layout(name);
+            if (!parsed)
+                fail(layout_path, "unknown layout " + quoted(name) +
+                                      suggest(name, {"latlong", "cube", "sphere", "paraboloid"}));
+            const bool fits = n == 1   ? true
+                              : n == 2 ? *parsed == EnvLayout::paraboloid
+                                       : *parsed == EnvLayout::cube;
+            if (!fits)
+                fail(layout_path, quoted(name) + " does not take " + std::to_string(n) +
+                                      " files (2: paraboloid, 6: cube)");
+            env.layout = *parsed;
+        }
+        if (const json* v = find(j, "rotation_deg"))
+            env.rotation_deg = vec3(*v, member(path, "rotation_deg"));
+        if (const json* v = find(j, "intensity"))
+            env.intensity = non_negative(*v, member(path, "intensity"));
+        return env;
+    }
+
+    LightDesc parse_light(const json& j, const std::string& path) const {
+        expect_object(j, path);
+        LightDesc light;
+        if (const json* type = find(j, "type")) {
+            const std::string name = string(*type, member(path, "type"));
+            if (name == "directional") {
+                light.type = LightType::directional;
+            } else if (name == "point") {
+                light.type = LightType::point;
+            } else {
+                fail(member(path, "type"), "unknown light type " + quoted(name) +
+                                               suggest(name, {"directional", "point"}));
+            }
+        }
+        const bool directional = light.type == LightType::directional;
+        for (const auto& item : j.items()) {
+            const std::string& key = item.key();
+            if (key == (directional ? "position" : "direction"))
+                fail(member(path, key), std::string("not a key of a ") +
+                                            (directional ? "directional" : "point") +
+                                            " light (it takes: type, " +
+                                            (directional ? "direction" : "position") + ", color)");
+        }
+        check_keys(j, path, {"type", "direction", "position", "color"});
+        if (const json* v = find(j, "direction"))
+            light.direction = nonzero_vec3(*v, member(path, "direction"));
+        if (const json* v = find(j, "position"))
+            light.position = vec3(*v, member(path, "position"));
+        if (const json* v = find(j, "color")) light.color = color(*v, member(path, "color"));
+        return light;
+    }
+
+    ObjectDesc parse_object(const json& j, const std::string& path) const {
+        expect_object(j, path);
+        ObjectDesc object;
+        if (const json* name = find(j, "name")) object.name = string(*name, member(path, "name"));
+        const std::string shape_path = member(path, "shape");
+        const std::string shape = string(require(j, path, "shape"), shape_path);
+        static const Keys shapes = {"plane", "sphere", "cylinder", "paraboloid", "torus", "mesh"};
+        if (!contains(shapes, shape))
+            fail(shape_path, "unknown shape " + quoted(shape) + suggest(shape, shapes));
+        check_object_keys(j, path, shape);
+        if (const json* material = find(j, "material"))
+            object.material = parse_material(*material, member(path, "material"));
+
+        auto get = [&](std::string_view key) { return find(j, key); };
+        auto at = [&](std::string_view key) { return member(path, key); };
+        if (shape == "plane") {
+            PlaneShape s;
+            if (const json* v = get("center")) s.center = vec3(*v, at("center"));
+            if (const json* v = get("normal")) s.normal = nonzero_vec3(*v, at("normal"));
+            if (const json* v = get("size")) {
+                if (v->is_string() && v->get<std::string>() == "infinite") {
+                    s.infinite = true;
+                } else if (v->is_array() && v->size() == 2) {
+                    s.size = {positive((*v)[0], element(at("size"), 0)),
+                              positive((*v)[1], element(at("size"), 1))};
+                } else {
+                    fail(at("size"),
+                         "expected [width, height] or \"infinite\", got " +
+                             (v->is_string() ? quoted(v->get<std::string>()) : describe(*v)));
+                }
+            }
+            if (const json* v = get("uv_scale")) s.uv_scale = positive(*v, at("uv_scale"));
+            object.shape = s;
+        } else if (shape == "sphere") {
+            SphereShape s;
+            if (const json* v = get("center")) s.center = vec3(*v, at("center"));
+            if (const json* v = get("radius")) s.radius = positive(*v, at("radius"));
+            object.shape = s;
+        } else if (shape == "cylinder") {
+            CylinderShape s;
+            if (const json* v = get("center")) s.center = vec3(*v, at("center"));
+            if (const json* v = get("axis")) s.axis = nonzero_vec3(*v, at("axis"));
+            if (const json* v = get("radius")) s.radius = positive(*v, at("radius"));
+            if (const json* v = get("height")) s.height = positive(*v, at("height"));
+            object.shape = s;
+        } else if (shape == "paraboloid") {
+            ParaboloidShape s;
+            if (const json* v = get("focus")) s.focus = vec3(*v, at("focus"));
+            if (const json* v = get("axis")) s.axis = nonzero_vec3(*v, at("axis"));
+            if (const json* v = get("focal_length"))
+                s.focal_length = positive(*v, at("focal_length"));
+            if (const json* v = get("radius")) s.radius = positive(*v, at("radius"));
+            object.shape = s;
+        } else if (shape == "torus") {
+            TorusShape s;
+            if (const json* v = get("center")) s.center = vec3(*v, at("center"));
+            if (const json* v = get("axis")) s.axis = nonzero_vec3(*v, at("axis"));
+            if (const json* v = get("major_radius"))
+                s.major_radius = positive(*v, at("major_radius"));
+            if (const json* v = get("minor_radius"))
+                s.minor_radius = positive(*v, at("minor_radius"));
+            if (!(s.minor_radius < s.major_radius))
+                fail(at("minor_radius"), "must be less than major_radius (" +
+                                             format_number(s.minor_radius) +
+                                             " >= " + format_number(s.major_radius) + ")");
+            object.shape = s;
+        } else {  // mesh
+            MeshShape s;
+            const std::string file_path = at("file");
+            const json& file_value = require(j, path, "file");
+            const std::string name = string(file_value, file_path);
+            const std::string extension = lowercase(fs::path(name).extension().string());
+            if (extension != ".obj" && extension != ".gltf" && extension != ".glb")
+                fail(file_path, "unsupported mesh format " +
+                                    quoted(extension.empty() ? name : extension) +
+                                    " (expected .obj, .gltf or .glb)");
+            s.file = file(file_value, file_path);
+            if (const json* v = get("transform"))
+                s.transform = parse_transform(*v, at("transform"));
+            object.shape = s;
+        }
+        return object;
+    }
+
+    // The object's keys: name, shape, material and those of its shape.
+    void check_object_keys(const json& j, const std::string& path, const std::string& shape) const {
+        struct ShapeKeys {
+            std::string_view shape;
+            Keys keys;
+        };
+        static const ShapeKeys table[] = {
+            {"plane", {"name", "shape", "material", "center", "normal", "size", "uv_scale"}},
+            {"sphere", {"name", "shape", "material", "center", "radius"}},
+            {"cylinder", {"name", "shape", "material", "center", "axis", "radius", "height"}},
+            {"paraboloid",
+             {"name", "shape", "material", "focus", "axis", "focal_length", "radius"}},
+            {"torus",
+             {"name", "shape", "material", "center", "axis", "major_radius", "minor_radius"}},
+            {"mesh", {"name", "shape", "material", "file", "transform"}},
+        };
+        const ShapeKeys* own = nullptr;
+        for (const ShapeKeys& entry : table)
+            if (entry.shape == shape) own = &entry;
+        for (const auto& item : j.items()) {
+            const std::string& key = item.key();
+            if (contains(own->keys, key)) continue;
+            for (const ShapeKeys& other : table)
+                if (contains(other.keys, key))
+                    fail(member(path, key), "not a key of shape " + quoted(shape) +
+                                                " (it takes: " + join_names(own->keys, ", ") + ")");
+            fail(member(path, key), "unknown key" + suggest(key, own->keys));
+        }
+    }
+
+    MeshTransform parse_transform(const json& j, const std::string& path) const {
+        check_keys(j, path, {"translate", "rotate_deg", "scale"});
+        MeshTransform t;
+        if (const json* v = find(j, "translate")) t.translate = vec3(*v, member(path, "translate"));
+        if (const json* v = find(j, "rotate_deg"))
+            t.rotate_deg = vec3(*v, member(path, "rotate_deg"));
+        if (const json* v = find(j, "scale")) {
+            const std::string scale_path = member(path, "scale");
+            if (v->is_number()) {
+                const double s = number(*v, scale_path);
+                if (s == 0) fail(scale_path, "must be nonzero");
+                t.scale = {s, s, s};
+            } else if (v->is_array() && v->size() == 3) {
+                t.scale = vec3(*v, scale_path);
+                for (std::size_t i = 0; i < 3; ++i)
+                    if ((*v)[i].get<double>() == 0) fail(element(scale_path, i), "must be nonzero");
+            } else {
+                fail(scale_path, "expected a number or an array of 3 numbers, got " + describe(*v));
+            }
+        }
+        return t;
+    }
+
+    MaterialDesc parse_material(const json& j, const std::string& path) const {
+        check_keys(j, path,
+                   {"base_color", "diffuse", "specular", "shininess", "mirror", "fresnel_f0",
+                    "bump", "micro_roughness"});
+        MaterialDesc m;
+        auto at = [&](std::string_view key) { return member(path, key); };
+        if (const json* v = find(j, "base_color")) {
+            if (v->is_string()) {
+                m.base_color_map = image_file(*v, at("base_color"));
+                m.base_color = {1, 1, 1};  // the texture as is
+            } else if (v->is_array()) {
+                m.base_color = color(*v, at("base_color"));
+            } else {
+                fail(at("base_color"),
+                     "expected [r, g, b] or a texture file name, got " + describe(*v));
+            }
+        }
+        if (const json* v = find(j, "diffuse")) m.diffuse = non_negative(*v, at("diffuse"));
+        if (const json* v = find(j, "specular")) m.specular = non_negative(*v, at("specular"));
+        if (const json* v = find(j, "shininess")) m.shininess = non_negative(*v, at("shininess"));
+        if (const json* v = find(j, "mirror")) m.mirror = non_negative(*v, at("mirror"));
+        if (const json* v = find(j, "fresnel_f0")) {
+            m.fresnel_f0 = single(*v, at("fresnel_f0"));
+            if (!(m.fresnel_f0 >= 0 && m.fresnel_f0 <= 1))
+                fail(at("fresnel_f0"), "must be in [0, 1], got " + format_number(m.fresnel_f0));
+        }
+        if (const json* v = find(j, "micro_roughness"))
+            m.micro_roughness = non_negative(*v, at("micro_roughness"));
+        if (const json* v = find(j, "bump")) m.bump = parse_bump(*v, at("bump"));
+        return m;
+    }
+
+    BumpDesc parse_bump(const json& j, const std::string& path) const {
+        check_keys(j, path, {"height_map", "normal_map", "strength", "frame", "main_direction"});
+        BumpDesc bump;
+        const json* height = find(j, "height_map");
+        const json* normal = find(j, "normal_map");
+        if (height && normal) fail(path, "has both height_map and normal_map (give exactly one)");
+        if (!height && !normal) fail(path, "needs a height_map or a normal_map");
+        if (height) {
+            bump.source = BumpDesc::Source::height_map;
+            bump.map = image_file(*height, member(path, "height_map"));
+        } else {
+            bump.source = BumpDesc::Source::normal_map;
+            bump.map = image_file(*normal, member(path, "normal_map"));
+        }
+        if (const json* v = find(j, "strength"))
+            bump.strength = single(*v, member(path, "strength"));
+        if (const json* v = find(j, "frame")) {
+            const std::string frame_path = member(path, "frame");
+            const std::string name = string(*v, frame_path);
+            if (name == "natural") {
+                bump.frame = BumpFrame::natural;
+            } else if (name == "normalized") {
+                bump.frame = BumpFrame::normalized;
+            } else if (name == "main_direction") {
+                bump.frame = BumpFrame::main_direction;
+            } else {
+                fail(frame_path, "unknown frame " + quoted(name) +
+                                     suggest(name, {"natural", "normalized", "main_direction"}));
+            }
+        }
+        if (const json* v = find(j, "main_direction")) {
+            const std::string direction_path = member(path, "main_direction");
+            if (bump.frame != BumpFrame::main_direction)
+                fail(direction_path, "is used only with frame \"main_direction\"");
+            bump.main_direction = vec3(*v, direction_path);  // zero: the surface's ∂p/∂v
+        }
+        return bump;
+    }
+
+    fs::path file_;
+    fs::path base_dir_;
+    SceneParseOptions options_;
+};
+
+}  // namespace
+
+Result<SceneDesc> parse_scene(std::string_view json_text, const fs::path& file,
+                              const SceneParseOptions& options) {
+    KeyTracker tracker;
+    try {
+        const json root = json::parse(json_text.begin(), json_text.end(),
+                                      [&tracker](int, json::parse_event_t event, json& parsed) {
+                                          return tracker.event(event, parsed);
+                                      });
+        return SceneParser(file, options).parse(root);
+    } catch (const Failure& failure) {
+        return Error{failure.message};
+    } catch (const DuplicateKey& duplicate) {
+        return Error{file.string() + ": " + duplicate.path + ": duplicate key"};
+    } catch (const json::parse_error& e) {
+        const std::size_t pos = e.byte > 0 ? e.byte - 1 : 0;
+        return Error{file.string() + ": " + line_column(json_text, pos) +
+                     ": invalid JSON: " + parse_error_reason(e.what())};
+    } catch (const json::out_of_range& e) {  // a number that overflows a double (1e999)
+        const std::string path = tracker.path();
+        return Error{file.string() + ": " + (path.empty() ? "" : path + ": ") +
+                     "number out of range (" + parse_error_reason(e.what()) + ")"};
+    } catch (const json::exception& e) {
+        return Error{file.string() + ": invalid JSON: " + parse_error_reason(e.what())};
+    }
+}
+
+Result<SceneDesc> load_scene_file(const fs::path& file, const SceneParseOptions& options) {
+    std::error_code error;
+    const fs::file_status status = fs::status(file, error);
+    if (!fs::exists(status)) return Error{file.string() + ": scene file not found"};
+    if (fs::is_directory(status))
+        return Error{file.string() + ": is a directory, not a scene file"};
+    std::ifstream in(file, std::ios::binary);
+    if (!in) return Error{file.string() + ": cannot open the scene file"};
+    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (in.bad()) return Error{file.string() + ": cannot read the scene file"};
+    return parse_scene(text, file, options);
+}
+
+}  // namespace footprint
