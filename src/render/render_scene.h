@@ -1,0 +1,92 @@
+// render/render_scene.h — a scene made ready to render: images loaded and filtered into pyramids,
+// meshes loaded into an Embree BVH, and one intersection query over all objects.
+//
+// prepare_render_scene() turns a SceneDesc (scene/scene.h, from a file or built in code) into a
+// RenderScene:
+//   * base-colour maps → RGB MIP pyramids (sRGB files decoded to linear), repeating in s and t;
+//   * bump maps → slope maps b in slope_map.h's convention (height maps: b = −strength·∇h per unit
+//     of (u, v), one map period = 1; normal maps: b = strength·(n_x, n_y)/n_z) → bump + roughness
+//     pyramids (bump/bump_pyramid.h) with the material's micro-roughness σ as K_0 = σ² I;
+//   * the environment → an EnvironmentMap (envmap/), its rotation A and intensity;
+//   * meshes → triangles (scene/mesh.h) in one MeshAccel. Each part of a mesh file keeps its own
+//     colours: the scene material's base_color multiplies the file's (glTF baseColorFactor, OBJ
+//     Kd), the file's texture (glTF baseColorTexture, OBJ map_Kd) is used unless the scene gives
+//     base_color as a file, and a glTF normalTexture becomes the bump (a normal map of strength
+//     normalTexture.scale, frame from ∂p/∂v) unless the scene gives one.
+// Errors name the file (and the scene's key where the scene has one). Everything is immutable
+// afterwards: rendering threads share one RenderScene.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "bump/bump_pyramid.h"
+#include "core/result.h"
+#include "envmap/environment_map.h"
+#include "math/mat3.h"
+#include "scene/scene.h"
+#include "scene/surface.h"
+#include "texture/mip_pyramid.h"
+
+namespace footprint {
+
+class MeshAccel;
+struct TriangleMesh;
+
+// A material with its images as pyramids.
+struct RenderMaterial {
+    MaterialDesc desc;
+    std::shared_ptr<const MipPyramid> base_color_map;  // RGB, linear; null: desc.base_color only
+    std::shared_ptr<const BumpPyramid> bump;           // slopes b (see above); null: flat
+    Sym2 micro_roughness;  // σ² I: the slope covariance when there is no bump map
+};
+
+struct RenderEnvironment {
+    EnvironmentMap map;
+    Mat3 rotation;  // A: world → map
+    float intensity = 1;
+    std::array<float, 3> mean{0, 0, 0};  // the map's average colour × intensity (ambient light)
+};
+
+// One hit with the material it shows.
+struct SceneHit {
+    SurfaceHit surface;
+    const RenderMaterial* material = nullptr;
+};
+
+class RenderScene {
+  public:
+    RenderScene();
+    ~RenderScene();
+    RenderScene(RenderScene&&) noexcept;
+    RenderScene& operator=(RenderScene&&) noexcept;
+
+    const SceneDesc& desc() const { return desc_; }
+    const RenderEnvironment* environment() const { return environment_.get(); }
+
+    // The nearest hit along the ray with t in (t_min, t_max), over all objects. Thread-safe.
+    std::optional<SceneHit> intersect(const Ray& ray, double t_min, double t_max) const;
+
+    std::size_t triangle_count() const { return triangle_count_; }
+
+  private:
+    friend Result<RenderScene> prepare_render_scene(const SceneDesc& desc);
+
+    SceneDesc desc_;
+    std::unique_ptr<RenderEnvironment> environment_;
+    std::vector<RenderMaterial> materials_;             // one per object, then one per mesh part
+    std::vector<int> object_material_;                  // analytic objects: index into materials_
+    std::vector<std::vector<int>> mesh_part_material_;  // [object][part] for mesh objects
+    std::vector<std::vector<TriangleMesh>> meshes_;     // [object] (empty for analytic objects)
+    struct MeshPart {
+        int object, part;
+    };
+    std::vector<MeshPart> accel_parts_;  // MeshAccel's mesh index → (object, part)
+    std::unique_ptr<MeshAccel> mesh_accel_;
+    std::size_t triangle_count_ = 0;
+};
+
+Result<RenderScene> prepare_render_scene(const SceneDesc& desc);
+
+}  // namespace footprint

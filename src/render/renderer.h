@@ -1,0 +1,93 @@
+// render/renderer.h — rendering a scene with one of the filter modes, or its ground truth.
+//
+// One pixel's journey (README "Architecture"; every step is a plain call into the modules below):
+//   camera ray with differentials (render/camera.h)
+//   → nearest hit: p, n, ∂p/∂(u,v), ∂n/∂(u,v), (u, v)           scene/shapes.h, scene/mesh.h
+//   → ray differentials: ∂p, ∂n, ∂(u,v) per pixel step           scene/ray_differentials.h
+//   → texture footprint D = S ∂(s,t)/∂(x,y)                      texture/texture_lookup.h
+//       → base colour = filter(colour pyramid, (s,t), D)
+//       → mean slope b and roughness K_b = filter(bump pyramid)  bump/bump_pyramid.h
+//   → perturbed normal n_m = n + |n| T b (frame T per material)  bump/local_frame.h
+//   → environment footprint K = D Dᵀ + κ² B'B'ᵀ (form (b))        envmap/env_footprint.h
+//       → reflection = filter(environment, v_r, K)               envmap/environment_map.h
+//   → Fresnel mirror + Lambert + (rough) Blinn-Phong lights      shading/
+//
+// Filter modes (FilterMode; the CLI's --filter names):
+//   point      bilinear lookups at the finest level with no footprint — the aliased baseline (and,
+//              with --spp N, an unbiased estimate of the reference)
+//   trilinear  isotropic MIP for textures, bumps and the environment (the 1997 hardware baseline)
+//   fa         footprint assembly for textures, bumps and the environment; the bump map's mean
+//              slope only (roughness ignored: plain Blinn-Phong, K3 = 0)
+//   fa-rough   Schilling's full method: footprint assembly plus the roughness pyramid, which
+//              widens the environment footprint (κ² K3) and the highlights (rough Blinn-Phong)
+//   ewa-rough  EWA for textures, bumps and the environment, with roughness
+//   reference  the ground truth: spp samples per pixel, each a finest-level bilinear lookup of
+//              every map, the micro-roughness sampled as random slopes
+// Pixel filter: a Gaussian of σ = ½ pixel (truncated at ±3σ) — the filter whose texel-space image
+// has the covariance K/4 every footprint filter implements (spec §2.6), so that filtered modes and
+// the reference measure the same thing. With spp = 1 the filtered modes sample the pixel centre;
+// with spp = N > 1 every mode takes N samples placed by a Gaussian-warped R2 sequence, each with
+// its ray differentials scaled by 1/√N (supersampling on top of filtering).
+//
+// Shading (linear RGB). At a hit with base colour c, mean normal n̂_m, view direction v̂:
+//   L = Σ_lights E_i [ diffuse·c·max(0, n̂_m·l̂) + specular·S(n̂_m, ĥ, K_b, m)·[n̂_m·l̂ > 0] ]
+//     + diffuse·c·Ē  (ambient: the environment's mean colour Ē)
+//     + mirror·F(n̂_m·v̂)·env(v_r)
+// E_i = colour (directional) or colour/d² (point), no shadows; S = shading/blinn_phong.h's
+// specular() (plain for point/trilinear/fa, gaussian with the filtered K_b for the rough modes);
+// F = Schlick's Fresnel with fresnel_f0. Reflections show the environment only (no
+// inter-reflections), as in the papers. Rays that miss show the environment (filtered over the
+// camera ray's own differentials) or the background colour.
+//
+// Determinism: every sample position and random number is a hash of (pixel, sample, seed), and
+// every pixel is computed independently, so images are bit-identical for any thread count.
+// Non-finite values never reach a pixel (they are counted and written as 0).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string_view>
+
+#include "image/image.h"
+#include "render/render_scene.h"
+
+namespace footprint {
+
+enum class FilterMode { point, trilinear, fa, fa_rough, ewa_rough, reference };
+
+std::optional<FilterMode> parse_filter_mode(std::string_view name);
+const char* filter_mode_name(FilterMode mode);  // "point", …, "fa-rough", "ewa-rough", "reference"
+// Every mode's name, in the order above, comma-separated (for help and error messages).
+const char* filter_mode_names();
+
+struct RenderOptions {
+    FilterMode filter = FilterMode::fa_rough;
+    int spp = 1;      // samples per pixel, ≥ 1 (the reference's default is set by the caller)
+    int threads = 0;  // 0: all cores
+    float kappa = 2;  // κ of the environment footprint (spec §2.6)
+    std::uint32_t seed = 1;
+};
+
+struct RenderStats {
+    double seconds = 0;
+    std::uint64_t pixels = 0;
+    std::uint64_t samples = 0;
+    std::uint64_t lookups = 0;             // texture + bump + environment lookups
+    std::uint64_t non_finite_samples = 0;  // samples whose colour was not finite (written as 0)
+};
+
+// Renders desc().width × desc().height linear RGB in tiles of 16 × 16 pixels on oneTBB.
+// `tile_done` (optional) is called once per finished tile, from the worker threads (a progress
+// bar: render_tile_count() calls in all).
+Image render(const RenderScene& scene, const RenderOptions& options, RenderStats* stats = nullptr,
+             const std::function<void()>& tile_done = {});
+
+int render_tile_count(int width, int height);
+
+// One pixel's colour (for tests): the same code path as render().
+std::array<float, 3> render_pixel(const RenderScene& scene, const RenderOptions& options, int x,
+                                  int y);
+
+}  // namespace footprint
