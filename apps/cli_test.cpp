@@ -8,8 +8,8 @@
 #include <random>
 #include <string>
 
-#include "demo.h"
 #include "image/image_io.h"
+#include "texture_demo.h"
 
 namespace footprint {
 namespace {
@@ -153,14 +153,14 @@ TEST_F(CommandTest, BadOutputPathsFailBeforeRendering) {
 }
 
 TEST_F(CommandTest, DemoWritesEveryFile) {
-    DemoCommandOptions options;
+    TextureDemoOptions options;
     options.out_dir = dir_ / "demo";  // created by the command
     options.width = 32;
     options.samples_per_axis = 2;
     options.texture_size = 64;
     options.quiet = true;
     ::testing::internal::CaptureStdout();
-    const int status = run_demo_command(options);
+    const int status = run_texture_demo_command(options);
     const std::string table = ::testing::internal::GetCapturedStdout();
     ASSERT_EQ(status, 0);
     for (const char* name : {"reference", "nearest", "bilinear", "trilinear", "fa", "ewa", "sat"}) {
@@ -182,11 +182,11 @@ TEST_F(CommandTest, DemoWritesEveryFile) {
 }
 
 TEST_F(CommandTest, DemoIntoAFileFails) {
-    DemoCommandOptions options;
+    TextureDemoOptions options;
     options.out_dir = texture_;  // exists, not a directory
     options.quiet = true;
     ::testing::internal::CaptureStderr();
-    EXPECT_EQ(run_demo_command(options), 1);
+    EXPECT_EQ(run_texture_demo_command(options), 1);
     const std::string err = ::testing::internal::GetCapturedStderr();
     EXPECT_NE(err.find("checker.png"), std::string::npos) << err;
     EXPECT_TRUE(one_line(err)) << err;

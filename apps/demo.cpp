@@ -1,306 +1,143 @@
 #include "demo.h"
 
-#include <unistd.h>
-
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <exception>
-#include <fstream>
-#include <iostream>
-#include <random>
-#include <sstream>
 #include <system_error>
-#include <vector>
 
-#include "builtin_texture.h"
+#include <nlohmann/json.hpp>
+
+#include "command_util.h"
+#include "demo_scenes.h"
 #include "image/image_io.h"
 #include "plane_view.h"
 #include "progress.h"
-#include "texture/mip_pyramid.h"
-#include "texture/texture_lookup.h"
+#include "render/render_scene.h"
+#include "render/renderer.h"
 
 namespace footprint {
 
 namespace {
 
-constexpr TextureFilter kAllFilters[] = {
-    TextureFilter::nearest,   TextureFilter::bilinear,
-    TextureFilter::trilinear, TextureFilter::footprint_assembly,
-    TextureFilter::ewa,       TextureFilter::summed_area};
+namespace fs = std::filesystem;
 
-int fail(const std::string& message) {
-    std::cerr << "footprint: " << message << "\n";
-    return 1;
+constexpr FilterMode kDemoModes[] = {FilterMode::point, FilterMode::trilinear, FilterMode::fa,
+                                     FilterMode::fa_rough, FilterMode::ewa_rough};
+
+double rmse(const Image& a, const Image& b) {
+    double sum = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        const double d = static_cast<double>(a.pixels[i]) - b.pixels[i];
+        sum += d * d;
+    }
+    return a.pixels.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(a.pixels.size()));
 }
 
-std::string quoted(const std::filesystem::path& p) {
-    std::string q = p.string();
-    q.insert(q.begin(), '\'');
-    q.push_back('\'');
-    return q;
-}
+struct Rendered {
+    Image image;
+    RenderStats stats;
+};
 
-// Fails if the directory that will hold `file` does not exist (before any work is done).
-bool check_output_file(const std::filesystem::path& file, std::string& error) {
-    if (file.empty() || file.filename().empty()) {
-        error = "cannot write " + quoted(file) + ": not a file name";
-        return false;
-    }
-    if (!is_supported_image_extension(file)) {
-        error = "cannot write " + quoted(file) + ": unsupported extension '" +
-                file.extension().string() + "' (supported: .png .jpg .jpeg .exr .hdr .tif .tiff)";
-        return false;
-    }
-    const std::filesystem::path dir = file.parent_path();
-    std::error_code ec;
-    if (!dir.empty() && !std::filesystem::is_directory(dir, ec)) {
-        error = "cannot write " + quoted(file) + ": directory " + quoted(dir) + " does not exist";
-        return false;
-    }
-    if (std::filesystem::is_directory(file, ec)) {
-        error = "cannot write " + quoted(file) + ": it is a directory";
-        return false;
-    }
-    return true;
-}
-
-// Writes `text` to `file` through a temporary file in the same directory and a rename.
-Status write_text_atomically(const std::filesystem::path& file, const std::string& text) {
-    std::random_device random;
-    const std::filesystem::path dir = file.parent_path();
-    std::string temp_name = file.filename().string();
-    temp_name.insert(temp_name.begin(), '.');
-    temp_name += ".tmp-";
-    temp_name += std::to_string(random());
-    const std::filesystem::path temp = dir / temp_name;
-    {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        out << text;
-        out.flush();
-        if (!out) {
-            std::error_code ignored;
-            std::filesystem::remove(temp, ignored);
-            return Error{"cannot write " + quoted(file) + ": write failed"};
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(temp, file, ec);
-    if (ec) {
-        std::error_code ignored;
-        std::filesystem::remove(temp, ignored);
-        return Error{"cannot write " + quoted(file) + ": " + ec.message()};
-    }
-    return {};
-}
-
-std::string number(double v, const char* format = "%.6g") {
-    if (!std::isfinite(v)) return "null";
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, format, v);
-    return buffer;
-}
-
-// All images (same size and channels) in a grid, `columns` wide, row-major, `gap` pixels apart.
-Image contact_sheet(const std::vector<const Image*>& images, int columns, int gap) {
-    const Image& first = *images.front();
-    const int rows = (static_cast<int>(images.size()) + columns - 1) / columns;
-    Image sheet(columns * first.width + (columns + 1) * gap, rows * first.height + (rows + 1) * gap,
-                first.channels, 0.18f);
-    if (first.channels == 2 || first.channels == 4)  // opaque background
-        for (std::size_t p = 0; p < sheet.pixel_count(); ++p)
-            sheet.pixels[p * sheet.channels + sheet.channels - 1] = 1.0f;
-    for (std::size_t i = 0; i < images.size(); ++i) {
-        const int x0 = gap + static_cast<int>(i % columns) * (first.width + gap);
-        const int y0 = gap + static_cast<int>(i / columns) * (first.height + gap);
-        for (int y = 0; y < first.height; ++y)
-            std::copy_n(images[i]->at(0, y), static_cast<std::size_t>(first.width) * first.channels,
-                        sheet.at(x0, y0 + y));
-    }
-    return sheet;
-}
-
-int demo(const DemoCommandOptions& options) {
-    if (options.width < 16 || options.width > 4096)
-        return fail("--size " + std::to_string(options.width) + " is out of range (16 to 4096)");
-    if (options.samples_per_axis < 1 || options.samples_per_axis > 64)
-        return fail("--samples " + std::to_string(options.samples_per_axis) +
-                    " is out of range (1 to 64)");
-    if (options.texture_size < 16 || options.texture_size > 8192)
-        return fail("texture size " + std::to_string(options.texture_size) +
-                    " is out of range (16 to 8192)");
-    const std::filesystem::path& dir = options.out_dir;
-    if (dir.empty()) return fail("--out: the output directory name is empty");
-    std::error_code ec;
-    if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
-        return fail("cannot write into " + quoted(dir) + ": it exists and is not a directory");
-    std::filesystem::create_directories(dir, ec);
-    if (ec) return fail("cannot create output directory " + quoted(dir) + ": " + ec.message());
-
-    const bool show_progress = !options.quiet && Progress::stderr_is_terminal();
-    PlaneViewOptions view;
-    view.width = options.width;
-    view.height = plane_view_height(options.width);
-
-    const Image texture = make_builtin_texture(options.texture_size);
-    MipPyramidOptions pyramid_options;
-    pyramid_options.summed_area_table = true;
-    const MipPyramid pyramid = MipPyramid::build(texture, pyramid_options);
-
-    struct Entry {
-        std::string name, file;
-        Image image;
-        RenderStats stats;
-        double rmse = 0;
-    };
-    std::vector<Entry> entries;
-    {
-        PlaneReferenceOptions reference_options;
-        reference_options.samples_per_axis = options.samples_per_axis;
-        Progress progress("reference", static_cast<std::uint64_t>(view.height), show_progress);
-        Entry e{"reference", "demo_reference.png", {}, {}, 0};
-        e.image = render_plane_reference(pyramid, view, reference_options, &e.stats, &progress);
-        progress.finish();
-        entries.push_back(std::move(e));
-    }
-    for (TextureFilter filter : kAllFilters) {
-        LookupOptions lookup;
-        lookup.filter = filter;
-        const std::string name = to_string(filter);
-        Progress progress(name, static_cast<std::uint64_t>(view.height), show_progress);
-        Entry e{name, "demo_" + name + ".png", {}, {}, 0};
-        e.image = render_plane_view(pyramid, view, lookup, &e.stats, &progress);
-        progress.finish();
-        entries.push_back(std::move(e));
-    }
-    std::size_t measured_pixels = 0;
-    for (Entry& e : entries) e.rmse = plane_rmse(e.image, entries[0].image, view, &measured_pixels);
-
-    // Images first, the JSON (which lists them) last.
-    for (const Entry& e : entries) {
-        const Status saved = save_image(e.image, dir / e.file);
-        if (!saved) return fail(saved.error().message);
-    }
-    constexpr int kColumns = 4, kGap = 4;
-    std::vector<const Image*> images;
-    for (const Entry& e : entries) images.push_back(&e.image);
-    const Image sheet = contact_sheet(images, kColumns, kGap);
-    if (const Status saved = save_image(sheet, dir / "demo_contact_sheet.png"); !saved)
-        return fail(saved.error().message);
-
-    const PlaneView camera(view);
-    std::ostringstream json;
-    json << "{\n";
-    json << "  \"image\": {\"width\": " << view.width << ", \"height\": " << view.height << "},\n";
-    json << "  \"texture\": {\"name\": \"builtin\", \"width\": " << texture.width
-         << ", \"height\": " << texture.height
-         << ", \"pyramid\": \"box, repeat, with summed-area table\"},\n";
-    json << "  \"camera\": {\"eye_height\": " << number(view.eye_height)
-         << ", \"pitch_degrees\": " << number(view.pitch_degrees)
-         << ", \"horizontal_fov_degrees\": " << number(view.horizontal_fov_degrees)
-         << ", \"yaw_degrees\": " << number(view.yaw_degrees)
-         << ", \"uv_scale\": " << number(view.uv_scale)
-         << ", \"horizon_row\": " << number(camera.horizon_row()) << "},\n";
-    json << "  \"reference\": {\"file\": \"demo_reference.png\", \"samples_per_pixel\": "
-         << options.samples_per_axis * options.samples_per_axis
-         << ", \"sampling\": \"stratified jittered\", \"pixel_filter\": \"Gaussian, sigma 0.5 "
-            "pixel, truncated at 3 sigma (kernel covariance K/4)\", \"texel_lookup\": "
-            "\"bilinear, level 0\", \"seconds\": "
-         << number(entries[0].stats.seconds) << ", \"lookups\": " << entries[0].stats.lookups
-         << "},\n";
-    json << "  \"metric\": {\"name\": \"rmse\", \"space\": \"linear\", \"channels\": "
-         << texture.channels << ", \"pixels\": " << measured_pixels
-         << ", \"region\": \"plane rows whose 3-sigma pixel filter lies below the horizon\"},\n";
-    json << "  \"filters\": [\n";
-    for (std::size_t i = 1; i < entries.size(); ++i) {
-        const Entry& e = entries[i];
-        json << "    {\"name\": \"" << e.name << "\", \"file\": \"" << e.file
-             << "\", \"rmse\": " << number(e.rmse) << ", \"seconds\": " << number(e.stats.seconds)
-             << ", \"lookups\": " << e.stats.lookups << "}" << (i + 1 < entries.size() ? "," : "")
-             << "\n";
-    }
-    json << "  ],\n";
-    json << "  \"contact_sheet\": {\"file\": \"demo_contact_sheet.png\", \"columns\": " << kColumns
-         << ", \"rows\": " << (entries.size() + kColumns - 1) / kColumns << ", \"gap\": " << kGap
-         << ", \"cell_width\": " << view.width << ", \"cell_height\": " << view.height
-         << ", \"order\": [";
-    for (std::size_t i = 0; i < entries.size(); ++i)
-        json << (i ? ", " : "") << "\"" << entries[i].name << "\"";
-    json << "]}\n}\n";
-    if (const Status saved = write_text_atomically(dir / "demo.json", json.str()); !saved)
-        return fail(saved.error().message);
-
-    std::printf("%-10s %10s %10s %12s\n", "filter", "RMSE", "ms", "lookups");
-    for (const Entry& e : entries) {
-        const std::string rmse = e.name == "reference" ? "-" : number(e.rmse, "%.5f");
-        std::printf("%-10s %10s %10.1f %12llu\n", e.name.c_str(), rmse.c_str(),
-                    e.stats.seconds * 1e3, static_cast<unsigned long long>(e.stats.lookups));
-    }
-    std::printf("RMSE: linear light, against the reference, over %zu plane pixels\n",
-                measured_pixels);
-    std::printf("wrote %zu images, demo_contact_sheet.png and demo.json to %s\n", entries.size(),
-                dir.string().c_str());
-    std::fflush(stdout);
-    return 0;
-}
-
-int plane(const PlaneCommandOptions& options) {
-    const std::optional<TextureFilter> filter = parse_texture_filter(options.filter);
-    if (!filter)
-        return fail("--filter: unknown filter '" + options.filter +
-                    "' (valid: " + valid_filter_names() + ")");
-    if (options.width < 16 || options.width > 16384)
-        return fail("--size " + std::to_string(options.width) + " is out of range (16 to 16384)");
-    if (!std::isfinite(options.uv_scale) || !(options.uv_scale > 0) || options.uv_scale > 1e6)
-        return fail("--uv-scale " + number(options.uv_scale) +
-                    " is out of range (a positive number up to 1e6)");
-    std::string error;
-    if (!check_output_file(options.output, error)) return fail(error);
-
-    Result<Image> texture = load_image(options.texture);
-    if (!texture) return fail(texture.error().message);
-
-    PlaneViewOptions view;
-    view.width = options.width;
-    view.height = plane_view_height(options.width);
-    view.uv_scale = options.uv_scale;
-    MipPyramidOptions pyramid_options;
-    pyramid_options.summed_area_table = *filter == TextureFilter::summed_area;
-    const MipPyramid pyramid = MipPyramid::build(*texture, pyramid_options);
-    LookupOptions lookup;
-    lookup.filter = *filter;
-    Progress progress(to_string(*filter), static_cast<std::uint64_t>(view.height),
-                      !options.quiet && Progress::stderr_is_terminal());
-    const Image image = render_plane_view(pyramid, view, lookup, nullptr, &progress);
+Rendered render_with_progress(const RenderScene& scene, const RenderOptions& options,
+                              const std::string& label, bool show_progress) {
+    Progress progress(
+        label,
+        static_cast<std::uint64_t>(render_tile_count(scene.desc().width, scene.desc().height)),
+        show_progress);
+    Rendered r;
+    r.image = render(scene, options, &r.stats, [&] { progress.advance(); });
     progress.finish();
-    if (const Status saved = save_image(image, options.output); !saved)
-        return fail(saved.error().message);
-    return 0;
+    return r;
 }
 
 }  // namespace
 
-std::string valid_filter_names() {
-    std::string names;
-    for (TextureFilter f : kAllFilters)
-        names += std::string(names.empty() ? "" : ", ") + to_string(f);
-    return names;
-}
-
 int run_demo_command(const DemoCommandOptions& options) {
-    try {
-        return demo(options);
-    } catch (const std::exception& e) {
-        return fail(std::string("demo failed: ") + e.what());
+    if (options.width < 16 || options.width > 4096) {
+        return fail("--size " + std::to_string(options.width) + " is out of range (16 to 4096)");
     }
-}
+    if (options.reference_spp < 1 || options.reference_spp > 65536) {
+        return fail("--spp " + std::to_string(options.reference_spp) +
+                    " is out of range (1 to 65536)");
+    }
+    const std::vector<std::string>& names =
+        options.scenes.empty() ? demo_scene_names() : options.scenes;
+    DemoSceneOptions scene_options;
+    scene_options.width = options.width;
+    scene_options.height = plane_view_height(options.width);
+    std::vector<DemoScene> scenes;
+    for (const std::string& name : names) {
+        Result<DemoScene> scene = make_demo_scene(name, scene_options);
+        if (!scene) return fail(scene.error().message);
+        scenes.push_back(std::move(*scene));
+    }
+    std::error_code ec;
+    fs::create_directories(options.out_dir, ec);
+    if (ec) return fail("cannot create " + quoted(options.out_dir) + ": " + ec.message());
 
-int run_plane_command(const PlaneCommandOptions& options) {
-    try {
-        return plane(options);
-    } catch (const std::exception& e) {
-        return fail(std::string("plane failed: ") + e.what());
+    const bool show_progress = !options.quiet && Progress::stderr_is_terminal();
+    nlohmann::json report = {{"width", scene_options.width},
+                             {"height", scene_options.height},
+                             {"reference_spp", options.reference_spp},
+                             {"scenes", nlohmann::json::array()}};
+    std::printf("%-17s %-10s %10s %9s\n", "scene", "filter", "rmse", "seconds");
+    for (const DemoScene& demo : scenes) {
+        Result<RenderScene> scene = prepare_render_scene(demo.scene);
+        if (!scene) return fail("demo scene " + demo.name + ": " + scene.error().message);
+        const fs::path dir = options.out_dir / demo.name;
+        fs::create_directories(dir, ec);
+        if (ec) return fail("cannot create " + quoted(dir) + ": " + ec.message());
+
+        RenderOptions render_options;
+        render_options.threads = options.threads;
+        render_options.filter = FilterMode::reference;
+        render_options.spp = options.reference_spp;
+        const Rendered reference =
+            render_with_progress(*scene, render_options, demo.name + " reference", show_progress);
+        if (Status s = save_image(reference.image, dir / "reference.png"); !s) {
+            return fail(s.error().message);
+        }
+        nlohmann::json entry = {
+            {"name", demo.name},
+            {"title", demo.title},
+            {"assets", demo.assets},
+            {"reference",
+             {{"file", demo.name + "/reference.png"}, {"seconds", reference.stats.seconds}}},
+            {"modes", nlohmann::json::array()}};
+        std::printf("%-17s %-10s %10s %9.2f\n", demo.name.c_str(), "reference", "-",
+                    reference.stats.seconds);
+        std::vector<Rendered> rendered;
+        for (FilterMode mode : kDemoModes) {
+            render_options.filter = mode;
+            render_options.spp = 1;
+            Rendered r = render_with_progress(
+                *scene, render_options, demo.name + " " + filter_mode_name(mode), show_progress);
+            const std::string file = std::string(filter_mode_name(mode)) + ".png";
+            if (Status s = save_image(r.image, dir / file); !s) return fail(s.error().message);
+            const double error = rmse(r.image, reference.image);
+            entry["modes"].push_back({{"filter", filter_mode_name(mode)},
+                                      {"file", demo.name + "/" + file},
+                                      {"rmse", error},
+                                      {"seconds", r.stats.seconds},
+                                      {"lookups", r.stats.lookups}});
+            std::printf("%-17s %-10s %10.5f %9.3f\n", demo.name.c_str(), filter_mode_name(mode),
+                        error, r.stats.seconds);
+            rendered.push_back(std::move(r));
+        }
+        std::vector<const Image*> sheet_images = {&reference.image};
+        for (const Rendered& r : rendered) sheet_images.push_back(&r.image);
+        if (Status s = save_image(contact_sheet(sheet_images, 3, 4), dir / "contact_sheet.png");
+            !s) {
+            return fail(s.error().message);
+        }
+        report["scenes"].push_back(entry);
     }
+    if (Status s = write_text_atomically(options.out_dir / "demo.json", report.dump(2) + "\n");
+        !s) {
+        return fail(s.error().message);
+    }
+    std::printf("wrote %zu scenes (reference, %zu modes, contact sheet each) and demo.json to %s\n",
+                scenes.size(), std::size(kDemoModes), options.out_dir.string().c_str());
+    return 0;
 }
 
 }  // namespace footprint

@@ -6,6 +6,7 @@
 #include <optional>
 #include <system_error>
 
+#include "command_util.h"
 #include "envmap/env_convert.h"
 #include "envmap/env_image_io.h"
 #include "image/image_io.h"
@@ -19,30 +20,6 @@ namespace fs = std::filesystem;
 
 constexpr const char* kLayoutNames = "cube, latlong, sphere, paraboloid";
 constexpr const char* kArrangementNames = "hcross, vcross, 3x2, 2x3, column, row";
-
-int fail(const std::string& message) {
-    std::cerr << "footprint: " << message << "\n";
-    return 1;
-}
-
-std::string quoted(const fs::path& p) {
-    return "'" + p.string() + "'";
-}
-
-// Fails if `file` cannot be written (before any work is done).
-std::optional<std::string> output_file_problem(const fs::path& file) {
-    if (file.empty() || file.filename().empty())
-        return "cannot write " + quoted(file) + ": not a file name";
-    if (!is_supported_image_extension(file))
-        return "cannot write " + quoted(file) + ": unsupported extension '" +
-               file.extension().string() + "' (supported: .png .jpg .jpeg .exr .hdr .tif .tiff)";
-    std::error_code ec;
-    const fs::path dir = file.parent_path();
-    if (!dir.empty() && !fs::is_directory(dir, ec))
-        return "cannot write " + quoted(file) + ": directory " + quoted(dir) + " does not exist";
-    if (fs::is_directory(file, ec)) return "cannot write " + quoted(file) + ": it is a directory";
-    return std::nullopt;
-}
 
 std::string size_text(const EnvImages& images) {
     const Image& f = images.faces[0];

@@ -1,9 +1,12 @@
-// footprint — the command-line program: argument parsing only; the commands live in demo.cpp and
-// env_command.cpp.
-//   footprint demo  [--out DIR] [--size N] [--samples N] [--quiet]
+// footprint — the command-line program: argument parsing only; the commands live in demo.cpp,
+// env_command.cpp and render_command.cpp.
+//   footprint demo [--out DIR] [--scene NAME...] [--size N] [--spp N] [--threads N] [--quiet]
+//   footprint texture-demo [--out DIR] [--size N] [--samples N] [--quiet]
 //   footprint plane TEXTURE -o OUT [--filter F] [--size N] [--uv-scale X] [--quiet]
 //   footprint env convert IN [IN...] --to LAYOUT -o OUT [-o OUT...] [--size N] [--from LAYOUT]
 //                         [--from-cube-layout A] [--cube-layout A] [--quiet]
+//   footprint render SCENE.json -o OUT [--filter MODE] [--spp N] [--threads N] [--exposure E]
+//                    [--json] [--quiet]
 // Exit status: 0 success, 1 bad input or failure (one line on stderr), 2 command-line usage error.
 #include <CLI/CLI.hpp>
 
@@ -14,6 +17,8 @@
 
 #include "demo.h"
 #include "env_command.h"
+#include "render_command.h"
+#include "texture_demo.h"
 
 namespace {
 
@@ -21,10 +26,11 @@ int run(int argc, char** argv) {
     CLI::App app{"footprint — anisotropic texture filtering by footprint assembly"};
     app.require_subcommand(1);
 
-    footprint::DemoCommandOptions demo;
-    std::string demo_out = demo.out_dir.string();
+    footprint::TextureDemoOptions demo;
+    std::string demo_out = "out/texture";
     CLI::App* demo_cmd = app.add_subcommand(
-        "demo", "Render the built-in texture on a grazing plane with every filter and a reference");
+        "texture-demo",
+        "Render the built-in texture on a grazing plane with every texture filter and a reference");
     demo_cmd->add_option("--out", demo_out, "Output directory (created if missing)")
         ->capture_default_str();
     demo_cmd->add_option("--size", demo.width, "Image width in pixels (height = width·9/16)")
@@ -85,6 +91,45 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     convert_cmd->add_flag("--quiet,-q", convert.quiet, "No progress or summary output");
 
+    footprint::DemoCommandOptions scene_demo;
+    std::string scene_demo_out = scene_demo.out_dir.string();
+    CLI::App* scene_demo_cmd = app.add_subcommand(
+        "demo",
+        "Render the papers' figures (built-in scenes) with every filter mode and a reference");
+    scene_demo_cmd->add_option("--out", scene_demo_out, "Output directory (created if missing)")
+        ->capture_default_str();
+    scene_demo_cmd->add_option("--scene", scene_demo.scenes,
+                               "Scenes to render (default: all): cylinder parabolic_mirror water "
+                               "bump_plate secret_writing brushed_sphere");
+    scene_demo_cmd->add_option("--size", scene_demo.width, "Image width (height = width·9/16)")
+        ->capture_default_str();
+    scene_demo_cmd->add_option("--spp", scene_demo.reference_spp, "Reference samples per pixel")
+        ->capture_default_str();
+    scene_demo_cmd->add_option("--threads", scene_demo.threads, "Worker threads (0: all cores)")
+        ->capture_default_str();
+    scene_demo_cmd->add_flag("--quiet,-q", scene_demo.quiet, "No progress output");
+
+    footprint::RenderCommandOptions render;
+    std::string render_scene, render_output;
+    CLI::App* render_cmd = app.add_subcommand(
+        "render", "Render a scene file (JSON) with one filter mode, or its ground truth");
+    render_cmd->add_option("scene", render_scene, "Scene file (.json)")->required();
+    render_cmd
+        ->add_option("-o,--out", render_output,
+                     "Output image (.png/.jpg/.tif sRGB, .exr/.hdr linear)")
+        ->required();
+    render_cmd
+        ->add_option("--filter", render.filter, "point|trilinear|fa|fa-rough|ewa-rough|reference")
+        ->capture_default_str();
+    render_cmd->add_option("--spp", render.spp, "Samples per pixel (default 1; reference: 64)");
+    render_cmd->add_option("--threads", render.threads, "Worker threads (0: all cores)")
+        ->capture_default_str();
+    render_cmd
+        ->add_option("--exposure", render.exposure, "Exposure in stops (PNG/JPEG/TIFF output)")
+        ->capture_default_str();
+    render_cmd->add_flag("--json", render.json, "Print a one-line JSON summary to stdout");
+    render_cmd->add_flag("--quiet,-q", render.quiet, "No progress output");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -98,7 +143,16 @@ int run(int argc, char** argv) {
 
     if (*demo_cmd) {
         demo.out_dir = demo_out;
-        return footprint::run_demo_command(demo);
+        return footprint::run_texture_demo_command(demo);
+    }
+    if (*scene_demo_cmd) {
+        scene_demo.out_dir = scene_demo_out;
+        return footprint::run_demo_command(scene_demo);
+    }
+    if (*render_cmd) {
+        render.scene = render_scene;
+        render.output = render_output;
+        return footprint::run_render_command(render);
     }
     if (*env_cmd) {
         convert.inputs.assign(convert_inputs.begin(), convert_inputs.end());

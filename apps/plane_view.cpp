@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "math/sample_patterns.h"
 #include "progress.h"
 
 namespace footprint {
@@ -48,18 +49,8 @@ std::array<float, MipPyramid::kMaxChannels> sky_texel(const std::array<float, 3>
     return v;
 }
 
-std::uint32_t hash32(std::uint32_t v) {  // PCG output mix (Jarzynski & Olano 2020)
-    v = v * 747796405u + 2891336453u;
-    v = ((v >> ((v >> 28u) + 4u)) ^ v) * 277803737u;
-    return (v >> 22u) ^ v;
-}
-
-double unit_float(std::uint32_t bits) {
-    return (bits >> 8) * (1.0 / 16777216.0);
-}  // [0, 1)
-
 template <class RowFunction>
-RenderStats render_rows(int height, Progress* progress, const RowFunction& row) {
+PlaneRenderStats render_rows(int height, Progress* progress, const RowFunction& row) {
     const auto start = std::chrono::steady_clock::now();
     std::atomic<std::uint64_t> lookups{0};
     tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& r) {
@@ -70,7 +61,7 @@ RenderStats render_rows(int height, Progress* progress, const RowFunction& row) 
         }
         lookups.fetch_add(local, std::memory_order_relaxed);
     });
-    RenderStats stats;
+    PlaneRenderStats stats;
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats.lookups = lookups.load();
     return stats;
@@ -134,12 +125,12 @@ PlaneSample PlaneView::sample(double x, double y) const {
 }
 
 Image render_plane_view(const MipPyramid& pyramid, const PlaneViewOptions& view,
-                        const LookupOptions& lookup, RenderStats* stats, Progress* progress) {
+                        const LookupOptions& lookup, PlaneRenderStats* stats, Progress* progress) {
     const PlaneView camera(view);
     const int channels = pyramid.channels();
     Image image(view.width, view.height, channels);
     const auto sky = sky_texel(view.sky, channels);
-    const RenderStats result = render_rows(view.height, progress, [&](int y) {
+    const PlaneRenderStats result = render_rows(view.height, progress, [&](int y) {
         std::uint64_t lookups = 0;
         for (int x = 0; x < view.width; ++x) {
             float* out = image.at(x, y);
@@ -166,52 +157,21 @@ Image render_plane_view(const MipPyramid& pyramid, const PlaneViewOptions& view,
     return image;
 }
 
-double inverse_normal_cdf(double p) {
-    // P. J. Acklam's algorithm: rational approximations in the centre and the two tails.
-    static constexpr double a[] = {-3.969683028665376e+01, 2.209460984245205e+02,
-                                   -2.759285104469687e+02, 1.383577518672690e+02,
-                                   -3.066479806614716e+01, 2.506628277459239e+00};
-    static constexpr double b[] = {-5.447609879822406e+01, 1.615858368580409e+02,
-                                   -1.556989798598866e+02, 6.680131188771972e+01,
-                                   -1.328068155288572e+01};
-    static constexpr double c[] = {-7.784894002430293e-03, -3.223964580411365e-01,
-                                   -2.400758277161838e+00, -2.549732539343734e+00,
-                                   4.374664141464968e+00,  2.938163982698783e+00};
-    static constexpr double d[] = {7.784695709041462e-03, 3.224671290700398e-01,
-                                   2.445134137142996e+00, 3.754408661907416e+00};
-    constexpr double p_low = 0.02425;
-    if (!(p > 0.0)) return -INFINITY;
-    if (!(p < 1.0)) return INFINITY;
-    if (p < p_low || p > 1.0 - p_low) {
-        const double q = std::sqrt(-2.0 * std::log(p < p_low ? p : 1.0 - p));
-        const double x = (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
-                         ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1.0);
-        return p < p_low ? x : -x;
-    }
-    const double q = p - 0.5, r = q * q;
-    return (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
-           (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1.0);
-}
-
 Image render_plane_reference(const MipPyramid& pyramid, const PlaneViewOptions& view,
-                             const PlaneReferenceOptions& options, RenderStats* stats,
+                             const PlaneReferenceOptions& options, PlaneRenderStats* stats,
                              Progress* progress) {
     const PlaneView camera(view);
     const int channels = pyramid.channels();
     const int n = std::max(1, options.samples_per_axis);
     Image image(view.width, view.height, channels);
     const auto sky = sky_texel(view.sky, channels);
-    // Gaussian pixel filter, σ = ½ pixel, truncated at ±3σ: u ∈ [0, 1) is mapped onto
-    // [Φ(−3), Φ(3)] and through Φ⁻¹.
-    constexpr double kSigma = 0.5, kTruncation = 3.0;
-    const double phi_low = 0.5 * std::erfc(kTruncation / std::numbers::sqrt2);
-    const double phi_span = 1.0 - 2.0 * phi_low;
+    // Gaussian pixel filter, σ = ½ pixel, truncated at ±3σ (gaussian_pixel_offset).
     LookupOptions bilinear;
     bilinear.filter = TextureFilter::bilinear;
     const FootprintEllipse point{};  // bilinear ignores the footprint
     const double inv_count = 1.0 / (static_cast<double>(n) * n);
 
-    const RenderStats result = render_rows(view.height, progress, [&](int y) {
+    const PlaneRenderStats result = render_rows(view.height, progress, [&](int y) {
         std::uint64_t lookups = 0;
         for (int x = 0; x < view.width; ++x) {
             double acc[MipPyramid::kMaxChannels] = {};
@@ -224,8 +184,8 @@ Image render_plane_reference(const MipPyramid& pyramid, const PlaneViewOptions& 
                         hash32(pixel_seed + static_cast<std::uint32_t>(j * n + i));
                     const double ux = (i + unit_float(h)) / n;
                     const double uy = (j + unit_float(hash32(h))) / n;
-                    const double ox = kSigma * inverse_normal_cdf(phi_low + ux * phi_span);
-                    const double oy = kSigma * inverse_normal_cdf(phi_low + uy * phi_span);
+                    const double ox = gaussian_pixel_offset(ux);
+                    const double oy = gaussian_pixel_offset(uy);
                     double s, t;
                     if (camera.hit(x + 0.5 + ox, y + 0.5 + oy, s, t)) {
                         float texel[MipPyramid::kMaxChannels];

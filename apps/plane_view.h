@@ -87,7 +87,7 @@ class PlaneView {
     double a_ = 0, cx_ = 0, cy_ = 0, sin_p_ = 0, cos_p_ = 0, cos_yaw_ = 1, sin_yaw_ = 0;
 };
 
-struct RenderStats {
+struct PlaneRenderStats {
     double seconds = 0;
     std::uint64_t lookups = 0;  // texture_lookup() calls
 };
@@ -97,7 +97,7 @@ struct RenderStats {
 // channels (sky: RGB → grey for 1–2 channels, alpha 1). (s, t) are wrapped in double precision
 // before they are rounded to float. `progress` (optional) is advanced once per row.
 Image render_plane_view(const MipPyramid& pyramid, const PlaneViewOptions& view,
-                        const LookupOptions& lookup, RenderStats* stats = nullptr,
+                        const LookupOptions& lookup, PlaneRenderStats* stats = nullptr,
                         Progress* progress = nullptr);
 
 // Ground truth: per pixel, N × N stratified jittered samples of the scene, each a bilinear
@@ -116,15 +116,12 @@ struct PlaneReferenceOptions {
 };
 Image render_plane_reference(const MipPyramid& pyramid, const PlaneViewOptions& view,
                              const PlaneReferenceOptions& options = {},
-                             RenderStats* stats = nullptr, Progress* progress = nullptr);
+                             PlaneRenderStats* stats = nullptr, Progress* progress = nullptr);
 
 // RMSE in linear light over all channels of the pixels for which PlaneView::covers_row holds
 // (the plane, away from the horizon's sky/ground edge that no texture filter is meant to
 // antialias). `pixels` (optional) receives the number of pixels measured. 0 if there are none.
 double plane_rmse(const Image& image, const Image& reference, const PlaneViewOptions& view,
                   std::size_t* pixels = nullptr);
-
-// Φ⁻¹(p) for p ∈ (0, 1) (Acklam's rational approximation, relative error < 1.2e-9).
-double inverse_normal_cdf(double p);
 
 }  // namespace footprint

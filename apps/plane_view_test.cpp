@@ -1,6 +1,8 @@
 // Tests of the plane view renderer (plane_view.h) and the built-in texture.
 #include "plane_view.h"
 
+#include "math/sample_patterns.h"
+
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 

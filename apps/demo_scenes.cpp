@@ -1,0 +1,216 @@
+#include "demo_scenes.h"
+
+#include <cstdlib>
+#include <memory>
+#include <system_error>
+
+#include "demo_assets.h"
+#include "image/image_io.h"
+
+namespace footprint {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::shared_ptr<const Image> shared(Image image) {
+    return std::make_shared<const Image>(std::move(image));
+}
+
+ImageSource generated(Image image, const std::string& name) {
+    return ImageSource{{}, shared(std::move(image)), name};
+}
+
+// The shared data file if it exists, else nullopt.
+std::optional<fs::path> data_file(const DemoSceneOptions& options, const std::string& relative) {
+    const fs::path file = options.data_dir / relative;
+    std::error_code ec;
+    if (fs::is_regular_file(file, ec)) return file;
+    return std::nullopt;
+}
+
+// A real HDR environment from the data folder, or the generated daylight sky.
+EnvironmentDesc daylight_environment(const DemoSceneOptions& options, std::string& assets) {
+    EnvironmentDesc env;
+    env.layout = EnvLayout::latlong;
+    if (auto file = data_file(options, "envmaps/venice_sunset_1k.hdr")) {
+        env.images.push_back(ImageSource{*file, nullptr, ""});
+        assets += "environment " + file->filename().string();
+    } else {
+        env.images.push_back(generated(make_sky_gradient_latlong(512), "generated sky"));
+        assets += "environment generated (sky gradient)";
+    }
+    return env;
+}
+
+EnvironmentDesc generated_environment(Image image, const std::string& name) {
+    EnvironmentDesc env;
+    env.layout = EnvLayout::latlong;
+    env.images.push_back(generated(std::move(image), name));
+    return env;
+}
+
+SceneDesc base_scene(const DemoSceneOptions& options) {
+    SceneDesc scene;
+    scene.width = options.width;
+    scene.height = options.height;
+    return scene;
+}
+
+MaterialDesc mirror(float f0) {
+    MaterialDesc m;
+    m.diffuse = 0;
+    m.mirror = 1;
+    m.fresnel_f0 = f0;
+    return m;
+}
+
+DemoScene cylinder(const DemoSceneOptions& options) {
+    DemoScene demo{"cylinder", "mirror cylinder: curvature in one direction only", "", {}};
+    SceneDesc& scene = demo.scene = base_scene(options);
+    scene.camera = {{0, 0.35, 3.2}, {0, 0, 0}, {0, 1, 0}, 40};
+    scene.environment = daylight_environment(options, demo.assets);
+    CylinderShape shape;
+    shape.radius = 0.75;
+    shape.height = 2.6;
+    scene.objects.push_back({"cylinder", shape, mirror(0.9f)});
+    return demo;
+}
+
+DemoScene parabolic_mirror(const DemoSceneOptions& options) {
+    DemoScene demo{"parabolic_mirror",
+                   "parabolic mirror seen from its focus: the footprint vanishes (uniform image)",
+                   "",
+                   {}};
+    SceneDesc& scene = demo.scene = base_scene(options);
+    // The mirror opens towards +z with its focus at the origin; the eye sits at the focus looking
+    // into it, so every reflected ray leaves parallel to +z.
+    scene.camera = {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 80};
+    scene.environment = daylight_environment(options, demo.assets);
+    ParaboloidShape shape;
+    shape.focal_length = 0.5;
+    shape.radius = 2.0;
+    scene.objects.push_back({"mirror", shape, mirror(0.9f)});
+    return demo;
+}
+
+DemoScene water(const DemoSceneOptions& options) {
+    DemoScene demo{"water",
+                   "wavy water at a grazing angle reflecting a night sky with a moon",
+                   "environment generated (night sky), waves generated",
+                   {}};
+    SceneDesc& scene = demo.scene = base_scene(options);
+    const Vec3 moon = night_sky_moon_direction();
+    const Vec3d eye{0, 0.35, 0};
+    scene.camera = {eye, eye + Vec3d{moon.x, -0.09, moon.z}, {0, 1, 0}, 35};
+    scene.environment = generated_environment(make_night_sky_latlong(2048), "generated night sky");
+    PlaneShape plane;
+    plane.infinite = true;
+    plane.uv_scale = 0.5;
+    MaterialDesc m = mirror(0.02f);
+    m.diffuse = 0.02f;
+    m.base_color = {0.05f, 0.12f, 0.15f};
+    m.bump.source = BumpDesc::Source::height_map;
+    m.bump.map = generated(make_water_height_map(512), "generated water waves");
+    m.bump.strength = 0.012f;
+    m.micro_roughness = 0.02f;
+    scene.objects.push_back({"water", plane, m});
+    return demo;
+}
+
+DemoScene bump_plate(const DemoSceneOptions& options) {
+    DemoScene demo{"bump_plate",
+                   "bump-mapped plate reflecting a zebra-stripe environment",
+                   "environment generated (zebra)",
+                   {}};
+    SceneDesc& scene = demo.scene = base_scene(options);
+    scene.camera = {{0, 1.6, 3.2}, {0, 0, -0.2}, {0, 1, 0}, 40};
+    scene.environment = generated_environment(make_zebra_latlong(1024), "generated zebra");
+    PlaneShape plate;
+    plate.size = {3, 3};
+    plate.uv_scale = 1.5;
+    MaterialDesc m = mirror(0.9f);
+    m.diffuse = 0.02f;
+    if (auto file = data_file(options, "normals/ambientCG_Bricks102_1K_NormalGL.jpg")) {
+        m.bump.source = BumpDesc::Source::normal_map;
+        m.bump.map = ImageSource{*file, nullptr, ""};
+        m.bump.strength = 0.6f;
+        demo.assets += ", normal map " + file->filename().string();
+    } else {
+        m.bump.source = BumpDesc::Source::height_map;
+        m.bump.map = generated(make_water_height_map(512), "generated waves");
+        m.bump.strength = 0.01f;
+        demo.assets += ", bumps generated (waves)";
+    }
+    scene.objects.push_back({"plate", plate, m});
+    return demo;
+}
+
+DemoScene secret_writing(const DemoSceneOptions& options) {
+    DemoScene demo{"secret_writing",
+                   "\"secret writing\" on a plane at a grazing angle",
+                   "texture generated, ",
+                   {}};
+    SceneDesc& scene = demo.scene = base_scene(options);
+    scene.camera = {{0, 0.5, 0}, {0, 0, 5}, {0, 1, 0}, 40};
+    scene.environment = daylight_environment(options, demo.assets);
+    scene.lights.push_back({LightType::directional, {0.3, -1, 0.6}, {}, {0.8f, 0.8f, 0.8f}});
+    PlaneShape plane;
+    plane.infinite = true;
+    plane.uv_scale = 0.2;
+    MaterialDesc m;
+    m.base_color = {1, 1, 1};
+    m.base_color_map = generated(make_secret_writing_texture(1024), "generated secret writing");
+    scene.objects.push_back({"plane", plane, m});
+    return demo;
+}
+
+DemoScene brushed_sphere(const DemoSceneOptions& options) {
+    DemoScene demo{
+        "brushed_sphere", "brushed-metal sphere: anisotropic roughness", "grooves generated, ", {}};
+    SceneDesc& scene = demo.scene = base_scene(options);
+    scene.camera = {{0, 1.25, 3.4}, {0, 1, 0}, {0, 1, 0}, 40};
+    scene.environment = daylight_environment(options, demo.assets);
+    scene.lights.push_back({LightType::directional, {-0.6, -0.5, -0.6}, {}, {2, 1.9f, 1.7f}});
+    SphereShape sphere;
+    sphere.center = {0, 1, 0};
+    sphere.radius = 1;
+    MaterialDesc m = mirror(0.75f);
+    m.base_color = {0.9f, 0.75f, 0.5f};
+    m.diffuse = 0.05f;
+    m.specular = 1;
+    m.shininess = 400;
+    m.micro_roughness = 0.02f;
+    m.bump.source = BumpDesc::Source::height_map;
+    m.bump.map = generated(make_brushed_metal_height_map(512), "generated brushed metal");
+    m.bump.strength = 0.004f;
+    scene.objects.push_back({"sphere", sphere, m});
+    return demo;
+}
+
+}  // namespace
+
+fs::path DemoSceneOptions::default_demo_data_dir() {
+    if (const char* env = std::getenv("FOOTPRINT_DATA"); env && *env) return env;
+    return FOOTPRINT_DEFAULT_DATA_DIR;
+}
+
+const std::vector<std::string>& demo_scene_names() {
+    static const std::vector<std::string> names = {
+        "cylinder", "parabolic_mirror", "water", "bump_plate", "secret_writing", "brushed_sphere"};
+    return names;
+}
+
+Result<DemoScene> make_demo_scene(const std::string& name, const DemoSceneOptions& options) {
+    if (name == "cylinder") return cylinder(options);
+    if (name == "parabolic_mirror") return parabolic_mirror(options);
+    if (name == "water") return water(options);
+    if (name == "bump_plate") return bump_plate(options);
+    if (name == "secret_writing") return secret_writing(options);
+    if (name == "brushed_sphere") return brushed_sphere(options);
+    std::string valid;
+    for (const std::string& n : demo_scene_names()) valid += (valid.empty() ? "" : ", ") + n;
+    return Error{"unknown demo scene '" + name + "' (valid: " + valid + ")"};
+}
+
+}  // namespace footprint

@@ -1,0 +1,53 @@
+// apps/demo_scenes.h — the built-in demo scenes: the papers' figures, built in code.
+//
+//   cylinder          a mirror cylinder in an environment: curvature in one direction only, so
+//                     the environment footprint is a long thin ellipse ([S97a] §2: K = D Dᵀ)
+//   parabolic_mirror  a parabolic mirror seen from its focus: every reflected ray is parallel to
+//                     the axis, the curvature cancels the aperture and the footprint must vanish
+//                     ([S97a]'s compensation example, spec erratum 2)
+//   water             a wavy water plane at a grazing angle reflecting a night sky with a moon
+//                     ([S97a] Fig. 10/11: the bump roughness stretches the moon into a glitter
+//                     path)
+//   bump_plate        a flat bump-mapped plate reflecting a zebra-stripe environment ([S97a]
+//                     Fig. 12/13: sub-pixel bumps must blur the stripes, not alias them)
+//   secret_writing    the "secret writing" plane at a grazing angle ([S96] Fig. 1/2: trilinear
+//                     blurs the writing away, footprint assembly keeps it legible)
+//   brushed_sphere    a brushed-metal sphere: anisotropic roughness stretches the highlights
+//                     and the reflections across the grooves
+// Assets come from apps/demo_assets.h (generated in code) and, where present, from the shared
+// data folder (real HDR environments and normal maps; each scene falls back to a generated asset
+// when a file is absent, and says which in DemoScene::assets).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+#include "scene/scene.h"
+
+namespace footprint {
+
+struct DemoSceneOptions {
+    int width = 320, height = 180;
+    // ../shared/data by default (the FOOTPRINT_DATA environment variable overrides it); missing
+    // files are replaced by generated assets.
+    std::filesystem::path data_dir = default_demo_data_dir();
+
+    static std::filesystem::path default_demo_data_dir();
+};
+
+struct DemoScene {
+    std::string name;
+    std::string title;   // one line: what the figure shows
+    std::string assets;  // where the environment/maps came from ("generated", or file names)
+    SceneDesc scene;
+};
+
+// The scene names above, in that order.
+const std::vector<std::string>& demo_scene_names();
+
+// One scene, or an Error naming an unknown scene (listing the valid names).
+Result<DemoScene> make_demo_scene(const std::string& name, const DemoSceneOptions& options = {});
+
+}  // namespace footprint

@@ -1,0 +1,169 @@
+// Tests of `footprint render` and `footprint demo`, called as functions (render_command.h,
+// demo.h): outputs, exit statuses, one-line errors naming the file or value, no partial output.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "demo.h"
+#include "demo_scenes.h"
+#include "image/image_io.h"
+#include "render_command.h"
+
+namespace footprint {
+namespace {
+
+namespace fs = std::filesystem;
+
+class RenderCommandTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        std::random_device random;
+        dir_ = fs::temp_directory_path() / ("footprint-render-cli-" + std::to_string(random()));
+        fs::create_directories(dir_);
+        // A small lat-long sky and a scene using it.
+        Image sky(32, 16, 3, 0.5f);
+        for (int x = 0; x < 32; ++x) sky.at(x, 3, 0) = 4.0f;
+        ASSERT_TRUE(save_image(sky, dir_ / "sky.exr").ok());
+        write("scene.json", R"({
+          "image": {"width": 24, "height": 16},
+          "camera": {"position": [0, 1, 3], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov_y_deg": 45},
+          "environment": {"file": "sky.exr", "layout": "latlong"},
+          "lights": [{"type": "directional", "direction": [0, -1, 0], "color": [1, 1, 1]}],
+          "objects": [
+            {"shape": "sphere", "center": [0, 0, 0], "radius": 0.7,
+             "material": {"mirror": 1, "fresnel_f0": 0.9, "diffuse": 0, "specular": 0.5}},
+            {"shape": "plane", "center": [0, -0.7, 0], "normal": [0, 1, 0], "size": "infinite",
+             "material": {"base_color": [0.5, 0.4, 0.3]}}
+          ]})");
+    }
+    void TearDown() override {
+        std::error_code ignored;
+        fs::remove_all(dir_, ignored);
+    }
+    void write(const std::string& name, const std::string& text) {
+        std::ofstream(dir_ / name) << text;
+    }
+    int render_cmd(RenderCommandOptions options, std::string* err = nullptr,
+                   std::string* out = nullptr) {
+        options.quiet = true;
+        ::testing::internal::CaptureStderr();
+        ::testing::internal::CaptureStdout();
+        const int status = run_render_command(options);
+        const std::string text = ::testing::internal::GetCapturedStderr();
+        const std::string stdout_text = ::testing::internal::GetCapturedStdout();
+        if (err) *err = text;
+        if (out) *out = stdout_text;
+        return status;
+    }
+    RenderCommandOptions options(const std::string& output, const std::string& filter) const {
+        RenderCommandOptions o;
+        o.scene = dir_ / "scene.json";
+        o.output = dir_ / output;
+        o.filter = filter;
+        return o;
+    }
+    fs::path dir_;
+};
+
+TEST_F(RenderCommandTest, WritesPngAndExrAndJsonSummary) {
+    std::string out;
+    RenderCommandOptions o = options("fa.png", "fa-rough");
+    o.json = true;
+    ASSERT_EQ(render_cmd(o, nullptr, &out), 0);
+    Result<Image> png = load_image(dir_ / "fa.png");
+    ASSERT_TRUE(png.ok());
+    EXPECT_EQ(png->width, 24);
+    EXPECT_EQ(png->height, 16);
+    const nlohmann::json summary = nlohmann::json::parse(out);
+    EXPECT_EQ(summary["filter"], "fa-rough");
+    EXPECT_EQ(summary["spp"], 1);
+    EXPECT_EQ(summary["pixels"], 24 * 16);
+    EXPECT_GT(summary["lookups"].get<double>(), 0);
+    EXPECT_GE(summary["seconds"].get<double>(), 0);
+
+    // EXR keeps linear HDR values (the sky's 4.0 band is reflected in the sphere), no exposure.
+    RenderCommandOptions exr = options("ref.exr", "reference");
+    exr.spp = 4;
+    exr.exposure = -3;
+    ASSERT_EQ(render_cmd(exr), 0);
+    Result<Image> hdr = load_image(dir_ / "ref.exr");
+    ASSERT_TRUE(hdr.ok());
+    float largest = 0;
+    for (float v : hdr->pixels) largest = std::max(largest, v);
+    EXPECT_GT(largest, 1.0f);
+}
+
+TEST_F(RenderCommandTest, BadInputGivesOneLineErrorsAndNoOutput) {
+    std::string err;
+    EXPECT_EQ(render_cmd(options("a.png", "fa_rough"), &err), 1);
+    EXPECT_NE(err.find("--filter"), std::string::npos) << err;
+    EXPECT_NE(err.find("fa_rough"), std::string::npos) << err;
+
+    RenderCommandOptions missing = options("a.png", "fa");
+    missing.scene = dir_ / "nope.json";
+    EXPECT_EQ(render_cmd(missing, &err), 1);
+    EXPECT_NE(err.find("nope.json"), std::string::npos) << err;
+
+    write("bad.json", R"({"camera": {"position": [0, 1, 3], "look_at": [0, 0, 0]},
+                         "objects": [{"shape": "sphere", "radius": -1}]})");
+    RenderCommandOptions bad = options("a.png", "fa");
+    bad.scene = dir_ / "bad.json";
+    EXPECT_EQ(render_cmd(bad, &err), 1);
+    EXPECT_NE(err.find("bad.json"), std::string::npos) << err;
+    EXPECT_NE(err.find("objects[0].radius"), std::string::npos) << err;
+
+    write("missing_env.json", R"({"camera": {"position": [0, 1, 3], "look_at": [0, 0, 0]},
+                                  "environment": {"file": "absent.hdr"}, "objects": []})");
+    RenderCommandOptions env = options("a.png", "fa");
+    env.scene = dir_ / "missing_env.json";
+    EXPECT_EQ(render_cmd(env, &err), 1);
+    EXPECT_NE(err.find("absent.hdr"), std::string::npos) << err;
+
+    EXPECT_EQ(render_cmd(options("a.bmpx", "fa"), &err), 1);
+    EXPECT_NE(err.find("a.bmpx"), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(dir_ / "a.png"));
+}
+
+TEST_F(RenderCommandTest, DemoWritesEveryModeAContactSheetAndAReport) {
+    DemoCommandOptions o;
+    o.out_dir = dir_ / "demo";
+    o.scenes = {"parabolic_mirror", "secret_writing"};
+    o.width = 32;
+    o.reference_spp = 4;
+    o.quiet = true;
+    ::testing::internal::CaptureStdout();
+    const int status = run_demo_command(o);
+    ::testing::internal::GetCapturedStdout();
+    ASSERT_EQ(status, 0);
+    for (const char* scene : {"parabolic_mirror", "secret_writing"}) {
+        for (const char* file :
+             {"reference", "point", "trilinear", "fa", "fa-rough", "ewa-rough", "contact_sheet"}) {
+            EXPECT_TRUE(fs::exists(o.out_dir / scene / (std::string(file) + ".png")))
+                << scene << "/" << file;
+        }
+    }
+    std::ifstream json_file(o.out_dir / "demo.json");
+    const nlohmann::json report = nlohmann::json::parse(json_file);
+    ASSERT_EQ(report["scenes"].size(), 2u);
+    EXPECT_EQ(report["scenes"][0]["modes"].size(), 5u);
+    // The parabolic mirror seen from its focus: every reflected ray is parallel to the axis, the
+    // footprint vanishes and every mode renders the reference (a uniform image).
+    for (const auto& mode : report["scenes"][0]["modes"]) {
+        EXPECT_LT(mode["rmse"].get<double>(), 2e-3) << mode["filter"];
+    }
+
+    DemoCommandOptions unknown = o;
+    unknown.scenes = {"teapot"};
+    ::testing::internal::CaptureStderr();
+    EXPECT_EQ(run_demo_command(unknown), 1);
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(err.find("teapot"), std::string::npos) << err;
+}
+
+}  // namespace
+}  // namespace footprint
