@@ -102,7 +102,9 @@ DemoScene water(const DemoSceneOptions& options) {
     SceneDesc& scene = demo.scene = base_scene(options);
     const Vec3 moon = night_sky_moon_direction();
     const Vec3d eye{0, 0.35, 0};
-    scene.camera = {eye, eye + Vec3d{moon.x, -0.09, moon.z}, {0, 1, 0}, 35};
+    // Looking towards the moon's azimuth, horizon just above the middle: the moon (18° up) near
+    // the top, its glitter path on the water below.
+    scene.camera = {eye, eye + Vec3d{moon.x, 0.02, moon.z}, {0, 1, 0}, 45};
     scene.environment = generated_environment(make_night_sky_latlong(2048), "generated night sky");
     PlaneShape plane;
     plane.infinite = true;
@@ -128,13 +130,13 @@ DemoScene bump_plate(const DemoSceneOptions& options) {
     scene.environment = generated_environment(make_zebra_latlong(1024), "generated zebra");
     PlaneShape plate;
     plate.size = {3, 3};
-    plate.uv_scale = 1.5;
+    plate.uv_scale = 1.0 / 3.0;  // the map once across the plate
     MaterialDesc m = mirror(0.9f);
     m.diffuse = 0.02f;
     if (auto file = data_file(options, "normals/ambientCG_Bricks102_1K_NormalGL.jpg")) {
         m.bump.source = BumpDesc::Source::normal_map;
         m.bump.map = ImageSource{*file, nullptr, ""};
-        m.bump.strength = 0.6f;
+        m.bump.strength = 0.3f;
         demo.assets += ", normal map " + file->filename().string();
     } else {
         m.bump.source = BumpDesc::Source::height_map;
