@@ -116,6 +116,9 @@ Result<RenderMaterial> mesh_part_material(const TriangleMesh& part, const Materi
         desc.bump.strength = own.normal_scale;
         desc.bump.frame = BumpFrame::main_direction;
         desc.bump.main_direction = {};
+        Result<RenderMaterial> material = prepare_material(desc);
+        if (material) material->frame_from_mesh_tangents = part.has_tangents();
+        return material;
     }
     return prepare_material(desc);
 }
@@ -222,7 +225,9 @@ std::optional<SceneHit> RenderScene::intersect(const Ray& ray, double t_min, dou
         if (!hit) continue;
         t_max = hit->t;
         hit->object = i;
-        nearest = SceneHit{*hit, &materials_[object_material_[i]]};
+        nearest = SceneHit{};
+        nearest->surface = *hit;
+        nearest->material = &materials_[object_material_[i]];
     }
     if (mesh_accel_) {
         if (std::optional<MeshHitRecord> record = mesh_accel_->intersect(ray, t_min, t_max)) {
@@ -234,6 +239,13 @@ std::optional<SceneHit> RenderScene::intersect(const Ray& ray, double t_min, dou
             hit.surface.object = part.object;
             hit.surface.primitive = record->triangle;
             hit.material = &materials_[mesh_part_material_[part.object][part.part]];
+            if (hit.material->frame_from_mesh_tangents) {
+                if (auto frame =
+                        mesh_tangent_frame(mesh, record->triangle, record->b1, record->b2)) {
+                    hit.tangent = frame->tangent;
+                    hit.tangent_sign = frame->tangent_sign;
+                }
+            }
             nearest = hit;
         }
     }

@@ -12,7 +12,8 @@
 //     colours: the scene material's base_color multiplies the file's (glTF baseColorFactor, OBJ
 //     Kd), the file's texture (glTF baseColorTexture, OBJ map_Kd) is used unless the scene gives
 //     base_color as a file, and a glTF normalTexture becomes the bump (a normal map of strength
-//     normalTexture.scale, frame from ∂p/∂v) unless the scene gives one.
+//     normalTexture.scale, in the frame of the mesh's tangents, or of ∂p/∂v without them)
+//     unless the scene gives one.
 // Errors name the file (and the scene's key where the scene has one). Everything is immutable
 // afterwards: rendering threads share one RenderScene.
 #pragma once
@@ -40,6 +41,7 @@ struct RenderMaterial {
     std::shared_ptr<const MipPyramid> base_color_map;  // RGB, linear; null: desc.base_color only
     std::shared_ptr<const BumpPyramid> bump;           // slopes b (see above); null: flat
     Sym2 micro_roughness;  // σ² I: the slope covariance when there is no bump map
+    bool frame_from_mesh_tangents = false;  // a glTF normal texture on a part with tangents
 };
 
 struct RenderEnvironment {
@@ -53,6 +55,11 @@ struct RenderEnvironment {
 struct SceneHit {
     SurfaceHit surface;
     const RenderMaterial* material = nullptr;
+    // A normal-mapped mesh part with tangents (glTF TANGENT): the interpolated tangent (unit,
+    // world) and the bitangent's sign, bitangent = tangent_sign·(n × tangent) (v up). The
+    // renderer then builds the normal map's frame from them, as the map was baked.
+    std::optional<Vec3d> tangent;
+    double tangent_sign = 1;
 };
 
 class RenderScene {

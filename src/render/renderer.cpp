@@ -138,8 +138,17 @@ struct BumpFrameAtHit {
     float slope_sign = 1;
 };
 
-BumpFrameAtHit bump_frame(const BumpDesc& bump, const SurfaceHit& s) {
+BumpFrameAtHit bump_frame(const BumpDesc& bump, const SceneHit& hit) {
+    const SurfaceHit& s = hit.surface;
     const Vec3 n = to_float(s.n);
+    if (hit.tangent) {
+        // glTF: e1 = the tangent made orthogonal to n, e2 = sign·(n × e1) (up the image).
+        const Vec3 t = to_float(*hit.tangent);
+        const Vec3 e1 = normalize(t - dot(t, n) * n);
+        if (dot(e1, e1) > 0) {
+            return {{e1, static_cast<float>(hit.tangent_sign) * cross(n, e1)}, 1};
+        }
+    }
     switch (bump.frame) {
         case BumpFrame::natural: {
             const NaturalFrame natural = make_natural_frame(to_float(s.dpdu), to_float(s.dpdv), n);
@@ -222,7 +231,7 @@ Rgb SampleShader::shade_hit(const RayDifferential& ray, const SceneHit& hit, Vec
     // A frame is needed wherever there are slopes: a bump map or micro-roughness.
     const bool bumped = material.bump != nullptr || desc.micro_roughness > 0;
     BumpFrameAtHit frame{};
-    if (bumped) frame = bump_frame(desc.bump, s);
+    if (bumped) frame = bump_frame(desc.bump, hit);
     const Vec2 b_t = frame.slope_sign * slope;
 
     // Face the viewer: a surface seen from behind is shaded as its mirror image (n, ∂n and the
