@@ -5,15 +5,11 @@
 #include <cstdint>
 #include <numbers>
 
+#include "math/sample_patterns.h"
+
 namespace footprint {
 
 namespace {
-
-std::uint32_t hash32(std::uint32_t v) {  // a PCG-style integer mix
-    v = v * 747796405u + 2891336453u;
-    v = ((v >> ((v >> 28u) + 4u)) ^ v) * 277803737u;
-    return (v >> 22u) ^ v;
-}
 
 std::uint32_t hash3(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
     return hash32(a ^ hash32(b ^ hash32(c)));

@@ -12,6 +12,7 @@
 #include <numbers>
 #include <random>
 
+#include "core/test_shared_data.h"
 #include "envmap/env_convert.h"
 
 namespace footprint {
@@ -47,14 +48,7 @@ const float* texel_at(const std::array<Image, 6>& faces, Vec3d d) {
     return faces[static_cast<std::size_t>(c.face)].at(x, y);
 }
 
-fs::path shared_data_dir() {
-    if (const char* env = std::getenv("FOOTPRINT_SHARED_DATA")) return env;
-#ifdef FOOTPRINT_SHARED_DATA_DIR
-    return FOOTPRINT_SHARED_DATA_DIR;
-#else
-    return "../shared/data";
-#endif
-}
+using test::shared_data_dir;
 
 class TempDir {
   public:

@@ -1,4 +1,5 @@
 #include "scene/mesh_accel.h"
+#include "core/test_shared_data.h"
 
 #include <gtest/gtest.h>
 
@@ -16,14 +17,7 @@ namespace fs = std::filesystem;
 
 constexpr double kPi = 3.14159265358979323846;
 
-fs::path shared_data_dir() {
-    if (const char* env = std::getenv("FOOTPRINT_SHARED_DATA")) return env;
-#ifdef FOOTPRINT_SHARED_DATA_DIR
-    return FOOTPRINT_SHARED_DATA_DIR;
-#else
-    return "../shared/data";
-#endif
-}
+using test::shared_data_dir;
 
 void expect_near(Vec3d a, Vec3d b, double tol, const char* what) {
     EXPECT_NEAR(a.x, b.x, tol) << what;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/test_shared_data.h"
 #include "image/color.h"
 #include "image/image_io.h"
 
@@ -20,14 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path shared_data_dir() {
-    if (const char* env = std::getenv("FOOTPRINT_SHARED_DATA")) return env;
-#ifdef FOOTPRINT_SHARED_DATA_DIR
-    return FOOTPRINT_SHARED_DATA_DIR;
-#else
-    return "../shared/data";
-#endif
-}
+using test::shared_data_dir;
 
 class TempDir {
   public:

@@ -1,0 +1,23 @@
+// core/test_shared_data.h — test support: where the shared real-data set lives.
+//
+// Tests that read real files (HDR environments, meshes, normal maps) look in the folder
+// FOOTPRINT_SHARED_DATA names, else in the one the build was configured with
+// (FOOTPRINT_SHARED_DATA_DIR = <repository>/../shared/data), and GTEST_SKIP() with a message when
+// a file is absent: the data set is not part of the repository.
+#pragma once
+
+#include <cstdlib>
+#include <filesystem>
+
+namespace footprint::test {
+
+inline std::filesystem::path shared_data_dir() {
+    if (const char* env = std::getenv("FOOTPRINT_SHARED_DATA"); env && *env) return env;
+#ifdef FOOTPRINT_SHARED_DATA_DIR
+    return FOOTPRINT_SHARED_DATA_DIR;
+#else
+    return "../shared/data";
+#endif
+}
+
+}  // namespace footprint::test
