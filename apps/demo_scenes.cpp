@@ -57,6 +57,15 @@ SceneDesc base_scene(const DemoSceneOptions& options) {
     return scene;
 }
 
+// A short camera move for temporal-stability measurements (footprint eval, render --frames):
+// the camera and its target both move by `offset` (a dolly or a truck), or only the target (a pan).
+void add_camera_move(SceneDesc& scene, Vec3d position_offset, Vec3d target_offset) {
+    CameraDesc end = scene.camera;
+    end.position = end.position + position_offset;
+    end.look_at = end.look_at + target_offset;
+    scene.camera_path = {{0, scene.camera}, {1, end}};
+}
+
 MaterialDesc mirror(float f0) {
     MaterialDesc m;
     m.diffuse = 0;
@@ -74,6 +83,7 @@ DemoScene cylinder(const DemoSceneOptions& options) {
     shape.radius = 0.75;
     shape.height = 2.6;
     scene.objects.push_back({"cylinder", shape, mirror(0.9f)});
+    add_camera_move(scene, {0.15, 0, 0}, {0.15, 0, 0});
     return demo;
 }
 
@@ -91,6 +101,7 @@ DemoScene parabolic_mirror(const DemoSceneOptions& options) {
     shape.focal_length = 0.5;
     shape.radius = 2.0;
     scene.objects.push_back({"mirror", shape, mirror(0.9f)});
+    add_camera_move(scene, {0, 0, 0}, {0.1, 0, 0});  // the eye stays at the focus
     return demo;
 }
 
@@ -117,6 +128,7 @@ DemoScene water(const DemoSceneOptions& options) {
     m.bump.strength = 0.012f;
     m.micro_roughness = 0.02f;
     scene.objects.push_back({"water", plane, m});
+    add_camera_move(scene, {moon.x * 0.5, 0, moon.z * 0.5}, {moon.x * 0.5, 0, moon.z * 0.5});
     return demo;
 }
 
@@ -145,6 +157,7 @@ DemoScene bump_plate(const DemoSceneOptions& options) {
         demo.assets += ", bumps generated (waves)";
     }
     scene.objects.push_back({"plate", plate, m});
+    add_camera_move(scene, {0.2, 0, 0}, {0.2, 0, 0});
     return demo;
 }
 
@@ -164,6 +177,7 @@ DemoScene secret_writing(const DemoSceneOptions& options) {
     m.base_color = {1, 1, 1};
     m.base_color_map = generated(make_secret_writing_texture(1024), "generated secret writing");
     scene.objects.push_back({"plane", plane, m});
+    add_camera_move(scene, {0, 0, 0.5}, {0, 0, 0.5});
     return demo;
 }
 
@@ -187,6 +201,7 @@ DemoScene brushed_sphere(const DemoSceneOptions& options) {
     m.bump.map = generated(make_brushed_metal_height_map(512), "generated brushed metal");
     m.bump.strength = 0.004f;
     scene.objects.push_back({"sphere", sphere, m});
+    add_camera_move(scene, {0.3, 0, 0}, {0, 0, 0});
     return demo;
 }
 

@@ -1,12 +1,15 @@
 // footprint — the command-line program: argument parsing only; the commands live in demo.cpp,
 // env_command.cpp and render_command.cpp.
 //   footprint demo [--out DIR] [--scene NAME...] [--size N] [--spp N] [--threads N] [--quiet]
+//   footprint eval [SCENE...] [--out DIR] [--size W] [--reference-spp N] [--spp-list 1,4,16,64]
+//                  [--frames N] [--flicker-reference-spp N] [--threads N] [--no-browser-check]
+//   footprint metrics A B [--mask M] [--peak P] [--json]
 //   footprint texture-demo [--out DIR] [--size N] [--samples N] [--quiet]
 //   footprint plane TEXTURE -o OUT [--filter F] [--size N] [--uv-scale X] [--quiet]
 //   footprint env convert IN [IN...] --to LAYOUT -o OUT [-o OUT...] [--size N] [--from LAYOUT]
 //                         [--from-cube-layout A] [--cube-layout A] [--quiet]
 //   footprint render SCENE.json -o OUT [--filter MODE] [--spp N] [--threads N] [--exposure E]
-//                    [--json] [--quiet]
+//                    [--frames N] [--json] [--quiet]
 // Exit status: 0 success, 1 bad input or failure (one line on stderr), 2 command-line usage error.
 #include <CLI/CLI.hpp>
 
@@ -17,6 +20,8 @@
 
 #include "demo.h"
 #include "env_command.h"
+#include "eval_command.h"
+#include "metrics_command.h"
 #include "render_command.h"
 #include "texture_demo.h"
 
@@ -109,6 +114,44 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     scene_demo_cmd->add_flag("--quiet,-q", scene_demo.quiet, "No progress output");
 
+    footprint::MetricsCommandOptions metrics;
+    std::string metrics_a, metrics_b, metrics_mask;
+    CLI::App* metrics_cmd = app.add_subcommand(
+        "metrics", "Compare two images (linear light): RMSE, PSNR and SSIM, optionally masked");
+    metrics_cmd->add_option("a", metrics_a, "First image")->required();
+    metrics_cmd->add_option("b", metrics_b, "Second image (the reference)")->required();
+    metrics_cmd->add_option("--mask", metrics_mask, "Mask image: pixels where channel 0 > 0.5");
+    metrics_cmd->add_option("--peak", metrics.peak, "PSNR peak and SSIM dynamic range")
+        ->capture_default_str();
+    metrics_cmd->add_flag("--json", metrics.json, "Print one JSON line");
+
+    footprint::EvalCommandOptions eval;
+    std::string eval_out = eval.out_dir.string();
+    bool eval_no_browser = false;
+    CLI::App* eval_cmd = app.add_subcommand(
+        "eval", "Measure every filter mode and supersampling against a reference; HTML report");
+    eval_cmd->add_option("scenes", eval.scenes,
+                         "Built-in demo names or .json scene files (default: every demo)");
+    eval_cmd->add_option("--out", eval_out, "Output directory")->capture_default_str();
+    eval_cmd->add_option("--size", eval.width, "Demo image width (height = width·9/16)")
+        ->capture_default_str();
+    eval_cmd->add_option("--reference-spp", eval.reference_spp, "Reference samples per pixel")
+        ->capture_default_str();
+    eval_cmd->add_option("--spp-list", eval.supersampling_spp, "Supersampling rates")
+        ->delimiter(',')
+        ->capture_default_str();
+    eval_cmd->add_option("--frames", eval.frames, "Frames for flicker (0: none)")
+        ->capture_default_str();
+    eval_cmd
+        ->add_option("--flicker-reference-spp", eval.flicker_reference_spp,
+                     "Samples per pixel of the reference sequence")
+        ->capture_default_str();
+    eval_cmd->add_option("--threads", eval.threads, "Worker threads (0: all cores)")
+        ->capture_default_str();
+    eval_cmd->add_flag("--no-browser-check", eval_no_browser,
+                       "Do not open the report in headless Chromium");
+    eval_cmd->add_flag("--quiet,-q", eval.quiet, "No progress output");
+
     footprint::RenderCommandOptions render;
     std::string render_scene, render_output;
     CLI::App* render_cmd = app.add_subcommand(
@@ -127,6 +170,8 @@ int run(int argc, char** argv) {
     render_cmd
         ->add_option("--exposure", render.exposure, "Exposure in stops (PNG/JPEG/TIFF output)")
         ->capture_default_str();
+    render_cmd->add_option("--frames", render.frames,
+                           "Render N frames along the scene's camera_path (OUT_0000.png, …)");
     render_cmd->add_flag("--json", render.json, "Print a one-line JSON summary to stdout");
     render_cmd->add_flag("--quiet,-q", render.quiet, "No progress output");
 
@@ -148,6 +193,17 @@ int run(int argc, char** argv) {
     if (*scene_demo_cmd) {
         scene_demo.out_dir = scene_demo_out;
         return footprint::run_demo_command(scene_demo);
+    }
+    if (*eval_cmd) {
+        eval.out_dir = eval_out;
+        eval.browser_check = !eval_no_browser;
+        return footprint::run_eval_command(eval);
+    }
+    if (*metrics_cmd) {
+        metrics.a = metrics_a;
+        metrics.b = metrics_b;
+        metrics.mask = metrics_mask;
+        return footprint::run_metrics_command(metrics);
     }
     if (*render_cmd) {
         render.scene = render_scene;

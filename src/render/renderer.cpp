@@ -329,6 +329,11 @@ std::uint32_t pixel_seed(int x, int y, std::uint32_t seed) {
                                 hash32(static_cast<std::uint32_t>(x) + 0x9e3779b9u)));
 }
 
+CameraDesc view_camera(const SceneDesc& scene, const RenderOptions& options) {
+    if (options.frame_count < 1) return scene.camera;
+    return camera_for_frame(scene, options.frame, options.frame_count);
+}
+
 Rgb render_pixel_with(SampleShader& shader, const PinholeCamera& camera,
                       const RenderOptions& options, int x, int y, std::uint64_t& non_finite) {
     const int n = std::max(1, options.spp);
@@ -387,7 +392,7 @@ Image render(const RenderScene& scene, const RenderOptions& options, RenderStats
              const std::function<void()>& tile_done) {
     const auto start = std::chrono::steady_clock::now();
     const int width = scene.desc().width, height = scene.desc().height;
-    const PinholeCamera camera(scene.desc().camera, width, height);
+    const PinholeCamera camera(view_camera(scene.desc(), options), width, height);
     Image image(width, height, 3);
     const int tiles_x = (width + kTileSize - 1) / kTileSize;
     const int tiles = render_tile_count(width, height);
@@ -430,7 +435,8 @@ Image render(const RenderScene& scene, const RenderOptions& options, RenderStats
 
 std::array<float, 3> render_pixel(const RenderScene& scene, const RenderOptions& options, int x,
                                   int y) {
-    const PinholeCamera camera(scene.desc().camera, scene.desc().width, scene.desc().height);
+    const PinholeCamera camera(view_camera(scene.desc(), options), scene.desc().width,
+                               scene.desc().height);
     SampleShader shader(scene, options);
     std::uint64_t bad = 0;
     return render_pixel_with(shader, camera, options, x, y, bad);

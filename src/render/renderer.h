@@ -68,6 +68,11 @@ struct RenderOptions {
     int threads = 0;  // 0: all cores
     float kappa = 2;  // κ of the environment footprint (spec §2.6)
     std::uint32_t seed = 1;
+    // Animation: frame_count ≥ 1 renders frame `frame` of `frame_count` along the scene's
+    // camera_path (scene/scene.h's camera_for_frame); 0 (or no path): the scene's camera. Every
+    // frame uses the same seed.
+    int frame = 0;
+    int frame_count = 0;
 };
 
 struct RenderStats {

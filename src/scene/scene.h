@@ -39,6 +39,12 @@ struct CameraDesc {
     double fov_y_deg = 40;  // vertical field of view, (0, 180)
 };
 
+// A camera keyframe of an animation (SceneDesc::camera_path): the camera at `time`.
+struct CameraKeyframe {
+    double time = 0;
+    CameraDesc camera;
+};
+
 struct EnvironmentDesc {
     // 1 file (lat-long, sphere, cube cross/strip), 2 (paraboloid front, back) or 6 (cube faces
     // +X −X +Y −Y +Z −Z); in-memory images likewise (`images`, one per face).
@@ -143,11 +149,23 @@ struct ObjectDesc {
 struct SceneDesc {
     int width = 640, height = 360;
     CameraDesc camera;
+    // Optional animation: keyframes in increasing time (≥ 2). Frame i of N is rendered at
+    // time t0 + (t1 − t0)·i/(N − 1) over the path's [t0, t1] (camera_at).
+    std::vector<CameraKeyframe> camera_path;
     std::optional<EnvironmentDesc> environment;  // none: black background, no reflections
     Vec3 background{0, 0, 0};  // seen where rays escape and there is no environment
     std::vector<LightDesc> lights;
     std::vector<ObjectDesc> objects;
     std::filesystem::path source;  // the scene file (empty for built-in scenes)
 };
+
+// The camera at `time` on the scene's camera_path: position, look_at, up and fov interpolated
+// linearly between the two keyframes around `time` (clamped to the path's ends); the scene's
+// `camera` if it has no path.
+CameraDesc camera_at(const SceneDesc& scene, double time);
+
+// The camera of frame `frame` of `frame_count` (≥ 1) spread evenly over the path's time span;
+// frame_count = 1 gives the first keyframe.
+CameraDesc camera_for_frame(const SceneDesc& scene, int frame, int frame_count);
 
 }  // namespace footprint

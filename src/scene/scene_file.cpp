@@ -210,11 +210,15 @@ class SceneParser {
     SceneDesc parse(const json& root) {
         if (!root.is_object())
             fail("", "expected a JSON object at the top level, got " + describe(root));
-        check_keys(root, "", {"image", "camera", "environment", "background", "lights", "objects"});
+        check_keys(
+            root, "",
+            {"image", "camera", "camera_path", "environment", "background", "lights", "objects"});
         SceneDesc scene;
         scene.source = file_;
         if (const json* image = find(root, "image")) parse_image(*image, "image", scene);
         parse_camera(require(root, "", "camera"), "camera", scene.camera);
+        if (const json* path = find(root, "camera_path"))
+            scene.camera_path = parse_camera_path(*path, "camera_path", scene.camera);
         if (const json* env = find(root, "environment"))
             scene.environment = parse_environment(*env, "environment");
         if (const json* background = find(root, "background"))
@@ -350,8 +354,42 @@ class SceneParser {
             scene.height = integer(*h, member(path, "height"), 1, 16384);
     }
 
-    void parse_camera(const json& j, const std::string& path, CameraDesc& camera) const {
-        check_keys(j, path, {"position", "look_at", "up", "fov_y_deg"});
+    // Keyframes [{time, position, look_at, up, fov_y_deg}, …]: each key defaults to the scene's
+    // camera, `time` to the keyframe's index; times must increase.
+    std::vector<CameraKeyframe> parse_camera_path(const json& j, const std::string& path,
+                                                  const CameraDesc& base) const {
+        expect_array(j, path);
+        if (j.size() < 2) fail(path, "needs at least 2 keyframes, got " + std::to_string(j.size()));
+        std::vector<CameraKeyframe> keys;
+        for (std::size_t i = 0; i < j.size(); ++i) {
+            const std::string key_path = element(path, i);
+            expect_object(j[i], key_path);
+            CameraKeyframe key;
+            key.time = static_cast<double>(i);
+            key.camera = base;
+            json camera = j[i];
+            if (const json* t = find(j[i], "time")) {
+                key.time = number(*t, member(key_path, "time"));
+                camera.erase("time");
+            }
+            parse_camera(camera, key_path, key.camera, true);
+            if (!keys.empty() && !(key.time > keys.back().time)) {
+                fail(member(key_path, "time"), "must be greater than the previous keyframe's (" +
+                                                   format_number(keys.back().time) + "), got " +
+                                                   format_number(key.time));
+            }
+            keys.push_back(key);
+        }
+        return keys;
+    }
+
+    void parse_camera(const json& j, const std::string& path, CameraDesc& camera,
+                      bool keyframe = false) const {
+        if (keyframe) {
+            check_keys(j, path, {"position", "look_at", "up", "fov_y_deg", "time"});
+        } else {
+            check_keys(j, path, {"position", "look_at", "up", "fov_y_deg"});
+        }
         if (const json* v = find(j, "position"))
             camera.position = vec3(*v, member(path, "position"));
         if (const json* v = find(j, "look_at")) camera.look_at = vec3(*v, member(path, "look_at"));

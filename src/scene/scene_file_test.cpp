@@ -716,6 +716,17 @@ const ErrorCase kErrorCases[] = {
     {"BumpStrengthString", R"({"objects": [{"shape": "sphere", "material": {"bump": {
         "normal_map": "normal.png", "strength": "big"}}}]})",
      "objects[0].material.bump.strength", "expected a number, got a string"},
+    // Camera paths.
+    {"CameraPathNotArray", R"({"camera_path": {"position": [0, 1, 5]}})", "camera_path",
+     "expected an array"},
+    {"CameraPathOneKeyframe", R"({"camera_path": [{"position": [0, 1, 5]}]})", "camera_path",
+     "needs at least 2 keyframes"},
+    {"CameraPathUnknownKey", R"({"camera_path": [{"position": [0, 1, 5]}, {"tim": 2}]})",
+     "camera_path[1].tim", "did you mean 'time'?"},
+    {"CameraPathTimesDecrease", R"({"camera_path": [{"time": 1}, {"time": 0.5}]})",
+     "camera_path[1].time", "must be greater than the previous keyframe's"},
+    {"CameraPathBadFov", R"({"camera_path": [{}, {"fov_y_deg": 190}]})", "camera_path[1].fov_y_deg",
+     "must be in (0, 180)"},
 };
 
 #undef SPHERE
@@ -745,6 +756,31 @@ INSTANTIATE_TEST_SUITE_P(SceneFile, SceneFileErrors, ::testing::ValuesIn(kErrorC
                          [](const ::testing::TestParamInfo<ErrorCase>& info) {
                              return std::string(info.param.name);
                          });
+
+TEST(SceneFile, CameraPathKeyframesDefaultToTheCameraAndInterpolate) {
+    TempDir dir;
+    create_assets(dir.path());
+    json scene = json::parse(kBaseScene);
+    scene.merge_patch(json::parse(R"({"camera_path": [
+        {"position": [0, 1, 5]},
+        {"time": 3, "position": [4, 1, 5], "fov_y_deg": 60}]})"));
+    const fs::path file = dir.path() / "scene.json";
+    write_file(file, scene.dump(2));
+    const Result<SceneDesc> result = load_scene_file(file);
+    ASSERT_TRUE(result.ok()) << result.error().message;
+    const SceneDesc& desc = *result;
+    ASSERT_EQ(desc.camera_path.size(), 2u);
+    EXPECT_EQ(desc.camera_path[0].time, 0);  // the index
+    EXPECT_EQ(desc.camera_path[1].time, 3);
+    EXPECT_EQ(desc.camera_path[0].camera.fov_y_deg, 40);  // the camera's (default) fov
+    // Frame 1 of 4 lies at t = 1 of [0, 3]: a third of the way.
+    const CameraDesc c = camera_for_frame(desc, 1, 4);
+    EXPECT_NEAR(c.position.x, 4.0 / 3.0, 1e-12);
+    EXPECT_NEAR(c.fov_y_deg, 40 + 20.0 / 3.0, 1e-12);
+    EXPECT_EQ(camera_for_frame(desc, 3, 4).position.x, 4);
+    EXPECT_EQ(camera_at(desc, -1).position.x, 0);  // clamped to the ends
+    EXPECT_EQ(camera_at(desc, 9).position.x, 4);
+}
 
 TEST(SceneFile, TheErrorTablesBaseSceneIsValid) {
     TempDir dir;

@@ -1,0 +1,438 @@
+#include "eval_command.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <system_error>
+
+#include <nlohmann/json.hpp>
+
+#include "command_util.h"
+#include "demo_scenes.h"
+#include "eval_report.h"
+#include "image/color.h"
+#include "image/image_io.h"
+#include "metrics/image_metrics.h"
+#include "plane_view.h"
+#include "progress.h"
+#include "render/camera.h"
+#include "render/render_scene.h"
+#include "render/renderer.h"
+#include "scene/scene_file.h"
+#include "scene/scene_hash.h"
+
+namespace footprint {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr FilterMode kFilterModes[] = {FilterMode::point, FilterMode::trilinear, FilterMode::fa,
+                                       FilterMode::fa_rough, FilterMode::ewa_rough};
+// Bumped whenever the reference's rendering changes, so that no cached reference of an older
+// renderer is reused.
+constexpr int kReferenceVersion = 1;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+struct NamedScene {
+    std::string name, title;
+    SceneDesc desc;
+};
+
+Result<NamedScene> resolve_scene(const std::string& name, const EvalCommandOptions& options) {
+    const auto& demos = demo_scene_names();
+    if (std::find(demos.begin(), demos.end(), name) != demos.end()) {
+        DemoSceneOptions demo_options;
+        demo_options.width = options.width;
+        demo_options.height = plane_view_height(options.width);
+        Result<DemoScene> demo = make_demo_scene(name, demo_options);
+        if (!demo) return demo.error();
+        return NamedScene{demo->name, demo->title, std::move(demo->scene)};
+    }
+    if (fs::path(name).extension() == ".json") {
+        Result<SceneDesc> desc = load_scene_file(name);
+        if (!desc) return desc.error();
+        return NamedScene{fs::path(name).stem().string(), name, std::move(*desc)};
+    }
+    std::string valid;
+    for (const std::string& n : demos) valid += (valid.empty() ? "" : ", ") + n;
+    return Error{"unknown scene '" + name + "': not a built-in demo (" + valid +
+                 ") nor a .json scene file"};
+}
+
+struct Timed {
+    Image image;
+    double seconds = 0;
+};
+
+class Renderer {
+  public:
+    Renderer(const RenderScene& scene, int threads, bool progress)
+        : scene_(scene), threads_(threads), progress_(progress) {}
+
+    Timed render_one(FilterMode mode, int spp, const std::string& label, int frame = 0,
+                     int frame_count = 0) const {
+        RenderOptions options;
+        options.filter = mode;
+        options.spp = spp;
+        options.threads = threads_;
+        options.frame = frame;
+        options.frame_count = frame_count;
+        Progress bar(label,
+                     static_cast<std::uint64_t>(
+                         render_tile_count(scene_.desc().width, scene_.desc().height)),
+                     progress_);
+        RenderStats stats;
+        Timed t;
+        t.image = render(scene_, options, &stats, [&] { bar.advance(); });
+        bar.finish();
+        t.seconds = stats.seconds;
+        return t;
+    }
+
+    std::vector<Image> sequence(FilterMode mode, int spp, int frames,
+                                const std::string& label) const {
+        std::vector<Image> images;
+        for (int f = 0; f < frames; ++f) {
+            images.push_back(
+                render_one(mode, spp,
+                           label + " frame " + std::to_string(f + 1) + "/" + std::to_string(frames),
+                           f, frames)
+                    .image);
+        }
+        return images;
+    }
+
+  private:
+    const RenderScene& scene_;
+    int threads_;
+    bool progress_;
+};
+
+// A cached render: read if present, else rendered and written (EXR, linear float).
+Result<Image> cached(const fs::path& file, bool& was_cached, const std::function<Image()>& make) {
+    std::error_code ec;
+    if (fs::is_regular_file(file, ec)) {
+        Result<Image> image = load_image(file);
+        if (image) {
+            was_cached = true;
+            return image;
+        }
+    }
+    was_cached = false;
+    Image image = make();
+    if (Status s = save_image(image, file); !s) return s.error();
+    return image;
+}
+
+// The interior: pixels whose pixel filter (±3σ = ±1.5 pixels around the centre) sees one object
+// only — no silhouette, no object/background edge — at the scene's still camera. Texture filters
+// can remove the aliasing there; at silhouettes only more samples can.
+Image interior_mask(const RenderScene& scene) {
+    const SceneDesc& desc = scene.desc();
+    const PinholeCamera camera(desc.camera, desc.width, desc.height);
+    Image mask(desc.width, desc.height, 1, 0.0f);
+    constexpr double kReach = 1.5;
+    const double offsets[3] = {-kReach, 0, kReach};
+    for (int y = 0; y < desc.height; ++y) {
+        for (int x = 0; x < desc.width; ++x) {
+            int object = -2;
+            bool same = true;
+            for (double dy : offsets) {
+                for (double dx : offsets) {
+                    const RayDifferential ray = camera.ray(x + 0.5 + dx, y + 0.5 + dy);
+                    const std::optional<SceneHit> hit = scene.intersect(ray.ray, 1e-9, INFINITY);
+                    const int id = hit ? hit->surface.object : -1;
+                    if (object == -2) object = id;
+                    same = same && id == object && id >= 0;
+                }
+            }
+            mask.at(x, y, 0) = same ? 1.0f : 0.0f;
+        }
+    }
+    return mask;
+}
+
+// What people look at: sRGB of the value clamped to [0, 1].
+Image display_encoded(const Image& linear) {
+    Image out = linear;
+    for (float& v : out.pixels) v = linear_to_srgb(std::clamp(v, 0.0f, 1.0f));
+    return out;
+}
+
+// Per-pixel mean |a − b| over the channels (1 channel), for choosing the crops.
+Image absolute_error(const Image& a, const Image& b) {
+    Image e(a.width, a.height, 1);
+    for (std::size_t p = 0; p < a.pixel_count(); ++p) {
+        double sum = 0;
+        for (int c = 0; c < a.channels; ++c) {
+            sum += std::abs(a.pixels[p * a.channels + c] - b.pixels[p * a.channels + c]);
+        }
+        e.pixels[p] = static_cast<float>(sum / a.channels);
+    }
+    return e;
+}
+
+std::string csv_number(double v) {
+    if (!std::isfinite(v)) return "";
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.6g", v);
+    return buffer;
+}
+
+nlohmann::json json_number(double v) {
+    return std::isfinite(v) ? nlohmann::json(v) : nullptr;
+}
+
+}  // namespace
+
+int run_eval_command(const EvalCommandOptions& options) {
+    if (options.width < 16 || options.width > 4096) {
+        return fail("--size " + std::to_string(options.width) + " is out of range (16 to 4096)");
+    }
+    if (options.reference_spp < 1 || options.reference_spp > 1 << 20) {
+        return fail("--reference-spp " + std::to_string(options.reference_spp) +
+                    " is out of range (1 to 1048576)");
+    }
+    if (options.supersampling_spp.empty()) return fail("--spp-list: needs at least one value");
+    for (int spp : options.supersampling_spp) {
+        if (spp < 1 || spp > 1 << 16) {
+            return fail("--spp-list: " + std::to_string(spp) + " is out of range (1 to 65536)");
+        }
+    }
+    if (options.frames < 0 || options.frames == 1 || options.frames > 1000) {
+        return fail("--frames " + std::to_string(options.frames) +
+                    " is out of range (0 for none, or 2 to 1000)");
+    }
+    if (options.flicker_reference_spp < 1 || options.flicker_reference_spp > 1 << 20) {
+        return fail("--flicker-reference-spp " + std::to_string(options.flicker_reference_spp) +
+                    " is out of range (1 to 1048576)");
+    }
+    std::vector<std::string> names = options.scenes;
+    if (names.empty()) names = demo_scene_names();
+    std::vector<NamedScene> scenes;
+    for (const std::string& name : names) {
+        Result<NamedScene> scene = resolve_scene(name, options);
+        if (!scene) return fail(scene.error().message);
+        scenes.push_back(std::move(*scene));
+    }
+    std::error_code ec;
+    fs::create_directories(options.out_dir / "cache", ec);
+    if (ec) return fail("cannot create " + quoted(options.out_dir) + ": " + ec.message());
+
+    const bool show_progress = !options.quiet && Progress::stderr_is_terminal();
+    EvalReport report;
+    report.title = "footprint eval";
+    report.generated_by = "footprint eval, " + std::to_string(options.reference_spp) +
+                          "-spp references, flicker over " + std::to_string(options.frames) +
+                          " frames";
+    nlohmann::json results = {{"reference_spp", options.reference_spp},
+                              {"frames", options.frames},
+                              {"flicker_reference_spp", options.flicker_reference_spp},
+                              {"scenes", nlohmann::json::array()}};
+    std::string csv =
+        "scene,method,family,spp,rmse,rmse_interior,ssim,flicker,seconds,"
+        "equal_error_speedup\n";
+
+    for (const NamedScene& named : scenes) {
+        Result<RenderScene> prepared = prepare_render_scene(named.desc);
+        if (!prepared) return fail("scene " + named.name + ": " + prepared.error().message);
+        const RenderScene& scene = *prepared;
+        const SceneDesc& desc = scene.desc();
+        const fs::path dir = options.out_dir / named.name;
+        fs::create_directories(dir, ec);
+        if (ec) return fail("cannot create " + quoted(dir) + ": " + ec.message());
+        const Renderer renderer(scene, options.threads, show_progress);
+        const std::string key = hash_hex(scene_content_hash(desc)) + "-v" +
+                                std::to_string(kReferenceVersion) + "-" +
+                                std::to_string(desc.width) + "x" + std::to_string(desc.height);
+
+        // The reference, cached by content.
+        bool reference_cached = false;
+        double reference_seconds = 0;
+        Result<Image> reference =
+            cached(options.out_dir / "cache" /
+                       (key + "-ref" + std::to_string(options.reference_spp) + ".exr"),
+                   reference_cached, [&] {
+                       Timed t = renderer.render_one(FilterMode::reference, options.reference_spp,
+                                                     named.name + " reference");
+                       reference_seconds = t.seconds;
+                       return std::move(t.image);
+                   });
+        if (!reference) return fail(reference.error().message);
+        const Image reference_display = display_encoded(*reference);
+        if (Status s = save_image(*reference, dir / "reference.png"); !s) {
+            return fail(s.error().message);
+        }
+
+        // The reference sequence for flicker, cached likewise.
+        const bool animated = options.frames >= 2 && !desc.camera_path.empty();
+        std::vector<Image> reference_sequence;
+        bool sequence_cached = animated;
+        for (int f = 0; animated && f < options.frames; ++f) {
+            bool was_cached = false;
+            Result<Image> frame = cached(
+                options.out_dir / "cache" /
+                    (key + "-seq" + std::to_string(options.frames) + "-ref" +
+                     std::to_string(options.flicker_reference_spp) + "-" + std::to_string(f) +
+                     ".exr"),
+                was_cached, [&] {
+                    return renderer
+                        .render_one(FilterMode::reference, options.flicker_reference_spp,
+                                    named.name + " reference frame " + std::to_string(f + 1) + "/" +
+                                        std::to_string(options.frames),
+                                    f, options.frames)
+                        .image;
+                });
+            if (!frame) return fail(frame.error().message);
+            sequence_cached = sequence_cached && was_cached;
+            reference_sequence.push_back(std::move(*frame));
+        }
+
+        const Image mask = interior_mask(scene);
+        double interior_fraction = 0;
+        for (float m : mask.pixels) interior_fraction += m;
+        interior_fraction /= static_cast<double>(std::max<std::size_t>(1, mask.pixels.size()));
+
+        struct Method {
+            FilterMode mode;
+            int spp;
+            std::string name, family, file;
+        };
+        std::vector<Method> methods;
+        for (FilterMode mode : kFilterModes) {
+            methods.push_back({mode, 1, filter_mode_name(mode), "filter", filter_mode_name(mode)});
+        }
+        for (int spp : options.supersampling_spp) {
+            methods.push_back({FilterMode::reference, spp,
+                               "supersampling " + std::to_string(spp) + " spp", "supersampling",
+                               "supersampling_" + std::to_string(spp)});
+        }
+
+        EvalScene eval_scene;
+        eval_scene.name = named.name;
+        eval_scene.title = named.title;
+        eval_scene.width = desc.width;
+        eval_scene.height = desc.height;
+        eval_scene.reference_file = named.name + "/reference.png";
+        eval_scene.reference_spp = options.reference_spp;
+        eval_scene.reference_seconds = reference_seconds;
+        std::vector<Image> images;
+        for (const Method& m : methods) {
+            Timed t = renderer.render_one(m.mode, m.spp, named.name + " " + m.name);
+            EvalMethod em;
+            em.name = m.name;
+            em.family = m.family;
+            em.spp = m.spp;
+            em.seconds = t.seconds;
+            em.image_file = named.name + "/" + m.file + ".png";
+            if (Status s = save_image(t.image, options.out_dir / em.image_file); !s) {
+                return fail(s.error().message);
+            }
+            Result<ImageComparison> all = compare_images(t.image, *reference);
+            if (!all) return fail(named.name + " " + m.name + ": " + all.error().message);
+            em.rmse = all->rmse;
+            MetricsOptions interior;
+            interior.mask = &mask;
+            if (interior_fraction > 0) {
+                Result<ImageComparison> inside = compare_images(t.image, *reference, interior);
+                if (inside) em.rmse_interior = inside->rmse;
+            }
+            Result<ImageComparison> display =
+                compare_images(display_encoded(t.image), reference_display);
+            if (display) em.ssim = display->ssim;
+            if (animated) {
+                const std::vector<Image> sequence =
+                    renderer.sequence(m.mode, m.spp, options.frames, named.name + " " + m.name);
+                Result<double> f = flicker(sequence, reference_sequence);
+                em.flicker = f ? *f : kNaN;
+            }
+            eval_scene.methods.push_back(em);
+            images.push_back(std::move(t.image));
+        }
+
+        // Heat maps on one scale per scene (twice point's RMSE), crops where point errs most.
+        const double scale = std::max(1e-6, 2 * eval_scene.methods.front().rmse);
+        for (std::size_t i = 0; i < methods.size(); ++i) {
+            EvalMethod& em = eval_scene.methods[i];
+            em.heat_map_file = named.name + "/" + methods[i].file + "_error.png";
+            if (Status s = save_image(error_heat_map(images[i], *reference, scale),
+                                      options.out_dir / em.heat_map_file);
+                !s) {
+                return fail(s.error().message);
+            }
+        }
+        eval_scene.crops = hardest_regions(absolute_error(images.front(), *reference), 3,
+                                           std::max(12, desc.width / 10));
+
+        // Rows of the CSV and JSON.
+        const std::vector<EvalMethod> supersampling = supersampling_methods(eval_scene);
+        nlohmann::json scene_json = {{"name", named.name},
+                                     {"title", named.title},
+                                     {"width", desc.width},
+                                     {"height", desc.height},
+                                     {"content_hash", key},
+                                     {"reference_cached", reference_cached},
+                                     {"reference_sequence_cached", sequence_cached},
+                                     {"reference_seconds", json_number(reference_seconds)},
+                                     {"interior_fraction", interior_fraction},
+                                     {"methods", nlohmann::json::array()}};
+        for (const EvalMethod& em : eval_scene.methods) {
+            double speedup = kNaN;
+            if (em.family != "supersampling") {
+                const EqualErrorSpeedup s = equal_error_speedup(em, supersampling);
+                if (s.defined) speedup = s.speedup;
+            }
+            scene_json["methods"].push_back({{"method", em.name},
+                                             {"family", em.family},
+                                             {"spp", em.spp},
+                                             {"rmse", em.rmse},
+                                             {"rmse_interior", json_number(em.rmse_interior)},
+                                             {"ssim", em.ssim},
+                                             {"flicker", json_number(em.flicker)},
+                                             {"seconds", em.seconds},
+                                             {"equal_error_speedup", json_number(speedup)}});
+            csv += named.name + "," + em.name + "," + em.family + "," + std::to_string(em.spp) +
+                   "," + csv_number(em.rmse) + "," + csv_number(em.rmse_interior) + "," +
+                   csv_number(em.ssim) + "," + csv_number(em.flicker) + "," +
+                   csv_number(em.seconds) + "," + csv_number(speedup) + "\n";
+        }
+        results["scenes"].push_back(scene_json);
+        report.scenes.push_back(std::move(eval_scene));
+        if (!options.quiet) {
+            std::printf("%-17s done (reference %s)\n", named.name.c_str(),
+                        reference_cached ? "cached" : "rendered");
+        }
+    }
+
+    if (Status s = write_text_atomically(options.out_dir / "results.csv", csv); !s) {
+        return fail(s.error().message);
+    }
+    if (Status s = write_text_atomically(options.out_dir / "results.json", results.dump(2) + "\n");
+        !s) {
+        return fail(s.error().message);
+    }
+    const fs::path html = options.out_dir / "index.html";
+    if (Status s = write_eval_report(report, html); !s) return fail(s.error().message);
+    if (options.browser_check) {
+        const BrowserCheck check = check_report_in_browser(html, report_image_count(report));
+        if (check.chromium_found && !check.passed()) {
+            return fail("the report " + quoted(html) +
+                        " does not show every image: " + check.problem);
+        }
+        if (!options.quiet && !check.chromium_found) {
+            std::fprintf(stderr, "footprint: not checked in a browser: %s\n",
+                         check.problem.c_str());
+        }
+    }
+    if (!options.quiet) {
+        std::printf("wrote %s, results.csv and results.json to %s\n", "index.html",
+                    options.out_dir.string().c_str());
+    }
+    return 0;
+}
+
+}  // namespace footprint

@@ -1,0 +1,863 @@
+#include "eval_report.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <sstream>
+
+#include "command_util.h"
+
+namespace footprint {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double nan_value = std::numeric_limits<double>::quiet_NaN();
+
+bool positive_finite(double v) {
+    return std::isfinite(v) && v > 0;
+}
+
+// printf-style formatting of one number.
+std::string format(const char* pattern, double value) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, pattern, value);
+    return buffer;
+}
+
+// `value` with `digits` significant digits, "—" when not finite.
+std::string number(double value, int digits = 4) {
+    if (!std::isfinite(value)) return "\u2014";
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+    return buffer;
+}
+
+// Coordinates in SVG: one decimal.
+std::string coord(double v) {
+    return format("%.1f", v);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Hardest regions
+
+std::vector<CropRect> hardest_regions(const Image& error, int count, int size) {
+    std::vector<CropRect> result;
+    if (error.empty() || error.width <= 0 || error.height <= 0 || error.channels <= 0 ||
+        count <= 0 || size <= 0)
+        return result;
+    const int width = error.width, height = error.height;
+    const int w = std::min(size, width), h = std::min(size, height);
+
+    // sat[(y)·(width+1) + x] = sum of channel 0 over columns < x, rows < y.
+    const std::size_t stride = static_cast<std::size_t>(width) + 1;
+    std::vector<double> sat(stride * (static_cast<std::size_t>(height) + 1), 0.0);
+    for (int y = 0; y < height; ++y) {
+        double row = 0;
+        for (int x = 0; x < width; ++x) {
+            const float v = error.at(x, y, 0);
+            row += std::isfinite(v) ? v : 0.0;
+            sat[(y + 1) * stride + x + 1] = sat[y * stride + x + 1] + row;
+        }
+    }
+    const int nx = width - w + 1, ny = height - h + 1;  // window positions
+    std::vector<double> sums(static_cast<std::size_t>(nx) * ny);
+    for (int y = 0; y < ny; ++y)
+        for (int x = 0; x < nx; ++x)
+            sums[static_cast<std::size_t>(y) * nx + x] =
+                sat[(y + h) * stride + x + w] - sat[y * stride + x + w] -
+                sat[(y + h) * stride + x] + sat[y * stride + x];
+    std::vector<char> blocked(sums.size(), 0);
+    while (static_cast<int>(result.size()) < count) {
+        std::size_t best = sums.size();
+        for (std::size_t i = 0; i < sums.size(); ++i)
+            if (!blocked[i] && (best == sums.size() || sums[i] > sums[best])) best = i;
+        if (best == sums.size()) break;
+        const int bx = static_cast<int>(best % nx), by = static_cast<int>(best / nx);
+        result.push_back({bx, by, w, h});
+        // Windows overlapping the chosen one have their corner within (bx − w, bx + w) ×
+        // (by − h, by + h).
+        for (int y = std::max(0, by - h + 1); y <= std::min(ny - 1, by + h - 1); ++y)
+            for (int x = std::max(0, bx - w + 1); x <= std::min(nx - 1, bx + w - 1); ++x)
+                blocked[static_cast<std::size_t>(y) * nx + x] = 1;
+    }
+    return result;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Equal-error speedup
+
+EqualErrorSpeedup equal_error_speedup(const EvalMethod& method,
+                                      const std::vector<EvalMethod>& supersampling) {
+    EqualErrorSpeedup result;
+    if (!positive_finite(method.seconds) || !positive_finite(method.rmse)) return result;
+    struct Point {
+        int spp;
+        double log_rmse, log_seconds;
+    };
+    std::vector<Point> points;
+    for (const EvalMethod& m : supersampling)
+        if (positive_finite(m.rmse) && positive_finite(m.seconds))
+            points.push_back({m.spp, std::log(m.rmse), std::log(m.seconds)});
+    if (points.empty()) return result;
+    std::stable_sort(points.begin(), points.end(),
+                     [](const Point& a, const Point& b) { return a.spp < b.spp; });
+
+    const double r = std::log(method.rmse);
+    auto finish = [&](double log_seconds) {
+        result.seconds = std::exp(log_seconds);
+        result.speedup = result.seconds / method.seconds;
+        result.defined = std::isfinite(result.speedup);
+        if (!result.defined) result = {};
+        return result;
+    };
+    if (r >= points.front().log_rmse) {
+        if (r > points.front().log_rmse) result.above_lowest_spp = true;
+        return finish(points.front().log_seconds);
+    }
+    for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+        const Point& a = points[i];
+        const Point& b = points[i + 1];
+        const double lo = std::min(a.log_rmse, b.log_rmse), hi = std::max(a.log_rmse, b.log_rmse);
+        if (r < lo || r > hi) continue;
+        if (a.log_rmse == b.log_rmse) return finish(a.log_seconds);
+        const double t = (r - a.log_rmse) / (b.log_rmse - a.log_rmse);
+        return finish(a.log_seconds + t * (b.log_seconds - a.log_seconds));
+    }
+    // The method's RMSE is below that of every point (above the first was handled, and every
+    // value in between lies in some segment's range): extrapolate from the last two points.
+    if (points.size() < 2) return result;
+    const Point& a = points[points.size() - 2];
+    const Point& b = points.back();
+    if (!(b.log_rmse < a.log_rmse) || !(b.log_seconds > a.log_seconds)) return result;
+    const double slope = (b.log_seconds - a.log_seconds) / (b.log_rmse - a.log_rmse);
+    result.extrapolated = true;
+    return finish(b.log_seconds + slope * (r - b.log_rmse));
+}
+
+std::vector<EvalMethod> supersampling_methods(const EvalScene& scene) {
+    std::vector<EvalMethod> result;
+    for (const EvalMethod& m : scene.methods)
+        if (m.family == "supersampling") result.push_back(m);
+    return result;
+}
+
+std::string speedup_label(const EqualErrorSpeedup& s, bool short_form) {
+    if (!s.defined) return "\u2014";
+    const double v = s.speedup;
+    const std::string text = "\u00d7" + (v >= 9.95 ? format("%.0f", v) : format("%.2g", v));
+    if (s.extrapolated) return "\u2248" + text + (short_form ? "" : " (extrapolated)");
+    if (s.above_lowest_spp) return "\u2264" + text + (short_form ? "" : " (worse than 1 spp)");
+    return text;
+}
+
+std::string html_escape(std::string_view text) {
+    std::string out;
+    out.reserve(text.size());
+    for (char c : text) {
+        switch (c) {
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            case '\'':
+                out += "&#39;";
+                break;
+            default:
+                out += c;
+        }
+    }
+    return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The error–time plot
+
+namespace {
+
+// Tick values (powers of ten times 1, 2, 5, or every mantissa for narrow ranges) within
+// [lo, hi], both log10.
+std::vector<double> log_ticks(double lo, double hi) {
+    const double span = hi - lo;
+    std::vector<double> mantissas = {1};
+    if (span < 1.2)
+        mantissas = {1, 2, 3, 4, 5, 6, 7, 8, 9};
+    else if (span < 3.5)
+        mantissas = {1, 2, 5};
+    const int step = span > 8 ? static_cast<int>(std::ceil(span / 6)) : 1;
+    std::vector<double> ticks;
+    for (int k = static_cast<int>(std::floor(lo)); k <= static_cast<int>(std::ceil(hi)); ++k) {
+        if (k % step != 0) continue;
+        for (double m : mantissas) {
+            const double v = std::log10(m) + k;
+            if (v >= lo - 1e-9 && v <= hi + 1e-9) ticks.push_back(v);
+        }
+    }
+    return ticks;
+}
+
+std::string tick_label(double log_value) {
+    const double v = std::pow(10.0, log_value);
+    if (v >= 1e-3 && v < 1e5) return format("%.4g", v);
+    return format("%.0e", v);
+}
+
+// [lo, hi] of log10(values), padded, at least half a decade wide.
+std::pair<double, double> log_range(const std::vector<double>& values) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (double v : values) {
+        lo = std::min(lo, std::log10(v));
+        hi = std::max(hi, std::log10(v));
+    }
+    if (hi - lo < 0.5) {
+        const double mid = 0.5 * (lo + hi);
+        lo = mid - 0.25;
+        hi = mid + 0.25;
+    }
+    const double pad = 0.08 * (hi - lo);
+    return {lo - pad, hi + pad};
+}
+
+constexpr std::array<const char*, 8> palette = {"#d62728", "#2ca02c", "#9467bd", "#ff7f0e",
+                                                "#17becf", "#8c564b", "#e377c2", "#bcbd22"};
+
+}  // namespace
+
+std::string error_time_plot_svg(const EvalScene& scene) {
+    constexpr double svg_w = 680, svg_h = 420;
+    constexpr double left = 72, right = 24, top = 24, bottom = 56;
+    const double plot_w = svg_w - left - right, plot_h = svg_h - top - bottom;
+
+    std::vector<EvalMethod> ss;
+    for (const EvalMethod& m : supersampling_methods(scene))
+        if (positive_finite(m.rmse) && positive_finite(m.seconds)) ss.push_back(m);
+    std::stable_sort(ss.begin(), ss.end(),
+                     [](const EvalMethod& a, const EvalMethod& b) { return a.spp < b.spp; });
+    struct Marker {
+        const EvalMethod* method;
+        EqualErrorSpeedup speedup;
+    };
+    std::vector<Marker> markers;
+    for (const EvalMethod& m : scene.methods)
+        if (m.family != "supersampling" && positive_finite(m.rmse) && positive_finite(m.seconds))
+            markers.push_back({&m, equal_error_speedup(m, ss)});
+
+    std::ostringstream svg;
+    svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"plot\" viewBox=\"0 0 " << svg_w << " "
+        << svg_h << "\" width=\"" << svg_w << "\" height=\"" << svg_h
+        << "\" role=\"img\" aria-label=\"RMSE against seconds, log-log\" "
+           "font-family=\"sans-serif\" font-size=\"12\">\n";
+    svg << "<rect x=\"0\" y=\"0\" width=\"" << svg_w << "\" height=\"" << svg_h
+        << "\" fill=\"white\"/>\n";
+
+    std::vector<double> xs, ys;
+    for (const EvalMethod& m : ss) {
+        xs.push_back(m.seconds);
+        ys.push_back(m.rmse);
+    }
+    for (const Marker& k : markers) {
+        xs.push_back(k.method->seconds);
+        ys.push_back(k.method->rmse);
+        if (k.speedup.defined && positive_finite(k.speedup.seconds))
+            xs.push_back(k.speedup.seconds);
+    }
+    if (xs.empty()) {
+        svg << "<text x=\"" << svg_w / 2 << "\" y=\"" << svg_h / 2
+            << "\" text-anchor=\"middle\" fill=\"#666\">no data</text>\n</svg>\n";
+        return svg.str();
+    }
+    const auto [x0, x1] = log_range(xs);
+    const auto [y0, y1] = log_range(ys);
+    auto px = [&](double seconds) {
+        return left + (std::log10(seconds) - x0) / (x1 - x0) * plot_w;
+    };
+    auto py = [&](double rmse) { return top + (y1 - std::log10(rmse)) / (y1 - y0) * plot_h; };
+
+    // Grid, ticks and labels.
+    svg << "<g stroke=\"#e4e4e4\" stroke-width=\"1\">\n";
+    for (double t : log_ticks(x0, x1)) {
+        const double x = left + (t - x0) / (x1 - x0) * plot_w;
+        svg << "<line x1=\"" << coord(x) << "\" y1=\"" << top << "\" x2=\"" << coord(x)
+            << "\" y2=\"" << top + plot_h << "\"/>\n";
+    }
+    for (double t : log_ticks(y0, y1)) {
+        const double y = top + (y1 - t) / (y1 - y0) * plot_h;
+        svg << "<line x1=\"" << left << "\" y1=\"" << coord(y) << "\" x2=\"" << left + plot_w
+            << "\" y2=\"" << coord(y) << "\"/>\n";
+    }
+    svg << "</g>\n<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << plot_w
+        << "\" height=\"" << plot_h << "\" fill=\"none\" stroke=\"#333\"/>\n";
+    svg << "<g fill=\"#333\">\n";
+    for (double t : log_ticks(x0, x1)) {
+        const double x = left + (t - x0) / (x1 - x0) * plot_w;
+        svg << "<line x1=\"" << coord(x) << "\" y1=\"" << top + plot_h << "\" x2=\"" << coord(x)
+            << "\" y2=\"" << top + plot_h + 5 << "\" stroke=\"#333\"/>";
+        svg << "<text x=\"" << coord(x) << "\" y=\"" << top + plot_h + 18
+            << "\" text-anchor=\"middle\">" << tick_label(t) << "</text>\n";
+    }
+    for (double t : log_ticks(y0, y1)) {
+        const double y = top + (y1 - t) / (y1 - y0) * plot_h;
+        svg << "<line x1=\"" << left - 5 << "\" y1=\"" << coord(y) << "\" x2=\"" << left
+            << "\" y2=\"" << coord(y) << "\" stroke=\"#333\"/>";
+        svg << "<text x=\"" << left - 8 << "\" y=\"" << coord(y + 4) << "\" text-anchor=\"end\">"
+            << tick_label(t) << "</text>\n";
+    }
+    svg << "<text x=\"" << coord(left + plot_w / 2) << "\" y=\"" << svg_h - 12
+        << "\" text-anchor=\"middle\">render time (seconds, log scale)</text>\n";
+    svg << "<text transform=\"translate(16 " << coord(top + plot_h / 2)
+        << ") rotate(-90)\" text-anchor=\"middle\">RMSE against the reference (log scale)</text>\n";
+    svg << "</g>\n";
+
+    // Supersampling: a connected line with points labelled by spp.
+    if (!ss.empty()) {
+        svg << "<polyline fill=\"none\" stroke=\"#1f77b4\" stroke-width=\"2\" points=\"";
+        for (const EvalMethod& m : ss)
+            svg << coord(px(m.seconds)) << "," << coord(py(m.rmse)) << " ";
+        svg << "\"/>\n<g fill=\"#1f77b4\">\n";
+        for (const EvalMethod& m : ss) {
+            svg << "<circle cx=\"" << coord(px(m.seconds)) << "\" cy=\"" << coord(py(m.rmse))
+                << "\" r=\"4\"><title>" << html_escape(m.name) << "</title></circle>";
+            svg << "<text x=\"" << coord(px(m.seconds) + 6) << "\" y=\"" << coord(py(m.rmse) - 7)
+                << "\">" << m.spp << " spp</text>\n";
+        }
+        svg << "</g>\n";
+    }
+
+    // Every other method: a marker, its name and a dashed line to its equal-error time.
+    for (std::size_t i = 0; i < markers.size(); ++i) {
+        const Marker& k = markers[i];
+        const char* colour = palette[i % palette.size()];
+        const double mx = px(k.method->seconds), my = py(k.method->rmse);
+        bool line_right = true;
+        if (k.speedup.defined && positive_finite(k.speedup.seconds)) {
+            const double ex = px(k.speedup.seconds);
+            line_right = ex >= mx;
+            if (k.speedup.extrapolated && !ss.empty())  // the extended supersampling curve
+                svg << "<line x1=\"" << coord(px(ss.back().seconds)) << "\" y1=\""
+                    << coord(py(ss.back().rmse)) << "\" x2=\"" << coord(ex) << "\" y2=\""
+                    << coord(my) << "\" stroke=\"#1f77b4\" stroke-dasharray=\"2 3\"/>\n";
+            svg << "<line x1=\"" << coord(mx) << "\" y1=\"" << coord(my) << "\" x2=\"" << coord(ex)
+                << "\" y2=\"" << coord(my) << "\" stroke=\"" << colour
+                << "\" stroke-width=\"1.5\" stroke-dasharray=\"6 4\"/>\n";
+            svg << "<circle cx=\"" << coord(ex) << "\" cy=\"" << coord(my)
+                << "\" r=\"3\" fill=\"white\" stroke=\"" << colour << "\"/>\n";
+            svg << "<text x=\"" << coord(0.5 * (mx + ex)) << "\" y=\"" << coord(my - 6)
+                << "\" text-anchor=\"middle\" fill=\"" << colour << "\" font-weight=\"bold\">"
+                << speedup_label(k.speedup, true) << "</text>\n";
+        }
+        svg << "<rect x=\"" << coord(mx - 5) << "\" y=\"" << coord(my - 5)
+            << "\" width=\"10\" height=\"10\" fill=\"" << colour << "\" transform=\"rotate(45 "
+            << coord(mx) << " " << coord(my) << ")\"><title>" << html_escape(k.method->name)
+            << "</title></rect>\n";
+        // The name left of the marker, away from the line; below it when that leaves the plot.
+        const std::string name = html_escape(k.method->name);
+        const double name_width = 7.0 * static_cast<double>(k.method->name.size());
+        double nx = mx + 9, ny = my + 4;
+        const char* anchor = "start";
+        if (line_right && mx - 9 - name_width >= left) {
+            nx = mx - 9;
+            anchor = "end";
+        } else if (line_right) {
+            nx = mx - 4;
+            ny = my + 18;
+        }
+        svg << "<text x=\"" << coord(nx) << "\" y=\"" << coord(ny) << "\" text-anchor=\"" << anchor
+            << "\" fill=\"" << colour << "\">" << name << "</text>\n";
+    }
+
+    // Legend.
+    const double lx = left + plot_w - 190, ly = top + 10;
+    svg << "<g font-size=\"11\"><rect x=\"" << lx << "\" y=\"" << ly
+        << "\" width=\"182\" height=\"40\" fill=\"white\" fill-opacity=\"0.85\" stroke=\"#ccc\"/>"
+        << "<line x1=\"" << lx + 8 << "\" y1=\"" << ly + 13 << "\" x2=\"" << lx + 30 << "\" y2=\""
+        << ly + 13 << "\" stroke=\"#1f77b4\" stroke-width=\"2\"/><text x=\"" << lx + 36 << "\" y=\""
+        << ly + 17 << "\">supersampling</text><line x1=\"" << lx + 8 << "\" y1=\"" << ly + 29
+        << "\" x2=\"" << lx + 30 << "\" y2=\"" << ly + 29
+        << "\" stroke=\"#555\" stroke-dasharray=\"6 4\"/><text x=\"" << lx + 36 << "\" y=\""
+        << ly + 33 << "\">equal RMSE: speedup</text></g>\n";
+    svg << "</svg>\n";
+    return svg.str();
+}
+
+// ---------------------------------------------------------------------------------------------
+// The HTML report
+
+namespace {
+
+// A relative path as a URL: bytes outside A–Z a–z 0–9 - . _ ~ / percent-encoded.
+std::string url_of(std::string_view path) {
+    static const char hex[] = "0123456789ABCDEF";
+    std::string out;
+    for (unsigned char c : path) {
+        if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~' || c == '/') {
+            out += static_cast<char>(c);
+        } else {
+            out += '%';
+            out += hex[c >> 4];
+            out += hex[c & 15];
+        }
+    }
+    return out;
+}
+
+constexpr const char* style_sheet = R"css(
+body { font-family: system-ui, -apple-system, "Segoe UI", Roboto, sans-serif; margin: 24px;
+       color: #222; background: #fafafa; }
+h1 { margin-bottom: 4px; }
+.generated { color: #666; margin-top: 0; }
+nav a { margin-right: 12px; }
+section.scene { background: white; border: 1px solid #ddd; border-radius: 6px; padding: 8px 20px;
+                margin: 24px 0; }
+table { border-collapse: collapse; margin: 8px 0 16px; }
+th, td { padding: 3px 10px; border-bottom: 1px solid #e4e4e4; }
+th { text-align: left; background: #f0f0f0; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; }
+tr.reference td { color: #666; }
+tr.supersampling td.name { color: #1f77b4; }
+.figures { display: flex; flex-wrap: wrap; gap: 12px; align-items: flex-start; }
+figure { margin: 0; }
+figure img { display: block; margin-bottom: 4px; background: #eee; }
+figcaption { font-size: 13px; color: #444; max-width: 320px; }
+.outlined { position: relative; display: inline-block; }
+.outline { position: absolute; border: 2px solid #ff2; box-shadow: 0 0 0 1px #000;
+           pointer-events: none; }
+.outline span { position: absolute; left: 2px; top: 0; font: bold 11px sans-serif; color: #ff2;
+                text-shadow: 0 0 2px #000; }
+.crop-row { display: flex; flex-wrap: wrap; gap: 10px; align-items: flex-start; margin: 8px 0; }
+.crop-row > .label { width: 70px; font-weight: bold; }
+.crop { position: relative; overflow: hidden; border: 1px solid #999; background: #eee; }
+.crop img { position: absolute; max-width: none; image-rendering: pixelated;
+            image-rendering: crisp-edges; }
+.crop-caption { font-size: 12px; color: #444; margin-top: 2px; }
+svg.plot { max-width: 100%; height: auto; border: 1px solid #ddd; }
+.note { font-size: 13px; color: #555; }
+)css";
+
+// Checks every image once the page has loaded; see write_eval_report in eval_report.h.
+constexpr const char* check_script = R"js(
+window.addEventListener('load', function () {
+  var imgs = Array.prototype.slice.call(document.images);
+  var loaded = 0, failed = [];
+  imgs.forEach(function (img) {
+    if (img.complete && img.naturalWidth > 0) loaded++; else failed.push(img.getAttribute('src'));
+  });
+  var urls = [];
+  Array.prototype.forEach.call(document.querySelectorAll('*'), function (el) {
+    var bg = getComputedStyle(el).backgroundImage, re = /url\("?(.*?)"?\)/g, m;
+    while ((m = re.exec(bg))) if (urls.indexOf(m[1]) < 0) urls.push(m[1]);
+  });
+  var pending = urls.length;
+  function finish() {
+    var total = imgs.length + urls.length, d = document.body.dataset;
+    d.imagesLoaded = loaded; d.imagesFailed = failed.length; d.imagesTotal = total;
+    d.imagesFailedList = failed.join('\n');
+    document.title = document.title + ' [images ' + loaded + '/' + total + ']';
+  }
+  if (pending === 0) finish();
+  urls.forEach(function (u) {
+    var probe = new Image();
+    probe.onload = function () {
+      if (probe.naturalWidth > 0) loaded++; else failed.push(u);
+      if (--pending === 0) finish();
+    };
+    probe.onerror = function () { failed.push(u); if (--pending === 0) finish(); };
+    probe.src = u;
+  });
+});
+)js";
+
+class HtmlWriter {
+  public:
+    std::ostringstream out;
+    int images = 0;
+
+    void img(const std::string& file, const std::string& alt, const std::string& attributes) {
+        out << "<img src=\"" << html_escape(url_of(file)) << "\" alt=\"" << html_escape(alt) << "\""
+            << attributes << ">";
+        ++images;
+    }
+
+    void scene(const EvalScene& scene);
+
+  private:
+    void table(const EvalScene& scene, const std::vector<EvalMethod>& ss);
+    void figures(const EvalScene& scene);
+    void crops(const EvalScene& scene);
+};
+
+// Displayed width of a scene's images: their width, at most 320 pixels.
+int display_width(const EvalScene& scene) {
+    return scene.width > 0 ? std::min(scene.width, 320) : 320;
+}
+
+std::string size_attributes(const EvalScene& scene) {
+    const int w = display_width(scene);
+    std::string a = " width=\"" + std::to_string(w) + "\"";
+    if (scene.width > 0 && scene.height > 0)
+        a += " height=\"" +
+             std::to_string(static_cast<int>(std::lround(double(w) * scene.height / scene.width))) +
+             "\"";
+    return a;
+}
+
+// The crops clamped to the scene; empty ones dropped (none without the scene's size).
+std::vector<CropRect> visible_crops(const EvalScene& scene) {
+    std::vector<CropRect> result;
+    if (scene.width <= 0 || scene.height <= 0) return result;
+    for (CropRect c : scene.crops) {
+        const int x0 = std::clamp(c.x, 0, scene.width), y0 = std::clamp(c.y, 0, scene.height);
+        const int x1 = std::clamp(c.x + std::max(c.width, 0), 0, scene.width);
+        const int y1 = std::clamp(c.y + std::max(c.height, 0), 0, scene.height);
+        if (x1 > x0 && y1 > y0) result.push_back({x0, y0, x1 - x0, y1 - y0});
+    }
+    return result;
+}
+
+std::string crop_name(std::size_t i) {
+    return i < 26 ? std::string(1, static_cast<char>('A' + i)) : std::to_string(i + 1);
+}
+
+void HtmlWriter::scene(const EvalScene& scene) {
+    const std::vector<EvalMethod> ss = supersampling_methods(scene);
+    out << "<section class=\"scene\" id=\"" << html_escape(url_of(scene.name)) << "\">\n<h2>"
+        << html_escape(scene.title.empty() ? scene.name : scene.title) << "</h2>\n";
+    if (!scene.title.empty() && scene.name != scene.title)
+        out << "<p class=\"note\">scene <code>" << html_escape(scene.name) << "</code>, "
+            << scene.width << " \u00d7 " << scene.height << " pixels</p>\n";
+    table(scene, ss);
+    figures(scene);
+    crops(scene);
+    out << "<h3>Error against time</h3>\n" << error_time_plot_svg(scene);
+    out << "<p class=\"note\">Log\u2013log. The blue line is supersampling; each dashed line runs "
+           "from a method to the supersampling time of the same RMSE (interpolated in "
+           "log\u2013log; \u2248 extrapolated beyond the most samples measured, \u2264 worse than "
+           "the fewest samples measured).</p>\n</section>\n";
+}
+
+void HtmlWriter::table(const EvalScene& scene, const std::vector<EvalMethod>& ss) {
+    out << "<table>\n<tr><th>method</th><th>spp</th><th>RMSE</th><th>RMSE interior</th>"
+           "<th>SSIM</th><th>flicker</th>"
+           "<th>seconds</th><th>equal-error speedup over supersampling</th></tr>\n";
+    out << "<tr class=\"reference\"><td class=\"name\">reference</td><td class=\"num\">"
+        << scene.reference_spp << "</td><td class=\"num\">0</td><td class=\"num\">0</td>"
+        << "<td class=\"num\">1</td>"
+        << "<td class=\"num\">\u2014</td><td class=\"num\">" << number(scene.reference_seconds, 3)
+        << "</td><td></td></tr>\n";
+    for (const EvalMethod& m : scene.methods) {
+        const bool is_ss = m.family == "supersampling";
+        out << "<tr class=\"" << (is_ss ? "supersampling" : "filter") << "\"><td class=\"name\">"
+            << html_escape(m.name) << "</td><td class=\"num\">" << m.spp
+            << "</td><td class=\"num\">" << number(m.rmse) << "</td><td class=\"num\">"
+            << number(m.rmse_interior) << "</td><td class=\"num\">" << number(m.ssim) << "</td>"
+            << "<td class=\"num\">" << number(m.flicker, 3) << "</td><td class=\"num\">"
+            << number(m.seconds, 3) << "</td><td class=\"num\">"
+            << (is_ss ? "\u2014" : html_escape(speedup_label(equal_error_speedup(m, ss))))
+            << "</td></tr>\n";
+    }
+    out << "</table>\n";
+}
+
+void HtmlWriter::figures(const EvalScene& scene) {
+    const std::vector<CropRect> crops = visible_crops(scene);
+    const int w = display_width(scene);
+    const double scale = scene.width > 0 ? double(w) / scene.width : 1.0;
+    out << "<div class=\"figures\">\n";
+    if (!scene.reference_file.empty()) {
+        out << "<figure><div class=\"outlined\">";
+        img(scene.reference_file, "reference", size_attributes(scene));
+        for (std::size_t i = 0; i < crops.size(); ++i) {
+            const CropRect& c = crops[i];
+            out << "<div class=\"outline\" style=\"left:" << coord(c.x * scale - 2)
+                << "px;top:" << coord(c.y * scale - 2) << "px;width:" << coord(c.width * scale)
+                << "px;height:" << coord(c.height * scale) << "px\"><span>" << crop_name(i)
+                << "</span></div>";
+        }
+        out << "</div><figcaption>reference \u00b7 " << scene.reference_spp
+            << " spp</figcaption></figure>\n";
+    }
+    for (const EvalMethod& m : scene.methods) {
+        if (m.image_file.empty() && m.heat_map_file.empty()) continue;
+        out << "<figure>";
+        if (!m.image_file.empty()) img(m.image_file, m.name, size_attributes(scene));
+        if (!m.heat_map_file.empty())
+            img(m.heat_map_file, m.name + " error heat map", size_attributes(scene));
+        out << "<figcaption>" << html_escape(m.name) << " \u00b7 RMSE " << number(m.rmse)
+            << (m.heat_map_file.empty() ? "" : " (heat map below)") << "</figcaption></figure>\n";
+    }
+    out << "</div>\n";
+}
+
+void HtmlWriter::crops(const EvalScene& scene) {
+    const std::vector<CropRect> crops = visible_crops(scene);
+    if (crops.empty()) return;
+    struct Source {
+        std::string name, file;
+    };
+    std::vector<Source> sources;
+    if (!scene.reference_file.empty()) sources.push_back({"reference", scene.reference_file});
+    for (const EvalMethod& m : scene.methods)
+        if (!m.image_file.empty()) sources.push_back({m.name, m.image_file});
+    if (sources.empty()) return;
+    out << "<h3>Hardest regions</h3>\n";
+    for (std::size_t i = 0; i < crops.size(); ++i) {
+        const CropRect& c = crops[i];
+        const int zoom = std::clamp(256 / std::max(c.width, c.height), 1, 4);
+        out << "<div class=\"crop-row\"><div class=\"label\">" << crop_name(i)
+            << "<div class=\"crop-caption\">" << c.width << "\u00d7" << c.height << " at (" << c.x
+            << ", " << c.y << "), \u00d7" << zoom << "</div></div>\n";
+        for (const Source& s : sources) {
+            out << "<div><div class=\"crop\" style=\"width:" << c.width * zoom
+                << "px;height:" << c.height * zoom << "px\">";
+            img(s.file, s.name + " crop " + crop_name(i),
+                " style=\"left:-" + std::to_string(c.x * zoom) + "px;top:-" +
+                    std::to_string(c.y * zoom) + "px;width:" + std::to_string(scene.width * zoom) +
+                    "px;height:" + std::to_string(scene.height * zoom) + "px\"");
+            out << "</div><div class=\"crop-caption\">" << html_escape(s.name) << "</div></div>\n";
+        }
+        out << "</div>\n";
+    }
+}
+
+// The page and the number of images in it.
+std::pair<std::string, int> build_html(const EvalReport& report) {
+    HtmlWriter w;
+    const std::string title = report.title.empty() ? "footprint evaluation" : report.title;
+    w.out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+          << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>"
+          << html_escape(title) << "</title>\n<style>" << style_sheet << "</style>\n</head>\n"
+          << "<body>\n<h1>" << html_escape(title) << "</h1>\n";
+    if (!report.generated_by.empty())
+        w.out << "<p class=\"generated\">" << html_escape(report.generated_by) << "</p>\n";
+    if (report.scenes.size() > 1) {
+        w.out << "<nav>";
+        for (const EvalScene& s : report.scenes)
+            w.out << "<a href=\"#" << html_escape(url_of(s.name)) << "\">"
+                  << html_escape(s.title.empty() ? s.name : s.title) << "</a>";
+        w.out << "</nav>\n";
+    }
+    for (const EvalScene& s : report.scenes) w.scene(s);
+    w.out << "<script>" << check_script << "</script>\n</body>\n</html>\n";
+    return {w.out.str(), w.images};
+}
+
+}  // namespace
+
+Status write_eval_report(const EvalReport& report, const fs::path& html_file) {
+    return write_text_atomically(html_file, build_html(report).first);
+}
+
+int report_image_count(const EvalReport& report) {
+    return build_html(report).second;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The browser check
+
+namespace {
+
+bool is_executable_file(const fs::path& p) {
+    std::error_code ec;
+    return fs::is_regular_file(p, ec) && ::access(p.c_str(), X_OK) == 0;
+}
+
+std::optional<fs::path> on_path(const std::string& name) {
+    const char* path = std::getenv("PATH");
+    if (!path) return std::nullopt;
+    std::stringstream dirs(path);
+    std::string dir;
+    while (std::getline(dirs, dir, ':')) {
+        if (dir.empty()) continue;
+        const fs::path candidate = fs::path(dir) / name;
+        if (is_executable_file(candidate)) return candidate;
+    }
+    return std::nullopt;
+}
+
+std::string shell_quote(const std::string& s) {
+    std::string out = "'";
+    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+std::string decode_entities(std::string_view s) {
+    std::string out;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        if (s[i] == '&') {
+            static const std::pair<std::string_view, char> entities[] = {
+                {"&amp;", '&'}, {"&quot;", '"'}, {"&lt;", '<'}, {"&gt;", '>'}, {"&#39;", '\''}};
+            bool done = false;
+            for (const auto& [entity, c] : entities)
+                if (s.substr(i, entity.size()) == entity) {
+                    out += c;
+                    i += entity.size() - 1;
+                    done = true;
+                    break;
+                }
+            if (done) continue;
+        }
+        out += s[i];
+    }
+    return out;
+}
+
+// The attributes of the first <body …> start tag in `html`.
+std::vector<std::pair<std::string, std::string>> body_attributes(const std::string& html) {
+    std::vector<std::pair<std::string, std::string>> result;
+    std::size_t i = html.find("<body");
+    if (i == std::string::npos) return result;
+    i += 5;
+    auto space = [&](char c) { return c == ' ' || c == '\n' || c == '\t' || c == '\r'; };
+    while (i < html.size()) {
+        while (i < html.size() && space(html[i])) ++i;
+        if (i >= html.size() || html[i] == '>' || html[i] == '/') break;
+        std::string name;
+        while (i < html.size() && !space(html[i]) && html[i] != '=' && html[i] != '>')
+            name += html[i++];
+        std::string value;
+        if (i < html.size() && html[i] == '=') {
+            ++i;
+            if (i < html.size() && (html[i] == '"' || html[i] == '\'')) {
+                const char q = html[i++];
+                const std::size_t end = html.find(q, i);
+                if (end == std::string::npos) break;
+                value = decode_entities(std::string_view(html).substr(i, end - i));
+                i = end + 1;
+            } else {
+                while (i < html.size() && !space(html[i]) && html[i] != '>') value += html[i++];
+            }
+        }
+        result.emplace_back(name, value);
+    }
+    return result;
+}
+
+std::string file_url(const fs::path& absolute) {
+    return "file://" + url_of(absolute.string());
+}
+
+}  // namespace
+
+std::optional<fs::path> find_chromium() {
+    if (const char* env = std::getenv("FOOTPRINT_CHROMIUM"); env && *env) {
+        if (is_executable_file(env)) return fs::path(env);
+        if (auto found = on_path(env)) return found;
+        return std::nullopt;
+    }
+    for (const char* name :
+         {"chromium", "chromium-browser", "google-chrome", "google-chrome-stable"})
+        if (auto found = on_path(name)) return found;
+    return std::nullopt;
+}
+
+BrowserCheck check_report_in_browser(const fs::path& html_file, int expected_images) {
+    BrowserCheck check;
+    const std::optional<fs::path> chromium = find_chromium();
+    if (!chromium) {
+        const char* env = std::getenv("FOOTPRINT_CHROMIUM");
+        check.problem = env && *env
+                            ? "FOOTPRINT_CHROMIUM=" + quoted(env) + " is not an executable file"
+                            : "chromium not found (looked for chromium, chromium-browser, "
+                              "google-chrome, google-chrome-stable on PATH; set "
+                              "FOOTPRINT_CHROMIUM)";
+        return check;
+    }
+    check.chromium_found = true;
+    std::error_code ec;
+    fs::path absolute = fs::absolute(html_file, ec);
+    if (ec || !fs::is_regular_file(absolute, ec)) {
+        check.problem = "cannot check " + quoted(html_file) + ": no such file";
+        return check;
+    }
+    absolute = absolute.lexically_normal();
+
+    std::string command;
+    if (on_path("timeout")) command = "timeout 60 ";
+    command += shell_quote(chromium->string()) +
+               " --headless --no-sandbox --disable-gpu --allow-file-access-from-files"
+               " --virtual-time-budget=10000 --dump-dom " +
+               shell_quote(file_url(absolute)) + " 2>/dev/null";
+    const auto start = std::chrono::steady_clock::now();
+    std::string dom;
+    FILE* pipe = ::popen(command.c_str(), "r");
+    if (!pipe) {
+        check.problem = "cannot run " + quoted(*chromium);
+        return check;
+    }
+    std::array<char, 65536> buffer;
+    while (const std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe))
+        dom.append(buffer.data(), n);
+    const int status = ::pclose(pipe);
+    check.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    int found = 0;
+    std::string failed_list;
+    for (const auto& [name, value] : body_attributes(dom)) {
+        auto as_int = [&](int& target) {
+            char* end = nullptr;
+            const long v = std::strtol(value.c_str(), &end, 10);
+            if (end != value.c_str() && *end == '\0') {
+                target = static_cast<int>(v);
+                ++found;
+            }
+        };
+        if (name == "data-images-loaded") as_int(check.images_loaded);
+        if (name == "data-images-failed") as_int(check.images_failed);
+        if (name == "data-images-total") as_int(check.images_total);
+        if (name == "data-images-failed-list") failed_list = value;
+    }
+    if (found < 3) {
+        const int code = status == -1 ? -1 : WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+        if (code == 124)
+            check.problem = quoted(*chromium) + " timed out after 60 s on " + quoted(absolute);
+        else if (dom.empty())
+            check.problem = quoted(*chromium) + " printed no page for " + quoted(absolute) +
+                            " (exit status " + std::to_string(code) + ")";
+        else
+            check.problem = "the image counts are missing from " + quoted(absolute) +
+                            " in Chromium (the report's script did not run)";
+        return check;
+    }
+    check.ran = true;
+    if (check.images_failed > 0) {
+        std::string names;
+        std::stringstream lines(failed_list);
+        std::string line;
+        int listed = 0;
+        while (std::getline(lines, line)) {
+            if (line.empty()) continue;
+            if (listed == 5) {
+                names += ", …";
+                break;
+            }
+            names += (listed++ ? ", " : "") + line;
+        }
+        check.problem = std::to_string(check.images_failed) + " of " +
+                        std::to_string(check.images_total) + " images failed to load in " +
+                        quoted(absolute) + (names.empty() ? "" : ": " + names);
+    } else if (check.images_loaded < expected_images) {
+        check.problem = "only " + std::to_string(check.images_loaded) + " images in " +
+                        quoted(absolute) + ", expected " + std::to_string(expected_images);
+    }
+    return check;
+}
+
+}  // namespace footprint

@@ -1,0 +1,162 @@
+// Tests of `footprint metrics`, called as a function (metrics_command.h): the JSON and human
+// lines against compare_images, masks, linear-light loading, one-line errors naming the file.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "image/image_io.h"
+#include "metrics/image_metrics.h"
+#include "metrics_command.h"
+
+namespace footprint {
+namespace {
+
+namespace fs = std::filesystem;
+
+class MetricsCommandTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        std::random_device random;
+        dir_ = fs::temp_directory_path() / ("footprint-metrics-cli-" + std::to_string(random()));
+        fs::create_directories(dir_);
+        a_ = Image(6, 5, 3);
+        b_ = Image(6, 5, 3);
+        for (std::size_t i = 0; i < a_.pixels.size(); ++i) {
+            a_.pixels[i] = static_cast<float>((i * 7) % 11) / 10.0f;
+            b_.pixels[i] = a_.pixels[i] + static_cast<float>((i * 3) % 5) / 40.0f - 0.05f;
+        }
+        ASSERT_TRUE(save_image(a_, dir_ / "a.exr").ok());
+        ASSERT_TRUE(save_image(b_, dir_ / "b.exr").ok());
+    }
+    void TearDown() override {
+        std::error_code ignored;
+        fs::remove_all(dir_, ignored);
+    }
+    int metrics_cmd(const MetricsCommandOptions& options, std::string* out, std::string* err) {
+        ::testing::internal::CaptureStderr();
+        ::testing::internal::CaptureStdout();
+        const int status = run_metrics_command(options);
+        *err = ::testing::internal::GetCapturedStderr();
+        *out = ::testing::internal::GetCapturedStdout();
+        return status;
+    }
+    MetricsCommandOptions options(const std::string& a, const std::string& b) const {
+        MetricsCommandOptions o;
+        o.a = dir_ / a;
+        o.b = dir_ / b;
+        return o;
+    }
+    fs::path dir_;
+    Image a_, b_;
+};
+
+TEST_F(MetricsCommandTest, JsonLineMatchesCompareImages) {
+    MetricsCommandOptions o = options("a.exr", "b.exr");
+    o.json = true;
+    o.peak = 2.0;
+    std::string out, err;
+    ASSERT_EQ(metrics_cmd(o, &out, &err), 0) << err;
+    EXPECT_EQ(err, "");
+    ASSERT_FALSE(out.empty());
+    EXPECT_EQ(out.find('\n'), out.size() - 1);  // exactly one line
+    const nlohmann::json j = nlohmann::json::parse(out);
+    MetricsOptions m;
+    m.peak = 2.0;
+    const Result<ImageComparison> expected = compare_images(a_, b_, m);  // EXR: float-exact
+    ASSERT_TRUE(expected.ok());
+    EXPECT_DOUBLE_EQ(j.at("rmse").get<double>(), expected->rmse);
+    EXPECT_DOUBLE_EQ(j.at("psnr").get<double>(), expected->psnr);
+    EXPECT_DOUBLE_EQ(j.at("ssim").get<double>(), expected->ssim);
+    EXPECT_EQ(j.at("pixels").get<std::size_t>(), 30u);
+    EXPECT_GT(expected->rmse, 0.01);
+}
+
+TEST_F(MetricsCommandTest, IdenticalImagesPrintNullPsnrAndHumanLine) {
+    MetricsCommandOptions o = options("a.exr", "a.exr");
+    o.json = true;
+    std::string out, err;
+    ASSERT_EQ(metrics_cmd(o, &out, &err), 0) << err;
+    const nlohmann::json j = nlohmann::json::parse(out);
+    EXPECT_TRUE(j.at("psnr").is_null());
+    EXPECT_EQ(j.at("rmse").get<double>(), 0.0);
+    EXPECT_NEAR(j.at("ssim").get<double>(), 1.0, 1e-12);
+
+    o = options("a.exr", "b.exr");
+    ASSERT_EQ(metrics_cmd(o, &out, &err), 0) << err;
+    EXPECT_EQ(out.rfind("rmse ", 0), 0u) << out;
+    EXPECT_NE(out.find(" dB  ssim "), std::string::npos) << out;
+    EXPECT_NE(out.find("(pixels 30)\n"), std::string::npos) << out;
+}
+
+TEST_F(MetricsCommandTest, MaskSelectsPixels) {
+    Image mask(6, 5, 1, 0.0f);
+    mask.at(2, 3, 0) = 1.0f;
+    mask.at(5, 0, 0) = 1.0f;
+    ASSERT_TRUE(save_image(mask, dir_ / "mask.png").ok());  // sRGB PNG: 0 and 1 stay 0 and 1
+    MetricsCommandOptions o = options("a.exr", "b.exr");
+    o.mask = dir_ / "mask.png";
+    o.json = true;
+    std::string out, err;
+    ASSERT_EQ(metrics_cmd(o, &out, &err), 0) << err;
+    const nlohmann::json j = nlohmann::json::parse(out);
+    MetricsOptions m;
+    m.mask = &mask;
+    const Result<ImageComparison> expected = compare_images(a_, b_, m);
+    ASSERT_TRUE(expected.ok());
+    EXPECT_EQ(j.at("pixels").get<std::size_t>(), 2u);
+    EXPECT_DOUBLE_EQ(j.at("rmse").get<double>(), expected->rmse);
+    EXPECT_DOUBLE_EQ(j.at("ssim").get<double>(), expected->ssim);
+}
+
+TEST_F(MetricsCommandTest, SrgbFilesAreComparedInLinearLight) {
+    // A PNG of linear 0.2 holds the sRGB code for 0.2 (≈ 0.484); loaded, it is ≈ 0.2 again.
+    Image grey(4, 4, 3, 0.2f);
+    ASSERT_TRUE(save_image(grey, dir_ / "grey.png").ok());
+    ASSERT_TRUE(save_image(grey, dir_ / "grey.exr").ok());
+    MetricsCommandOptions o = options("grey.png", "grey.exr");
+    o.json = true;
+    std::string out, err;
+    ASSERT_EQ(metrics_cmd(o, &out, &err), 0) << err;
+    EXPECT_LT(nlohmann::json::parse(out).at("rmse").get<double>(), 0.003);  // 8-bit rounding
+}
+
+TEST_F(MetricsCommandTest, ErrorsNameTheFile) {
+    std::string out, err;
+    MetricsCommandOptions o = options("a.exr", "missing.exr");
+    EXPECT_EQ(metrics_cmd(o, &out, &err), 1);
+    EXPECT_EQ(err.rfind("footprint: ", 0), 0u) << err;
+    EXPECT_NE(err.find("missing.exr"), std::string::npos) << err;
+    EXPECT_EQ(err.find('\n'), err.size() - 1) << err;
+    EXPECT_EQ(out, "");
+
+    ASSERT_TRUE(save_image(Image(5, 5, 3, 0.5f), dir_ / "small.exr").ok());
+    o = options("a.exr", "small.exr");
+    EXPECT_EQ(metrics_cmd(o, &out, &err), 1);
+    EXPECT_EQ(err, "footprint: cannot compare A = '" + (dir_ / "a.exr").string() + "' and B = '" +
+                       (dir_ / "small.exr").string() +
+                       "': images differ in size: A is 6x5, B is 5x5\n");
+    EXPECT_EQ(out, "");
+
+    ASSERT_TRUE(save_image(Image(5, 5, 1, 1.0f), dir_ / "mask.exr").ok());
+    o = options("a.exr", "b.exr");
+    o.mask = dir_ / "mask.exr";
+    EXPECT_EQ(metrics_cmd(o, &out, &err), 1);
+    EXPECT_NE(err.find("mask '" + (dir_ / "mask.exr").string() + "'"), std::string::npos) << err;
+    EXPECT_NE(err.find("mask is 5x5 but the images are 6x5"), std::string::npos) << err;
+
+    o.mask = dir_ / "no-mask.png";
+    EXPECT_EQ(metrics_cmd(o, &out, &err), 1);
+    EXPECT_NE(err.find("no-mask.png"), std::string::npos) << err;
+
+    o = options("a.exr", "b.exr");
+    o.peak = -1;
+    EXPECT_EQ(metrics_cmd(o, &out, &err), 1);
+    EXPECT_EQ(err.rfind("footprint: --peak: must be finite and > 0", 0), 0u) << err;
+}
+
+}  // namespace
+}  // namespace footprint
