@@ -10,6 +10,7 @@ packages=(
     libembree-dev libtinyobjloader-dev libtinygltf-dev libstb-dev
     nlohmann-json3-dev libcli11-dev
     libgtest-dev libgmock-dev libbenchmark-dev
+    chromium                                                  # footprint eval's report check
 )
 
 missing=()
