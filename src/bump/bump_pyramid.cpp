@@ -47,6 +47,8 @@ Result<BumpPyramid> BumpPyramid::build(const Image& slopes, const BumpPyramidOpt
         mean[0] += row_sums[2 * y];
         mean[1] += row_sums[2 * y + 1];
     }
+    mean[0] /= static_cast<double>(slopes.pixel_count());
+    mean[1] /= static_cast<double>(slopes.pixel_count());
     if (!std::isfinite(mean[0]) || !std::isfinite(mean[1]))
         for (int y = 0; y < slopes.height; ++y)
             for (int x = 0; x < slopes.width; ++x)

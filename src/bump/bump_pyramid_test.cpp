@@ -45,6 +45,8 @@ void expect_statistics(const SlopeStatistics& got, const Brute& b, const Sym2& k
     const double kxx = b.m2[0] / b.weight - mx * mx + k0.xx;
     const double kxy = b.m2[1] / b.weight - mx * my + k0.xy;
     const double kyy = b.m2[2] / b.weight - my * my + k0.yy;
+    // float rounding of M2' and μ'μ'ᵀ: relative to tr K + |μ − offset|², the offset being the
+    // map's mean slope (asserted below), so that K keeps its digits.
     const double dx = mx - offset.x, dy = my - offset.y;
     const double scale = kxx + kyy + dx * dx + dy * dy + 1e-12;
     EXPECT_NEAR(got.mean.x, mx, tol * std::sqrt(scale) + 1e-6 * std::fabs(mx)) << where;
@@ -86,6 +88,33 @@ TEST(BumpPyramid, EveryLevelHoldsTheCovarianceOfItsFinestTexels) {
                                           "," + std::to_string(y));
                 }
         }
+    }
+}
+
+// A map large enough that a sum of its slopes is far from their mean: the offset must be the
+// mean (an earlier version stored the sum, and K lost its digits to M2 − μμᵀ in float).
+TEST(BumpPyramid, TheOffsetIsTheMeanSlopeAndLargeMapsKeepTheirCovariance) {
+    const int w = 512, h = 256;
+    const Image slopes = random_slopes(w, h, 3);
+    const Result<BumpPyramid> p = BumpPyramid::build(slopes);
+    ASSERT_TRUE(p.ok()) << p.error().message;
+    Brute all;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) add(all, slopes, x, y, 1.0);
+    EXPECT_NEAR(p->slope_offset().x, all.mean[0] / all.weight, 1e-6);
+    EXPECT_NEAR(p->slope_offset().y, all.mean[1] / all.weight, 1e-6);
+    for (int l : {1, 2, 4}) {
+        const int block = 1 << l;
+        for (int y = 0; y < p->height(l); y += 7)
+            for (int x = 0; x < p->width(l); x += 5) {
+                Brute b;
+                for (int j = y * block; j < (y + 1) * block; ++j)
+                    for (int i = x * block; i < (x + 1) * block; ++i) add(b, slopes, i, j, 1.0);
+                expect_statistics(p->statistics(l, x, y), b, Sym2{}, p->slope_offset(),
+                                  kPyramidRelTolerance,
+                                  "level " + std::to_string(l) + " texel " + std::to_string(x) +
+                                      "," + std::to_string(y));
+            }
     }
 }
 
