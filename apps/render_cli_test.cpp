@@ -6,6 +6,7 @@
 #include <fstream>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -127,6 +128,36 @@ TEST_F(RenderCommandTest, BadInputGivesOneLineErrorsAndNoOutput) {
     EXPECT_EQ(render_cmd(options("a.bmpx", "fa"), &err), 1);
     EXPECT_NE(err.find("a.bmpx"), std::string::npos) << err;
     EXPECT_FALSE(fs::exists(dir_ / "a.png"));
+}
+
+TEST_F(RenderCommandTest, FramesFollowTheCameraPath) {
+    write("path.json", R"({"image": {"width": 16, "height": 12},
+          "camera": {"position": [0, 1, 3], "look_at": [0, 0, 0]},
+          "camera_path": [{"position": [0, 1, 3]}, {"position": [1, 1, 3]}],
+          "environment": {"file": "sky.exr"},
+          "objects": [{"shape": "sphere", "radius": 0.7, "material": {"mirror": 1}}]})");
+    RenderCommandOptions o = options("seq.png", "fa");
+    o.scene = dir_ / "path.json";
+    o.frames = 3;
+    std::string out;
+    o.json = true;
+    ASSERT_EQ(render_cmd(o, nullptr, &out), 0);
+    EXPECT_EQ(nlohmann::json::parse(out)["frames"], 3);
+    std::vector<Image> frames;
+    for (const char* name : {"seq_0000.png", "seq_0001.png", "seq_0002.png"}) {
+        Result<Image> frame = load_image(dir_ / name);
+        ASSERT_TRUE(frame.ok()) << name;
+        frames.push_back(*frame);
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "seq.png"));
+    EXPECT_NE(frames[0].pixels, frames[2].pixels);  // the camera moved
+    EXPECT_EQ(frame_file("a/b.exr", 12, 20000).filename(), "b_00012.exr");
+
+    std::string err;
+    RenderCommandOptions still = options("x.png", "fa");  // scene.json has no camera_path
+    still.frames = 2;
+    EXPECT_EQ(render_cmd(still, &err), 1);
+    EXPECT_NE(err.find("camera_path"), std::string::npos) << err;
 }
 
 TEST_F(RenderCommandTest, DemoWritesEveryModeAContactSheetAndAReport) {
