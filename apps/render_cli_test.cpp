@@ -135,7 +135,7 @@ TEST_F(RenderCommandTest, FramesFollowTheCameraPath) {
           "camera": {"position": [0, 1, 3], "look_at": [0, 0, 0]},
           "camera_path": [{"position": [0, 1, 3]}, {"position": [1, 1, 3]}],
           "environment": {"file": "sky.exr"},
-          "objects": [{"shape": "sphere", "radius": 0.7, "material": {"mirror": 1}}]})");
+          "objects": [{"shape": "sphere", "radius": 0.7, "material": {"base_color": [1, 0, 0]}}]})");
     RenderCommandOptions o = options("seq.png", "fa");
     o.scene = dir_ / "path.json";
     o.frames = 3;
