@@ -133,7 +133,7 @@ TEST_F(RenderCommandTest, BadInputGivesOneLineErrorsAndNoOutput) {
 TEST_F(RenderCommandTest, FramesFollowTheCameraPath) {
     write("path.json", R"({"image": {"width": 16, "height": 12},
           "camera": {"position": [0, 1, 3], "look_at": [0, 0, 0]},
-          "camera_path": [{"position": [0, 1, 3]}, {"position": [1, 1, 3]}],
+          "camera_path": [{"position": [0, 1, 3]}, {"position": [1, 1, 3], "look_at": [1, 0, 0]}],
           "environment": {"file": "sky.exr"},
           "objects": [{"shape": "sphere", "radius": 0.7, "material": {"base_color": [1, 0, 0]}}]})");
     RenderCommandOptions o = options("seq.png", "fa");
