@@ -354,8 +354,14 @@ int run_eval_command(const EvalCommandOptions& options) {
             images.push_back(std::move(t.image));
         }
 
-        // Heat maps on one scale per scene (twice point's RMSE), crops where point errs most.
-        const double scale = std::max(1e-6, 2 * eval_scene.methods.front().rmse);
+        // Heat maps on one scale per scene — the 95th percentile of point's per-pixel error, so
+        // that a few HDR fireflies do not darken everything else —, crops where point errs most.
+        const Image point_error = absolute_error(images.front(), *reference);
+        std::vector<float> sorted = point_error.pixels;
+        const std::size_t rank = sorted.size() * 95 / 100;
+        std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(rank),
+                         sorted.end());
+        const double scale = std::max(1e-6, static_cast<double>(sorted[rank]));
         for (std::size_t i = 0; i < methods.size(); ++i) {
             EvalMethod& em = eval_scene.methods[i];
             em.heat_map_file = named.name + "/" + methods[i].file + "_error.png";
@@ -365,8 +371,7 @@ int run_eval_command(const EvalCommandOptions& options) {
                 return fail(s.error().message);
             }
         }
-        eval_scene.crops = hardest_regions(absolute_error(images.front(), *reference), 3,
-                                           std::max(12, desc.width / 10));
+        eval_scene.crops = hardest_regions(point_error, 3, std::max(12, desc.width / 10));
 
         // Rows of the CSV and JSON.
         const std::vector<EvalMethod> supersampling = supersampling_methods(eval_scene);
