@@ -13,6 +13,7 @@
 #include "bump/local_frame.h"
 #include "envmap/env_footprint.h"
 #include "math/sample_patterns.h"
+#include "render/bump_frame.h"
 #include "render/camera.h"
 #include "scene/ray_differentials.h"
 #include "shading/blinn_phong.h"
@@ -129,54 +130,6 @@ class SampleShader {
     const RenderOptions& options_;
     ModePolicy policy_;
 };
-
-// The tangent frame T of a material at a hit, and the sign with which the stored slopes b enter
-// it (render_scene.h: the slope map holds b = −∇h in (e_u, e_v); the natural and normalized frames
-// take the height derivatives f = −b, spec §6.1).
-struct BumpFrameAtHit {
-    TangentFrame frame;
-    float slope_sign = 1;
-};
-
-BumpFrameAtHit bump_frame(const BumpDesc& bump, const SceneHit& hit) {
-    const SurfaceHit& s = hit.surface;
-    const Vec3 n = to_float(s.n);
-    if (hit.tangent) {
-        // glTF: e1 = the tangent made orthogonal to n, e2 = sign·(n × e1) (up the image).
-        const Vec3 t = to_float(*hit.tangent);
-        const Vec3 e1 = normalize(t - dot(t, n) * n);
-        if (dot(e1, e1) > 0) {
-            return {{e1, static_cast<float>(hit.tangent_sign) * cross(n, e1)}, 1};
-        }
-    }
-    switch (bump.frame) {
-        case BumpFrame::natural: {
-            const NaturalFrame natural = make_natural_frame(to_float(s.dpdu), to_float(s.dpdv), n);
-            return {tangent_frame(natural), -1};
-        }
-        case BumpFrame::normalized: {
-            const NaturalFrame natural = make_natural_frame(to_float(s.dpdu), to_float(s.dpdv), n);
-            return {{normalize(natural.s_u), normalize(natural.s_v)}, -1};
-        }
-        case BumpFrame::main_direction: {
-            const bool own = bump.main_direction.x == 0 && bump.main_direction.y == 0 &&
-                             bump.main_direction.z == 0;
-            const Vec3 m = to_float(own ? s.dpdv : bump.main_direction);
-            return {tangent_frame(make_orthonormal_frame(n, m)), 1};
-        }
-    }
-    return {};
-}
-
-// K_b (in T's coordinates) expressed in an orthonormal frame (e1, e2) of the normal n̂_m:
-// the 3-D covariance T K Tᵀ of the tangential normal offsets, projected.
-Sym2 covariance_in_frame(const Sym2& k, const TangentFrame& t, Vec3 e1, Vec3 e2) {
-    const float a1 = dot(e1, t.t1), a2 = dot(e1, t.t2), b1 = dot(e2, t.t1), b2 = dot(e2, t.t2);
-    auto form = [&](float x1, float x2, float y1, float y2) {
-        return x1 * (k.xx * y1 + k.xy * y2) + x2 * (k.xy * y1 + k.yy * y2);
-    };
-    return {form(a1, a2, a1, a2), form(a1, a2, b1, b2), form(b1, b2, b1, b2)};
-}
 
 float schlick_fresnel(float f0, float cos_theta) {
     const float c = std::clamp(1.0f - cos_theta, 0.0f, 1.0f);
