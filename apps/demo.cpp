@@ -9,10 +9,12 @@
 #include "command_util.h"
 #include "demo_scenes.h"
 #include "image/image_io.h"
+#include "metrics/image_metrics.h"
 #include "plane_view.h"
 #include "progress.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
+#include "render_progress.h"
 
 namespace footprint {
 
@@ -23,29 +25,15 @@ namespace fs = std::filesystem;
 constexpr FilterMode kDemoModes[] = {FilterMode::point, FilterMode::trilinear, FilterMode::fa,
                                      FilterMode::fa_rough, FilterMode::ewa_rough};
 
-double rmse(const Image& a, const Image& b) {
-    double sum = 0;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-        const double d = static_cast<double>(a.pixels[i]) - b.pixels[i];
-        sum += d * d;
-    }
-    return a.pixels.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(a.pixels.size()));
-}
-
 struct Rendered {
     Image image;
     RenderStats stats;
 };
 
-Rendered render_with_progress(const RenderScene& scene, const RenderOptions& options,
-                              const std::string& label, bool show_progress) {
-    Progress progress(
-        label,
-        static_cast<std::uint64_t>(render_tile_count(scene.desc().width, scene.desc().height)),
-        show_progress);
+Rendered render_timed(const RenderScene& scene, const RenderOptions& options,
+                      const std::string& label, bool show_progress) {
     Rendered r;
-    r.image = render(scene, options, &r.stats, [&] { progress.advance(); });
-    progress.finish();
+    r.image = render_with_progress(scene, options, label, show_progress, &r.stats);
     return r;
 }
 
@@ -92,7 +80,7 @@ int run_demo_command(const DemoCommandOptions& options) {
         render_options.filter = FilterMode::reference;
         render_options.spp = options.reference_spp;
         const Rendered reference =
-            render_with_progress(*scene, render_options, demo.name + " reference", show_progress);
+            render_timed(*scene, render_options, demo.name + " reference", show_progress);
         if (Status s = save_image(reference.image, dir / "reference.png"); !s) {
             return fail(s.error().message);
         }
@@ -109,11 +97,15 @@ int run_demo_command(const DemoCommandOptions& options) {
         for (FilterMode mode : kDemoModes) {
             render_options.filter = mode;
             render_options.spp = 1;
-            Rendered r = render_with_progress(
-                *scene, render_options, demo.name + " " + filter_mode_name(mode), show_progress);
+            Rendered r = render_timed(*scene, render_options,
+                                      demo.name + " " + filter_mode_name(mode), show_progress);
             const std::string file = std::string(filter_mode_name(mode)) + ".png";
             if (Status s = save_image(r.image, dir / file); !s) return fail(s.error().message);
-            const double error = rmse(r.image, reference.image);
+            const Result<ImageComparison> comparison = compare_images(r.image, reference.image);
+            if (!comparison)
+                return fail(demo.name + " " + filter_mode_name(mode) + ": " +
+                            comparison.error().message);
+            const double error = comparison->rmse;
             entry["modes"].push_back({{"filter", filter_mode_name(mode)},
                                       {"file", demo.name + "/" + file},
                                       {"rmse", error},

@@ -116,7 +116,7 @@ void splat_gaussian(Image& image, double cx, double cy, double sigma, Rgb peak) 
 Vec3 night_sky_moon_direction() {
     const Vec3d m =
         direction_from_elevation_azimuth(kNightSkyMoonElevationDeg, kNightSkyMoonAzimuthDeg);
-    return {static_cast<float>(m.x), static_cast<float>(m.y), static_cast<float>(m.z)};
+    return vec3_cast<float>(m);
 }
 
 Image make_night_sky_latlong(int width) {
@@ -242,7 +242,7 @@ Image make_zebra_latlong(int width) {
 Vec3 sky_gradient_sun_direction() {
     const Vec3d d =
         direction_from_elevation_azimuth(kSkyGradientSunElevationDeg, kSkyGradientSunAzimuthDeg);
-    return {static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z)};
+    return vec3_cast<float>(d);
 }
 
 Image make_sky_gradient_latlong(int width) {

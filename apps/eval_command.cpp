@@ -21,6 +21,7 @@
 #include "render/camera.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
+#include "render_progress.h"
 #include "scene/scene_file.h"
 #include "scene/scene_hash.h"
 
@@ -81,14 +82,9 @@ class Renderer {
         options.threads = threads_;
         options.frame = frame;
         options.frame_count = frame_count;
-        Progress bar(label,
-                     static_cast<std::uint64_t>(
-                         render_tile_count(scene_.desc().width, scene_.desc().height)),
-                     progress_);
         RenderStats stats;
         Timed t;
-        t.image = render(scene_, options, &stats, [&] { bar.advance(); });
-        bar.finish();
+        t.image = render_with_progress(scene_, options, label, progress_, &stats);
         t.seconds = stats.seconds;
         return t;
     }
