@@ -199,7 +199,6 @@ Result<RenderScene> prepare_render_scene(const SceneDesc& desc) {
             if (!own) return scene_error(desc, object_key(i) + ".file", own.error());
             scene.mesh_part_material_[i].push_back(static_cast<int>(scene.materials_.size()));
             scene.materials_.push_back(std::move(*own));
-            scene.triangle_count_ += part.triangles.size();
         }
     }
     for (int i = 0; i < object_count; ++i) {

@@ -75,8 +75,6 @@ class RenderScene {
     // The nearest hit along the ray with t in (t_min, t_max), over all objects. Thread-safe.
     std::optional<SceneHit> intersect(const Ray& ray, double t_min, double t_max) const;
 
-    std::size_t triangle_count() const { return triangle_count_; }
-
   private:
     friend Result<RenderScene> prepare_render_scene(const SceneDesc& desc);
 
@@ -91,7 +89,6 @@ class RenderScene {
     };
     std::vector<MeshPart> accel_parts_;  // MeshAccel's mesh index → (object, part)
     std::unique_ptr<MeshAccel> mesh_accel_;
-    std::size_t triangle_count_ = 0;
 };
 
 Result<RenderScene> prepare_render_scene(const SceneDesc& desc);

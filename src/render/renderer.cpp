@@ -386,13 +386,4 @@ Image render(const RenderScene& scene, const RenderOptions& options, RenderStats
     return image;
 }
 
-std::array<float, 3> render_pixel(const RenderScene& scene, const RenderOptions& options, int x,
-                                  int y) {
-    const PinholeCamera camera(view_camera(scene.desc(), options), scene.desc().width,
-                               scene.desc().height);
-    SampleShader shader(scene, options);
-    std::uint64_t bad = 0;
-    return render_pixel_with(shader, camera, options, x, y, bad);
-}
-
 }  // namespace footprint

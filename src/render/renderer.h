@@ -44,7 +44,6 @@
 // Non-finite values never reach a pixel (they are counted and written as 0).
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -90,9 +89,5 @@ Image render(const RenderScene& scene, const RenderOptions& options, RenderStats
              const std::function<void()>& tile_done = {});
 
 int render_tile_count(int width, int height);
-
-// One pixel's colour (for tests): the same code path as render().
-std::array<float, 3> render_pixel(const RenderScene& scene, const RenderOptions& options, int x,
-                                  int y);
 
 }  // namespace footprint
