@@ -8,6 +8,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <string>
 
 namespace footprint::test {
 
@@ -18,6 +19,12 @@ inline std::filesystem::path shared_data_dir() {
 #else
     return "../shared/data";
 #endif
+}
+
+// The GTEST_SKIP() message of a test whose shared data is absent.
+inline std::string missing_shared_data(const std::filesystem::path& where) {
+    return "shared data not found at " + where.string() +
+           " (set FOOTPRINT_SHARED_DATA to the shared/data folder)";
 }
 
 }  // namespace footprint::test

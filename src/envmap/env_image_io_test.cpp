@@ -325,9 +325,7 @@ TEST(OpenExrEnvmap, LatLongFollowsImfEnvmap) {
 
 TEST(OpenExrEnvmap, HeaderAttributeIsRead) {
     const fs::path dir = shared_data_dir() / "envmaps";
-    if (!fs::exists(dir / "KernerEnvCube.exr"))
-        GTEST_SKIP() << "shared data not found at " << dir
-                     << " (set FOOTPRINT_SHARED_DATA to the shared/data folder)";
+    if (!fs::exists(dir / "KernerEnvCube.exr")) GTEST_SKIP() << test::missing_shared_data(dir);
     EXPECT_EQ(read_openexr_envmap_attribute(dir / "KernerEnvCube.exr"), EnvLayout::cube);
     EXPECT_EQ(read_openexr_envmap_attribute(dir / "KernerEnvLatLong.exr"), EnvLayout::latlong);
     EXPECT_FALSE(read_openexr_envmap_attribute(dir / "venice_sunset_1k.hdr"));
@@ -360,8 +358,7 @@ void check_pair(const std::string& name, double bound, double wrong_cube_at_leas
     const fs::path cube_file = dir / (name + "Cube.exr"),
                    latlong_file = dir / (name + "LatLong.exr");
     if (!fs::exists(cube_file) || !fs::exists(latlong_file))
-        GTEST_SKIP() << "shared data not found at " << dir
-                     << " (set FOOTPRINT_SHARED_DATA to the shared/data folder)";
+        GTEST_SKIP() << test::missing_shared_data(dir);
     Result<EnvImages> cube = load_environment_images({cube_file});
     ASSERT_TRUE(cube.ok()) << cube.error().message;
     ASSERT_EQ(cube->layout, EnvLayout::cube);

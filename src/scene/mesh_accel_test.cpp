@@ -329,9 +329,7 @@ TEST(MeshSurfaceHit, TangentFrame) {
 // The hits on a loaded asset go through both halves: intersect, then mesh_surface_hit.
 TEST(MeshAccelSharedData, FlightHelmet) {
     const fs::path file = shared_data_dir() / "meshes" / "FlightHelmet" / "FlightHelmet.gltf";
-    if (!fs::exists(file))
-        GTEST_SKIP() << "shared data not found at " << file
-                     << " (set FOOTPRINT_SHARED_DATA to the shared/data folder)";
+    if (!fs::exists(file)) GTEST_SKIP() << test::missing_shared_data(file);
     Result<MeshAsset> asset = load_mesh(file);
     ASSERT_TRUE(asset.ok()) << asset.error().message;
     std::vector<MeshInstance> list;

@@ -493,9 +493,7 @@ void expect_bounds(const MeshAsset& asset, Vec3d lo, Vec3d hi, double tol) {
 
 TEST(MeshSharedData, SpotObj) {
     const fs::path dir = shared_data_dir() / "meshes" / "spot";
-    if (!fs::exists(dir / "spot_triangulated.obj"))
-        GTEST_SKIP() << "shared data not found at " << dir
-                     << " (set FOOTPRINT_SHARED_DATA to the shared/data folder)";
+    if (!fs::exists(dir / "spot_triangulated.obj")) GTEST_SKIP() << test::missing_shared_data(dir);
     Result<MeshAsset> asset = load_mesh(dir / "spot_triangulated.obj");
     ASSERT_TRUE(asset.ok()) << asset.error().message;
     ASSERT_EQ(asset->meshes.size(), 1u);  // no materials: one group
@@ -519,9 +517,7 @@ TEST(MeshSharedData, SpotObj) {
 
 TEST(MeshSharedData, FlightHelmetGltf) {
     const fs::path file = shared_data_dir() / "meshes" / "FlightHelmet" / "FlightHelmet.gltf";
-    if (!fs::exists(file))
-        GTEST_SKIP() << "shared data not found at " << file
-                     << " (set FOOTPRINT_SHARED_DATA to the shared/data folder)";
+    if (!fs::exists(file)) GTEST_SKIP() << test::missing_shared_data(file);
     Result<MeshAsset> asset = load_mesh(file);
     ASSERT_TRUE(asset.ok()) << asset.error().message;
     ASSERT_EQ(asset->meshes.size(), 6u);
