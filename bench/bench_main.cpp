@@ -68,6 +68,16 @@ int main(int argc, char** argv) {
     envc->add_option("--json", env.json_path, "write the cases as JSON to this file");
     envc->add_option("--lookups", env.lookups_per_regime, "pre-generated lookups per regime")
         ->check(CLI::Range(1000, 100000000));
+    envc->add_option("--latlong-width", env.latlong_width,
+                     "lat-long map width (the height is half of it)")
+        ->check(CLI::Range(64, 16384));
+    envc->add_option("--cube-size", env.cube_size, "cube map face size")
+        ->check(CLI::Range(16, 8192));
+    envc->add_option("--isotropic-ratio", env.isotropic_ratio,
+                     "our lookups' LookupOptions::isotropic_ratio (1 = Rule B exactly)")
+        ->check(CLI::Range(1.0f, 4.0f));
+    envc->add_option("--rounds", env.rounds, "timed passes per rate (the best counts)")
+        ->check(CLI::Range(1, 100));
     envc->add_option("--error-subset", env.error_subset,
                      "lookups per regime compared against the reference");
     envc->add_option("--threads", env.thread_counts, "thread counts to measure")

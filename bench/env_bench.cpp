@@ -101,9 +101,7 @@ Image make_latlong_image(int width, int height) {
 
 // ---- Lookups.
 
-struct EnvLookup {
-    Vec3 r, dr_dx, dr_dy;
-};
+using EnvLookup = EnvRayDifferential;  // the library's batch element
 
 struct EnvRegime {
     const char* name;
@@ -178,7 +176,7 @@ std::vector<EnvLookup> make_env_lookups(const EnvRegime& regime, std::size_t n, 
 
 void ours_lookup(const EnvironmentMap& map, const EnvLookup& q, const LookupOptions& options,
                  float* out) {
-    environment_lookup(map, q.r, q.dr_dx, q.dr_dy, options, out);
+    environment_lookup(map, q.direction, q.d_dx, q.d_dy, options, out);
 }
 
 // ---- OpenImageIO.
@@ -201,9 +199,38 @@ class OiioEnvPeer {
     void lookup(const EnvLookup& q, float* out) const {
         OIIO::TextureOpt options;
         OIIO::TextureSystem& ts = file_.system();
-        ts.environment(file_.handle(), ts.get_perthread_info(), options, to_oiio(q.r),
-                       to_oiio(q.dr_dx), to_oiio(q.dr_dy), 3, out);
+        ts.environment(file_.handle(), ts.get_perthread_info(), options, to_oiio(q.direction),
+                       to_oiio(q.d_dx), to_oiio(q.d_dy), 3, out);
     }
+    // The batched environment(): `count` ≤ Tex::BatchWidth lookups in structure-of-arrays layout
+    // (OpenImageIO's), results to out[channel][lane].
+    struct Batch {
+        float r[3][OIIO::Tex::BatchWidth], dx[3][OIIO::Tex::BatchWidth],
+            dy[3][OIIO::Tex::BatchWidth];
+    };
+    static Batch to_batch(const EnvLookup* q, int count) {
+        Batch b{};
+        for (int i = 0; i < count; ++i) {
+            const Vec3 v[3] = {q[i].direction, q[i].d_dx, q[i].d_dy};
+            float(*dest[3])[OIIO::Tex::BatchWidth] = {b.r, b.dx, b.dy};
+            for (int k = 0; k < 3; ++k)  // to_oiio(): R = (−x, y, −z)
+                dest[k][0][i] = -v[k].x, dest[k][1][i] = v[k].y, dest[k][2][i] = -v[k].z;
+        }
+        return b;
+    }
+    void lookup_batch(const Batch& b, int count, float* out) const {
+        OIIO::TextureOptBatch options;  // its per-lane arrays start uninitialised
+        for (int i = 0; i < OIIO::Tex::BatchWidth; ++i) {
+            options.sblur[i] = options.tblur[i] = options.rblur[i] = 0;
+            options.swidth[i] = options.twidth[i] = options.rwidth[i] = 1;
+        }
+        OIIO::TextureSystem& ts = file_.system();
+        const OIIO::Tex::RunMask mask =
+            count >= 32 ? ~OIIO::Tex::RunMask(0) : (OIIO::Tex::RunMask(1) << count) - 1;
+        ts.environment(file_.handle(), ts.get_perthread_info(), options, mask, &b.r[0][0],
+                       &b.dx[0][0], &b.dy[0][0], 3, out);
+    }
+
     // A bilinear point sample of level 0 (for the convention check), in OIIO's own direction
     // convention.
     void point(OIIO::V3fParam r, float* out) const {
@@ -271,6 +298,30 @@ double lookup_rate(const std::vector<EnvLookup>& lookups, int threads, int round
     return rate;
 }
 
+// The same through a batched call: `lookup(first, count, out)` takes up to kBatch lookups.
+template <class F>
+double batch_rate(const std::vector<EnvLookup>& lookups, int threads, int rounds, int batch,
+                  const F& lookup) {
+    double rate = 0;
+    for (int round = 0; round < rounds; ++round)
+        rate = std::max(
+            rate, measure_rate(lookups.size(), threads, [&](int, std::size_t b, std::size_t e) {
+                float out[64 * 4], sink = 0;
+                for (std::size_t i = b; i < e; i += std::size_t(batch)) {
+                    const int count = int(std::min<std::size_t>(std::size_t(batch), e - i));
+                    lookup(&lookups[i], count, out);
+                    sink += out[0];
+                }
+                volatile float keep = sink;
+                (void)keep;
+            }));
+    return rate;
+}
+
+// Lookups per call of the batched APIs: OpenImageIO's Tex::BatchWidth, and as many for ours.
+constexpr int kBatch = OIIO::Tex::BatchWidth;
+static_assert(kBatch <= 64);
+
 }  // namespace
 
 int run_env_bench(const EnvBenchOptions& opt) {
@@ -321,6 +372,7 @@ int run_env_bench(const EnvBenchOptions& opt) {
     }
 
     LookupOptions lo;  // footprint assembly, the library defaults
+    lo.isotropic_ratio = opt.isotropic_ratio;
     struct Layout {
         const char* filter;
         const EnvironmentMap* map;
@@ -341,14 +393,15 @@ int run_env_bench(const EnvBenchOptions& opt) {
         tbb::parallel_for(std::size_t(0), subset, [&](std::size_t i) {
             const EnvLookup& q = lookups[i];
             const SphereGaussian g = sphere_gaussian_from_ray_differentials(
-                to_double(q.r), to_double(q.dr_dx), to_double(q.dr_dy));
+                to_double(q.direction), to_double(q.d_dx), to_double(q.d_dy));
             environment_reference(latlong, g, &truth[i * 3]);
         });
 
         // The peer, once per regime and thread count (the same figures go into every row); like
-        // ours the best of two measure_rate rounds, so that noise favours neither side.
+        // ours the best of opt.rounds measure_rate rounds, so that noise favours neither side.
         double oiio_rmse = NAN;
-        std::vector<double> oiio_rate(opt.thread_counts.size(), NAN);
+        std::vector<double> oiio_rate(opt.thread_counts.size(), NAN),
+            oiio_batch_rate(opt.thread_counts.size(), NAN);
         if (oiio) {
             std::vector<float> got(subset * 3);
             for (std::size_t i = 0; i < subset; ++i) oiio->lookup(lookups[i], &got[i * 3]);
@@ -357,8 +410,13 @@ int run_env_bench(const EnvBenchOptions& opt) {
                 note(std::string("OpenImageIO, ") + regime.name + ", " +
                      std::to_string(opt.thread_counts[k]) + " thread(s)");
                 oiio_rate[k] =
-                    lookup_rate(lookups, opt.thread_counts[k], 2,
+                    lookup_rate(lookups, opt.thread_counts[k], opt.rounds,
                                 [&](const EnvLookup& q, float* out) { oiio->lookup(q, out); });
+                oiio_batch_rate[k] = batch_rate(
+                    lookups, opt.thread_counts[k], opt.rounds, kBatch,
+                    [&](const EnvLookup* first, int count, float* out) {
+                        oiio->lookup_batch(OiioEnvPeer::to_batch(first, count), count, out);
+                    });
             }
         }
 
@@ -371,10 +429,32 @@ int run_env_bench(const EnvBenchOptions& opt) {
                 note(std::string(layout.filter) + ", " + regime.name + ", " +
                      std::to_string(opt.thread_counts[k]) + " thread(s)");
                 const double rate = lookup_rate(
-                    lookups, opt.thread_counts[k], 2,
+                    lookups, opt.thread_counts[k], opt.rounds,
                     [&](const EnvLookup& q, float* out) { ours_lookup(*layout.map, q, lo, out); });
                 cases.push_back({layout.filter, regime.name, opt.thread_counts[k], rate,
                                  oiio_rate[k], ours_rmse, oiio_rmse});
+            }
+            // The batched APIs, both given kBatch lookups per call. Ours must return exactly the
+            // single calls' results.
+            std::vector<float> batched(subset * 3);
+            environment_lookup_batch(*layout.map, std::span(lookups.data(), subset), lo,
+                                     batched.data());
+            if (batched != got)
+                throw std::runtime_error(std::string(layout.filter) +
+                                         ": environment_lookup_batch differs from single lookups");
+            const std::string batch_filter = std::string(layout.filter) + "-batch";
+            for (std::size_t k = 0; k < opt.thread_counts.size(); ++k) {
+                note(batch_filter + ", " + regime.name + ", " +
+                     std::to_string(opt.thread_counts[k]) + " thread(s)");
+                const double rate =
+                    batch_rate(lookups, opt.thread_counts[k], opt.rounds, kBatch,
+                               [&](const EnvLookup* first, int count, float* out) {
+                                   environment_lookup_batch(*layout.map,
+                                                            std::span(first, std::size_t(count)),
+                                                            lo, out);
+                               });
+                cases.push_back({batch_filter, regime.name, opt.thread_counts[k], rate,
+                                 oiio_batch_rate[k], ours_rmse, oiio_rmse});
             }
         }
     }
@@ -382,15 +462,15 @@ int run_env_bench(const EnvBenchOptions& opt) {
     std::printf(
         "environment: lat-long %d×%d float RGB (pyramid %.3f s); cube 6×%d² converted from it "
         "(%.3f s, pyramids %.3f s); RMSE against environment_reference() on the lat-long map, %zu "
-        "lookups per regime\n",
+        "lookups per regime; our isotropic_ratio %g\n",
         width, height, latlong_build_seconds, opt.cube_size, convert_seconds, cube_build_seconds,
-        opt.error_subset);
+        opt.error_subset, double(opt.isotropic_ratio));
     if (oiio)
         std::printf(
             "OpenImageIO direction R = (-x, y, -z): point-lookup RMSE %.2g vs ours (unmapped R: "
             "%.2g)\n",
             convention.mapped_rmse, convention.unmapped_rmse);
-    print_peer_cases(cases, 11);
+    print_peer_cases(cases, 17);
 
     // The targets: ≥ 5× OpenImageIO's single-thread rate in every regime; in pole_band an RMSE of
     // at most ¼ of OpenImageIO's.
@@ -401,7 +481,7 @@ int run_env_bench(const EnvBenchOptions& opt) {
             if (c.threads != 1) continue;
             const double ratio = c.ours_rate / c.oiio_rate;
             const bool speed_met = ratio >= 5;
-            std::printf("  %-11s %-9s speed %6.2f× %-7s", c.filter.c_str(), c.regime.c_str(), ratio,
+            std::printf("  %-17s %-9s speed %6.2f× %-7s", c.filter.c_str(), c.regime.c_str(), ratio,
                         speed_met ? "met" : "NOT met");
             nlohmann::json t = {{"filter", c.filter},
                                 {"regime", c.regime},
@@ -430,6 +510,7 @@ int run_env_bench(const EnvBenchOptions& opt) {
         j["cube_build_seconds"] = cube_build_seconds;
         j["lookups_per_regime"] = opt.lookups_per_regime;
         j["error_subset"] = opt.error_subset;
+        j["isotropic_ratio"] = opt.isotropic_ratio;
         j["oiio_version"] = OIIO_VERSION_STRING;
         j["oiio_convention_rmse"] = number_or_null(convention.mapped_rmse);
         j["hardware_threads"] = std::thread::hardware_concurrency();

@@ -182,7 +182,8 @@ TEST(BumpPyramid, FootprintAssemblyLookupIsTheWeightedMixture) {
 
             // Brute force: the probes of plan_probes, their weights, the level blend — as level-0
             // weights.
-            const ProbePlan plan = plan_probes(e, rule, lo.max_probes, max_level, 0.0f);
+            const ProbePlan plan =
+                plan_probes(e, rule, lo.max_probes, max_level, 0.0f, lo.isotropic_ratio);
             const int l0 = std::min(int(plan.lod), max_level);
             const bool several = plan.count > 1;
             double w = l0 < max_level ? plan.lod - l0 : 0.0;

@@ -48,7 +48,8 @@ float isotropic_footprint_radius(EnvLayout layout, const Jacobian23& j, Vec3 map
     if (layout != EnvLayout::latlong && layout != EnvLayout::sphere) return -1;
     if (dot(j.ds, j.ds) == 0 && dot(j.dt, j.dt) == 0) return theta();
     if (layout != EnvLayout::latlong) return -1;
-    const float rho = std::hypot(map_direction.x, map_direction.z);
+    const float rho = static_cast<float>(std::sqrt(  // hypot, without its cost: no overflow
+        double(map_direction.x) * map_direction.x + double(map_direction.z) * map_direction.z));
     if (!(rho < spread_bound)) return -1;
     const float theta_fp = theta();
     const float reach = std::min(theta_fp, std::numbers::pi_v<float> / 2);
@@ -78,9 +79,10 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, V
     const bool usable = is_finite(r) && norm(r) > 0;
     f.reflected = usable ? r : Vec3{0, 0, 1};
     f.map_direction = rotation * f.reflected;
-    f.coords = env_coords(layout, f.map_direction);
+    const EnvCoordsJacobian position = env_coords_and_jacobian(layout, f.map_direction);
+    f.coords = position.coords;
     if (!usable || !is_finite(dr_dx) || !is_finite(dr_dy)) return f;
-    const Jacobian23 j = env_jacobian(layout, f.map_direction);
+    const Jacobian23& j = position.jacobian;
     f.map_dr_dx = rotation * dr_dx;
     f.map_dr_dy = rotation * dr_dy;
     const float theta = isotropic_footprint_radius(
@@ -137,8 +139,9 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, const Ref
     auto a_v = [&](Vec3 x) { return 2 * dot(nm, x) * nm - nm_nm * x; };
     auto a_n = [&](Vec3 x) { return 2 * nm_v * x + 2 * dot(v, x) * nm - 2 * dot(nm, x) * v; };
     f.map_direction = options.rotation * f.reflected;
-    f.coords = env_coords(layout, f.map_direction);
-    const Jacobian23 j = env_jacobian(layout, f.map_direction);
+    const EnvCoordsJacobian position = env_coords_and_jacobian(layout, f.map_direction);
+    f.coords = position.coords;
+    const Jacobian23& j = position.jacobian;
     const MapJacobian G{texel_scale, j, options.rotation};
 
     // Eq. 5 / §2.4: D's columns, K12 = D Dᵀ.

@@ -206,17 +206,24 @@ CubeCoordsT<T> cube_coords(Vec3T<T> r_in) {
 }
 
 template <class T>
-Jacobian23T<T> cube_jacobian(Vec3T<T> r_in) {
+EnvCoordsJacobianT<T> cube_coords_and_jacobian(Vec3T<T> r_in) {
     const Prepared<T> p = prepare(r_in);
     const Vec3T<T> r = p.r;
     const int face = cube_face_of(r);
     const CubeFace& f = kCubeFaces[face];
     const T ma = std::abs(component(r, f.axis)), sigma = face % 2 == 0 ? T(1) : T(-1);
+    const T sc = T(f.s_sign) * component(r, f.s_axis), tc = T(f.t_sign) * component(r, f.t_axis);
     const Vec3T<T> gs = axis(f.s_axis, T(f.s_sign)), gt = axis(f.t_axis, T(f.t_sign));
     const Vec3T<T> ea = axis(f.axis, sigma);  // σ e_a
-    const T sp = dot(gs, r) / ma, tp = dot(gt, r) / ma;
+    const T sp = sc / ma, tp = tc / ma;       // s', t' (g_s·r = sc exactly: g_s is a ± axis)
     const T k = 1 / (2 * ma);
-    return finish(p, {k * (gs - sp * ea), k * (gt - tp * ea)});
+    return {{face, T(0.5) * (sp + 1), T(0.5) * (tp + 1)},
+            finish(p, {k * (gs - sp * ea), k * (gt - tp * ea)})};
+}
+
+template <class T>
+Jacobian23T<T> cube_jacobian(Vec3T<T> r_in) {
+    return cube_coords_and_jacobian(r_in).jacobian;
 }
 
 template <class T>
@@ -248,11 +255,10 @@ Vec2T<T> latlong_coords(Vec3T<T> r_in) {
     return {std::clamp(s, T(0), T(1)), std::clamp(t, T(0), T(1))};
 }
 
+// The Jacobian at a prepared r with ρ = √(r_x² + r_z²).
 template <class T>
-Jacobian23T<T> latlong_jacobian(Vec3T<T> r_in) {
-    const Prepared<T> p = prepare(r_in);
+Jacobian23T<T> latlong_jacobian_at(const Prepared<T>& p, T rho) {
     const Vec3T<T> r = p.r;
-    const T rho = std::sqrt(r.x * r.x + r.z * r.z);
     if (rho == 0) return {};  // pole: J undefined, the caller takes the isotropic fallback (§3.4)
     const T cx = r.x / rho, cz = r.z / rho, inv_rho = safe_inverse(rho);
     const T p2 = dot(r, r);  // in [1, 12]
@@ -261,6 +267,24 @@ Jacobian23T<T> latlong_jacobian(Vec3T<T> r_in) {
     const Vec3T<T> ds = (inv_rho / (2 * kPi<T>)) * Vec3T<T>{-cz, 0, cx};
     const Vec3T<T> dt = (1 / (kPi<T> * p2)) * Vec3T<T>{r.y * cx, -rho, r.y * cz};
     return finish(p, {ds, dt});
+}
+
+template <class T>
+Jacobian23T<T> latlong_jacobian(Vec3T<T> r_in) {
+    const Prepared<T> p = prepare(r_in);
+    return latlong_jacobian_at(p, std::sqrt(p.r.x * p.r.x + p.r.z * p.r.z));
+}
+
+template <class T>
+EnvCoordsJacobianT<T> latlong_coords_and_jacobian(Vec3T<T> r_in) {
+    const Prepared<T> p = prepare(r_in);
+    const Vec3T<T> r = p.r;
+    const T rho = std::sqrt(r.x * r.x + r.z * r.z);
+    const T t = any_atan2(rho, r.y) / kPi<T>;
+    if (rho == 0) return {{0, T(0.5), t}, {}};
+    const T s = T(0.5) + any_atan2(r.x, -r.z) / (2 * kPi<T>);
+    return {{0, std::clamp(s, T(0), T(1)), std::clamp(t, T(0), T(1))},
+            latlong_jacobian_at(p, rho)};
 }
 
 template <class T>
@@ -413,6 +437,20 @@ Jacobian23T<T> env_jacobian(EnvLayout layout, Vec3T<T> r) {
 }
 
 template <class T>
+EnvCoordsJacobianT<T> env_coords_and_jacobian(EnvLayout layout, Vec3T<T> r) {
+    switch (layout) {
+        case EnvLayout::cube:
+            return cube_coords_and_jacobian(r);
+        case EnvLayout::latlong:
+            return latlong_coords_and_jacobian(r);
+        case EnvLayout::paraboloid:
+        case EnvLayout::sphere:
+            break;
+    }
+    return {env_coords(layout, r), env_jacobian(layout, r)};
+}
+
+template <class T>
 Vec3T<T> env_direction(EnvLayout layout, int face, T s, T t) {
     switch (layout) {
         case EnvLayout::cube:
@@ -443,6 +481,7 @@ Vec3T<T> env_direction(EnvLayout layout, int face, T s, T t) {
     template Vec3T<T> paraboloid_direction(int, T, T);         \
     template EnvCoordsT<T> env_coords(EnvLayout, Vec3T<T>);    \
     template Jacobian23T<T> env_jacobian(EnvLayout, Vec3T<T>); \
+    template EnvCoordsJacobianT<T> env_coords_and_jacobian(EnvLayout, Vec3T<T>); \
     template Vec3T<T> env_direction(EnvLayout, int, T, T);
 
 FOOTPRINT_ENV_LAYOUT_INSTANTIATE(float)

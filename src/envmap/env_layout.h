@@ -195,6 +195,16 @@ template <class T>
 EnvCoordsT<T> env_coords(EnvLayout layout, Vec3T<T> r);
 template <class T>
 Jacobian23T<T> env_jacobian(EnvLayout layout, Vec3T<T> r);
+// Both at once, bit-identical to env_coords and env_jacobian but sharing their work (the
+// direction's rescaling, the cube face, the lat-long ρ): what every footprint needs.
+template <class T>
+struct EnvCoordsJacobianT {
+    EnvCoordsT<T> coords;
+    Jacobian23T<T> jacobian;
+};
+template <class T>
+EnvCoordsJacobianT<T> env_coords_and_jacobian(EnvLayout layout, Vec3T<T> r);
+using EnvCoordsJacobian = EnvCoordsJacobianT<float>;
 // The (unnormalised, finite, nonzero) direction of (face, s, t).
 template <class T>
 Vec3T<T> env_direction(EnvLayout layout, int face, T s, T t);

@@ -8,6 +8,7 @@
 #include <algorithm>
 
 #include "envmap/environment_map.h"
+#include "texture/footprint_assembly.h"
 #include "texture/sampling.h"
 
 namespace footprint::detail {
@@ -57,6 +58,42 @@ template <int S>
     add_scaled(r, (1 - fx) * fy, Texel<S>::load(env_texel(map, face, level, x0, y0 + 1)));
     add_scaled(r, fx * fy, Texel<S>::load(env_texel(map, face, level, x0 + 1, y0 + 1)));
     return r;
+}
+
+// Where a footprint-assembly probe reads: EnvCoords without default values, so that an array of
+// the most probes a plan can hold costs nothing to declare.
+struct ProbeCentre {
+    int face;
+    float s, t;
+};
+
+// Requests the cache lines of a probe's bilinear taps at `level` (taps beyond a face's edge are
+// left to env_texel).
+inline void prefetch_probe(const EnvironmentMap& map, const ProbeCentre& probe, int level) {
+    const MipPyramid::LevelView view = map.face(probe.face).level(level);
+    const int x = floor_to_int(probe.s * static_cast<float>(view.width) - 0.5f);
+    const int y = floor_to_int(probe.t * static_cast<float>(view.height) - 0.5f);
+    if (x >= 0 && y >= 0 && x + 1 < view.width && y + 1 < view.height) {
+        const float* p = view.texel(x, y);
+        prefetch(p);
+        prefetch(p + view.row_step);
+    }
+}
+
+// Requests the cache lines that environment_lookup() will read first for `footprint`: the centre's
+// taps at both levels of a single-probe lookup (several probes request their own lines as they go;
+// polar-cap lookups read small, cached levels).
+inline void prefetch_centre(const EnvironmentMap& map, const EnvFootprint& footprint,
+                            const LookupOptions& options) {
+    if (!footprint.matrix.is_finite()) return;
+    const MipPyramid& pyramid = map.face(footprint.coords.face);
+    const float lod = single_probe_lod(footprint.matrix, options.lod_bias, pyramid.max_level(),
+                                       options.isotropic_ratio);
+    if (lod < 0.0f) return;
+    const ProbeCentre centre{footprint.coords.face, footprint.coords.s, footprint.coords.t};
+    const int level = static_cast<int>(lod);
+    prefetch_probe(map, centre, level);
+    if (level < pyramid.max_level()) prefetch_probe(map, centre, level + 1);
 }
 
 template <int S>

@@ -254,7 +254,8 @@ void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint
         (map.layout() != EnvLayout::sphere ||
          footprint.matrix.trace() <= 0.25f * size.x * size.x)) {
         // Near-isotropic footprints are one trilinear probe at the centre: skip the ellipse's axes.
-        const float lod = single_probe_lod(footprint.matrix, options.lod_bias, centre.max_level());
+        const float lod = single_probe_lod(footprint.matrix, options.lod_bias, centre.max_level(),
+                                           options.isotropic_ratio);
         if (lod >= 0.0f) {
             const LodBlend blend =
                 options.lod_blend == LodBlend::automatic ? LodBlend::linear : options.lod_blend;
@@ -279,7 +280,8 @@ void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint
     // Footprint assembly (spec §2.8–2.9): probes along r1 on the centre face's (s, t) plane, each
     // placed on the face that owns its direction (place_probe), all at the centre face's lod.
     const ProbePlan plan = plan_probes(e, options.probe_rule, options.max_probes,
-                                       centre.max_level(), options.lod_bias);
+                                       centre.max_level(), options.lod_bias,
+                                       options.isotropic_ratio);
     const LodBlend blend = effective_lod_blend(plan, options.lod_blend);
     float weights[kMaxProbeCount];
     probe_weights(plan, weights);
@@ -288,24 +290,49 @@ void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint
     const QuadraticPath path = map.layout() == EnvLayout::latlong && tangent.valid && plan.count > 2
                                    ? QuadraticPath::through(tangent, c, plan.offset(plan.count - 1))
                                    : QuadraticPath{};
+    // Every probe is placed first and its texels' cache lines requested, so that the misses of
+    // all probes overlap instead of arriving one probe at a time; then the probes are summed level
+    // by level (all read plan.lod, so one blend weight serves them all).
+    detail::ProbeCentre probes[kMaxProbeCount];  // uninitialised: only plan.count are written
+    for (int i = 0; i < plan.count; ++i) {
+        const Vec2 o = plan.offset(i);
+        EnvCoords p;
+        if (!(path.valid && path.place(i, plan.count, p)))
+            p = tangent.valid ? tangent.place(map.layout(), o)
+                              : place_probe(map.layout(), c.face, c.s + o.x / size.x,
+                                            c.t + o.y / size.y);
+        probes[i] = {p.face, p.s, p.t};
+    }
+    const int max_level = centre.max_level();
+    const int l0 = std::min(static_cast<int>(plan.lod), max_level);
+    const float w =
+        l0 < max_level ? detail::lod_blend_weight(plan.lod - static_cast<float>(l0), blend) : 0.0f;
+    // Software pipelining: probe i + kAhead's cache lines are requested while probe i is read, so
+    // that a bounded number of misses is always in flight.
+    constexpr int kAhead = 6;
+    auto request = [&](int i) {
+        detail::prefetch_probe(map, probes[i], l0);
+        if (w > 0.0f) detail::prefetch_probe(map, probes[i], l0 + 1);
+    };
+    if (plan.count > 1)
+        for (int i = 0; i < std::min(kAhead, plan.count); ++i) request(i);
     detail::dispatch_stride(centre.stride(), [&]<int S>() {
-        detail::Texel<S> sum{};
-        float weight_sum = 0;
+        detail::Texel<S> fine{}, coarse{};
         for (int i = 0; i < plan.count; ++i) {
-            const Vec2 o = plan.offset(i);
-            EnvCoords probe;
-            if (path.valid && path.place(i, plan.count, probe)) {
-            } else if (tangent.valid) {
-                probe = tangent.place(map.layout(), o);
-            } else {
-                probe = place_probe(map.layout(), c.face, c.s + o.x / size.x, c.t + o.y / size.y);
-            }
-            detail::add_scaled(sum, weights[i],
-                               detail::env_trilinear<S>(map, probe, plan.lod, blend));
-            weight_sum += weights[i];
+            if (i + kAhead < plan.count) request(i + kAhead);
+            const detail::ProbeCentre& p = probes[i];
+            detail::add_scaled(fine, weights[i], detail::env_bilinear<S>(map, p.face, l0, p.s, p.t));
+            if (w > 0.0f)
+                detail::add_scaled(coarse, weights[i],
+                                   detail::env_bilinear<S>(map, p.face, l0 + 1, p.s, p.t));
         }
-        sum.v *= 1.0f / weight_sum;
-        detail::store(sum, centre.channels(), out);
+        float weight_sum = 0;
+        for (int i = 0; i < plan.count; ++i) weight_sum += weights[i];
+        const float weight = 1.0f / weight_sum;
+        detail::Texel<S> result = fine;
+        result.v *= weight;
+        if (w > 0.0f) result.v += w * (weight * coarse.v - result.v);
+        detail::store(result, centre.channels(), out);
     });
 }
 
@@ -314,6 +341,27 @@ void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_d
     environment_lookup(
         map, compute_env_footprint(map.layout(), map.texel_scale(), r, dr_dx, dr_dy, rotation),
         options, out);
+}
+
+void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayDifferential> rays,
+                              const LookupOptions& options, float* out, const Mat3& rotation) {
+    // Enough lookups in flight to cover a miss to memory, few enough that their texels are still
+    // in the cache when they are filtered.
+    constexpr std::size_t kGroup = 16;
+    const Vec2 size = map.texel_scale();
+    const int channels = map.channels();
+    EnvFootprint footprints[kGroup];
+    for (std::size_t first = 0; first < rays.size(); first += kGroup) {
+        const std::size_t count = std::min(kGroup, rays.size() - first);
+        for (std::size_t i = 0; i < count; ++i) {
+            const EnvRayDifferential& ray = rays[first + i];
+            footprints[i] = compute_env_footprint(map.layout(), size, ray.direction, ray.d_dx,
+                                                  ray.d_dy, rotation);
+            detail::prefetch_centre(map, footprints[i], options);
+        }
+        for (std::size_t i = 0; i < count; ++i)
+            environment_lookup(map, footprints[i], options, out + (first + i) * channels);
+    }
 }
 
 void environment_bilinear(const EnvironmentMap& map, Vec3 r, int level, float* out) {

@@ -34,6 +34,7 @@
 #pragma once
 
 #include <array>
+#include <span>
 
 #include "core/result.h"
 #include "envmap/env_footprint.h"
@@ -91,6 +92,20 @@ void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint
 // with ray differentials ∂r/∂x, ∂r/∂y (compute_env_footprint form (a)), `rotation` = A.
 void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
                         const LookupOptions& options, float* out, const Mat3& rotation = Mat3{});
+
+// One form-(a) lookup of a batch: a direction r and its ray differentials ∂r/∂x, ∂r/∂y.
+struct EnvRayDifferential {
+    Vec3 direction, d_dx, d_dy;
+};
+
+// environment_lookup() form (a) for many rays at once, the same results, faster: a lookup at a
+// random direction waits on memory for its texels, so each group of rays has its footprints
+// computed first and its texels' cache lines requested, then is filtered while the lines arrive.
+// `out` receives rays.size()·channels() floats, ray by ray (as OpenImageIO's batched
+// environment(), without its 16-lane limit and structure-of-arrays layout).
+void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayDifferential> rays,
+                              const LookupOptions& options, float* out,
+                              const Mat3& rotation = Mat3{});
 
 // A point sample: bilinear interpolation of level `level` at the direction r (any nonzero
 // length), seamless across cube-face edges and the lat-long seam. The building block of the

@@ -8,6 +8,7 @@
 
 #include "envmap/env_sampling.h"
 #include "math/fast_atan2.h"
+#include "texture/footprint_assembly.h"
 #include "texture/texture_lookup.h"
 
 namespace footprint {
@@ -75,10 +76,12 @@ bool polar_cap_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
     if (!(len > 0) || !(std::fabs(r.y) >= kPolarCapCosine * len)) return false;
     const MipPyramid& cap = *map.polar_cap(r.y > 0 ? 0 : 1);
     const float n = static_cast<float>(cap.width(0));
-    const EnvCoords c = cube_coords(r);  // face 2 or 3: |r_y| is the major axis within 30°
+    // Face 2 or 3: |r_y| is the major axis within 30°.
+    const EnvCoordsJacobian cj = env_coords_and_jacobian(EnvLayout::cube, r);
+    const EnvCoords& c = cj.coords;
     // K on the cap from the footprint's map-space direction differentials (env_footprint.h): this
     // keeps the anisotropy even where the lat-long footprint fell back to an isotropic one.
-    const Jacobian23 jc = cube_jacobian(r);
+    const Jacobian23& jc = cj.jacobian;
     auto on_cap = [&](Vec3 w) { return Vec2{n * dot(jc.ds, w), n * dot(jc.dt, w)}; };
     Sym2 k_cap =
         footprint_matrix(on_cap(footprint.map_dr_dx), on_cap(footprint.map_dr_dy)) +
@@ -86,6 +89,24 @@ bool polar_cap_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
     // Non-finite input left no differentials (env_footprint.h) but a roughness-only fallback K:
     // that K lives in lat-long texels, so the lat-long path filters it.
     if (!k_cap.is_finite() || (k_cap.trace() == 0 && footprint.matrix.trace() > 0)) return false;
+    if (options.filter == TextureFilter::footprint_assembly &&
+        (options.probe_rule == ProbeRule::moment_matched ||
+         options.probe_rule == ProbeRule::gaussian)) {
+        // One probe (the common case): no ellipse axes. As below, stay ~2λ1 ≤ 2√tr K inside.
+        const float lod =
+            single_probe_lod(k_cap, options.lod_bias, cap.max_level(), options.isotropic_ratio);
+        const float reach = (2 * std::sqrt(k_cap.trace()) + 1) / n;
+        if (lod >= 0.0f && c.s - reach >= 0 && c.s + reach <= 1 && c.t - reach >= 0 &&
+            c.t + reach <= 1) {
+            const LodBlend blend =
+                options.lod_blend == LodBlend::automatic ? LodBlend::linear : options.lod_blend;
+            detail::dispatch_stride(cap.stride(), [&]<int S>() {
+                detail::store(detail::sample_trilinear<S>(cap, c.s, c.t, lod, blend),
+                              cap.channels(), out);
+            });
+            return true;
+        }
+    }
     const FootprintEllipse e = make_footprint_ellipse(k_cap);
     // Stay on the face: the probes and their kernels reach about 2λ1 from the centre.
     const float reach = (2 * e.major_radius + 1) / n;

@@ -73,17 +73,21 @@ LodBlend effective_lod_blend(const ProbePlan& plan, LodBlend blend) {
     return plan.count == 1 ? LodBlend::linear : LodBlend::variance_matched;
 }
 
-float single_probe_lod(const Sym2& k, float lod_bias, int max_level) {
+float single_probe_lod(const Sym2& k, float lod_bias, int max_level, float isotropic_ratio) {
     const float w = std::sqrt((k.xx - k.yy) * (k.xx - k.yy) + 4 * k.xy * k.xy);  // spec §2.7
     const float major_sq = 0.5f * (k.xx + k.yy + w);
     const float minor_sq = major_sq > 0 ? std::max(0.0f, k.determinant()) / major_sq : 0.0f;
     const float tp_sq = std::max(minor_sq, 1.0f);  // T_p² = max(λ2, T_min)²
-    if (!(major_sq <= kIsotropicRatio * kIsotropicRatio * tp_sq)) return -1.0f;
-    return std::clamp(0.5f * fast_log2(tp_sq) + lod_bias, 0.0f, static_cast<float>(max_level));
+    const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
+    if (!(major_sq <= ratio * ratio * tp_sq)) return -1.0f;
+    // log2 √(λ1·T_p) = ¼ log2(λ1² T_p²), λ1 ≥ T_min.
+    return std::clamp(0.25f * fast_log2(std::max(major_sq, 1.0f) * tp_sq) + lod_bias, 0.0f,
+                      static_cast<float>(max_level));
 }
 
 ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max_probes,
-                      int max_level, float lod_bias) {
+                      int max_level, float lod_bias, float isotropic_ratio) {
+    isotropic_ratio = std::max(isotropic_ratio, kIsotropicRatio);
     constexpr float kMinTexelSize = 1.0f;  // T_min: smaller footprints are magnification
     const float l1 = footprint.major_radius, l2 = footprint.minor_radius;
     const Vec2 r1 = footprint.major_axis;
@@ -94,7 +98,9 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
         case ProbeRule::moment_matched: {  // Rule B
             float tp = std::max(l2, kMinTexelSize);
             int n = 1;
-            if (l1 > tp * kIsotropicRatio) {
+            if (l1 <= tp * isotropic_ratio) {
+                tp = std::sqrt(tp * std::max(l1, kMinTexelSize));  // one probe, √(λ1 T_p)
+            } else {
                 const float ratio = l1 / tp;
                 n = static_cast<int>(std::ceil(std::sqrt(std::max(1.0f, 3 * ratio * ratio - 2))));
                 if (n > max_probes) {
@@ -115,8 +121,8 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
         }
         case ProbeRule::gaussian: {
             float tp = std::max(l2, kMinTexelSize);
-            if (l1 <= tp * kIsotropicRatio) {
-                plan.texel_size = tp;
+            if (l1 <= tp * isotropic_ratio) {
+                plan.texel_size = std::sqrt(tp * std::max(l1, kMinTexelSize));  // one probe
                 break;
             }
             auto spacing_factor = [](int n) { return gaussian_spacing_factor(n); };
@@ -169,7 +175,8 @@ void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
                                const FootprintEllipse& footprint, const LookupOptions& options,
                                float* out) {
     const ProbePlan plan = plan_probes(footprint, options.probe_rule, options.max_probes,
-                                       pyramid.max_level(), options.lod_bias);
+                                       pyramid.max_level(), options.lod_bias,
+                                       options.isotropic_ratio);
     // Offsets are in level-0 texels; divide by S = diag(W0, H0) for normalised units (spec §2.9).
     // Positions need no per-probe reduction: the footprint is bounded to a few texture sizes, and
     // sample_bilinear wraps taps outside the level.
@@ -203,8 +210,8 @@ void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
                 const int y = floor_to_int((t + k * dv) * static_cast<float>(view.height) - 0.5f);
                 if (x >= 0 && y >= 0 && x + 1 < view.width && y + 1 < view.height) {
                     const float* p = view.texel(x, y);
-                    __builtin_prefetch(p);
-                    __builtin_prefetch(p + view.row_step);
+                    prefetch(p);
+                    prefetch(p + view.row_step);
                 }
             }
         };

@@ -40,14 +40,18 @@ struct ProbePlan {
     }
 };
 
-// Rule B (both weightings) takes one probe when λ1 ≤ kIsotropicRatio·max(λ2, T_min): an isotropic
-// footprint must not split into two coincident probes over rounding (kernel variance off < 0.2 %).
+// Rule B (both weightings) takes one probe when λ1 ≤ ratio·T_p, T_p = max(λ2, T_min), ratio =
+// LookupOptions::isotropic_ratio (at least kIsotropicRatio), of size √(λ1·T_p) (the geometric mean
+// of the axes: each kernel σ is off by at most √ratio). kIsotropicRatio is the exact rule: an
+// isotropic footprint must not split into two coincident probes over rounding (kernel variance
+// off < 0.2 %).
 constexpr float kIsotropicRatio = 1.001f;
 
 // For Rule B (both weightings): the lod of the single probe that footprint K takes, or a negative
 // value when K needs several probes. Decided from K's eigenvalues alone — no axes, no square roots
 // of λ — so texture_lookup() can skip the ellipse for the common near-isotropic case.
-float single_probe_lod(const Sym2& k, float lod_bias, int max_level);
+float single_probe_lod(const Sym2& k, float lod_bias, int max_level,
+                       float isotropic_ratio = kIsotropicRatio);
 
 // The most probes a plan holds (max_probes is clamped to it).
 constexpr int kMaxProbeCount = 1024;
@@ -61,6 +65,6 @@ LodBlend effective_lod_blend(const ProbePlan& plan, LodBlend blend);
 // The probes for a footprint ellipse (finite, λ1 ≥ λ2 ≥ 0). max_probes ≥ 1; max_level = the
 // pyramid's coarsest level. lod_bias is added before clamping.
 ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max_probes,
-                      int max_level, float lod_bias = 0);
+                      int max_level, float lod_bias = 0, float isotropic_ratio = kIsotropicRatio);
 
 }  // namespace footprint

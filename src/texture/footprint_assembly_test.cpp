@@ -33,8 +33,8 @@ FootprintEllipse random_footprint(std::mt19937& rng, float min_size, float max_s
 // centre offsets spanning one texel of the coarser level the probes read.
 KernelMoments averaged_fa_moments(const MomentPyramids& moments, const FootprintEllipse& e,
                                   const LookupOptions& options, float* mean_error) {
-    const ProbePlan plan =
-        plan_probes(e, options.probe_rule, options.max_probes, moments.first().max_level());
+    const ProbePlan plan = plan_probes(e, options.probe_rule, options.max_probes,
+                                       moments.first().max_level(), 0.0f, options.isotropic_ratio);
     const float period = std::exp2(std::floor(plan.lod) + 1);
     KernelMoments avg{};
     *mean_error = 0;
@@ -162,6 +162,50 @@ TEST(FootprintAssembly, KernelCovarianceIsQuarterK) {
                 }
             }
         }
+}
+
+TEST(FootprintAssembly, IsotropicRatioTakesOneProbeOfTheGeometricMean) {
+    // LookupOptions::isotropic_ratio = 1.25: footprints with λ1 ≤ 1.25·max(λ2, 1) take one probe
+    // of T_p = √(λ1·max(λ2, 1)), whose measured kernel is T_p²/4·I (each σ within √1.25 of K/4's);
+    // longer ones keep Rule B's probe lines and K/4.
+    const MomentPyramids& moments = moment_pyramids();
+    for (ProbeRule rule : {ProbeRule::moment_matched, ProbeRule::gaussian}) {
+        LookupOptions options;
+        options.probe_rule = rule;
+        options.lod_blend = LodBlend::variance_matched;
+        options.isotropic_ratio = 1.25f;
+        std::mt19937 rng(7);
+        for (int i = 0; i < 150; ++i) {
+            const FootprintEllipse e = random_footprint(rng, 0.5f, 200, 1.6f);
+            const ProbePlan plan = plan_probes(e, rule, options.max_probes,
+                                               moments.first().max_level(), 0.0f, 1.25f);
+            const float major = std::max(e.major_radius, 1.0f),
+                        minor = std::max(e.minor_radius, 1.0f);
+            float mean_error = 0;
+            const KernelMoments m = averaged_fa_moments(moments, e, options, &mean_error);
+            EXPECT_LT(mean_error, kKernelMeanTolerance * major) << "footprint " << i;
+            if (major <= 1.25f * minor) {
+                ASSERT_EQ(plan.count, 1) << "footprint " << i;
+                EXPECT_NEAR(plan.texel_size, std::sqrt(major * minor), 1e-4f * major);
+                const Sym2 single = footprint_matrix({0.5f * plan.texel_size, 0},
+                                                     {0, 0.5f * plan.texel_size});
+                EXPECT_LT(relative_error(m.covariance, single), kKernelCovarianceTolerance)
+                    << "footprint " << i << ": λ = (" << e.major_radius << ", "
+                    << e.minor_radius << ")";
+                // single_probe_lod (texture_lookup's and the environment's shortcut) agrees.
+                const Sym2 k = outer(e.major_axis, e.major_radius * e.major_radius) +
+                               outer(e.minor_axis(), e.minor_radius * e.minor_radius);
+                EXPECT_NEAR(single_probe_lod(k, 0, moments.first().max_level(), 1.25f), plan.lod,
+                            1e-3f);
+            } else {
+                EXPECT_GT(plan.count, 1) << "footprint " << i;
+                const Sym2 quarter_k = outer(e.major_axis, 0.25f * major * major) +
+                                       outer(e.minor_axis(), 0.25f * minor * minor);
+                EXPECT_LT(relative_error(m.covariance, quarter_k), kKernelCovarianceTolerance)
+                    << "footprint " << i;
+            }
+        }
+    }
 }
 
 TEST(FootprintAssembly, ClampedProbeBudgetRaisesTheMinorAxisOnly) {

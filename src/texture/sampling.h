@@ -34,6 +34,18 @@ inline void add_scaled(Texel<S>& acc, float w, const Texel<S>& t) {
     acc.v += w * t.v;
 }
 
+// Asks for the cache line holding p (no load; any address is fine). Not __builtin_prefetch alone:
+// GCC (12) counts a prefetch as free of side effects, so its IPA marks a function that only
+// prefetches as pure and deletes every call to it — footprint assembly's prefetch loop compiled to
+// nothing. An asm volatile cannot be deleted.
+inline void prefetch(const void* p) {
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+    asm volatile("prefetcht0 %0" : : "m"(*static_cast<const char*>(p)));
+#else
+    __builtin_prefetch(p);
+#endif
+}
+
 // ⌊x⌋ for |x| < 2^31 without a libm call (x86-64's baseline SSE2 has no rounding instruction).
 inline int floor_to_int(float x) {
     const int i = static_cast<int>(x);

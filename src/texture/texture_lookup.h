@@ -72,6 +72,13 @@ struct LookupOptions {
     LodBlend lod_blend = LodBlend::automatic;  // footprint assembly's level blend
     float max_anisotropy = 16;  // EWA: λ1/λ2 clamp (grows λ2), as pbrt-v4's maxAnisotropy
     float lod_bias = 0;         // added to the level of trilinear, footprint assembly and EWA
+    // Footprint assembly: a footprint with λ1 ≤ isotropic_ratio·max(λ2, 1) takes one probe of
+    // size √(λ1·max(λ2, 1)) instead of a line (footprint_assembly.h). Each kernel σ is then off by
+    // up to √ratio (11 % at 1.25, about the linear lod blend's own error), and the near-isotropic
+    // footprints of cube faces and polar caps cost one probe instead of two or three. The default,
+    // 1, is Rule B exactly (spec §2.8); what 1.25 gains and costs: footprint-bench env
+    // --isotropic-ratio 1.25 (README).
+    float isotropic_ratio = 1.0f;
 };
 
 // Where and how large a lookup is: position and derivatives in normalised units (see above).
