@@ -449,9 +449,8 @@ int run_env_bench(const EnvBenchOptions& opt) {
                 const double rate =
                     batch_rate(lookups, opt.thread_counts[k], opt.rounds, kBatch,
                                [&](const EnvLookup* first, int count, float* out) {
-                                   environment_lookup_batch(*layout.map,
-                                                            std::span(first, std::size_t(count)),
-                                                            lo, out);
+                                   environment_lookup_batch(
+                                       *layout.map, std::span(first, std::size_t(count)), lo, out);
                                });
                 cases.push_back({batch_filter, regime.name, opt.thread_counts[k], rate,
                                  oiio_batch_rate[k], ours_rmse, oiio_rmse});

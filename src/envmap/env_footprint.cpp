@@ -48,8 +48,10 @@ float isotropic_footprint_radius(EnvLayout layout, const Jacobian23& j, Vec3 map
     if (layout != EnvLayout::latlong && layout != EnvLayout::sphere) return -1;
     if (dot(j.ds, j.ds) == 0 && dot(j.dt, j.dt) == 0) return theta();
     if (layout != EnvLayout::latlong) return -1;
-    const float rho = static_cast<float>(std::sqrt(  // hypot, without its cost: no overflow
-        double(map_direction.x) * map_direction.x + double(map_direction.z) * map_direction.z));
+    const float rho2 = map_direction.x * map_direction.x + map_direction.z * map_direction.z;
+    const float rho = std::isfinite(rho2) && rho2 > 0x1p-100f  // else hypot's scaling is needed
+                          ? std::sqrt(rho2)
+                          : std::hypot(map_direction.x, map_direction.z);
     if (!(rho < spread_bound)) return -1;
     const float theta_fp = theta();
     const float reach = std::min(theta_fp, std::numbers::pi_v<float> / 2);

@@ -283,8 +283,7 @@ EnvCoordsJacobianT<T> latlong_coords_and_jacobian(Vec3T<T> r_in) {
     const T t = any_atan2(rho, r.y) / kPi<T>;
     if (rho == 0) return {{0, T(0.5), t}, {}};
     const T s = T(0.5) + any_atan2(r.x, -r.z) / (2 * kPi<T>);
-    return {{0, std::clamp(s, T(0), T(1)), std::clamp(t, T(0), T(1))},
-            latlong_jacobian_at(p, rho)};
+    return {{0, std::clamp(s, T(0), T(1)), std::clamp(t, T(0), T(1))}, latlong_jacobian_at(p, rho)};
 }
 
 template <class T>
@@ -465,22 +464,22 @@ Vec3T<T> env_direction(EnvLayout layout, int face, T s, T t) {
     return kEnvFallbackDirection<T>;
 }
 
-#define FOOTPRINT_ENV_LAYOUT_INSTANTIATE(T)                    \
-    template CubeCoordsT<T> cube_coords(Vec3T<T>);             \
-    template Jacobian23T<T> cube_jacobian(Vec3T<T>);           \
-    template Vec3T<T> cube_direction(int, T, T);               \
-    template CubeCoordsT<T> cube_reproject(int, T, T);         \
-    template Vec2T<T> latlong_coords(Vec3T<T>);                \
-    template Jacobian23T<T> latlong_jacobian(Vec3T<T>);        \
-    template Vec3T<T> latlong_direction(T, T);                 \
-    template Vec2T<T> sphere_coords(Vec3T<T>);                 \
-    template Jacobian23T<T> sphere_jacobian(Vec3T<T>);         \
-    template Vec3T<T> sphere_direction(T, T);                  \
-    template EnvCoordsT<T> paraboloid_coords(Vec3T<T>);        \
-    template Jacobian23T<T> paraboloid_jacobian(Vec3T<T>);     \
-    template Vec3T<T> paraboloid_direction(int, T, T);         \
-    template EnvCoordsT<T> env_coords(EnvLayout, Vec3T<T>);    \
-    template Jacobian23T<T> env_jacobian(EnvLayout, Vec3T<T>); \
+#define FOOTPRINT_ENV_LAYOUT_INSTANTIATE(T)                                      \
+    template CubeCoordsT<T> cube_coords(Vec3T<T>);                               \
+    template Jacobian23T<T> cube_jacobian(Vec3T<T>);                             \
+    template Vec3T<T> cube_direction(int, T, T);                                 \
+    template CubeCoordsT<T> cube_reproject(int, T, T);                           \
+    template Vec2T<T> latlong_coords(Vec3T<T>);                                  \
+    template Jacobian23T<T> latlong_jacobian(Vec3T<T>);                          \
+    template Vec3T<T> latlong_direction(T, T);                                   \
+    template Vec2T<T> sphere_coords(Vec3T<T>);                                   \
+    template Jacobian23T<T> sphere_jacobian(Vec3T<T>);                           \
+    template Vec3T<T> sphere_direction(T, T);                                    \
+    template EnvCoordsT<T> paraboloid_coords(Vec3T<T>);                          \
+    template Jacobian23T<T> paraboloid_jacobian(Vec3T<T>);                       \
+    template Vec3T<T> paraboloid_direction(int, T, T);                           \
+    template EnvCoordsT<T> env_coords(EnvLayout, Vec3T<T>);                      \
+    template Jacobian23T<T> env_jacobian(EnvLayout, Vec3T<T>);                   \
     template EnvCoordsJacobianT<T> env_coords_and_jacobian(EnvLayout, Vec3T<T>); \
     template Vec3T<T> env_direction(EnvLayout, int, T, T);
 

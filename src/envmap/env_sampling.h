@@ -8,7 +8,6 @@
 #include <algorithm>
 
 #include "envmap/environment_map.h"
-#include "texture/footprint_assembly.h"
 #include "texture/sampling.h"
 
 namespace footprint::detail {
@@ -78,22 +77,6 @@ inline void prefetch_probe(const EnvironmentMap& map, const ProbeCentre& probe, 
         prefetch(p);
         prefetch(p + view.row_step);
     }
-}
-
-// Requests the cache lines that environment_lookup() will read first for `footprint`: the centre's
-// taps at both levels of a single-probe lookup (several probes request their own lines as they go;
-// polar-cap lookups read small, cached levels).
-inline void prefetch_centre(const EnvironmentMap& map, const EnvFootprint& footprint,
-                            const LookupOptions& options) {
-    if (!footprint.matrix.is_finite()) return;
-    const MipPyramid& pyramid = map.face(footprint.coords.face);
-    const float lod = single_probe_lod(footprint.matrix, options.lod_bias, pyramid.max_level(),
-                                       options.isotropic_ratio);
-    if (lod < 0.0f) return;
-    const ProbeCentre centre{footprint.coords.face, footprint.coords.s, footprint.coords.t};
-    const int level = static_cast<int>(lod);
-    prefetch_probe(map, centre, level);
-    if (level < pyramid.max_level()) prefetch_probe(map, centre, level + 1);
 }
 
 template <int S>

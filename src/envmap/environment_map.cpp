@@ -239,32 +239,47 @@ Result<EnvironmentMap> EnvironmentMap::from_paraboloid(const Image& front, const
     return map;
 }
 
-void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
-                        const LookupOptions& options, float* out) {
+namespace {
+
+// The level of the one trilinear probe at the footprint's centre that a near-isotropic footprint
+// takes (without the ellipse's axes), or −1 where the lookup takes another path: a polar cap, a
+// line of probes, another filter, or the sphere map's rim.
+float centre_probe_lod(const EnvironmentMap& map, const EnvFootprint& footprint,
+                       const LookupOptions& options) {
+    if (options.filter != TextureFilter::footprint_assembly ||
+        (options.probe_rule != ProbeRule::moment_matched &&
+         options.probe_rule != ProbeRule::gaussian) ||
+        !footprint.matrix.is_finite())
+        return -1;
+    if (map.layout() == EnvLayout::latlong && map.polar_cap(0) &&
+        in_polar_cap_region(footprint.map_direction))
+        return -1;
+    const float width = map.texel_scale().x;
+    if (map.layout() == EnvLayout::sphere && footprint.matrix.trace() > 0.25f * width * width)
+        return -1;
+    return single_probe_lod(footprint.matrix, options.lod_bias,
+                            map.face(footprint.coords.face).max_level(), options.isotropic_ratio);
+}
+
+void centre_probe(const EnvironmentMap& map, const EnvCoords& c, float lod,
+                  const LookupOptions& options, float* out) {
+    const LodBlend blend =
+        options.lod_blend == LodBlend::automatic ? LodBlend::linear : options.lod_blend;
+    const MipPyramid& centre = map.face(c.face);
+    detail::dispatch_stride(centre.stride(), [&]<int S>() {
+        detail::store(detail::env_trilinear<S>(map, c, lod, blend), centre.channels(), out);
+    });
+}
+
+// Every other lookup: a polar cap, a line of probes, another filter.
+void general_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
+                    const LookupOptions& options, float* out) {
     if (map.layout() == EnvLayout::latlong && map.polar_cap(0) &&
         polar_cap_lookup(map, footprint, options, out))
         return;
     const EnvCoords& c = footprint.coords;
     const MipPyramid& centre = map.face(c.face);
     const Vec2 size = map.texel_scale();
-    if (options.filter == TextureFilter::footprint_assembly &&
-        (options.probe_rule == ProbeRule::moment_matched ||
-         options.probe_rule == ProbeRule::gaussian) &&
-        footprint.matrix.is_finite() &&
-        (map.layout() != EnvLayout::sphere ||
-         footprint.matrix.trace() <= 0.25f * size.x * size.x)) {
-        // Near-isotropic footprints are one trilinear probe at the centre: skip the ellipse's axes.
-        const float lod = single_probe_lod(footprint.matrix, options.lod_bias, centre.max_level(),
-                                           options.isotropic_ratio);
-        if (lod >= 0.0f) {
-            const LodBlend blend =
-                options.lod_blend == LodBlend::automatic ? LodBlend::linear : options.lod_blend;
-            detail::dispatch_stride(centre.stride(), [&]<int S>() {
-                detail::store(detail::env_trilinear<S>(map, c, lod, blend), centre.channels(), out);
-            });
-            return;
-        }
-    }
     FootprintEllipse e = footprint.matrix.is_finite() ? make_footprint_ellipse(footprint.matrix)
                                                       : FootprintEllipse{};
     if (map.layout() == EnvLayout::sphere && e.major_radius > 0.5f * size.x) {
@@ -279,9 +294,9 @@ void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint
     }
     // Footprint assembly (spec §2.8–2.9): probes along r1 on the centre face's (s, t) plane, each
     // placed on the face that owns its direction (place_probe), all at the centre face's lod.
-    const ProbePlan plan = plan_probes(e, options.probe_rule, options.max_probes,
-                                       centre.max_level(), options.lod_bias,
-                                       options.isotropic_ratio);
+    const ProbePlan plan =
+        plan_probes(e, options.probe_rule, options.max_probes, centre.max_level(), options.lod_bias,
+                    options.isotropic_ratio);
     const LodBlend blend = effective_lod_blend(plan, options.lod_blend);
     float weights[kMaxProbeCount];
     probe_weights(plan, weights);
@@ -298,9 +313,9 @@ void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint
         const Vec2 o = plan.offset(i);
         EnvCoords p;
         if (!(path.valid && path.place(i, plan.count, p)))
-            p = tangent.valid ? tangent.place(map.layout(), o)
-                              : place_probe(map.layout(), c.face, c.s + o.x / size.x,
-                                            c.t + o.y / size.y);
+            p = tangent.valid
+                    ? tangent.place(map.layout(), o)
+                    : place_probe(map.layout(), c.face, c.s + o.x / size.x, c.t + o.y / size.y);
         probes[i] = {p.face, p.s, p.t};
     }
     const int max_level = centre.max_level();
@@ -321,7 +336,8 @@ void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint
         for (int i = 0; i < plan.count; ++i) {
             if (i + kAhead < plan.count) request(i + kAhead);
             const detail::ProbeCentre& p = probes[i];
-            detail::add_scaled(fine, weights[i], detail::env_bilinear<S>(map, p.face, l0, p.s, p.t));
+            detail::add_scaled(fine, weights[i],
+                               detail::env_bilinear<S>(map, p.face, l0, p.s, p.t));
             if (w > 0.0f)
                 detail::add_scaled(coarse, weights[i],
                                    detail::env_bilinear<S>(map, p.face, l0 + 1, p.s, p.t));
@@ -334,6 +350,17 @@ void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint
         if (w > 0.0f) result.v += w * (weight * coarse.v - result.v);
         detail::store(result, centre.channels(), out);
     });
+}
+
+}  // namespace
+
+void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
+                        const LookupOptions& options, float* out) {
+    const float lod = centre_probe_lod(map, footprint, options);
+    if (lod >= 0.0f)
+        centre_probe(map, footprint.coords, lod, options, out);
+    else
+        general_lookup(map, footprint, options, out);
 }
 
 void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
@@ -351,16 +378,37 @@ void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayD
     const Vec2 size = map.texel_scale();
     const int channels = map.channels();
     EnvFootprint footprints[kGroup];
+    float lods[kGroup];
     for (std::size_t first = 0; first < rays.size(); first += kGroup) {
         const std::size_t count = std::min(kGroup, rays.size() - first);
         for (std::size_t i = 0; i < count; ++i) {
             const EnvRayDifferential& ray = rays[first + i];
             footprints[i] = compute_env_footprint(map.layout(), size, ray.direction, ray.d_dx,
                                                   ray.d_dy, rotation);
-            detail::prefetch_centre(map, footprints[i], options);
+            const EnvFootprint& f = footprints[i];
+            lods[i] = centre_probe_lod(map, f, options);
+            // The centre's texels: all of a single probe's, the middle of a line of probes'
+            // (which requests the rest as it goes; polar caps are small and stay cached).
+            const int max_level = map.face(f.coords.face).max_level();
+            const int level =
+                lods[i] >= 0.0f ? static_cast<int>(lods[i])
+                : f.matrix.is_finite() && !(map.layout() == EnvLayout::latlong &&
+                                            in_polar_cap_region(f.map_direction))
+                    ? static_cast<int>(probe_line_lod(f.matrix, options.lod_bias, max_level))
+                    : -1;
+            if (level >= 0) {
+                const detail::ProbeCentre centre{f.coords.face, f.coords.s, f.coords.t};
+                detail::prefetch_probe(map, centre, level);
+                if (level < max_level) detail::prefetch_probe(map, centre, level + 1);
+            }
         }
-        for (std::size_t i = 0; i < count; ++i)
-            environment_lookup(map, footprints[i], options, out + (first + i) * channels);
+        for (std::size_t i = 0; i < count; ++i) {
+            float* result = out + (first + i) * channels;
+            if (lods[i] >= 0.0f)
+                centre_probe(map, footprints[i].coords, lods[i], options, result);
+            else
+                general_lookup(map, footprints[i], options, result);
+        }
     }
 }
 

@@ -67,13 +67,17 @@ Image polar_cap_image(const EnvironmentMap& map, int face, int size) {
     return cap;
 }
 
+bool in_polar_cap_region(Vec3 r) {
+    const float len = std::sqrt(dot(r, r));
+    return len > 0 && std::fabs(r.y) >= kPolarCapCosine * len;
+}
+
 // The footprint carried onto a polar cap and filtered there; false when the lookup is not for the
 // caps (centre more than 30° from the pole, or the footprint would leave the cap's face).
 bool polar_cap_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
                       const LookupOptions& options, float* out) {
     const Vec3 r = footprint.map_direction;
-    const float len = std::sqrt(dot(r, r));
-    if (!(len > 0) || !(std::fabs(r.y) >= kPolarCapCosine * len)) return false;
+    if (!in_polar_cap_region(r)) return false;
     const MipPyramid& cap = *map.polar_cap(r.y > 0 ? 0 : 1);
     const float n = static_cast<float>(cap.width(0));
     // Face 2 or 3: |r_y| is the major axis within 30°.

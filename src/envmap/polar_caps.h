@@ -20,6 +20,9 @@ int polar_cap_size(int latlong_height, float resolution);
 // wide: each texel the average of the map's bilinear reconstruction over it.
 Image polar_cap_image(const EnvironmentMap& map, int face, int size);
 
+// Whether a lookup in map-space direction r is one for a polar cap: r within 30° of a pole.
+bool in_polar_cap_region(Vec3 r);
+
 // Filters `footprint` on the cap of its pole and returns true; false (out untouched) when the
 // footprint's centre lies more than 30° from a pole or its probes would leave the cap's face.
 bool polar_cap_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,

@@ -73,10 +73,27 @@ LodBlend effective_lod_blend(const ProbePlan& plan, LodBlend blend) {
     return plan.count == 1 ? LodBlend::linear : LodBlend::variance_matched;
 }
 
-float single_probe_lod(const Sym2& k, float lod_bias, int max_level, float isotropic_ratio) {
-    const float w = std::sqrt((k.xx - k.yy) * (k.xx - k.yy) + 4 * k.xy * k.xy);  // spec §2.7
+namespace {
+
+// λ1² and λ2² of K (spec §2.7), without square roots of λ.
+struct AxesSquared {
+    float major_sq, minor_sq;
+};
+AxesSquared axes_squared(const Sym2& k) {
+    const float w = std::sqrt((k.xx - k.yy) * (k.xx - k.yy) + 4 * k.xy * k.xy);
     const float major_sq = 0.5f * (k.xx + k.yy + w);
-    const float minor_sq = major_sq > 0 ? std::max(0.0f, k.determinant()) / major_sq : 0.0f;
+    return {major_sq, major_sq > 0 ? std::max(0.0f, k.determinant()) / major_sq : 0.0f};
+}
+
+}  // namespace
+
+float probe_line_lod(const Sym2& k, float lod_bias, int max_level) {
+    const float tp_sq = std::max(axes_squared(k).minor_sq, 1.0f);
+    return std::clamp(0.5f * fast_log2(tp_sq) + lod_bias, 0.0f, static_cast<float>(max_level));
+}
+
+float single_probe_lod(const Sym2& k, float lod_bias, int max_level, float isotropic_ratio) {
+    const auto [major_sq, minor_sq] = axes_squared(k);
     const float tp_sq = std::max(minor_sq, 1.0f);  // T_p² = max(λ2, T_min)²
     const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
     if (!(major_sq <= ratio * ratio * tp_sq)) return -1.0f;
@@ -174,9 +191,9 @@ namespace detail {
 void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
                                const FootprintEllipse& footprint, const LookupOptions& options,
                                float* out) {
-    const ProbePlan plan = plan_probes(footprint, options.probe_rule, options.max_probes,
-                                       pyramid.max_level(), options.lod_bias,
-                                       options.isotropic_ratio);
+    const ProbePlan plan =
+        plan_probes(footprint, options.probe_rule, options.max_probes, pyramid.max_level(),
+                    options.lod_bias, options.isotropic_ratio);
     // Offsets are in level-0 texels; divide by S = diag(W0, H0) for normalised units (spec §2.9).
     // Positions need no per-probe reduction: the footprint is bounded to a few texture sizes, and
     // sample_bilinear wraps taps outside the level.

@@ -177,8 +177,8 @@ TEST(FootprintAssembly, IsotropicRatioTakesOneProbeOfTheGeometricMean) {
         std::mt19937 rng(7);
         for (int i = 0; i < 150; ++i) {
             const FootprintEllipse e = random_footprint(rng, 0.5f, 200, 1.6f);
-            const ProbePlan plan = plan_probes(e, rule, options.max_probes,
-                                               moments.first().max_level(), 0.0f, 1.25f);
+            const ProbePlan plan =
+                plan_probes(e, rule, options.max_probes, moments.first().max_level(), 0.0f, 1.25f);
             const float major = std::max(e.major_radius, 1.0f),
                         minor = std::max(e.minor_radius, 1.0f);
             float mean_error = 0;
@@ -187,11 +187,11 @@ TEST(FootprintAssembly, IsotropicRatioTakesOneProbeOfTheGeometricMean) {
             if (major <= 1.25f * minor) {
                 ASSERT_EQ(plan.count, 1) << "footprint " << i;
                 EXPECT_NEAR(plan.texel_size, std::sqrt(major * minor), 1e-4f * major);
-                const Sym2 single = footprint_matrix({0.5f * plan.texel_size, 0},
-                                                     {0, 0.5f * plan.texel_size});
+                const Sym2 single =
+                    footprint_matrix({0.5f * plan.texel_size, 0}, {0, 0.5f * plan.texel_size});
                 EXPECT_LT(relative_error(m.covariance, single), kKernelCovarianceTolerance)
-                    << "footprint " << i << ": λ = (" << e.major_radius << ", "
-                    << e.minor_radius << ")";
+                    << "footprint " << i << ": λ = (" << e.major_radius << ", " << e.minor_radius
+                    << ")";
                 // single_probe_lod (texture_lookup's and the environment's shortcut) agrees.
                 const Sym2 k = outer(e.major_axis, e.major_radius * e.major_radius) +
                                outer(e.minor_axis(), e.minor_radius * e.minor_radius);

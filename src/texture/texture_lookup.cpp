@@ -202,9 +202,8 @@ void texture_lookup(const MipPyramid& pyramid, const TextureCoords& c, const Loo
         (options.probe_rule == ProbeRule::moment_matched ||
          options.probe_rule == ProbeRule::gaussian)) {
         // Near-isotropic footprints are one trilinear probe: skip the ellipse's axes.
-        const float lod =
-            single_probe_lod(footprint_matrix(d_dx, d_dy), options.lod_bias, pyramid.max_level(),
-                             options.isotropic_ratio);
+        const float lod = single_probe_lod(footprint_matrix(d_dx, d_dy), options.lod_bias,
+                                           pyramid.max_level(), options.isotropic_ratio);
         if (lod >= 0.0f) {
             const LodBlend blend =
                 options.lod_blend == LodBlend::automatic ? LodBlend::linear : options.lod_blend;
