@@ -271,12 +271,20 @@ void centre_probe(const EnvironmentMap& map, const EnvCoords& c, float lod,
     });
 }
 
-// Every other lookup: a polar cap, a line of probes, another filter.
+// A lat-long footprint near a pole, carried onto its polar cap; invalid elsewhere.
+PolarCapFootprint cap_footprint(const EnvironmentMap& map, const EnvFootprint& footprint) {
+    return map.layout() == EnvLayout::latlong && map.polar_cap(0)
+               ? polar_cap_footprint(map, footprint)
+               : PolarCapFootprint{};
+}
+
+// Every other lookup (a line of probes, another filter), given the footprint's cap_footprint().
 void general_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
-                    const LookupOptions& options, float* out) {
-    if (map.layout() == EnvLayout::latlong && map.polar_cap(0) &&
-        polar_cap_lookup(map, footprint, options, out))
+                    const PolarCapFootprint& cap, const LookupOptions& options, float* out) {
+    if (cap.valid) {
+        polar_cap_filter(cap, options, out);
         return;
+    }
     const EnvCoords& c = footprint.coords;
     const MipPyramid& centre = map.face(c.face);
     const Vec2 size = map.texel_scale();
@@ -360,7 +368,7 @@ void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint
     if (lod >= 0.0f)
         centre_probe(map, footprint.coords, lod, options, out);
     else
-        general_lookup(map, footprint, options, out);
+        general_lookup(map, footprint, cap_footprint(map, footprint), options, out);
 }
 
 void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
@@ -372,43 +380,42 @@ void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_d
 
 void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayDifferential> rays,
                               const LookupOptions& options, float* out, const Mat3& rotation) {
-    // Enough lookups in flight to cover a miss to memory, few enough that their texels are still
-    // in the cache when they are filtered.
+    // The lookups that are one probe at the footprint's centre (most of them) are deferred: their
+    // texels are requested, and they are filtered once the group's footprints are all computed,
+    // when the lines have arrived. Enough lookups in flight to cover a miss to memory, few enough
+    // that their texels are still cached when read. Every other lookup (probe lines, polar caps)
+    // is done at once: measured (footprint-bench env), deferring those costs more than it saves.
     constexpr std::size_t kGroup = 16;
     const Vec2 size = map.texel_scale();
     const int channels = map.channels();
-    EnvFootprint footprints[kGroup];
-    float lods[kGroup];
+    struct Deferred {
+        EnvCoords coords;
+        float lod;
+        float* out;
+    };
+    Deferred deferred[kGroup];
     for (std::size_t first = 0; first < rays.size(); first += kGroup) {
         const std::size_t count = std::min(kGroup, rays.size() - first);
+        std::size_t pending = 0;
         for (std::size_t i = 0; i < count; ++i) {
             const EnvRayDifferential& ray = rays[first + i];
-            footprints[i] = compute_env_footprint(map.layout(), size, ray.direction, ray.d_dx,
-                                                  ray.d_dy, rotation);
-            const EnvFootprint& f = footprints[i];
-            lods[i] = centre_probe_lod(map, f, options);
-            // The centre's texels: all of a single probe's, the middle of a line of probes'
-            // (which requests the rest as it goes; polar caps are small and stay cached).
-            const int max_level = map.face(f.coords.face).max_level();
-            const int level =
-                lods[i] >= 0.0f ? static_cast<int>(lods[i])
-                : f.matrix.is_finite() && !(map.layout() == EnvLayout::latlong &&
-                                            in_polar_cap_region(f.map_direction))
-                    ? static_cast<int>(probe_line_lod(f.matrix, options.lod_bias, max_level))
-                    : -1;
-            if (level >= 0) {
-                const detail::ProbeCentre centre{f.coords.face, f.coords.s, f.coords.t};
-                detail::prefetch_probe(map, centre, level);
-                if (level < max_level) detail::prefetch_probe(map, centre, level + 1);
-            }
-        }
-        for (std::size_t i = 0; i < count; ++i) {
+            const EnvFootprint f = compute_env_footprint(map.layout(), size, ray.direction,
+                                                         ray.d_dx, ray.d_dy, rotation);
             float* result = out + (first + i) * channels;
-            if (lods[i] >= 0.0f)
-                centre_probe(map, footprints[i].coords, lods[i], options, result);
-            else
-                general_lookup(map, footprints[i], options, result);
+            const float lod = centre_probe_lod(map, f, options);
+            if (lod < 0.0f) {
+                general_lookup(map, f, cap_footprint(map, f), options, result);
+                continue;
+            }
+            const detail::ProbeCentre centre{f.coords.face, f.coords.s, f.coords.t};
+            const int level = static_cast<int>(lod);
+            detail::prefetch_probe(map, centre, level);
+            if (level < map.face(centre.face).max_level())
+                detail::prefetch_probe(map, centre, level + 1);
+            deferred[pending++] = {f.coords, lod, result};
         }
+        for (std::size_t i = 0; i < pending; ++i)
+            centre_probe(map, deferred[i].coords, deferred[i].lod, options, deferred[i].out);
     }
 }
 

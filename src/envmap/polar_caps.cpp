@@ -72,51 +72,51 @@ bool in_polar_cap_region(Vec3 r) {
     return len > 0 && std::fabs(r.y) >= kPolarCapCosine * len;
 }
 
-// The footprint carried onto a polar cap and filtered there; false when the lookup is not for the
-// caps (centre more than 30° from the pole, or the footprint would leave the cap's face).
-bool polar_cap_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
-                      const LookupOptions& options, float* out) {
+PolarCapFootprint polar_cap_footprint(const EnvironmentMap& map, const EnvFootprint& footprint) {
+    PolarCapFootprint f;
     const Vec3 r = footprint.map_direction;
-    if (!in_polar_cap_region(r)) return false;
-    const MipPyramid& cap = *map.polar_cap(r.y > 0 ? 0 : 1);
-    const float n = static_cast<float>(cap.width(0));
+    if (!in_polar_cap_region(r)) return f;
+    f.cap = map.polar_cap(r.y > 0 ? 0 : 1);
+    const float n = static_cast<float>(f.cap->width(0));
     // Face 2 or 3: |r_y| is the major axis within 30°.
     const EnvCoordsJacobian cj = env_coords_and_jacobian(EnvLayout::cube, r);
-    const EnvCoords& c = cj.coords;
+    f.coords = cj.coords;
     // K on the cap from the footprint's map-space direction differentials (env_footprint.h): this
     // keeps the anisotropy even where the lat-long footprint fell back to an isotropic one.
     const Jacobian23& jc = cj.jacobian;
     auto on_cap = [&](Vec3 w) { return Vec2{n * dot(jc.ds, w), n * dot(jc.dt, w)}; };
-    Sym2 k_cap =
-        footprint_matrix(on_cap(footprint.map_dr_dx), on_cap(footprint.map_dr_dy)) +
-        footprint_matrix(on_cap(footprint.map_roughness1), on_cap(footprint.map_roughness2));
+    f.matrix = footprint_matrix(on_cap(footprint.map_dr_dx), on_cap(footprint.map_dr_dy)) +
+               footprint_matrix(on_cap(footprint.map_roughness1), on_cap(footprint.map_roughness2));
     // Non-finite input left no differentials (env_footprint.h) but a roughness-only fallback K:
     // that K lives in lat-long texels, so the lat-long path filters it.
-    if (!k_cap.is_finite() || (k_cap.trace() == 0 && footprint.matrix.trace() > 0)) return false;
+    if (!f.matrix.is_finite() || (f.matrix.trace() == 0 && footprint.matrix.trace() > 0)) return f;
+    // Stay on the face: the probes and their kernels reach about 2λ1 ≤ 2√tr K from the centre.
+    const float reach = (2 * std::sqrt(f.matrix.trace()) + 1) / n;
+    const EnvCoords& c = f.coords;
+    f.valid = c.s - reach >= 0 && c.s + reach <= 1 && c.t - reach >= 0 && c.t + reach <= 1;
+    return f;
+}
+
+void polar_cap_filter(const PolarCapFootprint& f, const LookupOptions& options, float* out) {
+    const MipPyramid& cap = *f.cap;
+    const EnvCoords& c = f.coords;
     if (options.filter == TextureFilter::footprint_assembly &&
         (options.probe_rule == ProbeRule::moment_matched ||
          options.probe_rule == ProbeRule::gaussian)) {
-        // One probe (the common case): no ellipse axes. As below, stay ~2λ1 ≤ 2√tr K inside.
+        // One probe (the common case): no ellipse axes.
         const float lod =
-            single_probe_lod(k_cap, options.lod_bias, cap.max_level(), options.isotropic_ratio);
-        const float reach = (2 * std::sqrt(k_cap.trace()) + 1) / n;
-        if (lod >= 0.0f && c.s - reach >= 0 && c.s + reach <= 1 && c.t - reach >= 0 &&
-            c.t + reach <= 1) {
+            single_probe_lod(f.matrix, options.lod_bias, cap.max_level(), options.isotropic_ratio);
+        if (lod >= 0.0f) {
             const LodBlend blend =
                 options.lod_blend == LodBlend::automatic ? LodBlend::linear : options.lod_blend;
             detail::dispatch_stride(cap.stride(), [&]<int S>() {
                 detail::store(detail::sample_trilinear<S>(cap, c.s, c.t, lod, blend),
                               cap.channels(), out);
             });
-            return true;
+            return;
         }
     }
-    const FootprintEllipse e = make_footprint_ellipse(k_cap);
-    // Stay on the face: the probes and their kernels reach about 2λ1 from the centre.
-    const float reach = (2 * e.major_radius + 1) / n;
-    if (c.s - reach < 0 || c.s + reach > 1 || c.t - reach < 0 || c.t + reach > 1) return false;
-    texture_lookup(cap, c.s, c.t, e, options, out);
-    return true;
+    texture_lookup(cap, c.s, c.t, make_footprint_ellipse(f.matrix), options, out);
 }
 
 }  // namespace footprint

@@ -23,9 +23,18 @@ Image polar_cap_image(const EnvironmentMap& map, int face, int size);
 // Whether a lookup in map-space direction r is one for a polar cap: r within 30° of a pole.
 bool in_polar_cap_region(Vec3 r);
 
-// Filters `footprint` on the cap of its pole and returns true; false (out untouched) when the
-// footprint's centre lies more than 30° from a pole or its probes would leave the cap's face.
-bool polar_cap_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
-                      const LookupOptions& options, float* out);
+// A footprint carried onto the cap of its pole: K on the cap from the footprint's map-space
+// direction differentials (EnvFootprint::map_dr_dx …), so its anisotropy survives even where the
+// lat-long footprint fell back to an isotropic one.
+struct PolarCapFootprint {
+    bool valid = false;  // the caps filter it: centre within 30° of a pole, probes on the face
+    const MipPyramid* cap = nullptr;
+    EnvCoords coords;  // on the cap (cube face 2 or 3)
+    Sym2 matrix;       // K in the cap's level-0 texels
+};
+PolarCapFootprint polar_cap_footprint(const EnvironmentMap& map, const EnvFootprint& footprint);
+
+// Filters a valid cap footprint into out.
+void polar_cap_filter(const PolarCapFootprint& footprint, const LookupOptions& options, float* out);
 
 }  // namespace footprint

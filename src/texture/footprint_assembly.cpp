@@ -87,11 +87,6 @@ AxesSquared axes_squared(const Sym2& k) {
 
 }  // namespace
 
-float probe_line_lod(const Sym2& k, float lod_bias, int max_level) {
-    const float tp_sq = std::max(axes_squared(k).minor_sq, 1.0f);
-    return std::clamp(0.5f * fast_log2(tp_sq) + lod_bias, 0.0f, static_cast<float>(max_level));
-}
-
 float single_probe_lod(const Sym2& k, float lod_bias, int max_level, float isotropic_ratio) {
     const auto [major_sq, minor_sq] = axes_squared(k);
     const float tp_sq = std::max(minor_sq, 1.0f);  // T_p² = max(λ2, T_min)²

@@ -53,10 +53,6 @@ constexpr float kIsotropicRatio = 1.001f;
 float single_probe_lod(const Sym2& k, float lod_bias, int max_level,
                        float isotropic_ratio = kIsotropicRatio);
 
-// The level a line of probes for K reads when its budget does not clamp: log2 max(λ2, T_min),
-// biased and clamped (for prefetching a lookup's texels before it is planned).
-float probe_line_lod(const Sym2& k, float lod_bias, int max_level);
-
 // The most probes a plan holds (max_probes is clamped to it).
 constexpr int kMaxProbeCount = 1024;
 
