@@ -35,7 +35,7 @@ struct EnvBenchOptions {
     bool with_oiio = true;
     std::string json_path;      // empty: no JSON
     float isotropic_ratio = 1;  // LookupOptions::isotropic_ratio of our lookups
-    int rounds = 2;  // each rate is the best of this many timed passes (noise only slows)
+    int rounds = 3;  // each rate is the best of this many timed passes (noise only slows)
     bool quiet = false;
 };
 
