@@ -94,9 +94,12 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, V
         set_isotropic_pole_footprint(f, layout, texel_scale, theta);
         return f;
     }
-    const MapJacobian G{texel_scale, j, rotation};
-    f.d_dx = G(dr_dx);
-    f.d_dy = G(dr_dy);
+    // D = S J_P A [∂r/∂x, ∂r/∂y], A already applied (map_dr_dx, map_dr_dy).
+    auto texels = [&](Vec3 map_dr) {
+        return Vec2{texel_scale.x * dot(j.ds, map_dr), texel_scale.y * dot(j.dt, map_dr)};
+    };
+    f.d_dx = texels(f.map_dr_dx);
+    f.d_dy = texels(f.map_dr_dy);
     f.curvature = footprint_matrix(f.d_dx, f.d_dy);
     f.matrix = f.curvature;
     if (!is_finite(f.d_dx) || !is_finite(f.d_dy) || !f.matrix.is_finite()) {

@@ -313,9 +313,7 @@ void general_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
     const QuadraticPath path = map.layout() == EnvLayout::latlong && tangent.valid && plan.count > 2
                                    ? QuadraticPath::through(tangent, c, plan.offset(plan.count - 1))
                                    : QuadraticPath{};
-    // Every probe is placed first and its texels' cache lines requested, so that the misses of
-    // all probes overlap instead of arriving one probe at a time; then the probes are summed level
-    // by level (all read plan.lod, so one blend weight serves them all).
+    // Every probe is placed first, so that its texels can be requested ahead of reading them.
     detail::ProbeCentre probes[kMaxProbeCount];  // uninitialised: only plan.count are written
     for (int i = 0; i < plan.count; ++i) {
         const Vec2 o = plan.offset(i);
@@ -331,7 +329,8 @@ void general_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
     const float w =
         l0 < max_level ? detail::lod_blend_weight(plan.lod - static_cast<float>(l0), blend) : 0.0f;
     // Software pipelining: probe i + kAhead's cache lines are requested while probe i is read, so
-    // that a bounded number of misses is always in flight.
+    // that misses overlap (a bounded number in flight) instead of arriving one probe at a time.
+    // All probes read plan.lod, so one blend weight serves them all.
     constexpr int kAhead = 6;
     auto request = [&](int i) {
         detail::prefetch_probe(map, probes[i], l0);
