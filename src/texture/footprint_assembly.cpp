@@ -51,13 +51,14 @@ int floor_power_of_two(int n) {
 
 void probe_weights(const ProbePlan& plan, float* weights) {
     // From the centre out by the recurrence w_{k+1} = w_k·r_k, r_{k+1} = r_k·e^{−a²}, mirrored, so
-    // that the weights are exactly symmetric (the kernel mean stays on the centre) without an exp
-    // per probe.
+    // that the weights are exactly symmetric (the kernel mean stays on the centre), with one exp
+    // per plan: q = e^{−a²/8}, e^{−a²/2} = q⁴, e^{−a²} = q⁸.
     const float a2 = plan.weight_falloff * plan.weight_falloff;
-    const int half = plan.count / 2;                            // probes on each side of the centre
-    float wk = plan.count % 2 ? 1.0f : std::exp(-0.125f * a2);  // k = 0 or ½
-    float rk = plan.count % 2 ? std::exp(-0.5f * a2) : std::exp(-a2);  // w_{k+1}/w_k
-    const float r_step = std::exp(-a2);
+    const int half = plan.count / 2;  // probes on each side of the centre
+    const float q = std::exp(-0.125f * a2), q4 = (q * q) * (q * q), q8 = q4 * q4;
+    float wk = plan.count % 2 ? 1.0f : q;  // k = 0 or ½
+    float rk = plan.count % 2 ? q4 : q8;   // w_{k+1}/w_k
+    const float r_step = q8;
     if (plan.count % 2) weights[half] = 1.0f;
     for (int j = 0; j < half; ++j) {
         if (j > 0 || plan.count % 2) {
