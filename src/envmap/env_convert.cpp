@@ -90,10 +90,9 @@ Result<EnvImages> convert_environment(const EnvironmentMap& source, EnvLayout to
     const double half_step_s = 0.5 / width, half_step_t = 0.5 / height;
     tbb::parallel_for(
         tbb::blocked_range<int>(0, faces * height, 4), [&](const tbb::blocked_range<int>& rows) {
-            std::vector<float> texel(static_cast<std::size_t>(channels));
+            std::vector<EnvRayDifferential> rays(static_cast<std::size_t>(width));
             for (int row = rows.begin(); row != rows.end(); ++row) {
                 const int face = row / height, y = row % height;
-                Image& image = result.faces[static_cast<std::size_t>(face)];
                 const double t = (y + 0.5) / height;
                 for (int x = 0; x < width; ++x) {
                     const double s = (x + 0.5) / width;
@@ -103,10 +102,12 @@ Result<EnvImages> convert_environment(const EnvironmentMap& source, EnvLayout to
                                      unit_direction(to, face, s - half_step_s, t);
                     const Vec3d dy = unit_direction(to, face, s, t + half_step_t) -
                                      unit_direction(to, face, s, t - half_step_t);
-                    environment_lookup(source, vec3_cast<float>(r), vec3_cast<float>(dx),
-                                       vec3_cast<float>(dy), options.lookup, texel.data());
-                    std::copy(texel.begin(), texel.end(), image.at(x, y));
+                    rays[static_cast<std::size_t>(x)] = {vec3_cast<float>(r), vec3_cast<float>(dx),
+                                                         vec3_cast<float>(dy)};
                 }
+                // The row's texels are contiguous, channels interleaved: the batch's layout.
+                environment_lookup_batch(source, rays, options.lookup,
+                                         result.faces[static_cast<std::size_t>(face)].at(0, y));
                 if (options.on_row) options.on_row();
             }
         });
