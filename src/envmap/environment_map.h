@@ -98,11 +98,12 @@ struct EnvRayDifferential {
     Vec3 direction, d_dx, d_dy;
 };
 
-// environment_lookup() form (a) for many rays at once, the same results, faster: a lookup at a
-// random direction waits on memory for its texels, so each group of rays has its footprints
-// computed first and its texels' cache lines requested, then is filtered while the lines arrive.
-// `out` receives rays.size()·channels() floats, ray by ray (as OpenImageIO's batched
-// environment(), without its 16-lane limit and structure-of-arrays layout).
+// environment_lookup() form (a) for many rays at once: bit-identical results, faster. A lookup at
+// a random direction waits on memory for its texels, so in each group of 16 rays the lookups that
+// are one probe at their footprint's centre (most) have their texels requested when their
+// footprint is computed and are filtered after the group's last footprint, when the lines have
+// arrived. `out` receives rays.size()·channels() floats, ray by ray (the role of OpenImageIO's
+// batched environment(), without its 16-lane limit and structure-of-arrays layout).
 void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayDifferential> rays,
                               const LookupOptions& options, float* out,
                               const Mat3& rotation = Mat3{});
