@@ -89,6 +89,9 @@ AxesSquared axes_squared(const Sym2& k) {
 }  // namespace
 
 float single_probe_lod(const Sym2& k, float lod_bias, int max_level, float isotropic_ratio) {
+    // Magnification (λ1² ≤ tr K ≤ 1 = T_min²): one probe at level 0, no eigenvalues needed.
+    if (k.xx + k.yy <= 1.0f && k.xx >= 0.0f && k.yy >= 0.0f)
+        return std::clamp(lod_bias, 0.0f, static_cast<float>(max_level));
     const auto [major_sq, minor_sq] = axes_squared(k);
     const float tp_sq = std::max(minor_sq, 1.0f);  // T_p² = max(λ2, T_min)²
     const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
