@@ -72,11 +72,7 @@ inline void prefetch_probe(const EnvironmentMap& map, const ProbeCentre& probe, 
     const MipPyramid::LevelView view = map.face(probe.face).level(level);
     const int x = floor_to_int(probe.s * static_cast<float>(view.width) - 0.5f);
     const int y = floor_to_int(probe.t * static_cast<float>(view.height) - 0.5f);
-    if (x >= 0 && y >= 0 && x + 1 < view.width && y + 1 < view.height) {
-        const float* p = view.texel(x, y);
-        prefetch(p);
-        prefetch(p + view.row_step);
-    }
+    if (x >= 0 && y >= 0 && x + 1 < view.width && y + 1 < view.height) prefetch_quad(view, x, y);
 }
 
 template <int S>

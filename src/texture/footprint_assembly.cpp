@@ -224,11 +224,8 @@ void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
                 const float k = first + static_cast<float>(i);
                 const int x = floor_to_int((s + k * du) * static_cast<float>(view.width) - 0.5f);
                 const int y = floor_to_int((t + k * dv) * static_cast<float>(view.height) - 0.5f);
-                if (x >= 0 && y >= 0 && x + 1 < view.width && y + 1 < view.height) {
-                    const float* p = view.texel(x, y);
-                    prefetch(p);
-                    prefetch(p + view.row_step);
-                }
+                if (x >= 0 && y >= 0 && x + 1 < view.width && y + 1 < view.height)
+                    prefetch_quad(view, x, y);
             }
         };
         if (plan.count > 4) {

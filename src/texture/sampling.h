@@ -46,6 +46,17 @@ inline void prefetch(const void* p) {
 #endif
 }
 
+// Requests the cache lines of the bilinear quad whose top-left texel is (x, y), inside the level:
+// two rows of two texels, each of which may straddle a line.
+inline void prefetch_quad(const MipPyramid::LevelView& view, int x, int y) {
+    const float* p = view.texel(x, y);
+    const int last = 2 * view.stride - 1;  // the quad row's last float
+    prefetch(p);
+    prefetch(p + last);
+    prefetch(p + view.row_step);
+    prefetch(p + view.row_step + last);
+}
+
 // ⌊x⌋ for |x| < 2^31 without a libm call (x86-64's baseline SSE2 has no rounding instruction).
 inline int floor_to_int(float x) {
     const int i = static_cast<int>(x);
