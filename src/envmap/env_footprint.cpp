@@ -12,14 +12,13 @@ float norm(Vec3 a) {
     return std::sqrt(dot(a, a));
 }
 
-// G = S · J_P(A r) · A (spec §2.3): map motion in level-0 texels per unit change of r.
+// G = S · J_P(A r) · A (spec §2.3): map motion in level-0 texels per unit change of r. Takes the
+// change already in map space (A x), which the footprint keeps anyway (EnvFootprint::map_dr_dx …).
 struct MapJacobian {
     Vec2 texel_scale;
     Jacobian23 j;
-    const Mat3& rotation;
 
-    Vec2 operator()(Vec3 x) const {
-        const Vec3 ax = rotation * x;
+    Vec2 operator()(Vec3 ax) const {
         return {texel_scale.x * dot(j.ds, ax), texel_scale.y * dot(j.dt, ax)};
     }
 };
@@ -94,12 +93,9 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, V
         set_isotropic_pole_footprint(f, layout, texel_scale, theta);
         return f;
     }
-    // D = S J_P A [∂r/∂x, ∂r/∂y], A already applied (map_dr_dx, map_dr_dy).
-    auto texels = [&](Vec3 map_dr) {
-        return Vec2{texel_scale.x * dot(j.ds, map_dr), texel_scale.y * dot(j.dt, map_dr)};
-    };
-    f.d_dx = texels(f.map_dr_dx);
-    f.d_dy = texels(f.map_dr_dy);
+    const MapJacobian G{texel_scale, j};  // D = G [∂r/∂x, ∂r/∂y]
+    f.d_dx = G(f.map_dr_dx);
+    f.d_dy = G(f.map_dr_dy);
     f.curvature = footprint_matrix(f.d_dx, f.d_dy);
     f.matrix = f.curvature;
     if (!is_finite(f.d_dx) || !is_finite(f.d_dy) || !f.matrix.is_finite()) {
@@ -147,14 +143,15 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, const Ref
     const EnvCoordsJacobian position = env_coords_and_jacobian(layout, f.map_direction);
     f.coords = position.coords;
     const Jacobian23& j = position.jacobian;
-    const MapJacobian G{texel_scale, j, options.rotation};
+    const MapJacobian G{texel_scale, j};
+    auto to_map = [&](Vec3 x) { return options.rotation * x; };  // A
 
     // Eq. 5 / §2.4: D's columns, K12 = D Dᵀ.
     const Vec3 dvr_dx = a_v(g.dv_dx) + a_n(g.dn_dx), dvr_dy = a_v(g.dv_dy) + a_n(g.dn_dy);
-    f.d_dx = G(dvr_dx);
-    f.d_dy = G(dvr_dy);
-    f.map_dr_dx = options.rotation * dvr_dx;
-    f.map_dr_dy = options.rotation * dvr_dy;
+    f.map_dr_dx = to_map(dvr_dx);
+    f.map_dr_dy = to_map(dvr_dy);
+    f.d_dx = G(f.map_dr_dx);
+    f.d_dy = G(f.map_dr_dy);
     f.curvature = footprint_matrix(f.d_dx, f.d_dy);
 
     // Eqs. 10–12 / §2.5: B' = G A_n E B with E = |n| T, B = [[d1, d2], [0, d3]]: its columns are
@@ -162,9 +159,10 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, const Ref
     const RoughnessFactor& b = g.roughness;
     const Vec3 rough1 = a_n(n_len * b.d1 * g.t1);
     const Vec3 rough2 = a_n(n_len * (b.d2 * g.t1 + b.d3 * g.t2));
-    f.roughness = footprint_matrix(G(rough1), G(rough2));
-    f.map_roughness1 = options.kappa * (options.rotation * rough1);
-    f.map_roughness2 = options.kappa * (options.rotation * rough2);
+    const Vec3 map_rough1 = to_map(rough1), map_rough2 = to_map(rough2);
+    f.roughness = footprint_matrix(G(map_rough1), G(map_rough2));
+    f.map_roughness1 = options.kappa * map_rough1;
+    f.map_roughness2 = options.kappa * map_rough2;
 
     const float kappa2 = options.kappa * options.kappa;
     f.matrix = f.curvature + kappa2 * f.roughness;  // eq. 13, K = D Dᵀ + κ² K3 (§2.6)
@@ -185,7 +183,7 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, const Ref
     if (!is_finite(f.d_dx) || !is_finite(f.d_dy) || !f.matrix.is_finite()) {
         // §4: isotropic fallback from roughness only, T_p = max(1, κ·‖G A_n E‖·l1).
         const FootprintEllipse gae =
-            make_footprint_ellipse(G(a_n(n_len * g.t1)), G(a_n(n_len * g.t2)));
+            make_footprint_ellipse(G(to_map(a_n(n_len * g.t1))), G(to_map(a_n(n_len * g.t2))));
         float tp = options.kappa * gae.major_radius * isotropic_roughness(b.covariance());
         tp = std::isfinite(tp) ? std::max(1.0f, tp) : 1.0f;
         f.d_dx = {tp, 0};
