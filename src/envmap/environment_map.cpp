@@ -246,25 +246,19 @@ namespace {
 // line of probes, another filter, or the sphere map's rim.
 float centre_probe_lod(const EnvironmentMap& map, const EnvFootprint& footprint,
                        const LookupOptions& options) {
-    if (options.filter != TextureFilter::footprint_assembly ||
-        (options.probe_rule != ProbeRule::moment_matched &&
-         options.probe_rule != ProbeRule::gaussian) ||
-        !footprint.matrix.is_finite())
-        return -1;
+    if (!footprint.matrix.is_finite()) return -1;
     if (map.layout() == EnvLayout::latlong && map.polar_cap(0) &&
         in_polar_cap_region(footprint.map_direction))
         return -1;
     const float width = map.texel_scale().x;
     if (map.layout() == EnvLayout::sphere && footprint.matrix.trace() > 0.25f * width * width)
         return -1;
-    return single_probe_lod(footprint.matrix, options.lod_bias,
-                            map.face(footprint.coords.face).max_level(), options.isotropic_ratio);
+    return single_probe_lod(footprint.matrix, options, map.face(footprint.coords.face).max_level());
 }
 
 void centre_probe(const EnvironmentMap& map, const EnvCoords& c, float lod,
                   const LookupOptions& options, float* out) {
-    const LodBlend blend =
-        options.lod_blend == LodBlend::automatic ? LodBlend::linear : options.lod_blend;
+    const LodBlend blend = single_probe_blend(options.lod_blend);
     const MipPyramid& centre = map.face(c.face);
     detail::dispatch_stride(centre.stride(), [&]<int S>() {
         detail::store(detail::env_trilinear<S>(map, c, lod, blend), centre.channels(), out);

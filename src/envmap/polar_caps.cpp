@@ -100,21 +100,15 @@ PolarCapFootprint polar_cap_footprint(const EnvironmentMap& map, const EnvFootpr
 void polar_cap_filter(const PolarCapFootprint& f, const LookupOptions& options, float* out) {
     const MipPyramid& cap = *f.cap;
     const EnvCoords& c = f.coords;
-    if (options.filter == TextureFilter::footprint_assembly &&
-        (options.probe_rule == ProbeRule::moment_matched ||
-         options.probe_rule == ProbeRule::gaussian)) {
-        // One probe (the common case): no ellipse axes.
-        const float lod =
-            single_probe_lod(f.matrix, options.lod_bias, cap.max_level(), options.isotropic_ratio);
-        if (lod >= 0.0f) {
-            const LodBlend blend =
-                options.lod_blend == LodBlend::automatic ? LodBlend::linear : options.lod_blend;
-            detail::dispatch_stride(cap.stride(), [&]<int S>() {
-                detail::store(detail::sample_trilinear<S>(cap, c.s, c.t, lod, blend),
-                              cap.channels(), out);
-            });
-            return;
-        }
+    // One probe (the common case): no ellipse axes.
+    const float lod = single_probe_lod(f.matrix, options, cap.max_level());
+    if (lod >= 0.0f) {
+        detail::dispatch_stride(cap.stride(), [&]<int S>() {
+            detail::store(detail::sample_trilinear<S>(cap, c.s, c.t, lod,
+                                                      single_probe_blend(options.lod_blend)),
+                          cap.channels(), out);
+        });
+        return;
     }
     texture_lookup(cap, c.s, c.t, make_footprint_ellipse(f.matrix), options, out);
 }

@@ -70,8 +70,12 @@ void probe_weights(const ProbePlan& plan, float* weights) {
 }
 
 LodBlend effective_lod_blend(const ProbePlan& plan, LodBlend blend) {
-    if (blend != LodBlend::automatic) return blend;
-    return plan.count == 1 ? LodBlend::linear : LodBlend::variance_matched;
+    if (plan.count == 1) return single_probe_blend(blend);
+    return blend == LodBlend::automatic ? LodBlend::variance_matched : blend;
+}
+
+LodBlend single_probe_blend(LodBlend blend) {
+    return blend == LodBlend::automatic ? LodBlend::linear : blend;
 }
 
 namespace {
@@ -99,6 +103,14 @@ float single_probe_lod(const Sym2& k, float lod_bias, int max_level, float isotr
     // log2 √(λ1·T_p) = ¼ log2(λ1² T_p²), λ1 ≥ T_min.
     return std::clamp(0.25f * fast_log2(std::max(major_sq, 1.0f) * tp_sq) + lod_bias, 0.0f,
                       static_cast<float>(max_level));
+}
+
+float single_probe_lod(const Sym2& k, const LookupOptions& options, int max_level) {
+    if (options.filter != TextureFilter::footprint_assembly ||
+        (options.probe_rule != ProbeRule::moment_matched &&
+         options.probe_rule != ProbeRule::gaussian))
+        return -1.0f;
+    return single_probe_lod(k, options.lod_bias, max_level, options.isotropic_ratio);
 }
 
 ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max_probes,

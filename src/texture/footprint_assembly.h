@@ -53,6 +53,10 @@ constexpr float kIsotropicRatio = 1.001f;
 float single_probe_lod(const Sym2& k, float lod_bias, int max_level,
                        float isotropic_ratio = kIsotropicRatio);
 
+// The same for a lookup with `options`: −1 unless they ask for footprint assembly by Rule B (either
+// weighting), the filters whose near-isotropic footprints are one probe at the centre.
+float single_probe_lod(const Sym2& k, const LookupOptions& options, int max_level);
+
 // The most probes a plan holds (max_probes is clamped to it).
 constexpr int kMaxProbeCount = 1024;
 
@@ -61,6 +65,8 @@ void probe_weights(const ProbePlan& plan, float* weights);
 
 // LodBlend::automatic resolved for a plan: linear for one probe, variance-matched for several.
 LodBlend effective_lod_blend(const ProbePlan& plan, LodBlend blend);
+// The same for a single probe.
+LodBlend single_probe_blend(LodBlend blend);
 
 // The probes for a footprint ellipse (finite, λ1 ≥ λ2 ≥ 0). max_probes ≥ 1; max_level = the
 // pyramid's coarsest level. lod_bias is added before clamping.

@@ -198,19 +198,13 @@ void texture_lookup(const MipPyramid& pyramid, const TextureCoords& c, const Loo
                          LodBlend::linear, out);
         return;
     }
-    if (options.filter == TextureFilter::footprint_assembly &&
-        (options.probe_rule == ProbeRule::moment_matched ||
-         options.probe_rule == ProbeRule::gaussian)) {
-        // Near-isotropic footprints are one trilinear probe: skip the ellipse's axes.
-        const float lod = single_probe_lod(footprint_matrix(d_dx, d_dy), options.lod_bias,
-                                           pyramid.max_level(), options.isotropic_ratio);
-        if (lod >= 0.0f) {
-            const LodBlend blend =
-                options.lod_blend == LodBlend::automatic ? LodBlend::linear : options.lod_blend;
-            lookup_trilinear(pyramid, reduce_coordinate(c.s, pyramid.wrap_s()),
-                             reduce_coordinate(c.t, pyramid.wrap_t()), lod, blend, out);
-            return;
-        }
+    // Near-isotropic footprints are one trilinear probe: skip the ellipse's axes.
+    const float lod = single_probe_lod(footprint_matrix(d_dx, d_dy), options, pyramid.max_level());
+    if (lod >= 0.0f) {
+        lookup_trilinear(pyramid, reduce_coordinate(c.s, pyramid.wrap_s()),
+                         reduce_coordinate(c.t, pyramid.wrap_t()), lod,
+                         single_probe_blend(options.lod_blend), out);
+        return;
     }
     texture_lookup(pyramid, c.s, c.t, make_footprint_ellipse(d_dx, d_dy), options, out);
 }
