@@ -69,10 +69,7 @@ struct ProbeCentre {
 // Requests the cache lines of a probe's bilinear taps at `level` (taps beyond a face's edge are
 // left to env_texel).
 inline void prefetch_probe(const EnvironmentMap& map, const ProbeCentre& probe, int level) {
-    const MipPyramid::LevelView view = map.face(probe.face).level(level);
-    const int x = floor_to_int(probe.s * static_cast<float>(view.width) - 0.5f);
-    const int y = floor_to_int(probe.t * static_cast<float>(view.height) - 0.5f);
-    if (x >= 0 && y >= 0 && x + 1 < view.width && y + 1 < view.height) prefetch_quad(view, x, y);
+    prefetch_bilinear(map.face(probe.face).level(level), probe.s, probe.t);
 }
 
 template <int S>

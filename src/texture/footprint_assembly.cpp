@@ -234,10 +234,7 @@ void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
             const MipPyramid::LevelView view = pyramid.level(level);
             for (int i = 0; i < plan.count; ++i) {
                 const float k = first + static_cast<float>(i);
-                const int x = floor_to_int((s + k * du) * static_cast<float>(view.width) - 0.5f);
-                const int y = floor_to_int((t + k * dv) * static_cast<float>(view.height) - 0.5f);
-                if (x >= 0 && y >= 0 && x + 1 < view.width && y + 1 < view.height)
-                    prefetch_quad(view, x, y);
+                prefetch_bilinear(view, s + k * du, t + k * dv);
             }
         };
         if (plan.count > 4) {

@@ -46,21 +46,24 @@ inline void prefetch(const void* p) {
 #endif
 }
 
-// Requests the cache lines of the bilinear quad whose top-left texel is (x, y), inside the level:
-// two rows of two texels, each of which may straddle a line.
-inline void prefetch_quad(const MipPyramid::LevelView& view, int x, int y) {
+// ⌊x⌋ for |x| < 2^31 without a libm call (x86-64's baseline SSE2 has no rounding instruction).
+inline int floor_to_int(float x) {
+    const int i = static_cast<int>(x);
+    return i - (x < static_cast<float>(i));
+}
+
+// Requests the cache lines that a bilinear sample of `view` at (s, t) will read: two rows of two
+// texels, each of which may straddle a line. Taps beyond the level's edge are left alone.
+inline void prefetch_bilinear(const MipPyramid::LevelView& view, float s, float t) {
+    const int x = floor_to_int(s * static_cast<float>(view.width) - 0.5f);
+    const int y = floor_to_int(t * static_cast<float>(view.height) - 0.5f);
+    if (x < 0 || y < 0 || x + 1 >= view.width || y + 1 >= view.height) return;
     const float* p = view.texel(x, y);
     const int last = 2 * view.stride - 1;  // the quad row's last float
     prefetch(p);
     prefetch(p + last);
     prefetch(p + view.row_step);
     prefetch(p + view.row_step + last);
-}
-
-// ⌊x⌋ for |x| < 2^31 without a libm call (x86-64's baseline SSE2 has no rounding instruction).
-inline int floor_to_int(float x) {
-    const int i = static_cast<int>(x);
-    return i - (x < static_cast<float>(i));
 }
 
 // Bilinear sample of one level at (s, t).
