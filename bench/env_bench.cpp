@@ -278,27 +278,9 @@ ConventionCheck check_oiio_convention(const EnvironmentMap& latlong, const OiioE
 
 using Case = PeerCase;
 
-// Lookups/s of `lookup` over `lookups`, the best of `rounds` measure_rate rounds (a rate disturbed
-// by what ran just before is re-measured).
-template <class F>
-double lookup_rate(const std::vector<EnvLookup>& lookups, int threads, int rounds,
-                   const F& lookup) {
-    double rate = 0;
-    for (int round = 0; round < rounds; ++round)
-        rate = std::max(
-            rate, measure_rate(lookups.size(), threads, [&](int, std::size_t b, std::size_t e) {
-                float out[4], sink = 0;
-                for (std::size_t i = b; i < e; ++i) {
-                    lookup(lookups[i], out);
-                    sink += out[0];
-                }
-                volatile float keep = sink;
-                (void)keep;
-            }));
-    return rate;
-}
-
-// The same through a batched call: `lookup(first, count, out)` takes up to kBatch lookups.
+// Lookups/s of `lookup(first, count, out)` over `lookups`, called on `batch` lookups at a time
+// (out: their results, ray by ray), the best of `rounds` measure_rate rounds (a rate disturbed by
+// what ran just before is re-measured).
 template <class F>
 double batch_rate(const std::vector<EnvLookup>& lookups, int threads, int rounds, int batch,
                   const F& lookup) {
@@ -316,6 +298,14 @@ double batch_rate(const std::vector<EnvLookup>& lookups, int threads, int rounds
                 (void)keep;
             }));
     return rate;
+}
+
+// The same for a single-lookup call `lookup(q, out)`.
+template <class F>
+double lookup_rate(const std::vector<EnvLookup>& lookups, int threads, int rounds,
+                   const F& lookup) {
+    return batch_rate(lookups, threads, rounds, 1,
+                      [&](const EnvLookup* q, int, float* out) { lookup(*q, out); });
 }
 
 // Lookups per call of the batched APIs: OpenImageIO's Tex::BatchWidth, and as many for ours.
