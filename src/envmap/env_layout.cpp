@@ -195,30 +195,36 @@ std::optional<EnvLayout> parse_env_layout(std::string_view name) {
 
 // ---------------------------------------------------------------------------------------- cube
 
+// Where a prepared r meets the cube: its face, |ma| and s' = sc/|ma|, t' = tc/|ma| (§3.1).
+template <class T>
+struct CubePoint {
+    int face;
+    T ma, sp, tp;
+
+    explicit CubePoint(Vec3T<T> r) : face(cube_face_of(r)) {
+        const CubeFace& f = kCubeFaces[face];
+        ma = std::abs(component(r, f.axis));  // in [1, 2) after prepare()
+        sp = T(f.s_sign) * component(r, f.s_axis) / ma;
+        tp = T(f.t_sign) * component(r, f.t_axis) / ma;
+    }
+    CubeCoordsT<T> coords() const { return {face, T(0.5) * (sp + 1), T(0.5) * (tp + 1)}; }
+};
+
 template <class T>
 CubeCoordsT<T> cube_coords(Vec3T<T> r_in) {
-    const Vec3T<T> r = prepare(r_in).r;
-    const int face = cube_face_of(r);
-    const CubeFace& f = kCubeFaces[face];
-    const T ma = std::abs(component(r, f.axis));  // in [1, 2) after prepare()
-    const T sc = T(f.s_sign) * component(r, f.s_axis), tc = T(f.t_sign) * component(r, f.t_axis);
-    return {face, T(0.5) * (sc / ma + 1), T(0.5) * (tc / ma + 1)};
+    return CubePoint<T>(prepare(r_in).r).coords();
 }
 
 template <class T>
 EnvCoordsJacobianT<T> cube_coords_and_jacobian(Vec3T<T> r_in) {
     const Prepared<T> p = prepare(r_in);
-    const Vec3T<T> r = p.r;
-    const int face = cube_face_of(r);
-    const CubeFace& f = kCubeFaces[face];
-    const T ma = std::abs(component(r, f.axis)), sigma = face % 2 == 0 ? T(1) : T(-1);
-    const T sc = T(f.s_sign) * component(r, f.s_axis), tc = T(f.t_sign) * component(r, f.t_axis);
+    const CubePoint<T> q(p.r);
+    const CubeFace& f = kCubeFaces[q.face];
+    const T sigma = q.face % 2 == 0 ? T(1) : T(-1);
     const Vec3T<T> gs = axis(f.s_axis, T(f.s_sign)), gt = axis(f.t_axis, T(f.t_sign));
     const Vec3T<T> ea = axis(f.axis, sigma);  // σ e_a
-    const T sp = sc / ma, tp = tc / ma;       // s', t' (g_s·r = sc exactly: g_s is a ± axis)
-    const T k = 1 / (2 * ma);
-    return {{face, T(0.5) * (sp + 1), T(0.5) * (tp + 1)},
-            finish(p, {k * (gs - sp * ea), k * (gt - tp * ea)})};
+    const T k = 1 / (2 * q.ma);
+    return {q.coords(), finish(p, {k * (gs - q.sp * ea), k * (gt - q.tp * ea)})};
 }
 
 template <class T>
@@ -245,14 +251,25 @@ CubeCoordsT<T> cube_reproject(int face, T s, T t) {
 
 // ------------------------------------------------------------------------------------ lat-long
 
+// ρ = √(r_x² + r_z²) of a prepared r: no overflow, |r_i| < 2.
 template <class T>
-Vec2T<T> latlong_coords(Vec3T<T> r_in) {
-    const Vec3T<T> r = prepare(r_in).r;
-    const T rho = std::sqrt(r.x * r.x + r.z * r.z);  // no overflow: |r_i| < 2 after prepare()
+T latlong_rho(Vec3T<T> r) {
+    return std::sqrt(r.x * r.x + r.z * r.z);
+}
+
+// (s, t) of a prepared r with its ρ.
+template <class T>
+Vec2T<T> latlong_coords_at(Vec3T<T> r, T rho) {
     const T t = any_atan2(rho, r.y) / kPi<T>;  // = arccos(r_y/|r|)/π, accurate at the poles too
     if (rho == 0) return {T(0.5), t};          // pole: s undefined, ½ by convention
     const T s = T(0.5) + any_atan2(r.x, -r.z) / (2 * kPi<T>);
     return {std::clamp(s, T(0), T(1)), std::clamp(t, T(0), T(1))};
+}
+
+template <class T>
+Vec2T<T> latlong_coords(Vec3T<T> r_in) {
+    const Vec3T<T> r = prepare(r_in).r;
+    return latlong_coords_at(r, latlong_rho(r));
 }
 
 // The Jacobian at a prepared r with ρ = √(r_x² + r_z²).
@@ -272,18 +289,15 @@ Jacobian23T<T> latlong_jacobian_at(const Prepared<T>& p, T rho) {
 template <class T>
 Jacobian23T<T> latlong_jacobian(Vec3T<T> r_in) {
     const Prepared<T> p = prepare(r_in);
-    return latlong_jacobian_at(p, std::sqrt(p.r.x * p.r.x + p.r.z * p.r.z));
+    return latlong_jacobian_at(p, latlong_rho(p.r));
 }
 
 template <class T>
 EnvCoordsJacobianT<T> latlong_coords_and_jacobian(Vec3T<T> r_in) {
     const Prepared<T> p = prepare(r_in);
-    const Vec3T<T> r = p.r;
-    const T rho = std::sqrt(r.x * r.x + r.z * r.z);
-    const T t = any_atan2(rho, r.y) / kPi<T>;
-    if (rho == 0) return {{0, T(0.5), t}, {}};
-    const T s = T(0.5) + any_atan2(r.x, -r.z) / (2 * kPi<T>);
-    return {{0, std::clamp(s, T(0), T(1)), std::clamp(t, T(0), T(1))}, latlong_jacobian_at(p, rho)};
+    const T rho = latlong_rho(p.r);
+    const Vec2T<T> st = latlong_coords_at(p.r, rho);
+    return {{0, st.x, st.y}, latlong_jacobian_at(p, rho)};
 }
 
 template <class T>
