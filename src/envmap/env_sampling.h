@@ -17,7 +17,7 @@ namespace footprint::detail {
 // filtering, §3.1), across a lat-long pole (the seam wraps the same way), back through the sphere
 // map's rim, or on the other paraboloid hemisphere.
 inline const float* env_texel(const EnvironmentMap& map, int face, int level, int x, int y) {
-    const MipPyramid::LevelView view = map.face(face).level(level);
+    const MipPyramid::LevelView& view = map.face(face).level(level);
     if (x >= 0 && y >= 0 && x < view.width && y < view.height) return view.texel(x, y);
     if (map.layout() == EnvLayout::latlong) {
         // Over a pole, row −1 − k is row k half a turn around; the seam wraps (exact for texel
@@ -34,54 +34,54 @@ inline const float* env_texel(const EnvironmentMap& map, int face, int level, in
     const EnvCoords c = env_coords(
         map.layout(), env_direction(map.layout(), face, (static_cast<float>(x) + 0.5f) / w,
                                     (static_cast<float>(y) + 0.5f) / h));
-    const MipPyramid::LevelView other = map.face(c.face).level(level);
+    const MipPyramid::LevelView& other = map.face(c.face).level(level);
     return other.texel(std::clamp(static_cast<int>(c.s * w), 0, view.width - 1),
                        std::clamp(static_cast<int>(c.t * h), 0, view.height - 1));
 }
 
-// Bilinear on a level of `face`, with taps beyond its edges read by direction (env_texel).
+// The taps of a bilinear sample on a level of `face`; taps beyond its edges are read by direction
+// (env_texel).
+inline BilinearTaps env_taps(const EnvironmentMap& map, int face, int level, float s, float t) {
+    const MipPyramid::LevelView& view = map.face(face).level(level);
+    const BilinearPosition p = bilinear_position(view, s, t);
+    if (p.inside) return taps_at(view, p.x0, p.x0 + 1, p.y0, p.y0 + 1, p.fx, p.fy);
+    return {env_texel(map, face, level, p.x0, p.y0),
+            env_texel(map, face, level, p.x0 + 1, p.y0),
+            env_texel(map, face, level, p.x0, p.y0 + 1),
+            env_texel(map, face, level, p.x0 + 1, p.y0 + 1),
+            p.fx,
+            p.fy};
+}
+
+// Bilinear on a level of `face`, with taps beyond its edges read by direction.
 template <int S>
 [[gnu::always_inline]] inline Texel<S> env_bilinear(const EnvironmentMap& map, int face, int level,
                                                     float s, float t) {
-    const MipPyramid& pyramid = map.face(face);
-    const MipPyramid::LevelView view = pyramid.level(level);
-    const float x = s * static_cast<float>(view.width) - 0.5f;
-    const float y = t * static_cast<float>(view.height) - 0.5f;
-    const int x0 = floor_to_int(x), y0 = floor_to_int(y);
-    if (x0 >= 0 && y0 >= 0 && x0 + 1 < view.width && y0 + 1 < view.height)
-        return sample_bilinear<S>(view, pyramid.wrap_s(), pyramid.wrap_t(), s, t);
-    const float fx = x - static_cast<float>(x0), fy = y - static_cast<float>(y0);
-    Texel<S> r{};
-    add_scaled(r, (1 - fx) * (1 - fy), Texel<S>::load(env_texel(map, face, level, x0, y0)));
-    add_scaled(r, fx * (1 - fy), Texel<S>::load(env_texel(map, face, level, x0 + 1, y0)));
-    add_scaled(r, (1 - fx) * fy, Texel<S>::load(env_texel(map, face, level, x0, y0 + 1)));
-    add_scaled(r, fx * fy, Texel<S>::load(env_texel(map, face, level, x0 + 1, y0 + 1)));
-    return r;
+    return blend_taps<S>(env_taps(map, face, level, s, t));
 }
 
-// Where a footprint-assembly probe reads: EnvCoords without default values, so that an array of
-// the most probes a plan can hold costs nothing to declare.
-struct ProbeCentre {
-    int face;
-    float s, t;
+// A trilinear probe at (face, s, t) on levels.l0 and, when levels.w > 0, levels.l0 + 1: its taps
+// are addressed once, then requested (prefetch) and read (blend).
+struct ProbeTaps {
+    BilinearTaps fine, coarse;  // coarse: only when levels.w > 0
 };
-
-// Requests the cache lines of a probe's bilinear taps at `level` (taps beyond a face's edge are
-// left to env_texel).
-inline void prefetch_probe(const EnvironmentMap& map, const ProbeCentre& probe, int level) {
-    prefetch_bilinear(map.face(probe.face).level(level), probe.s, probe.t);
+inline ProbeTaps probe_taps(const EnvironmentMap& map, int face, float s, float t,
+                            TrilinearLevels levels) {
+    ProbeTaps taps;
+    taps.fine = env_taps(map, face, levels.l0, s, t);
+    if (levels.w > 0.0f) taps.coarse = env_taps(map, face, levels.l0 + 1, s, t);
+    return taps;
 }
-
+inline void prefetch_probe(const ProbeTaps& taps, TrilinearLevels levels, int stride) {
+    prefetch_taps(taps.fine, stride);
+    if (levels.w > 0.0f) prefetch_taps(taps.coarse, stride);
+}
 template <int S>
-[[gnu::always_inline]] inline Texel<S> env_trilinear(const EnvironmentMap& map, const EnvCoords& c,
-                                                     float lod, LodBlend blend) {
-    const int max_level = map.face(c.face).max_level();
-    const int l0 = std::min(static_cast<int>(lod), max_level);
-    const float w = l0 < max_level ? lod_blend_weight(lod - static_cast<float>(l0), blend) : 0.0f;
-    Texel<S> r = env_bilinear<S>(map, c.face, l0, c.s, c.t);
-    if (w > 0.0f) {
-        const Texel<S> coarse = env_bilinear<S>(map, c.face, l0 + 1, c.s, c.t);
-        r.v += w * (coarse.v - r.v);
+[[gnu::always_inline]] inline Texel<S> blend_probe(const ProbeTaps& taps, TrilinearLevels levels) {
+    Texel<S> r = blend_taps<S>(taps.fine);
+    if (levels.w > 0.0f) {
+        const Texel<S> coarse = blend_taps<S>(taps.coarse);
+        r.v += levels.w * (coarse.v - r.v);
     }
     return r;
 }

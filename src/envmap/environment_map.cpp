@@ -256,12 +256,21 @@ float centre_probe_lod(const EnvironmentMap& map, const EnvFootprint& footprint,
     return single_probe_lod(footprint.matrix, options, map.face(footprint.coords.face).max_level());
 }
 
-void centre_probe(const EnvironmentMap& map, const EnvCoords& c, float lod,
-                  const LookupOptions& options, float* out) {
-    const LodBlend blend = single_probe_blend(options.lod_blend);
-    const MipPyramid& centre = map.face(c.face);
-    detail::dispatch_stride(centre.stride(), [&]<int S>() {
-        detail::store(detail::env_trilinear<S>(map, c, lod, blend), centre.channels(), out);
+// The taps of the one trilinear probe at c, lod (centre_probe_lod()).
+struct CentreProbe {
+    detail::ProbeTaps taps;
+    detail::TrilinearLevels levels;
+};
+CentreProbe centre_probe(const EnvironmentMap& map, const EnvCoords& c, float lod,
+                         const LookupOptions& options) {
+    const detail::TrilinearLevels levels = detail::trilinear_levels(
+        lod, map.face(c.face).max_level(), single_probe_blend(options.lod_blend));
+    return {detail::probe_taps(map, c.face, c.s, c.t, levels), levels};
+}
+
+void filter_centre_probe(const EnvironmentMap& map, const CentreProbe& probe, float* out) {
+    detail::dispatch_stride(map.face(0).stride(), [&]<int S>() {
+        detail::store(detail::blend_probe<S>(probe.taps, probe.levels), map.channels(), out);
     });
 }
 
@@ -307,48 +316,45 @@ void general_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
     const QuadraticPath path = map.layout() == EnvLayout::latlong && tangent.valid && plan.count > 2
                                    ? QuadraticPath::through(tangent, c, plan.offset(plan.count - 1))
                                    : QuadraticPath{};
-    // Every probe is placed first, so that its texels can be requested ahead of reading them.
-    detail::ProbeCentre probes[kMaxProbeCount];  // uninitialised: only plan.count are written
-    for (int i = 0; i < plan.count; ++i) {
+    auto place = [&](int i) {
         const Vec2 o = plan.offset(i);
         EnvCoords p;
         if (!(path.valid && path.place(i, plan.count, p)))
             p = tangent.valid
                     ? tangent.place(map.layout(), o)
                     : place_probe(map.layout(), c.face, c.s + o.x / size.x, c.t + o.y / size.y);
-        probes[i] = {p.face, p.s, p.t};
-    }
-    const int max_level = centre.max_level();
-    const int l0 = std::min(static_cast<int>(plan.lod), max_level);
-    const float w =
-        l0 < max_level ? detail::lod_blend_weight(plan.lod - static_cast<float>(l0), blend) : 0.0f;
-    // Software pipelining: probe i + kAhead's cache lines are requested while probe i is read, so
-    // that misses overlap (a bounded number in flight) instead of arriving one probe at a time.
-    // All probes read plan.lod, so one blend weight serves them all.
-    constexpr int kAhead = 6;
-    auto request = [&](int i) {
-        detail::prefetch_probe(map, probes[i], l0);
-        if (w > 0.0f) detail::prefetch_probe(map, probes[i], l0 + 1);
+        return p;
     };
-    if (plan.count > 1)
-        for (int i = 0; i < std::min(kAhead, plan.count); ++i) request(i);
-    detail::dispatch_stride(centre.stride(), [&]<int S>() {
+    // All probes read plan.lod's levels. Software pipelining: probe i + kAhead is placed and its
+    // taps addressed and requested while probe i is read, so that cache misses overlap (a bounded
+    // number in flight) instead of arriving one probe at a time.
+    const detail::TrilinearLevels levels =
+        detail::trilinear_levels(plan.lod, centre.max_level(), blend);
+    const int stride = centre.stride();
+    constexpr int kAhead = 6, kRing = 8;
+    detail::ProbeTaps ring[kRing];
+    auto request = [&](int i) {
+        const EnvCoords p = place(i);
+        detail::ProbeTaps& taps = ring[i % kRing];
+        taps = detail::probe_taps(map, p.face, p.s, p.t, levels);
+        detail::prefetch_probe(taps, levels, stride);
+    };
+    for (int i = 0; i < std::min(kAhead, plan.count); ++i) request(i);
+    detail::dispatch_stride(stride, [&]<int S>() {
         detail::Texel<S> fine{}, coarse{};
         for (int i = 0; i < plan.count; ++i) {
             if (i + kAhead < plan.count) request(i + kAhead);
-            const detail::ProbeCentre& p = probes[i];
-            detail::add_scaled(fine, weights[i],
-                               detail::env_bilinear<S>(map, p.face, l0, p.s, p.t));
-            if (w > 0.0f)
-                detail::add_scaled(coarse, weights[i],
-                                   detail::env_bilinear<S>(map, p.face, l0 + 1, p.s, p.t));
+            const detail::ProbeTaps& taps = ring[i % kRing];
+            detail::add_scaled(fine, weights[i], detail::blend_taps<S>(taps.fine));
+            if (levels.w > 0.0f)
+                detail::add_scaled(coarse, weights[i], detail::blend_taps<S>(taps.coarse));
         }
         float weight_sum = 0;
         for (int i = 0; i < plan.count; ++i) weight_sum += weights[i];
         const float weight = 1.0f / weight_sum;
         detail::Texel<S> result = fine;
         result.v *= weight;
-        if (w > 0.0f) result.v += w * (weight * coarse.v - result.v);
+        if (levels.w > 0.0f) result.v += levels.w * (weight * coarse.v - result.v);
         detail::store(result, centre.channels(), out);
     });
 }
@@ -359,7 +365,7 @@ void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint
                         const LookupOptions& options, float* out) {
     const float lod = centre_probe_lod(map, footprint, options);
     if (lod >= 0.0f)
-        centre_probe(map, footprint.coords, lod, options, out);
+        filter_centre_probe(map, centre_probe(map, footprint.coords, lod, options), out);
     else
         general_lookup(map, footprint, cap_footprint(map, footprint), options, out);
 }
@@ -382,11 +388,11 @@ void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayD
     const Vec2 size = map.texel_scale();
     const int channels = map.channels();
     struct Deferred {
-        EnvCoords coords;
-        float lod;
+        CentreProbe probe;
         float* out;
     };
     Deferred deferred[kGroup];
+    const int stride = map.face(0).stride();
     for (std::size_t first = 0; first < rays.size(); first += kGroup) {
         const std::size_t count = std::min(kGroup, rays.size() - first);
         std::size_t pending = 0;
@@ -400,15 +406,12 @@ void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayD
                 general_lookup(map, f, cap_footprint(map, f), options, result);
                 continue;
             }
-            const detail::ProbeCentre centre{f.coords.face, f.coords.s, f.coords.t};
-            const int level = static_cast<int>(lod);
-            detail::prefetch_probe(map, centre, level);
-            if (level < map.face(centre.face).max_level())
-                detail::prefetch_probe(map, centre, level + 1);
-            deferred[pending++] = {f.coords, lod, result};
+            Deferred& d = deferred[pending++];
+            d = {centre_probe(map, f.coords, lod, options), result};
+            detail::prefetch_probe(d.probe.taps, d.probe.levels, stride);
         }
         for (std::size_t i = 0; i < pending; ++i)
-            centre_probe(map, deferred[i].coords, deferred[i].lod, options, deferred[i].out);
+            filter_centre_probe(map, deferred[i].probe, deferred[i].out);
     }
 }
 

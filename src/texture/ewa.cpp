@@ -29,7 +29,7 @@ namespace {
 template <int S>
 void accumulate_ewa_level(const MipPyramid& pyramid, int l, float s, float t,
                           const FootprintEllipse& footprint, float level_weight, double* acc) {
-    const MipPyramid::LevelView level = pyramid.level(l);
+    const MipPyramid::LevelView& level = pyramid.level(l);
     const float tx = static_cast<float>(pyramid.width(0)) / static_cast<float>(level.width);
     const float ty = static_cast<float>(pyramid.height(0)) / static_cast<float>(level.height);
     const Vec2 pv = pyramid.prefilter_variance(l);

@@ -231,7 +231,7 @@ void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
         // Every probe's texels are known up front: ask for all their cache lines first, so the
         // misses overlap instead of arriving one probe at a time.
         auto prefetch_level = [&](int level) {
-            const MipPyramid::LevelView view = pyramid.level(level);
+            const MipPyramid::LevelView& view = pyramid.level(level);
             for (int i = 0; i < plan.count; ++i) {
                 const float k = first + static_cast<float>(i);
                 prefetch_bilinear(view, s + k * du, t + k * dv);
@@ -242,7 +242,7 @@ void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
             if (w > 0.0f) prefetch_level(l0 + 1);
         }
         auto sum_level = [&](int level) {
-            const MipPyramid::LevelView view = pyramid.level(level);
+            const MipPyramid::LevelView& view = pyramid.level(level);
             Texel<S> sum{};
             for (int i = 0; i < plan.count; ++i) {
                 const float k = first + static_cast<float>(i);

@@ -59,6 +59,10 @@ void MipPyramid::allocate(int width, int height, int channels, const MipPyramidO
         if (w == 1 && h == 1) break;
     }
     storage_ = detail::TexelStorage(total);
+    views_.clear();
+    for (const Level& l : levels_)
+        views_.push_back({storage_.data() + l.offset, l.width, l.height, l.tiles_x, tile_log2_,
+                          stride_, tile - 1, std::ptrdiff_t(l.width) * stride_});
 }
 
 MipPyramid MipPyramid::build(const Image& level0, const MipPyramidOptions& options) {

@@ -83,35 +83,31 @@ class MipPyramid {
     bool empty() const { return levels_.empty(); }
 
     // Read access to one level: texel(x, y) is `stride()` floats, the first `channels()`
-    // meaningful; x ∈ [0, width), y ∈ [0, height).
+    // meaningful; x ∈ [0, width), y ∈ [0, height). The address separates into a column and a row
+    // part, texel(x, y) = base + column(x) + row(y), for tiles too, so that a bilinear sample's
+    // four taps cost two of each. Built once per level: level() hands out a reference.
     struct LevelView {
         const float* base;
         int width, height;
         int tiles_x, tile_log2, stride;
-        int tile_mask;  // x & tile_mask == tile_mask: the last column of a tile (never, row-major)
-        int row_step;   // floats from texel (x, y) to (x, y + 1) inside one tile
-        const float* texel(int x, int y) const {
-            if (tile_log2 == 0) return base + (static_cast<std::size_t>(y) * width + x) * stride;
-            const int m = (1 << tile_log2) - 1;
-            const std::size_t tile =
-                static_cast<std::size_t>(y >> tile_log2) * tiles_x + (x >> tile_log2);
-            const std::size_t inside = (static_cast<std::size_t>(y & m) << tile_log2) + (x & m);
-            return base + ((tile << (2 * tile_log2)) + inside) * stride;
+        int inner_mask;  // 2^tile_log2 − 1: a texel's column (or row) inside its tile; 0 row-major
+        std::ptrdiff_t row_floats;  // row-major: floats from one row to the next
+        // Offsets in floats from base (row-major, the default layout, needs no tile arithmetic).
+        std::ptrdiff_t column(int x) const {
+            if (tile_log2 == 0) return static_cast<std::ptrdiff_t>(x) * stride;
+            return ((static_cast<std::ptrdiff_t>(x >> tile_log2) << (2 * tile_log2)) +
+                    (x & inner_mask)) *
+                   stride;
         }
+        std::ptrdiff_t row(int y) const {
+            if (tile_log2 == 0) return static_cast<std::ptrdiff_t>(y) * row_floats;
+            return ((static_cast<std::ptrdiff_t>(y >> tile_log2) * tiles_x << (2 * tile_log2)) +
+                    ((y & inner_mask) << tile_log2)) *
+                   stride;
+        }
+        const float* texel(int x, int y) const { return base + row(y) + column(x); }
     };
-    LevelView level(int l) const {
-        const Level& v = levels_[l];
-        const int mask = tile_log2_ == 0 ? -1 : (1 << tile_log2_) - 1;
-        const int row_step = tile_log2_ == 0 ? v.width * stride_ : stride_ << tile_log2_;
-        return {storage_.data() + v.offset,
-                v.width,
-                v.height,
-                v.tiles_x,
-                tile_log2_,
-                stride_,
-                mask,
-                row_step};
-    }
+    const LevelView& level(int l) const { return views_[l]; }
     const float* texel(int l, int x, int y) const { return level(l).texel(x, y); }
 
     // Per-axis variance (level-0 texels², about level-0 texel centres) of the downsampling kernel
@@ -141,6 +137,7 @@ class MipPyramid {
     int stride_ = 0;
     int tile_log2_ = 0;
     std::vector<Level> levels_;
+    std::vector<LevelView> views_;  // one per level, into storage_
     detail::TexelStorage storage_;
     std::unique_ptr<SummedAreaTable> sat_;
 };

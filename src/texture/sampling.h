@@ -3,12 +3,14 @@
 // Lookups at random positions are bound by memory latency, and how many lookups the CPU can keep in
 // flight at once depends on how few instructions each one takes (footprint-bench texture). So these
 // loops are written lean: texel values are returned in registers (Texel<S>), the four bilinear taps
-// are addressed from one base pointer when they share a tile, and floor() is an integer conversion.
+// are addressed from two row and two column offsets (LevelView), and floor() is an integer
+// conversion.
 // S is the pyramid's texel stride (1, 2, 4 or 8), a compile-time constant so the channel loops
 // vectorise. Positions are normalised (s, t) already reduced by reduce_coordinate(); texel
 // coordinates follow spec §1 (X = s·W − ½).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "texture/mip_pyramid.h"
@@ -52,57 +54,74 @@ inline int floor_to_int(float x) {
     return i - (x < static_cast<float>(i));
 }
 
-// Requests the cache lines that a bilinear sample of `view` at (s, t) will read: two rows of two
-// texels, each of which may straddle a line. Taps beyond the level's edge are left alone.
-inline void prefetch_bilinear(const MipPyramid::LevelView& view, float s, float t) {
-    const int x = floor_to_int(s * static_cast<float>(view.width) - 0.5f);
-    const int y = floor_to_int(t * static_cast<float>(view.height) - 0.5f);
-    if (x < 0 || y < 0 || x + 1 >= view.width || y + 1 >= view.height) return;
-    const float* p = view.texel(x, y);
-    const int last = 2 * view.stride - 1;  // the quad row's last float
-    prefetch(p);
-    prefetch(p + last);
-    prefetch(p + view.row_step);
-    prefetch(p + view.row_step + last);
+// A bilinear sample's four taps (a b in the upper row, c d below) and its fractional position.
+struct BilinearTaps {
+    const float *a, *b, *c, *d;
+    float fx, fy;
+};
+
+// The texel position of a sample at (s, t) on `view` (spec §1: X = s·W − ½): the upper-left tap
+// (x0, y0) and the fractions towards (x0 + 1, y0 + 1).
+struct BilinearPosition {
+    int x0, y0;
+    float fx, fy;
+    bool inside;  // all four taps lie on the level
+};
+inline BilinearPosition bilinear_position(const MipPyramid::LevelView& view, float s, float t) {
+    const float x = s * static_cast<float>(view.width) - 0.5f;
+    const float y = t * static_cast<float>(view.height) - 0.5f;
+    const int x0 = floor_to_int(x), y0 = floor_to_int(y);
+    return {x0, y0, x - static_cast<float>(x0), y - static_cast<float>(y0),
+            x0 >= 0 && y0 >= 0 && x0 + 1 < view.width && y0 + 1 < view.height};
 }
 
-// Bilinear sample of one level at (s, t).
+// The taps of columns xa, xb and rows ya, yb (each on the level).
+inline BilinearTaps taps_at(const MipPyramid::LevelView& view, int xa, int xb, int ya, int yb,
+                            float fx, float fy) {
+    const float* upper = view.base + view.row(ya);
+    const float* lower = view.base + view.row(yb);
+    const std::ptrdiff_t ca = view.column(xa), cb = view.column(xb);
+    return {upper + ca, upper + cb, lower + ca, lower + cb, fx, fy};
+}
+
+// Requests the cache lines of a sample's taps (a tap of `stride` floats may straddle a line).
+inline void prefetch_taps(const BilinearTaps& taps, int stride) {
+    prefetch(taps.a);
+    prefetch(taps.b + stride - 1);
+    prefetch(taps.c);
+    prefetch(taps.d + stride - 1);
+}
+
+// Requests the cache lines that a bilinear sample of `view` at (s, t) will read. Taps beyond the
+// level's edge are left alone.
+inline void prefetch_bilinear(const MipPyramid::LevelView& view, float s, float t) {
+    const BilinearPosition p = bilinear_position(view, s, t);
+    if (p.inside)
+        prefetch_taps(taps_at(view, p.x0, p.x0 + 1, p.y0, p.y0 + 1, p.fx, p.fy), view.stride);
+}
+
+// The bilinear blend of four taps.
+template <int S>
+[[gnu::always_inline]] inline Texel<S> blend_taps(const BilinearTaps& taps) {
+    const float fx = taps.fx, fy = taps.fy;
+    const float wa = (1 - fx) * (1 - fy), wb = fx * (1 - fy), wc = (1 - fx) * fy, wd = fx * fy;
+    Texel<S> r;
+    r.v = wa * Texel<S>::load(taps.a).v + wb * Texel<S>::load(taps.b).v +
+          wc * Texel<S>::load(taps.c).v + wd * Texel<S>::load(taps.d).v;
+    return r;
+}
+
+// Bilinear sample of one level at (s, t); taps beyond the level's edge are wrapped.
 template <int S>
 [[gnu::always_inline]] inline Texel<S> sample_bilinear(const MipPyramid::LevelView& level,
                                                        WrapMode wrap_s, WrapMode wrap_t, float s,
                                                        float t) {
-    const float x = s * static_cast<float>(level.width) - 0.5f;
-    const float y = t * static_cast<float>(level.height) - 0.5f;
-    const int x0 = floor_to_int(x), y0 = floor_to_int(y);
-    const float fx = x - static_cast<float>(x0), fy = y - static_cast<float>(y0);
-    const float* a;
-    const float *b, *c, *d;
-    const int mask = level.tile_mask;
-    if (x0 >= 0 && y0 >= 0 && x0 + 1 < level.width && y0 + 1 < level.height &&
-        (x0 & mask) != mask && (y0 & mask) != mask) {
-        // The common case: all four taps inside one tile (one row-major level is one tile).
-        a = level.texel(x0, y0);
-        b = a + S;
-        c = a + level.row_step;
-        d = c + S;
-    } else {
-        // Across a tile edge or the texture edge: address each tap (wrap only when outside).
-        const bool inside_x = x0 >= 0 && x0 + 1 < level.width,
-                   inside_y = y0 >= 0 && y0 + 1 < level.height;
-        const int xa = inside_x ? x0 : wrap_index(x0, level.width, wrap_s);
-        const int xb = inside_x ? x0 + 1 : wrap_index(x0 + 1, level.width, wrap_s);
-        const int ya = inside_y ? y0 : wrap_index(y0, level.height, wrap_t);
-        const int yb = inside_y ? y0 + 1 : wrap_index(y0 + 1, level.height, wrap_t);
-        a = level.texel(xa, ya);
-        b = level.texel(xb, ya);
-        c = level.texel(xa, yb);
-        d = level.texel(xb, yb);
-    }
-    const float wa = (1 - fx) * (1 - fy), wb = fx * (1 - fy), wc = (1 - fx) * fy, wd = fx * fy;
-    Texel<S> r;
-    r.v = wa * Texel<S>::load(a).v + wb * Texel<S>::load(b).v + wc * Texel<S>::load(c).v +
-          wd * Texel<S>::load(d).v;
-    return r;
+    const BilinearPosition p = bilinear_position(level, s, t);
+    if (p.inside) return blend_taps<S>(taps_at(level, p.x0, p.x0 + 1, p.y0, p.y0 + 1, p.fx, p.fy));
+    return blend_taps<S>(taps_at(level, wrap_index(p.x0, level.width, wrap_s),
+                                 wrap_index(p.x0 + 1, level.width, wrap_s),
+                                 wrap_index(p.y0, level.height, wrap_t),
+                                 wrap_index(p.y0 + 1, level.height, wrap_t), p.fx, p.fy));
 }
 
 // Blend weight of the finer level's successor at fractional lod L + w.
@@ -112,21 +131,29 @@ inline float lod_blend_weight(float w, LodBlend blend) {
     return (std::exp2(2.0f * w) - 1.0f) * (1.0f / 3.0f);
 }
 
+// The levels a trilinear probe at a fractional lod ∈ [0, max_level] reads: l0 and, with blend
+// weight w > 0, l0 + 1.
+struct TrilinearLevels {
+    int l0;
+    float w;
+};
+inline TrilinearLevels trilinear_levels(float lod, int max_level, LodBlend blend) {
+    const int l0 = std::min(static_cast<int>(lod), max_level);
+    return {l0, l0 < max_level ? lod_blend_weight(lod - static_cast<float>(l0), blend) : 0.0f};
+}
+
 // Trilinear probe at a fractional level lod ∈ [0, max_level].
 template <int S>
 [[gnu::always_inline]] inline Texel<S> sample_trilinear(const MipPyramid& pyramid, float s, float t,
                                                         float lod, LodBlend blend) {
-    const int max_level = pyramid.max_level();
-    const int l0 = std::min(static_cast<int>(lod), max_level);
-    const float w = l0 < max_level ? lod_blend_weight(lod - static_cast<float>(l0), blend) : 0.0f;
-    if (w == 0.0f)
-        return sample_bilinear<S>(pyramid.level(l0), pyramid.wrap_s(), pyramid.wrap_t(), s, t);
+    const TrilinearLevels levels = trilinear_levels(lod, pyramid.max_level(), blend);
     const Texel<S> fine =
-        sample_bilinear<S>(pyramid.level(l0), pyramid.wrap_s(), pyramid.wrap_t(), s, t);
+        sample_bilinear<S>(pyramid.level(levels.l0), pyramid.wrap_s(), pyramid.wrap_t(), s, t);
+    if (levels.w == 0.0f) return fine;
     const Texel<S> coarse =
-        sample_bilinear<S>(pyramid.level(l0 + 1), pyramid.wrap_s(), pyramid.wrap_t(), s, t);
+        sample_bilinear<S>(pyramid.level(levels.l0 + 1), pyramid.wrap_s(), pyramid.wrap_t(), s, t);
     Texel<S> r;
-    r.v = fine.v + w * (coarse.v - fine.v);
+    r.v = fine.v + levels.w * (coarse.v - fine.v);
     return r;
 }
 

@@ -83,7 +83,7 @@ FootprintEllipse bounded(const MipPyramid& pyramid, FootprintEllipse e) {
 }
 
 void lookup_nearest(const MipPyramid& pyramid, float s, float t, float* out) {
-    const MipPyramid::LevelView level = pyramid.level(0);
+    const MipPyramid::LevelView& level = pyramid.level(0);
     const int x = wrap_index(static_cast<int>(std::floor(s * static_cast<float>(level.width))),
                              level.width, pyramid.wrap_s());
     const int y = wrap_index(static_cast<int>(std::floor(t * static_cast<float>(level.height))),
