@@ -359,6 +359,28 @@ void general_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
     });
 }
 
+// Form (a) on a lat-long map, for a direction within a polar cap's region: the cap's footprint
+// needs only the map-space direction and its differentials (as compute_env_footprint() sets them),
+// so the lat-long footprint (two atan2 and its Jacobian) is skipped. False, with nothing written,
+// where the lookup is not one for a cap (then the lat-long footprint decides).
+bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
+                      const LookupOptions& options, float* out, const Mat3& rotation) {
+    if (map.layout() != EnvLayout::latlong || !map.polar_cap(0) ||
+        options.filter != TextureFilter::footprint_assembly || !is_finite(r))
+        return false;
+    EnvFootprint f;
+    f.map_direction = rotation * r;
+    if (!in_polar_cap_region(f.map_direction)) return false;
+    if (is_finite(dr_dx) && is_finite(dr_dy)) {
+        f.map_dr_dx = rotation * dr_dx;
+        f.map_dr_dy = rotation * dr_dy;
+    }
+    const PolarCapFootprint cap = polar_cap_footprint(map, f);
+    if (!cap.valid) return false;
+    polar_cap_filter(cap, options, out);
+    return true;
+}
+
 }  // namespace
 
 void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
@@ -372,6 +394,7 @@ void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint
 
 void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
                         const LookupOptions& options, float* out, const Mat3& rotation) {
+    if (polar_cap_lookup(map, r, dr_dx, dr_dy, options, out, rotation)) return;
     environment_lookup(
         map, compute_env_footprint(map.layout(), map.texel_scale(), r, dr_dx, dr_dy, rotation),
         options, out);
@@ -398,9 +421,11 @@ void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayD
         std::size_t pending = 0;
         for (std::size_t i = 0; i < count; ++i) {
             const EnvRayDifferential& ray = rays[first + i];
+            float* result = out + (first + i) * channels;
+            if (polar_cap_lookup(map, ray.direction, ray.d_dx, ray.d_dy, options, result, rotation))
+                continue;
             const EnvFootprint f = compute_env_footprint(map.layout(), size, ray.direction,
                                                          ray.d_dx, ray.d_dy, rotation);
-            float* result = out + (first + i) * channels;
             const float lod = centre_probe_lod(map, f, options);
             if (lod < 0.0f) {
                 general_lookup(map, f, cap_footprint(map, f), options, result);

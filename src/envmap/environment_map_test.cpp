@@ -316,6 +316,37 @@ TEST(EnvironmentMap, PolarCapsCanBeTurnedOff) {
     EXPECT_FALSE(EnvironmentMap::from_latlong(image, bad).ok());
 }
 
+TEST(EnvironmentMap, PolarCapLookupsSkipOnlyTheUnusedLatLongFootprint) {
+    // A ray-differential lookup near a pole goes straight to its cap, without the lat-long
+    // footprint; it must equal the lookup of the full footprint exactly — inside the caps' region,
+    // at its 30° edge, on either side of it, with a rotation, at the pole, with the footprint too
+    // large for the cap, and with non-finite differentials.
+    const EnvironmentMap map = test::env_noise_map(EnvLayout::latlong, 64, 26);
+    ASSERT_NE(map.polar_cap(0), nullptr);
+    const Mat3 rotation = rotation_xyz_degrees(10, 20, 30);
+    std::mt19937 rng(27);
+    std::uniform_real_distribution<float> u(0, 1);
+    int compared = 0;
+    for (int i = 0; i < 400; ++i) {
+        const float colatitude = (i % 4 == 0 ? 30.0f : 40.0f * u(rng)) * 3.14159265f / 180;
+        const float phi = 2 * 3.14159265f * u(rng), pole = i % 2 ? 1.0f : -1.0f;
+        const Vec3 r{std::sin(colatitude) * std::cos(phi), pole * std::cos(colatitude),
+                     std::sin(colatitude) * std::sin(phi)};
+        Vec3 dx, dy;
+        test::isotropic_differentials(r, 0.3f * u(rng) * u(rng), dx, dy);  // up to ~12 texels
+        if (i % 50 == 7) dx.x = NAN;
+        const Mat3& a = i % 3 == 0 ? rotation : Mat3{};
+        float direct, via_footprint;
+        environment_lookup(map, r, dx, dy, LookupOptions{}, &direct, a);
+        environment_lookup(map,
+                           compute_env_footprint(map.layout(), map.texel_scale(), r, dx, dy, a),
+                           LookupOptions{}, &via_footprint);
+        ASSERT_EQ(direct, via_footprint) << "lookup " << i;
+        ++compared;
+    }
+    EXPECT_EQ(compared, 400);
+}
+
 TEST(EnvironmentMap, BatchedLookupsEqualSingleLookups) {
     // environment_lookup_batch computes each group's footprints and requests their texels before
     // filtering: the results must be bit-identical to one call per ray, in every layout, for every
