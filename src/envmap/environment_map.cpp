@@ -365,9 +365,7 @@ void general_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
 // where the lookup is not one for a cap (then the lat-long footprint decides).
 bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
                       const LookupOptions& options, float* out, const Mat3& rotation) {
-    if (map.layout() != EnvLayout::latlong || !map.polar_cap(0) ||
-        options.filter != TextureFilter::footprint_assembly || !is_finite(r))
-        return false;
+    if (map.layout() != EnvLayout::latlong || !map.polar_cap(0) || !is_finite(r)) return false;
     EnvFootprint f;
     f.map_direction = rotation * r;
     if (!in_polar_cap_region(f.map_direction)) return false;

@@ -320,7 +320,8 @@ TEST(EnvironmentMap, PolarCapLookupsSkipOnlyTheUnusedLatLongFootprint) {
     // A ray-differential lookup near a pole goes straight to its cap, without the lat-long
     // footprint; it must equal the lookup of the full footprint exactly — inside the caps' region,
     // at its 30° edge, on either side of it, with a rotation, at the pole, with the footprint too
-    // large for the cap, and with non-finite differentials.
+    // large for the cap, with non-finite differentials, and with the other filters (which the
+    // caps serve too).
     const EnvironmentMap map = test::env_noise_map(EnvLayout::latlong, 64, 26);
     ASSERT_NE(map.polar_cap(0), nullptr);
     const Mat3 rotation = rotation_xyz_degrees(10, 20, 30);
@@ -336,11 +337,14 @@ TEST(EnvironmentMap, PolarCapLookupsSkipOnlyTheUnusedLatLongFootprint) {
         test::isotropic_differentials(r, 0.3f * u(rng) * u(rng), dx, dy);  // up to ~12 texels
         if (i % 50 == 7) dx.x = NAN;
         const Mat3& a = i % 3 == 0 ? rotation : Mat3{};
+        LookupOptions options;
+        if (i % 5 == 1) options.filter = TextureFilter::ewa;
+        if (i % 5 == 3) options.filter = TextureFilter::trilinear;
         float direct, via_footprint;
-        environment_lookup(map, r, dx, dy, LookupOptions{}, &direct, a);
+        environment_lookup(map, r, dx, dy, options, &direct, a);
         environment_lookup(map,
                            compute_env_footprint(map.layout(), map.texel_scale(), r, dx, dy, a),
-                           LookupOptions{}, &via_footprint);
+                           options, &via_footprint);
         ASSERT_EQ(direct, via_footprint) << "lookup " << i;
         ++compared;
     }
