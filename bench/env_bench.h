@@ -33,8 +33,9 @@ struct EnvBenchOptions {
     std::vector<int> thread_counts = {1, 2};
     std::vector<std::string> regimes;  // empty: all (tiny moderate aniso32 pole_band)
     bool with_oiio = true;
-    std::string json_path;      // empty: no JSON
-    float isotropic_ratio = 1;  // LookupOptions::isotropic_ratio of our lookups
+    std::string json_path;                // empty: no JSON
+    float isotropic_ratio = 1;            // LookupOptions::isotropic_ratio of our lookups
+    std::string probe_rule = "gaussian";  // LookupOptions::probe_rule: "gaussian" or "b" (Rule B)
     int rounds = 3;  // each rate is the best of this many timed passes (noise only slows)
     bool quiet = false;
 };

@@ -60,11 +60,7 @@ template <int S>
     return blend_taps<S>(env_taps(map, face, level, s, t));
 }
 
-// A trilinear probe at (face, s, t) on levels.l0 and, when levels.w > 0, levels.l0 + 1: its taps
-// are addressed once, then requested (prefetch) and read (blend).
-struct ProbeTaps {
-    BilinearTaps fine, coarse;  // coarse: only when levels.w > 0
-};
+// The taps of a trilinear probe at (face, s, t) (ProbeTaps), read seamlessly (env_taps).
 inline ProbeTaps probe_taps(const EnvironmentMap& map, int face, float s, float t,
                             TrilinearLevels levels) {
     ProbeTaps taps;
@@ -72,18 +68,4 @@ inline ProbeTaps probe_taps(const EnvironmentMap& map, int face, float s, float 
     if (levels.w > 0.0f) taps.coarse = env_taps(map, face, levels.l0 + 1, s, t);
     return taps;
 }
-inline void prefetch_probe(const ProbeTaps& taps, TrilinearLevels levels, int stride) {
-    prefetch_taps(taps.fine, stride);
-    if (levels.w > 0.0f) prefetch_taps(taps.coarse, stride);
-}
-template <int S>
-[[gnu::always_inline]] inline Texel<S> blend_probe(const ProbeTaps& taps, TrilinearLevels levels) {
-    Texel<S> r = blend_taps<S>(taps.fine);
-    if (levels.w > 0.0f) {
-        const Texel<S> coarse = blend_taps<S>(taps.coarse);
-        r.v += levels.w * (coarse.v - r.v);
-    }
-    return r;
-}
-
 }  // namespace footprint::detail

@@ -325,36 +325,15 @@ void general_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
                     : place_probe(map.layout(), c.face, c.s + o.x / size.x, c.t + o.y / size.y);
         return p;
     };
-    // All probes read plan.lod's levels. Software pipelining: probe i + kAhead is placed and its
-    // taps addressed and requested while probe i is read, so that cache misses overlap (a bounded
-    // number in flight) instead of arriving one probe at a time.
+    // All probes read plan.lod's levels (the centre face's).
     const detail::TrilinearLevels levels =
         detail::trilinear_levels(plan.lod, centre.max_level(), blend);
-    const int stride = centre.stride();
-    constexpr int kAhead = 6, kRing = 8;
-    detail::ProbeTaps ring[kRing];
-    auto request = [&](int i) {
-        const EnvCoords p = place(i);
-        detail::ProbeTaps& taps = ring[i % kRing];
-        taps = detail::probe_taps(map, p.face, p.s, p.t, levels);
-        detail::prefetch_probe(taps, levels, stride);
-    };
-    for (int i = 0; i < std::min(kAhead, plan.count); ++i) request(i);
-    detail::dispatch_stride(stride, [&]<int S>() {
-        detail::Texel<S> fine{}, coarse{};
-        for (int i = 0; i < plan.count; ++i) {
-            if (i + kAhead < plan.count) request(i + kAhead);
-            const detail::ProbeTaps& taps = ring[i % kRing];
-            detail::add_scaled(fine, weights[i], detail::blend_taps<S>(taps.fine));
-            if (levels.w > 0.0f)
-                detail::add_scaled(coarse, weights[i], detail::blend_taps<S>(taps.coarse));
-        }
-        float weight_sum = 0;
-        for (int i = 0; i < plan.count; ++i) weight_sum += weights[i];
-        const float weight = 1.0f / weight_sum;
-        detail::Texel<S> result = fine;
-        result.v *= weight;
-        if (levels.w > 0.0f) result.v += levels.w * (weight * coarse.v - result.v);
+    detail::dispatch_stride(centre.stride(), [&]<int S>() {
+        const detail::Texel<S> result =
+            detail::blend_probe_line<S>(plan.count, weights, levels, centre.stride(), [&](int i) {
+                const EnvCoords p = place(i);
+                return detail::probe_taps(map, p.face, p.s, p.t, levels);
+            });
         detail::store(result, centre.channels(), out);
     });
 }

@@ -211,54 +211,23 @@ void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
     const float du = plan.step.x / static_cast<float>(pyramid.width(0));
     const float dv = plan.step.y / static_cast<float>(pyramid.height(0));
     const float first = -0.5f * static_cast<float>(plan.count - 1);
-    const int max_level = pyramid.max_level();
-    const int l0 = std::min(static_cast<int>(plan.lod), max_level);
     const LodBlend blend = effective_lod_blend(plan, options.lod_blend);
-    const float w =
-        l0 < max_level ? lod_blend_weight(plan.lod - static_cast<float>(l0), blend) : 0.0f;
     if (plan.count == 1) {  // one isotropic probe: both levels' taps issued together
         dispatch_stride(pyramid.stride(), [&]<int S>() {
             store(sample_trilinear<S>(pyramid, s, t, plan.lod, blend), pyramid.channels(), out);
         });
         return;
     }
+    // C = Σ w_i trilinear(c + o_i) / Σ w_i (spec §2.9).
+    float weights[kMaxProbeCount];
+    probe_weights(plan, weights);
+    const TrilinearLevels levels = trilinear_levels(plan.lod, pyramid.max_level(), blend);
     dispatch_stride(pyramid.stride(), [&]<int S>() {
-        // C = Σ w_i trilinear(c + o_i) / Σ w_i (spec §2.9), summed level by level for locality.
-        float weights[kMaxProbeCount];
-        probe_weights(plan, weights);
-        float weight_sum = 0;
-        for (int i = 0; i < plan.count; ++i) weight_sum += weights[i];
-        // Every probe's texels are known up front: ask for all their cache lines first, so the
-        // misses overlap instead of arriving one probe at a time.
-        auto prefetch_level = [&](int level) {
-            const MipPyramid::LevelView& view = pyramid.level(level);
-            for (int i = 0; i < plan.count; ++i) {
+        const Texel<S> result =
+            blend_probe_line<S>(plan.count, weights, levels, pyramid.stride(), [&](int i) {
                 const float k = first + static_cast<float>(i);
-                prefetch_bilinear(view, s + k * du, t + k * dv);
-            }
-        };
-        if (plan.count > 4) {
-            prefetch_level(l0);
-            if (w > 0.0f) prefetch_level(l0 + 1);
-        }
-        auto sum_level = [&](int level) {
-            const MipPyramid::LevelView& view = pyramid.level(level);
-            Texel<S> sum{};
-            for (int i = 0; i < plan.count; ++i) {
-                const float k = first + static_cast<float>(i);
-                add_scaled(sum, weights[i],
-                           sample_bilinear<S>(view, pyramid.wrap_s(), pyramid.wrap_t(), s + k * du,
-                                              t + k * dv));
-            }
-            return sum;
-        };
-        Texel<S> result = sum_level(l0);
-        const float weight = 1.0f / weight_sum;
-        result.v *= weight;
-        if (w > 0.0f) {
-            const Texel<S> coarse = sum_level(l0 + 1);
-            result.v += w * (weight * coarse.v - result.v);
-        }
+                return probe_taps(pyramid, s + k * du, t + k * dv, levels);
+            });
         store(result, pyramid.channels(), out);
     });
 }

@@ -111,17 +111,24 @@ template <int S>
     return r;
 }
 
+// The taps of a bilinear sample of one level at (s, t); taps beyond the level's edge are wrapped.
+[[gnu::always_inline]] inline BilinearTaps wrapped_taps(const MipPyramid::LevelView& level,
+                                                        WrapMode wrap_s, WrapMode wrap_t, float s,
+                                                        float t) {
+    const BilinearPosition p = bilinear_position(level, s, t);
+    if (p.inside) return taps_at(level, p.x0, p.x0 + 1, p.y0, p.y0 + 1, p.fx, p.fy);
+    return taps_at(level, wrap_index(p.x0, level.width, wrap_s),
+                   wrap_index(p.x0 + 1, level.width, wrap_s),
+                   wrap_index(p.y0, level.height, wrap_t),
+                   wrap_index(p.y0 + 1, level.height, wrap_t), p.fx, p.fy);
+}
+
 // Bilinear sample of one level at (s, t); taps beyond the level's edge are wrapped.
 template <int S>
 [[gnu::always_inline]] inline Texel<S> sample_bilinear(const MipPyramid::LevelView& level,
                                                        WrapMode wrap_s, WrapMode wrap_t, float s,
                                                        float t) {
-    const BilinearPosition p = bilinear_position(level, s, t);
-    if (p.inside) return blend_taps<S>(taps_at(level, p.x0, p.x0 + 1, p.y0, p.y0 + 1, p.fx, p.fy));
-    return blend_taps<S>(taps_at(level, wrap_index(p.x0, level.width, wrap_s),
-                                 wrap_index(p.x0 + 1, level.width, wrap_s),
-                                 wrap_index(p.y0, level.height, wrap_t),
-                                 wrap_index(p.y0 + 1, level.height, wrap_t), p.fx, p.fy));
+    return blend_taps<S>(wrapped_taps(level, wrap_s, wrap_t, s, t));
 }
 
 // Blend weight of the finer level's successor at fractional lod L + w.
@@ -155,6 +162,70 @@ template <int S>
     Texel<S> r;
     r.v = fine.v + levels.w * (coarse.v - fine.v);
     return r;
+}
+
+// A trilinear probe's taps on levels.l0 and, when levels.w > 0, levels.l0 + 1: addressed once,
+// then requested (prefetch_probe) and read (blend_probe).
+struct ProbeTaps {
+    BilinearTaps fine, coarse;  // coarse: only when levels.w > 0
+};
+
+// The taps of a trilinear probe of `pyramid` at (s, t); taps beyond a level's edge are wrapped.
+inline ProbeTaps probe_taps(const MipPyramid& pyramid, float s, float t, TrilinearLevels levels) {
+    ProbeTaps taps;
+    taps.fine = wrapped_taps(pyramid.level(levels.l0), pyramid.wrap_s(), pyramid.wrap_t(), s, t);
+    if (levels.w > 0.0f)
+        taps.coarse =
+            wrapped_taps(pyramid.level(levels.l0 + 1), pyramid.wrap_s(), pyramid.wrap_t(), s, t);
+    return taps;
+}
+
+inline void prefetch_probe(const ProbeTaps& taps, TrilinearLevels levels, int stride) {
+    prefetch_taps(taps.fine, stride);
+    if (levels.w > 0.0f) prefetch_taps(taps.coarse, stride);
+}
+
+template <int S>
+[[gnu::always_inline]] inline Texel<S> blend_probe(const ProbeTaps& taps, TrilinearLevels levels) {
+    Texel<S> r = blend_taps<S>(taps.fine);
+    if (levels.w > 0.0f) {
+        const Texel<S> coarse = blend_taps<S>(taps.coarse);
+        r.v += levels.w * (coarse.v - r.v);
+    }
+    return r;
+}
+
+// A line of `count` trilinear probes, all on `levels`: Σ weights[i]·probe_i / Σ weights[i]
+// (spec §2.9), each level summed on its own and the two blended once. taps_of(i) places probe i
+// and addresses its taps (ProbeTaps), once. Software-pipelined: probe i + kAhead is placed,
+// addressed and requested while probe i is read, so that cache misses overlap (a bounded number in
+// flight) instead of arriving one probe at a time.
+template <int S, class TapsOf>
+[[gnu::always_inline]] inline Texel<S> blend_probe_line(int count, const float* weights,
+                                                        TrilinearLevels levels, int stride,
+                                                        TapsOf&& taps_of) {
+    constexpr int kAhead = 6, kRing = 8;
+    ProbeTaps ring[kRing];
+    auto request = [&](int i) {
+        ProbeTaps& taps = ring[i % kRing];
+        taps = taps_of(i);
+        prefetch_probe(taps, levels, stride);
+    };
+    for (int i = 0; i < std::min(kAhead, count); ++i) request(i);
+    Texel<S> fine{}, coarse{};
+    for (int i = 0; i < count; ++i) {
+        if (i + kAhead < count) request(i + kAhead);
+        const ProbeTaps& taps = ring[i % kRing];
+        add_scaled(fine, weights[i], blend_taps<S>(taps.fine));
+        if (levels.w > 0.0f) add_scaled(coarse, weights[i], blend_taps<S>(taps.coarse));
+    }
+    float weight_sum = 0;
+    for (int i = 0; i < count; ++i) weight_sum += weights[i];
+    const float weight = 1.0f / weight_sum;
+    Texel<S> result = fine;
+    result.v *= weight;
+    if (levels.w > 0.0f) result.v += levels.w * (weight * coarse.v - result.v);
+    return result;
 }
 
 // Writes the first `channels` values of a texel.
