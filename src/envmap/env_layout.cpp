@@ -19,10 +19,6 @@ template <class T>
 constexpr T kPi = T(3.14159265358979323846);
 
 template <class T>
-T component(Vec3T<T> a, int i) {
-    return i == 0 ? a.x : i == 1 ? a.y : a.z;
-}
-template <class T>
 Vec3T<T> axis(int i, T sign) {
     return {i == 0 ? sign : T(0), i == 1 ? sign : T(0), i == 2 ? sign : T(0)};
 }
@@ -55,6 +51,16 @@ T power_of_two(int e) {
 template <class T>
 Prepared<T> prepare(Vec3T<T> r) {
     Prepared<T> p;
+    const T m = max_abs_component(r);
+    if (m >= T(0x1p-100) && m <= T(0x1p100) && !std::isnan(r.x + r.y + r.z)) {
+        // The common case (finite and in range: the sum is NaN only for a NaN component), without
+        // libm: the exponent from the bits, and an exact multiplication by the power of two (the
+        // same result as ldexp, a fraction of the cost).
+        p.exponent = binary_exponent(m);
+        const T scale = power_of_two<T>(-p.exponent);
+        p.r = {r.x * scale, r.y * scale, r.z * scale};
+        return p;
+    }
     if (std::isnan(r.x) || std::isnan(r.y) || std::isnan(r.z)) {
         p.r = kEnvFallbackDirection<T>;
         p.usable = false;
@@ -64,15 +70,6 @@ Prepared<T> prepare(Vec3T<T> r) {
         auto sign_if_inf = [](T c) { return std::isinf(c) ? std::copysign(T(1), c) : T(0); };
         p.r = {sign_if_inf(r.x), sign_if_inf(r.y), sign_if_inf(r.z)};
         p.infinite = true;
-        return p;
-    }
-    const T m = max_abs_component(r);
-    if (m >= T(0x1p-100) && m <= T(0x1p100)) {
-        // The common case, without libm: the exponent from the bits, and an exact multiplication
-        // by the power of two (the same result as ldexp, a fraction of the cost).
-        p.exponent = binary_exponent(m);
-        const T scale = power_of_two<T>(-p.exponent);
-        p.r = {r.x * scale, r.y * scale, r.z * scale};
         return p;
     }
     if (m == 0) {
@@ -142,10 +139,11 @@ constexpr CubeFace kCubeFaces[6] = {
 
 template <class T>
 int cube_face_of(Vec3T<T> r) {
+    const T c[3] = {r.x, r.y, r.z};
     int a = 0;
     if (std::abs(r.y) > std::abs(r.x)) a = 1;
-    if (std::abs(r.z) > std::abs(component(r, a))) a = 2;
-    return 2 * a + (component(r, a) < 0 ? 1 : 0);
+    if (std::abs(r.z) > std::abs(c[a])) a = 2;
+    return 2 * a + (c[a] < 0 ? 1 : 0);
 }
 
 bool valid_face(int face, int count) {
@@ -203,9 +201,10 @@ struct CubePoint {
 
     explicit CubePoint(Vec3T<T> r) : face(cube_face_of(r)) {
         const CubeFace& f = kCubeFaces[face];
-        ma = std::abs(component(r, f.axis));  // in [1, 2) after prepare()
-        sp = T(f.s_sign) * component(r, f.s_axis) / ma;
-        tp = T(f.t_sign) * component(r, f.t_axis) / ma;
+        const T c[3] = {r.x, r.y, r.z};  // indexed: cheaper than selecting component by component
+        ma = std::abs(c[f.axis]);        // in [1, 2) after prepare()
+        sp = T(f.s_sign) * c[f.s_axis] / ma;
+        tp = T(f.t_sign) * c[f.t_axis] / ma;
     }
     CubeCoordsT<T> coords() const { return {face, T(0.5) * (sp + 1), T(0.5) * (tp + 1)}; }
 };
@@ -221,10 +220,15 @@ EnvCoordsJacobianT<T> cube_coords_and_jacobian(Vec3T<T> r_in) {
     const CubePoint<T> q(p.r);
     const CubeFace& f = kCubeFaces[q.face];
     const T sigma = q.face % 2 == 0 ? T(1) : T(-1);
-    const Vec3T<T> gs = axis(f.s_axis, T(f.s_sign)), gt = axis(f.t_axis, T(f.t_sign));
-    const Vec3T<T> ea = axis(f.axis, sigma);  // σ e_a
+    // ∂s/∂r = k(g_s − s'σ e_a), ∂t/∂r = k(g_t − t'σ e_a), k = 1/(2|ma|): g_s, g_t and e_a are
+    // distinct axes, so each row has two non-zero entries.
     const T k = 1 / (2 * q.ma);
-    return {q.coords(), finish(p, {k * (gs - q.sp * ea), k * (gt - q.tp * ea)})};
+    T ds[3] = {}, dt[3] = {};
+    ds[f.s_axis] = k * T(f.s_sign);
+    ds[f.axis] = k * (T(0) - q.sp * sigma);
+    dt[f.t_axis] = k * T(f.t_sign);
+    dt[f.axis] = k * (T(0) - q.tp * sigma);
+    return {q.coords(), finish(p, {{ds[0], ds[1], ds[2]}, {dt[0], dt[1], dt[2]}})};
 }
 
 template <class T>

@@ -1,9 +1,9 @@
 #include "texture/footprint_assembly.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
-#include <vector>
 #include "math/fast_log2.h"
 
 #include "texture/filters.h"
@@ -21,24 +21,26 @@ float probe_lod(float texel_size, float lod_bias, int max_level) {
 
 // a/√v_N for N Gaussian-weighted probes (footprint_assembly.h): Δ = σ_g ·
 // gaussian_spacing_factor(N). v_N is the variance, in u units, of the weights exp(−½u²) on N even
-// nodes over [−κ, κ]; tabulated once (N ≤ kTable), since a lookup may need it several times.
-float gaussian_spacing_factor(int n) {
-    constexpr int kTable = 1025;
-    static const std::vector<float> table = [] {
-        std::vector<float> t(kTable, 0.0f);
-        for (int m = 2; m < kTable; ++m) {
-            const double a = 2.0 * kGaussianProbeExtent / (m - 1);
-            double sw = 0, swu = 0;
-            for (int i = 0; i < m; ++i) {
-                const double u = (i - 0.5 * (m - 1)) * a, w = std::exp(-0.5 * u * u);
-                sw += w;
-                swu += w * u * u;
-            }
-            t[m] = static_cast<float>(a / std::sqrt(swu / sw));
+// nodes over [−κ, κ]. Tabulated once, when the library loads (a plan may look several up, and a
+// function-local table would pay its guard each time).
+constexpr int kSpacingTableSize = 1025;
+const std::array<float, kSpacingTableSize> kGaussianSpacingFactors = [] {
+    std::array<float, kSpacingTableSize> t{};
+    for (int m = 2; m < kSpacingTableSize; ++m) {
+        const double a = 2.0 * kGaussianProbeExtent / (m - 1);
+        double sw = 0, swu = 0;
+        for (int i = 0; i < m; ++i) {
+            const double u = (i - 0.5 * (m - 1)) * a, w = std::exp(-0.5 * u * u);
+            sw += w;
+            swu += w * u * u;
         }
-        return t;
-    }();
-    return table[std::clamp(n, 2, kTable - 1)];
+        t[m] = static_cast<float>(a / std::sqrt(swu / sw));
+    }
+    return t;
+}();
+
+float gaussian_spacing_factor(int n) {
+    return kGaussianSpacingFactors[std::clamp(n, 2, kSpacingTableSize - 1)];
 }
 
 int floor_power_of_two(int n) {
@@ -53,6 +55,10 @@ void probe_weights(const ProbePlan& plan, float* weights) {
     // From the centre out by the recurrence w_{k+1} = w_k·r_k, r_{k+1} = r_k·e^{−a²}, mirrored, so
     // that the weights are exactly symmetric (the kernel mean stays on the centre), with one exp
     // per plan: q = e^{−a²/8}, e^{−a²/2} = q⁴, e^{−a²} = q⁸.
+    if (plan.count <= 2) {  // one probe, or two of equal weight: no exp
+        weights[0] = weights[plan.count - 1] = 1.0f;
+        return;
+    }
     const float a2 = plan.weight_falloff * plan.weight_falloff;
     const int half = plan.count / 2;  // probes on each side of the centre
     const float q = std::exp(-0.125f * a2), q4 = (q * q) * (q * q), q8 = q4 * q4;

@@ -60,7 +60,8 @@ float single_probe_lod(const Sym2& k, const LookupOptions& options, int max_leve
 // The most probes a plan holds (max_probes is clamped to it).
 constexpr int kMaxProbeCount = 1024;
 
-// The (unnormalised) weight of each of plan.count probes: 1, or exp(−½(a·k)²), k = i − (N−1)/2.
+// The (unnormalised) weight of each of plan.count probes: 1, or ∝ exp(−½(a·k)²), k = i − (N−1)/2
+// (two probes weigh 1 each).
 void probe_weights(const ProbePlan& plan, float* weights);
 
 // LodBlend::automatic resolved for a plan: linear for one probe, variance-matched for several.
