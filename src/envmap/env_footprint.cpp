@@ -77,15 +77,16 @@ void set_isotropic_pole_footprint(EnvFootprint& f, EnvLayout layout, Vec2 texel_
 EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, Vec3 dr_dx,
                                    Vec3 dr_dy, const Mat3& rotation) {
     EnvFootprint f;
+    const IdentitySkippingRotation to_map(rotation);  // A
     const bool usable = is_finite(r) && norm(r) > 0;
     f.reflected = usable ? r : Vec3{0, 0, 1};
-    f.map_direction = rotation * f.reflected;
+    f.map_direction = to_map(f.reflected);
     const EnvCoordsJacobian position = env_coords_and_jacobian(layout, f.map_direction);
     f.coords = position.coords;
     if (!usable || !is_finite(dr_dx) || !is_finite(dr_dy)) return f;
     const Jacobian23& j = position.jacobian;
-    f.map_dr_dx = rotation * dr_dx;
-    f.map_dr_dy = rotation * dr_dy;
+    f.map_dr_dx = to_map(dr_dx);
+    f.map_dr_dy = to_map(dr_dy);
     const float theta = isotropic_footprint_radius(
         layout, j, f.map_direction, std::sqrt(dot(dr_dx, dr_dx) + dot(dr_dy, dr_dy)),
         [&] { return largest_tangent_singular_value(r, dr_dx, dr_dy) / norm(r); });
@@ -139,12 +140,12 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, const Ref
     f.reflected = 2 * nm_v * nm - nm_nm * v;
     auto a_v = [&](Vec3 x) { return 2 * dot(nm, x) * nm - nm_nm * x; };
     auto a_n = [&](Vec3 x) { return 2 * nm_v * x + 2 * dot(v, x) * nm - 2 * dot(nm, x) * v; };
-    f.map_direction = options.rotation * f.reflected;
+    const IdentitySkippingRotation to_map(options.rotation);  // A
+    f.map_direction = to_map(f.reflected);
     const EnvCoordsJacobian position = env_coords_and_jacobian(layout, f.map_direction);
     f.coords = position.coords;
     const Jacobian23& j = position.jacobian;
     const MapJacobian G{texel_scale, j};
-    auto to_map = [&](Vec3 x) { return options.rotation * x; };  // A
 
     // Eq. 5 / §2.4: D's columns, K12 = D Dᵀ.
     const Vec3 dvr_dx = a_v(g.dv_dx) + a_n(g.dn_dx), dvr_dy = a_v(g.dv_dy) + a_n(g.dn_dy);

@@ -345,12 +345,14 @@ void general_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
 bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
                       const LookupOptions& options, float* out, const Mat3& rotation) {
     if (map.layout() != EnvLayout::latlong || !map.polar_cap(0) || !is_finite(r)) return false;
+    const IdentitySkippingRotation to_map(rotation);
+    const Vec3 map_direction = to_map(r);
+    if (!in_polar_cap_region(map_direction)) return false;
     EnvFootprint f;
-    f.map_direction = rotation * r;
-    if (!in_polar_cap_region(f.map_direction)) return false;
+    f.map_direction = map_direction;
     if (is_finite(dr_dx) && is_finite(dr_dy)) {
-        f.map_dr_dx = rotation * dr_dx;
-        f.map_dr_dy = rotation * dr_dy;
+        f.map_dr_dx = to_map(dr_dx);
+        f.map_dr_dy = to_map(dr_dy);
     }
     const PolarCapFootprint cap = polar_cap_footprint(map, f);
     if (!cap.valid) return false;

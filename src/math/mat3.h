@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstring>
 
 #include "math/vec3.h"
 
@@ -22,12 +23,30 @@ struct Mat3 {
                 r.m[i][j] = m[i][0] * b.m[0][j] + m[i][1] * b.m[1][j] + m[i][2] * b.m[2][j];
         return r;
     }
+    // Exactly the identity (the default); a −0 entry counts as not.
+    bool is_identity() const {
+        static constexpr float kIdentity[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+        return std::memcmp(m, kIdentity, sizeof(m)) == 0;
+    }
     Mat3 transposed() const {
         Mat3 r;
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) r.m[i][j] = m[j][i];
         return r;
     }
+};
+
+// A rotation applied to several vectors, the identity (no environment rotation: the common case)
+// tested once and then skipped: three products skipped save about 100 instructions of an
+// environment lookup's 800–1200 (measured with callgrind).
+class IdentitySkippingRotation {
+  public:
+    explicit IdentitySkippingRotation(const Mat3& a) : a_(a), identity_(a.is_identity()) {}
+    Vec3 operator()(Vec3 v) const { return identity_ ? v : a_ * v; }
+
+  private:
+    const Mat3& a_;
+    bool identity_;
 };
 
 // Rotation by `degrees` about x, then y, then z (R = Rz·Ry·Rx), right-handed.
