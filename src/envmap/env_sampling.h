@@ -39,12 +39,10 @@ inline const float* env_texel(const EnvironmentMap& map, int face, int level, in
                        std::clamp(static_cast<int>(c.t * h), 0, view.height - 1));
 }
 
-// The taps of a bilinear sample on a level of `face`; taps beyond its edges are read by direction
-// (env_texel).
-inline BilinearTaps env_taps(const EnvironmentMap& map, int face, int level, float s, float t) {
-    const MipPyramid::LevelView& view = map.face(face).level(level);
-    const BilinearPosition p = bilinear_position(view, s, t);
-    if (p.inside) return taps_at(view, p.x0, p.x0 + 1, p.y0, p.y0 + 1, p.fx, p.fy);
+// The taps of a bilinear sample at position p on level `level` of `face`, some beyond its edges:
+// those are read by direction (env_texel). Out of line: the rare case.
+[[gnu::noinline]] inline BilinearTaps env_taps_beyond_edge(const EnvironmentMap& map, int face,
+                                                           int level, const BilinearPosition& p) {
     return {env_texel(map, face, level, p.x0, p.y0),
             env_texel(map, face, level, p.x0 + 1, p.y0),
             env_texel(map, face, level, p.x0, p.y0 + 1),
@@ -53,19 +51,37 @@ inline BilinearTaps env_taps(const EnvironmentMap& map, int face, int level, flo
             p.fy};
 }
 
+// The taps of a bilinear sample at position p on `view`, level `level` of `face`; taps beyond its
+// edges are read by direction (env_texel).
+[[gnu::always_inline]] inline BilinearTaps env_taps(const EnvironmentMap& map, int face, int level,
+                                                    const MipPyramid::LevelView& view,
+                                                    const BilinearPosition& p) {
+    if (p.inside) return taps_at(view, p.x0, p.x0 + 1, p.y0, p.y0 + 1, p.fx, p.fy);
+    return env_taps_beyond_edge(map, face, level, p);
+}
+
 // Bilinear on a level of `face`, with taps beyond its edges read by direction.
 template <int S>
 [[gnu::always_inline]] inline Texel<S> env_bilinear(const EnvironmentMap& map, int face, int level,
                                                     float s, float t) {
-    return blend_taps<S>(env_taps(map, face, level, s, t));
+    const MipPyramid::LevelView& view = map.face(face).level(level);
+    return blend_taps<S>(env_taps(map, face, level, view, bilinear_position(view, s, t)));
 }
 
 // The taps of a trilinear probe at (face, s, t) (ProbeTaps), read seamlessly (env_taps).
-inline ProbeTaps probe_taps(const EnvironmentMap& map, int face, float s, float t,
-                            TrilinearLevels levels) {
-    ProbeTaps taps;
-    taps.fine = env_taps(map, face, levels.l0, s, t);
-    if (levels.w > 0.0f) taps.coarse = env_taps(map, face, levels.l0 + 1, s, t);
+[[gnu::always_inline]] inline ProbeTaps probe_taps(const EnvironmentMap& map, int face, float s,
+                                                   float t, TrilinearLevels levels) {
+    const MipPyramid& pyramid = map.face(face);
+    const MipPyramid::LevelView& fine = pyramid.level(levels.l0);
+    ProbeTaps taps;  // coarse: left unset on one level
+    if (levels.w == 0.0f) {
+        taps.fine = env_taps(map, face, levels.l0, fine, bilinear_position(fine, s, t));
+        return taps;
+    }
+    const MipPyramid::LevelView& coarse = pyramid.level(levels.l0 + 1);
+    const BilinearPositionPair p = bilinear_positions(fine, coarse, s, t);
+    taps.fine = env_taps(map, face, levels.l0, fine, p.fine);
+    taps.coarse = env_taps(map, face, levels.l0 + 1, coarse, p.coarse);
     return taps;
 }
 }  // namespace footprint::detail

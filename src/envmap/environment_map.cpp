@@ -261,8 +261,9 @@ struct CentreProbe {
     detail::ProbeTaps taps;
     detail::TrilinearLevels levels;
 };
-CentreProbe centre_probe(const EnvironmentMap& map, const EnvCoords& c, float lod,
-                         const LookupOptions& options) {
+[[gnu::always_inline]] inline CentreProbe centre_probe(const EnvironmentMap& map,
+                                                       const EnvCoords& c, float lod,
+                                                       const LookupOptions& options) {
     const detail::TrilinearLevels levels = detail::trilinear_levels(
         lod, map.face(c.face).max_level(), single_probe_blend(options.lod_blend));
     return {detail::probe_taps(map, c.face, c.s, c.t, levels), levels};

@@ -75,6 +75,27 @@ inline BilinearPosition bilinear_position(const MipPyramid::LevelView& view, flo
             x0 >= 0 && y0 >= 0 && x0 + 1 < view.width && y0 + 1 < view.height};
 }
 
+// The positions of a sample at (s, t) on two levels at once (a trilinear probe's): the same
+// arithmetic as bilinear_position(), in one SSE register (one conversion and one compare for all
+// four coordinates instead of four of each).
+struct BilinearPositionPair {
+    BilinearPosition fine, coarse;
+};
+inline BilinearPositionPair bilinear_positions(const MipPyramid::LevelView& fine,
+                                               const MipPyramid::LevelView& coarse, float s,
+                                               float t) {
+    typedef float F4 __attribute__((vector_size(16)));
+    typedef int I4 __attribute__((vector_size(16)));
+    const I4 size{fine.width, fine.height, coarse.width, coarse.height};
+    const F4 p = F4{s, t, s, t} * __builtin_convertvector(size, F4) - 0.5f;
+    const I4 truncated = __builtin_convertvector(p, I4);
+    const I4 lower = truncated + (p < __builtin_convertvector(truncated, F4));  // ⌊p⌋ (true = −1)
+    const F4 fraction = p - __builtin_convertvector(lower, F4);
+    const I4 on_level = (lower >= 0) & (lower + 1 < size);
+    return {{lower[0], lower[1], fraction[0], fraction[1], (on_level[0] & on_level[1]) != 0},
+            {lower[2], lower[3], fraction[2], fraction[3], (on_level[2] & on_level[3]) != 0}};
+}
+
 // The taps of columns xa, xb and rows ya, yb (each on the level).
 inline BilinearTaps taps_at(const MipPyramid::LevelView& view, int xa, int xb, int ya, int yb,
                             float fx, float fy) {
@@ -111,11 +132,11 @@ template <int S>
     return r;
 }
 
-// The taps of a bilinear sample of one level at (s, t); taps beyond the level's edge are wrapped.
+// The taps of a bilinear sample of one level at position p; taps beyond the level's edge are
+// wrapped.
 [[gnu::always_inline]] inline BilinearTaps wrapped_taps(const MipPyramid::LevelView& level,
-                                                        WrapMode wrap_s, WrapMode wrap_t, float s,
-                                                        float t) {
-    const BilinearPosition p = bilinear_position(level, s, t);
+                                                        WrapMode wrap_s, WrapMode wrap_t,
+                                                        const BilinearPosition& p) {
     if (p.inside) return taps_at(level, p.x0, p.x0 + 1, p.y0, p.y0 + 1, p.fx, p.fy);
     return taps_at(level, wrap_index(p.x0, level.width, wrap_s),
                    wrap_index(p.x0 + 1, level.width, wrap_s),
@@ -128,7 +149,7 @@ template <int S>
 [[gnu::always_inline]] inline Texel<S> sample_bilinear(const MipPyramid::LevelView& level,
                                                        WrapMode wrap_s, WrapMode wrap_t, float s,
                                                        float t) {
-    return blend_taps<S>(wrapped_taps(level, wrap_s, wrap_t, s, t));
+    return blend_taps<S>(wrapped_taps(level, wrap_s, wrap_t, bilinear_position(level, s, t)));
 }
 
 // Blend weight of the finer level's successor at fractional lod L + w.
@@ -171,13 +192,16 @@ struct ProbeTaps {
 };
 
 // The taps of a trilinear probe of `pyramid` at (s, t); taps beyond a level's edge are wrapped.
-inline ProbeTaps probe_taps(const MipPyramid& pyramid, float s, float t, TrilinearLevels levels) {
-    ProbeTaps taps;
-    taps.fine = wrapped_taps(pyramid.level(levels.l0), pyramid.wrap_s(), pyramid.wrap_t(), s, t);
-    if (levels.w > 0.0f)
-        taps.coarse =
-            wrapped_taps(pyramid.level(levels.l0 + 1), pyramid.wrap_s(), pyramid.wrap_t(), s, t);
-    return taps;
+[[gnu::always_inline]] inline ProbeTaps probe_taps(const MipPyramid& pyramid, float s, float t,
+                                                   TrilinearLevels levels) {
+    const MipPyramid::LevelView& fine = pyramid.level(levels.l0);
+    const WrapMode wrap_s = pyramid.wrap_s(), wrap_t = pyramid.wrap_t();
+    if (levels.w == 0.0f)
+        return {wrapped_taps(fine, wrap_s, wrap_t, bilinear_position(fine, s, t)), {}};
+    const MipPyramid::LevelView& coarse = pyramid.level(levels.l0 + 1);
+    const BilinearPositionPair p = bilinear_positions(fine, coarse, s, t);
+    return {wrapped_taps(fine, wrap_s, wrap_t, p.fine),
+            wrapped_taps(coarse, wrap_s, wrap_t, p.coarse)};
 }
 
 inline void prefetch_probe(const ProbeTaps& taps, TrilinearLevels levels, int stride) {
