@@ -3,11 +3,12 @@
 #   make demo   ... then runs the demo on the built-in image (writes out/)
 #   make test   ... then runs the unit tests, in Release and under ASan+UBSan (build-asan/)
 #   make bench  ... then runs the texture and environment benchmarks (bench-out/texture.json, env.json)
+#   make instructions  ... then counts instructions per environment lookup under callgrind
 #   make format clang-formats the sources
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps build build-asan demo test test-release test-asan bench format clean
+.PHONY: all deps build build-asan demo test test-release test-asan bench instructions format clean
 
 all: build
 
@@ -38,6 +39,9 @@ test: test-release test-asan
 bench: build
 	./build/footprint-bench texture --json bench-out/texture.json
 	./build/footprint-bench env --json bench-out/env.json
+
+instructions: build
+	bash bench/env-instructions.sh build
 
 format:
 	clang-format -i $$(git ls-files '*.h' '*.cpp')

@@ -1,0 +1,97 @@
+// footprint-env-instructions — one batch of environment lookups, for counting instructions.
+//
+// Wall-clock rates on a shared machine drift by ±15 % from run to run (footprint-bench env), too
+// much to see a change of a few per cent. Instructions per lookup, counted by callgrind, are exact
+// and repeatable: bench/env-instructions.sh runs this program under
+//   valgrind --tool=callgrind --toggle-collect='footprint::bench::run_*'
+// so that only the lookups are counted (not building the map or the lookups), and divides by the
+// lookup count. It prints the mean of the results, a checksum that tells whether a change kept the
+// results bit for bit.
+//
+// Usage: footprint-env-instructions LAYOUT REGIME FORM [LOOKUPS]
+//   LAYOUT latlong | cube;  REGIME tiny | moderate | aniso32 | pole_band;  FORM single | batch
+// The map is smaller than the benchmark's (1024×512 lat-long, 6×512² cube converted from it), so
+// that building it under valgrind takes seconds; the footprints are sized in its texels.
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "env_lookups.h"
+#include "envmap/env_convert.h"
+#include "envmap/env_image_io.h"
+#include "envmap/environment_map.h"
+
+namespace footprint::bench {
+
+[[gnu::noinline]] void run_single(const EnvironmentMap& map, const std::vector<EnvLookup>& lookups,
+                                  const LookupOptions& options, float* out) {
+    for (std::size_t i = 0; i < lookups.size(); ++i)
+        environment_lookup(map, lookups[i].direction, lookups[i].d_dx, lookups[i].d_dy, options,
+                           out + 3 * i);
+}
+
+[[gnu::noinline]] void run_batch(const EnvironmentMap& map, const std::vector<EnvLookup>& lookups,
+                                 const LookupOptions& options, float* out) {
+    environment_lookup_batch(map, lookups, options, out);
+}
+
+int run(int argc, char** argv) {
+    if (argc < 4) {
+        std::fprintf(stderr,
+                     "usage: footprint-env-instructions latlong|cube "
+                     "tiny|moderate|aniso32|pole_band single|batch [lookups]\n");
+        return 2;
+    }
+    const std::string layout = argv[1], regime_name = argv[2], form = argv[3];
+    const EnvRegime* regime = nullptr;
+    for (const EnvRegime& r : kEnvRegimes)
+        if (regime_name == r.name) regime = &r;
+    if (!regime || (layout != "latlong" && layout != "cube") ||
+        (form != "single" && form != "batch")) {
+        std::fprintf(stderr, "footprint-env-instructions: unknown layout, regime or form\n");
+        return 2;
+    }
+    const int count = argc > 4 ? std::atoi(argv[4]) : 20000;
+    if (count < 1) {
+        std::fprintf(stderr, "footprint-env-instructions: lookups must be at least 1\n");
+        return 2;
+    }
+    constexpr int kWidth = 1024, kHeight = 512;
+    const Image latlong_image = make_latlong_image(kWidth, kHeight);
+    Result<EnvironmentMap> map = EnvironmentMap::from_latlong(latlong_image);
+    if (map && layout == "cube") {
+        EnvConvertOptions convert;
+        convert.size = kHeight;
+        Result<EnvImages> faces = convert_environment(*map, EnvLayout::cube, convert);
+        if (!faces) {
+            std::fprintf(stderr, "footprint-env-instructions: %s\n", faces.error().message.c_str());
+            return 1;
+        }
+        map = make_environment_map(*faces);
+    }
+    if (!map) {
+        std::fprintf(stderr, "footprint-env-instructions: %s\n", map.error().message.c_str());
+        return 1;
+    }
+    const std::vector<EnvLookup> lookups =
+        make_env_lookups(*regime, static_cast<std::size_t>(count), kWidth, kHeight, 7);
+    const LookupOptions options;
+    std::vector<float> out(3 * lookups.size());
+    if (form == "batch")
+        run_batch(*map, lookups, options, out.data());
+    else
+        run_single(*map, lookups, options, out.data());
+    double sum = 0;
+    for (float v : out) sum += v;
+    std::printf("%s %s %s: %d lookups, checksum %.7f\n", layout.c_str(), regime->name, form.c_str(),
+                count, sum / static_cast<double>(out.size()));
+    return 0;
+}
+
+}  // namespace footprint::bench
+
+int main(int argc, char** argv) {
+    return footprint::bench::run(argc, argv);
+}
