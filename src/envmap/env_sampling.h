@@ -73,15 +73,11 @@ template <int S>
                                                    float t, TrilinearLevels levels) {
     const MipPyramid& pyramid = map.face(face);
     const MipPyramid::LevelView& fine = pyramid.level(levels.l0);
-    ProbeTaps taps;  // coarse: left unset on one level
-    if (levels.w == 0.0f) {
-        taps.fine = env_taps(map, face, levels.l0, fine, bilinear_position(fine, s, t));
-        return taps;
-    }
+    if (levels.w == 0.0f)
+        return {env_taps(map, face, levels.l0, fine, bilinear_position(fine, s, t)), {}};
     const MipPyramid::LevelView& coarse = pyramid.level(levels.l0 + 1);
     const BilinearPositionPair p = bilinear_positions(fine, coarse, s, t);
-    taps.fine = env_taps(map, face, levels.l0, fine, p.fine);
-    taps.coarse = env_taps(map, face, levels.l0 + 1, coarse, p.coarse);
-    return taps;
+    return {env_taps(map, face, levels.l0, fine, p.fine),
+            env_taps(map, face, levels.l0 + 1, coarse, p.coarse)};
 }
 }  // namespace footprint::detail

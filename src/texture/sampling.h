@@ -14,6 +14,7 @@
 #include <cmath>
 
 #include "texture/mip_pyramid.h"
+#include "texture/texture_lookup.h"  // LodBlend
 
 namespace footprint::detail {
 

@@ -1,0 +1,81 @@
+// The shared inner loops of texture/sampling.h against their one-at-a-time definitions.
+#include "texture/sampling.h"
+#include "image/test_images.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+namespace footprint {
+namespace {
+
+// bilinear_positions() (both levels of a trilinear probe in one SSE register) gives exactly what
+// bilinear_position() gives on each level: the same taps, fractions and on-level flags, for
+// positions inside, on the edges and beyond them, on levels of odd sizes down to 1×1.
+TEST(Sampling, PairedPositionsEqualOneLevelAtATime) {
+    const MipPyramid pyramid = MipPyramid::build(random_image(37, 19, 3, 5));
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> coordinate(-0.6f, 1.6f);
+    int inside = 0, outside = 0;
+    for (int l = 0; l < pyramid.max_level(); ++l) {
+        const MipPyramid::LevelView& fine = pyramid.level(l);
+        const MipPyramid::LevelView& coarse = pyramid.level(l + 1);
+        for (int k = 0; k < 2000; ++k) {
+            const float s = k < 4 ? float(k % 2) : coordinate(rng);
+            const float t = k < 4 ? float(k / 2) : coordinate(rng);
+            const detail::BilinearPositionPair pair =
+                detail::bilinear_positions(fine, coarse, s, t);
+            for (const auto& [view, got] :
+                 {std::pair{&fine, pair.fine}, std::pair{&coarse, pair.coarse}}) {
+                const detail::BilinearPosition want = detail::bilinear_position(*view, s, t);
+                ASSERT_EQ(got.x0, want.x0) << "level " << l << " s " << s << " t " << t;
+                ASSERT_EQ(got.y0, want.y0) << "level " << l << " s " << s << " t " << t;
+                ASSERT_EQ(got.fx, want.fx) << "level " << l << " s " << s << " t " << t;
+                ASSERT_EQ(got.fy, want.fy) << "level " << l << " s " << s << " t " << t;
+                ASSERT_EQ(got.inside, want.inside) << "level " << l << " s " << s << " t " << t;
+                (want.inside ? inside : outside) += 1;
+            }
+        }
+    }
+    EXPECT_GT(inside, 1000);  // both branches exercised
+    EXPECT_GT(outside, 1000);
+}
+
+// blend_probe_line() (probes placed and requested ahead through a ring) equals the plain weighted
+// mean of the probes read one by one, for lines shorter and longer than its look-ahead and ring,
+// on one level and between two.
+TEST(Sampling, ProbeLineIsTheWeightedMeanOfItsProbes) {
+    const MipPyramid pyramid = MipPyramid::build(random_image(64, 48, 3, 9));
+    ASSERT_EQ(pyramid.stride(), 4);
+    for (const float lod : {1.0f, 1.6f}) {
+        const detail::TrilinearLevels levels =
+            detail::trilinear_levels(lod, pyramid.max_level(), LodBlend::linear);
+        for (int count : {1, 2, 5, 6, 7, 8, 9, 16, 23}) {
+            std::vector<float> weights(count);
+            for (int i = 0; i < count; ++i) weights[i] = 1.0f + 0.37f * float((i * 5) % 7);
+            auto position = [&](int i) {
+                return std::pair{0.2f + 0.031f * float(i), 0.7f - 0.017f * float(i)};
+            };
+            const detail::Texel<4> line = detail::blend_probe_line<4>(
+                count, weights.data(), levels, pyramid.stride(), [&](int i) {
+                    const auto [s, t] = position(i);
+                    return detail::probe_taps(pyramid, s, t, levels);
+                });
+            double want[3] = {}, weight_sum = 0;
+            for (int i = 0; i < count; ++i) {
+                const auto [s, t] = position(i);
+                const detail::Texel<4> probe =
+                    detail::sample_trilinear<4>(pyramid, s, t, lod, LodBlend::linear);
+                for (int c = 0; c < 3; ++c) want[c] += double(weights[i]) * double(probe.v[c]);
+                weight_sum += weights[i];
+            }
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(line.v[c], want[c] / weight_sum, 2e-6)
+                    << "lod " << lod << ", " << count << " probes, channel " << c;
+        }
+    }
+}
+
+}  // namespace
+}  // namespace footprint
