@@ -71,13 +71,10 @@ template <int S>
 // The taps of a trilinear probe at (face, s, t) (ProbeTaps), read seamlessly (env_taps).
 [[gnu::always_inline]] inline ProbeTaps probe_taps(const EnvironmentMap& map, int face, float s,
                                                    float t, TrilinearLevels levels) {
-    const MipPyramid& pyramid = map.face(face);
-    const MipPyramid::LevelView& fine = pyramid.level(levels.l0);
-    if (levels.w == 0.0f)
-        return {env_taps(map, face, levels.l0, fine, bilinear_position(fine, s, t)), {}};
-    const MipPyramid::LevelView& coarse = pyramid.level(levels.l0 + 1);
-    const BilinearPositionPair p = bilinear_positions(fine, coarse, s, t);
-    return {env_taps(map, face, levels.l0, fine, p.fine),
-            env_taps(map, face, levels.l0 + 1, coarse, p.coarse)};
+    return trilinear_taps(
+        map.face(face), s, t, levels,
+        [&](const MipPyramid::LevelView& view, int level, const BilinearPosition& p) {
+            return env_taps(map, face, level, view, p);
+        });
 }
 }  // namespace footprint::detail

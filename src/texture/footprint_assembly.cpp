@@ -21,26 +21,25 @@ float probe_lod(float texel_size, float lod_bias, int max_level) {
 
 // a/√v_N for N Gaussian-weighted probes (footprint_assembly.h): Δ = σ_g ·
 // gaussian_spacing_factor(N). v_N is the variance, in u units, of the weights exp(−½u²) on N even
-// nodes over [−κ, κ]. Tabulated once, when the library loads (a plan may look several up, and a
-// function-local table would pay its guard each time).
-constexpr int kSpacingTableSize = 1025;
-const std::array<float, kSpacingTableSize> kGaussianSpacingFactors = [] {
-    std::array<float, kSpacingTableSize> t{};
-    for (int m = 2; m < kSpacingTableSize; ++m) {
-        const double a = 2.0 * kGaussianProbeExtent / (m - 1);
-        double sw = 0, swu = 0;
-        for (int i = 0; i < m; ++i) {
-            const double u = (i - 0.5 * (m - 1)) * a, w = std::exp(-0.5 * u * u);
-            sw += w;
-            swu += w * u * u;
-        }
-        t[m] = static_cast<float>(a / std::sqrt(swu / sw));
-    }
-    return t;
-}();
-
+// nodes over [−κ, κ]. Tabulated on first use (about 6 ms: not paid by programs that never plan a
+// Gaussian line), since a plan may look several up.
 float gaussian_spacing_factor(int n) {
-    return kGaussianSpacingFactors[std::clamp(n, 2, kSpacingTableSize - 1)];
+    constexpr int kTableSize = 1025;
+    static const std::array<float, kTableSize> table = [] {
+        std::array<float, kTableSize> t{};
+        for (int m = 2; m < kTableSize; ++m) {
+            const double a = 2.0 * kGaussianProbeExtent / (m - 1);
+            double sw = 0, swu = 0;
+            for (int i = 0; i < m; ++i) {
+                const double u = (i - 0.5 * (m - 1)) * a, w = std::exp(-0.5 * u * u);
+                sw += w;
+                swu += w * u * u;
+            }
+            t[m] = static_cast<float>(a / std::sqrt(swu / sw));
+        }
+        return t;
+    }();
+    return table[std::clamp(n, 2, kTableSize - 1)];
 }
 
 int floor_power_of_two(int n) {

@@ -114,14 +114,6 @@ inline void prefetch_taps(const BilinearTaps& taps, int stride) {
     prefetch(taps.d + stride - 1);
 }
 
-// Requests the cache lines that a bilinear sample of `view` at (s, t) will read. Taps beyond the
-// level's edge are left alone.
-inline void prefetch_bilinear(const MipPyramid::LevelView& view, float s, float t) {
-    const BilinearPosition p = bilinear_position(view, s, t);
-    if (p.inside)
-        prefetch_taps(taps_at(view, p.x0, p.x0 + 1, p.y0, p.y0 + 1, p.fx, p.fy), view.stride);
-}
-
 // The bilinear blend of four taps.
 template <int S>
 [[gnu::always_inline]] inline Texel<S> blend_taps(const BilinearTaps& taps) {
@@ -171,38 +163,32 @@ inline TrilinearLevels trilinear_levels(float lod, int max_level, LodBlend blend
     return {l0, l0 < max_level ? lod_blend_weight(lod - static_cast<float>(l0), blend) : 0.0f};
 }
 
-// Trilinear probe at a fractional level lod ∈ [0, max_level].
-template <int S>
-[[gnu::always_inline]] inline Texel<S> sample_trilinear(const MipPyramid& pyramid, float s, float t,
-                                                        float lod, LodBlend blend) {
-    const TrilinearLevels levels = trilinear_levels(lod, pyramid.max_level(), blend);
-    const Texel<S> fine =
-        sample_bilinear<S>(pyramid.level(levels.l0), pyramid.wrap_s(), pyramid.wrap_t(), s, t);
-    if (levels.w == 0.0f) return fine;
-    const Texel<S> coarse =
-        sample_bilinear<S>(pyramid.level(levels.l0 + 1), pyramid.wrap_s(), pyramid.wrap_t(), s, t);
-    Texel<S> r;
-    r.v = fine.v + levels.w * (coarse.v - fine.v);
-    return r;
-}
-
 // A trilinear probe's taps on levels.l0 and, when levels.w > 0, levels.l0 + 1: addressed once,
 // then requested (prefetch_probe) and read (blend_probe).
 struct ProbeTaps {
     BilinearTaps fine, coarse;  // coarse: only when levels.w > 0
 };
 
+// The taps of a trilinear probe at (s, t) on `pyramid`'s levels: both levels positioned at once
+// (bilinear_positions), each level's taps addressed by taps_on(view, level, position) — wrapped at
+// a texture's edges, or read across an environment map's faces.
+template <class TapsOn>
+[[gnu::always_inline]] inline ProbeTaps trilinear_taps(const MipPyramid& pyramid, float s, float t,
+                                                       TrilinearLevels levels, TapsOn&& taps_on) {
+    const MipPyramid::LevelView& fine = pyramid.level(levels.l0);
+    if (levels.w == 0.0f) return {taps_on(fine, levels.l0, bilinear_position(fine, s, t)), {}};
+    const MipPyramid::LevelView& coarse = pyramid.level(levels.l0 + 1);
+    const BilinearPositionPair p = bilinear_positions(fine, coarse, s, t);
+    return {taps_on(fine, levels.l0, p.fine), taps_on(coarse, levels.l0 + 1, p.coarse)};
+}
+
 // The taps of a trilinear probe of `pyramid` at (s, t); taps beyond a level's edge are wrapped.
 [[gnu::always_inline]] inline ProbeTaps probe_taps(const MipPyramid& pyramid, float s, float t,
                                                    TrilinearLevels levels) {
-    const MipPyramid::LevelView& fine = pyramid.level(levels.l0);
-    const WrapMode wrap_s = pyramid.wrap_s(), wrap_t = pyramid.wrap_t();
-    if (levels.w == 0.0f)
-        return {wrapped_taps(fine, wrap_s, wrap_t, bilinear_position(fine, s, t)), {}};
-    const MipPyramid::LevelView& coarse = pyramid.level(levels.l0 + 1);
-    const BilinearPositionPair p = bilinear_positions(fine, coarse, s, t);
-    return {wrapped_taps(fine, wrap_s, wrap_t, p.fine),
-            wrapped_taps(coarse, wrap_s, wrap_t, p.coarse)};
+    return trilinear_taps(pyramid, s, t, levels,
+                          [&](const MipPyramid::LevelView& view, int, const BilinearPosition& p) {
+                              return wrapped_taps(view, pyramid.wrap_s(), pyramid.wrap_t(), p);
+                          });
 }
 
 inline void prefetch_probe(const ProbeTaps& taps, TrilinearLevels levels, int stride) {
@@ -218,6 +204,14 @@ template <int S>
         r.v += levels.w * (coarse.v - r.v);
     }
     return r;
+}
+
+// Trilinear probe at a fractional level lod ∈ [0, max_level].
+template <int S>
+[[gnu::always_inline]] inline Texel<S> sample_trilinear(const MipPyramid& pyramid, float s, float t,
+                                                        float lod, LodBlend blend) {
+    const TrilinearLevels levels = trilinear_levels(lod, pyramid.max_level(), blend);
+    return blend_probe<S>(probe_taps(pyramid, s, t, levels), levels);
 }
 
 // A line of `count` trilinear probes, all on `levels`: Σ weights[i]·probe_i / Σ weights[i]
