@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "envmap/env_layout_detail.h"
+
 namespace footprint {
 
 namespace {
@@ -105,6 +107,56 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, V
         f.map_dr_dx = f.map_dr_dy = {};
     }
     return f;
+}
+
+EnvFootprint PlainEnvFootprint::full() const {
+    EnvFootprint f;
+    f.reflected = reflected;
+    f.map_direction = map_direction;
+    f.coords = coords;
+    f.map_dr_dx = map_dr_dx;
+    f.map_dr_dy = map_dr_dy;
+    f.d_dx = d_dx;
+    f.d_dy = d_dy;
+    f.curvature = f.matrix = matrix;
+    return f;
+}
+
+bool plain_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
+                         const IdentitySkippingRotation& to_map, PlainEnvFootprint& out) {
+    using namespace env_detail;
+    if (layout != EnvLayout::latlong && layout != EnvLayout::cube) return false;
+    out.reflected = r;
+    out.map_direction = to_map(r);
+    // prepare()'s common case (finite, max |component| within 2^±100), and |r| > 0 as
+    // compute_env_footprint() requires (A r finite implies r finite).
+    const Prepared<float> p = prepare(out.map_direction);
+    if (!p.usable || p.infinite || p.exponent < -100 || p.exponent > 100 || !(dot(r, r) > 0))
+        return false;
+    EnvCoordsJacobian position;
+    if (layout == EnvLayout::latlong) {
+        const float rho = latlong_rho(p.r);
+        if (rho == 0) return false;  // J undefined: the pole
+        const Vec2 st = latlong_coords_at(p.r, rho);
+        position = {{0, st.x, st.y}, latlong_jacobian_at(p, rho)};
+        // Clear of the poles: isotropic_footprint_radius()'s first test, the same way.
+        const Vec3 m = out.map_direction;
+        const float rho2 = m.x * m.x + m.z * m.z;
+        if (!(std::isfinite(rho2) && rho2 > 0x1p-100f) ||
+            std::sqrt(rho2) < std::sqrt(dot(dr_dx, dr_dx) + dot(dr_dy, dr_dy)))
+            return false;
+    } else {
+        position = cube_coords_and_jacobian_at(p);
+    }
+    out.coords = position.coords;
+    out.map_dr_dx = to_map(dr_dx);
+    out.map_dr_dy = to_map(dr_dy);
+    const MapJacobian G{texel_scale, position.jacobian};
+    out.d_dx = G(out.map_dr_dx);
+    out.d_dy = G(out.map_dr_dy);
+    out.matrix = footprint_matrix(out.d_dx, out.d_dy);
+    // A non-finite differential makes D, and so K, non-finite (0·∞ is NaN): one test for all.
+    return std::isfinite(out.matrix.xx + out.matrix.xy + out.matrix.yy);
 }
 
 EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, const ReflectionGeometry& g,

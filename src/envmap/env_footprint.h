@@ -88,6 +88,22 @@ struct EnvFootprint {
 EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, Vec3 dr_dx,
                                    Vec3 dr_dy, const Mat3& rotation = Mat3{});
 
+// Form (a)'s common case in one pass, for the lookups' fast path: a lat-long or cube map, r
+// usable and within 2^±100, its differentials and D finite and, on a lat-long map, the footprint
+// clear of the poles. There the footprint is D Dᵀ and nothing else, and this gives exactly (bit for
+// bit) the fields compute_env_footprint() sets, without its handling of the rare cases. Returns
+// false everywhere else (then `out` is unspecified and compute_env_footprint() decides).
+struct PlainEnvFootprint {
+    Vec3 reflected, map_direction, map_dr_dx, map_dr_dy;
+    EnvCoords coords;
+    Vec2 d_dx, d_dy;
+    Sym2 matrix;                // K = D Dᵀ
+    EnvFootprint full() const;  // compute_env_footprint()'s result
+};
+// `to_map` is the rotation A, made once per call or per batch by the caller.
+bool plain_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
+                         const IdentitySkippingRotation& to_map, PlainEnvFootprint& out);
+
 // Form (b), Schilling's. `texel_scale` = S = (W0, H0) of level 0 (a cube map's face size for both).
 EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale,
                                    const ReflectionGeometry& geometry,

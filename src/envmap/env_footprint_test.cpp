@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
 namespace footprint {
@@ -246,6 +247,101 @@ TEST(EnvFootprint, DegenerateInputsStayFinite) {
     EXPECT_TRUE(f.normal_clamped);
     EXPECT_TRUE(f.matrix.is_finite());
     EXPECT_GT(dot(f.reflected, f.reflected), 0.0f);
+}
+
+// The fast path of form (a) is compute_env_footprint() bit for bit wherever it answers, answers
+// for the common case, and declines every rare one. Directions are drawn on the whole sphere, on
+// cube edges and corners, at the lat-long seam and near the poles, at scales from 2^-110 to 2^110;
+// differentials from 0 to huge, sometimes non-finite; with and without a rotation.
+TEST(EnvFootprint, PlainFootprintIsTheFullOneBitForBit) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> unit(-1, 1), exponent(-110, 110), spread(-12, 4);
+    const float nan = std::nanf(""), inf = INFINITY;
+    auto same = [](float a, float b) { return std::memcmp(&a, &b, sizeof(float)) == 0; };
+    auto same3 = [&](Vec3 a, Vec3 b) { return same(a.x, b.x) && same(a.y, b.y) && same(a.z, b.z); };
+    auto same2 = [&](Vec2 a, Vec2 b) { return same(a.x, b.x) && same(a.y, b.y); };
+    auto direction = [&](int kind) -> Vec3 {
+        Vec3 r{unit(rng), unit(rng), unit(rng)};
+        switch (kind % 5) {
+            case 1:
+                r.y = std::copysign(1.0f, r.y), r.x *= 1e-3f, r.z *= 1e-3f;
+                break;  // a pole
+            case 2:
+                r.x = std::copysign(std::fabs(r.y), r.x);
+                break;  // a cube edge
+            case 3:
+                r = {std::copysign(1.0f, r.x), std::copysign(1.0f, r.y), r.z > 0 ? 1.0f : -1.0f};
+                break;  // a cube corner
+            case 4:
+                r.x = 1e-7f * r.x, r.z = -std::fabs(r.z);
+                break;  // the lat-long seam
+        }
+        return std::ldexp(1.0f, static_cast<int>(exponent(rng)) / (kind % 3 == 0 ? 1 : 8)) * r;
+    };
+    const Mat3 rotations[] = {Mat3{}, rotation_xyz_degrees(20, -35, 50)};
+    for (EnvLayout layout : {EnvLayout::latlong, EnvLayout::cube, EnvLayout::sphere}) {
+        const Vec2 scale = layout == EnvLayout::latlong ? Vec2{2048, 1024} : Vec2{1024, 1024};
+        int answered = 0, common = 0;
+        for (const Mat3& rotation : rotations)
+            for (int i = 0; i < 4000; ++i) {
+                const Vec3 r = direction(i);
+                const float size =
+                    std::ldexp(1.0f, static_cast<int>(spread(rng))) * std::sqrt(dot(r, r));
+                Vec3 dx = size * Vec3{unit(rng), unit(rng), unit(rng)};
+                Vec3 dy = size * Vec3{unit(rng), unit(rng), unit(rng)};
+                if (i % 97 == 0) dx.y = nan;
+                if (i % 89 == 0) dy.z = inf;
+                if (i % 83 == 0) dx = dy = {};
+                if (i % 79 == 0) dx = 1e30f * dx;
+                const bool ordinary = i % 5 == 0 && std::isfinite(dx.y) && std::isfinite(dy.z);
+                common += ordinary;
+                PlainEnvFootprint plain;
+                const bool answers = plain_env_footprint(layout, scale, r, dx, dy,
+                                                         IdentitySkippingRotation(rotation), plain);
+                if (!answers) continue;
+                ++answered;
+                const EnvFootprint full = plain.full();
+                const EnvFootprint f = compute_env_footprint(layout, scale, r, dx, dy, rotation);
+                SCOPED_TRACE(testing::Message() << env_layout_name(layout) << " case " << i);
+                ASSERT_EQ(full.coords.face, f.coords.face);
+                ASSERT_TRUE(same(full.coords.s, f.coords.s) && same(full.coords.t, f.coords.t));
+                ASSERT_TRUE(same3(full.reflected, f.reflected) &&
+                            same3(full.map_direction, f.map_direction) &&
+                            same3(full.map_dr_dx, f.map_dr_dx) &&
+                            same3(full.map_dr_dy, f.map_dr_dy));
+                ASSERT_TRUE(same2(full.d_dx, f.d_dx) && same2(full.d_dy, f.d_dy));
+                ASSERT_TRUE(same(full.matrix.xx, f.matrix.xx) &&
+                            same(full.matrix.xy, f.matrix.xy) && same(full.matrix.yy, f.matrix.yy));
+                ASSERT_TRUE(same(full.curvature.xx, f.curvature.xx) &&
+                            same(full.curvature.yy, f.curvature.yy));
+                ASSERT_FALSE(f.isotropic_fallback);
+            }
+        if (layout == EnvLayout::sphere) {
+            EXPECT_EQ(answered, 0);  // only lat-long and cube have a fast path
+        } else {
+            // It answers the ordinary lookups (drawn at every 5th case: directions anywhere, finite
+            // differentials at moderate scales), not just a few.
+            EXPECT_GT(answered, common * 3 / 4) << env_layout_name(layout);
+        }
+    }
+    // It declines what only the careful path handles.
+    const IdentitySkippingRotation identity{Mat3{}};
+    PlainEnvFootprint plain;
+    const Vec3 d{1e-3f, 0, 0};
+    EXPECT_FALSE(plain_env_footprint(EnvLayout::latlong, {2048, 1024}, {0, 1, 0}, d, d, identity,
+                                     plain));  // at the pole
+    EXPECT_FALSE(plain_env_footprint(EnvLayout::latlong, {2048, 1024}, {1e-4f, 1, 0}, d, d,
+                                     identity, plain));  // reaching it
+    EXPECT_FALSE(
+        plain_env_footprint(EnvLayout::cube, {512, 512}, {0, 0, 0}, d, d, identity, plain));
+    EXPECT_FALSE(
+        plain_env_footprint(EnvLayout::cube, {512, 512}, {nan, 0, 1}, d, d, identity, plain));
+    EXPECT_FALSE(plain_env_footprint(EnvLayout::cube, {512, 512}, {0, 0, 1}, {inf, 0, 0}, d,
+                                     identity, plain));
+    EXPECT_FALSE(plain_env_footprint(EnvLayout::cube, {512, 512}, {0, 0, 1e35f}, d, d, identity,
+                                     plain));  // beyond 2^100
+    EXPECT_TRUE(plain_env_footprint(EnvLayout::latlong, {2048, 1024}, {1, 0.3f, -0.2f}, d, d,
+                                    identity, plain));
 }
 
 }  // namespace

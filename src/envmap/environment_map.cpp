@@ -339,16 +339,21 @@ void general_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
     });
 }
 
-// Form (a) on a lat-long map, for a direction within a polar cap's region: the cap's footprint
-// needs only the map-space direction and its differentials (as compute_env_footprint() sets them),
-// so the lat-long footprint (two atan2 and its Jacobian) is skipped. False, with nothing written,
-// where the lookup is not one for a cap (then the lat-long footprint decides).
-bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
-                      const LookupOptions& options, float* out, const Mat3& rotation) {
-    if (map.layout() != EnvLayout::latlong || !map.polar_cap(0) || !is_finite(r)) return false;
-    const IdentitySkippingRotation to_map(rotation);
-    const Vec3 map_direction = to_map(r);
-    if (!in_polar_cap_region(map_direction)) return false;
+// Whether the polar caps of a lat-long map take a direction (map space) rather than the map.
+bool in_caps_region(const EnvironmentMap& map, Vec3 map_direction) {
+    return map.layout() == EnvLayout::latlong && map.polar_cap(0) &&
+           in_polar_cap_region(map_direction);
+}
+
+// Form (a) on a lat-long map, for a direction within a polar cap's region (in_caps_region()): the
+// cap's footprint needs only the map-space direction and its differentials (as
+// compute_env_footprint() sets them), so the lat-long footprint (two atan2 and its Jacobian) is
+// skipped. False, with nothing written, where the cap cannot take it (then the lat-long footprint
+// decides).
+bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 map_direction, Vec3 dr_dx, Vec3 dr_dy,
+                      const IdentitySkippingRotation& to_map, const LookupOptions& options,
+                      float* out) {
+    if (!is_finite(r)) return false;
     EnvFootprint f;
     f.map_direction = map_direction;
     if (is_finite(dr_dx) && is_finite(dr_dy)) {
@@ -359,6 +364,41 @@ bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
     if (!cap.valid) return false;
     polar_cap_filter(cap, options, out);
     return true;
+}
+
+// A form (a) lookup, routed: a polar cap's (in its region), the common case in one pass
+// (plain_env_footprint()), or the careful path (compute_env_footprint()). A lookup that is one
+// probe at the footprint's centre (most are) is returned in `probe`, for the caller to filter (the
+// batch defers it until its texels have arrived); every other lookup is done here, into out.
+[[gnu::always_inline]] inline bool lookup_or_centre_probe(const EnvironmentMap& map, Vec3 r,
+                                                          Vec3 dr_dx, Vec3 dr_dy,
+                                                          const LookupOptions& options,
+                                                          const IdentitySkippingRotation& to_map,
+                                                          float* out, CentreProbe& probe) {
+    const Vec3 map_direction = to_map(r);
+    if (in_caps_region(map, map_direction)) {
+        if (polar_cap_lookup(map, r, map_direction, dr_dx, dr_dy, to_map, options, out))
+            return false;
+    } else if (PlainEnvFootprint plain; plain_env_footprint(map.layout(), map.texel_scale(), r,
+                                                            dr_dx, dr_dy, to_map, plain)) {
+        const float lod =
+            single_probe_lod(plain.matrix, options, map.face(plain.coords.face).max_level());
+        if (lod >= 0.0f) {
+            probe = centre_probe(map, plain.coords, lod, options);
+            return true;
+        }
+        general_lookup(map, plain.full(), PolarCapFootprint{}, options, out);  // outside the caps
+        return false;
+    }
+    const EnvFootprint f =
+        compute_env_footprint(map.layout(), map.texel_scale(), r, dr_dx, dr_dy, to_map.matrix());
+    const float lod = centre_probe_lod(map, f, options);
+    if (lod >= 0.0f) {
+        probe = centre_probe(map, f.coords, lod, options);
+        return true;
+    }
+    general_lookup(map, f, cap_footprint(map, f), options, out);
+    return false;
 }
 
 }  // namespace
@@ -374,10 +414,10 @@ void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint
 
 void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
                         const LookupOptions& options, float* out, const Mat3& rotation) {
-    if (polar_cap_lookup(map, r, dr_dx, dr_dy, options, out, rotation)) return;
-    environment_lookup(
-        map, compute_env_footprint(map.layout(), map.texel_scale(), r, dr_dx, dr_dy, rotation),
-        options, out);
+    CentreProbe probe;
+    if (lookup_or_centre_probe(map, r, dr_dx, dr_dy, options, IdentitySkippingRotation(rotation),
+                               out, probe))
+        filter_centre_probe(map, probe, out);
 }
 
 void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayDifferential> rays,
@@ -388,7 +428,6 @@ void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayD
     // that their texels are still cached when read. Every other lookup (probe lines, polar caps)
     // is done at once: measured (footprint-bench env), deferring those costs more than it saves.
     constexpr std::size_t kGroup = 16;
-    const Vec2 size = map.texel_scale();
     const int channels = map.channels();
     struct Deferred {
         CentreProbe probe;
@@ -396,24 +435,20 @@ void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayD
     };
     Deferred deferred[kGroup];
     const int stride = map.face(0).stride();
+    const IdentitySkippingRotation to_map(rotation);
     for (std::size_t first = 0; first < rays.size(); first += kGroup) {
         const std::size_t count = std::min(kGroup, rays.size() - first);
         std::size_t pending = 0;
         for (std::size_t i = 0; i < count; ++i) {
             const EnvRayDifferential& ray = rays[first + i];
             float* result = out + (first + i) * channels;
-            if (polar_cap_lookup(map, ray.direction, ray.d_dx, ray.d_dy, options, result, rotation))
+            Deferred& d = deferred[pending];
+            if (!lookup_or_centre_probe(map, ray.direction, ray.d_dx, ray.d_dy, options, to_map,
+                                        result, d.probe))
                 continue;
-            const EnvFootprint f = compute_env_footprint(map.layout(), size, ray.direction,
-                                                         ray.d_dx, ray.d_dy, rotation);
-            const float lod = centre_probe_lod(map, f, options);
-            if (lod < 0.0f) {
-                general_lookup(map, f, cap_footprint(map, f), options, result);
-                continue;
-            }
-            Deferred& d = deferred[pending++];
-            d = {centre_probe(map, f.coords, lod, options), result};
+            d.out = result;
             detail::prefetch_probe(d.probe.taps, d.probe.levels, stride);
+            ++pending;
         }
         for (std::size_t i = 0; i < pending; ++i)
             filter_centre_probe(map, deferred[i].probe, deferred[i].out);

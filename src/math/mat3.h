@@ -43,6 +43,7 @@ class IdentitySkippingRotation {
   public:
     explicit IdentitySkippingRotation(const Mat3& a) : a_(a), identity_(a.is_identity()) {}
     Vec3 operator()(Vec3 v) const { return identity_ ? v : a_ * v; }
+    const Mat3& matrix() const { return a_; }
 
   private:
     const Mat3& a_;
