@@ -354,13 +354,9 @@ bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 map_direction, Vec
                       const IdentitySkippingRotation& to_map, const LookupOptions& options,
                       float* out) {
     if (!is_finite(r)) return false;
-    EnvFootprint f;
-    f.map_direction = map_direction;
-    if (is_finite(dr_dx) && is_finite(dr_dy)) {
-        f.map_dr_dx = to_map(dr_dx);
-        f.map_dr_dy = to_map(dr_dy);
-    }
-    const PolarCapFootprint cap = polar_cap_footprint(map, f);
+    const bool spread = is_finite(dr_dx) && is_finite(dr_dy);  // else a point lookup
+    const PolarCapFootprint cap = polar_cap_footprint(
+        map, map_direction, spread ? to_map(dr_dx) : Vec3{}, spread ? to_map(dr_dy) : Vec3{});
     if (!cap.valid) return false;
     polar_cap_filter(cap, options, out);
     return true;

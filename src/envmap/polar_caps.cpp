@@ -6,6 +6,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "envmap/env_layout_detail.h"
 #include "envmap/env_sampling.h"
 #include "math/fast_atan2.h"
 #include "texture/footprint_assembly.h"
@@ -72,29 +73,48 @@ bool in_polar_cap_region(Vec3 r) {
     return len > 0 && std::fabs(r.y) >= kPolarCapCosine * len;
 }
 
-PolarCapFootprint polar_cap_footprint(const EnvironmentMap& map, const EnvFootprint& footprint) {
+namespace {
+
+// K on the cap from map-space direction spreads (pairs of columns, each pair adding (G a)(G a)ᵀ +
+// (G b)(G b)ᵀ), and whether the caps can filter it. `latlong_trace`: tr K of the lat-long
+// footprint, if one was computed (0 otherwise).
+PolarCapFootprint cap_footprint(const EnvironmentMap& map, Vec3 r, Vec3 dx, Vec3 dy,
+                                const Vec3* roughness, float latlong_trace) {
     PolarCapFootprint f;
-    const Vec3 r = footprint.map_direction;
     if (!in_polar_cap_region(r)) return f;
     f.cap = map.polar_cap(r.y > 0 ? 0 : 1);
     const float n = static_cast<float>(f.cap->width(0));
     // Face 2 or 3: |r_y| is the major axis within 30°.
-    const EnvCoordsJacobian cj = env_coords_and_jacobian(EnvLayout::cube, r);
+    const EnvCoordsJacobian cj = env_detail::cube_coords_and_jacobian(r);
     f.coords = cj.coords;
     // K on the cap from the footprint's map-space direction differentials (env_footprint.h): this
     // keeps the anisotropy even where the lat-long footprint fell back to an isotropic one.
     const Jacobian23& jc = cj.jacobian;
     auto on_cap = [&](Vec3 w) { return Vec2{n * dot(jc.ds, w), n * dot(jc.dt, w)}; };
-    f.matrix = footprint_matrix(on_cap(footprint.map_dr_dx), on_cap(footprint.map_dr_dy)) +
-               footprint_matrix(on_cap(footprint.map_roughness1), on_cap(footprint.map_roughness2));
+    f.matrix = footprint_matrix(on_cap(dx), on_cap(dy));
+    if (roughness)
+        f.matrix = f.matrix + footprint_matrix(on_cap(roughness[0]), on_cap(roughness[1]));
     // Non-finite input left no differentials (env_footprint.h) but a roughness-only fallback K:
     // that K lives in lat-long texels, so the lat-long path filters it.
-    if (!f.matrix.is_finite() || (f.matrix.trace() == 0 && footprint.matrix.trace() > 0)) return f;
+    if (!f.matrix.is_finite() || (f.matrix.trace() == 0 && latlong_trace > 0)) return f;
     // Stay on the face: the probes and their kernels reach about 2λ1 ≤ 2√tr K from the centre.
     const float reach = (2 * std::sqrt(f.matrix.trace()) + 1) / n;
     const EnvCoords& c = f.coords;
     f.valid = c.s - reach >= 0 && c.s + reach <= 1 && c.t - reach >= 0 && c.t + reach <= 1;
     return f;
+}
+
+}  // namespace
+
+PolarCapFootprint polar_cap_footprint(const EnvironmentMap& map, const EnvFootprint& footprint) {
+    const Vec3 roughness[2] = {footprint.map_roughness1, footprint.map_roughness2};
+    return cap_footprint(map, footprint.map_direction, footprint.map_dr_dx, footprint.map_dr_dy,
+                         roughness, footprint.matrix.trace());
+}
+
+PolarCapFootprint polar_cap_footprint(const EnvironmentMap& map, Vec3 map_direction, Vec3 map_dr_dx,
+                                      Vec3 map_dr_dy) {
+    return cap_footprint(map, map_direction, map_dr_dx, map_dr_dy, nullptr, 0.0f);
 }
 
 void polar_cap_filter(const PolarCapFootprint& f, const LookupOptions& options, float* out) {

@@ -33,6 +33,10 @@ struct PolarCapFootprint {
     Sym2 matrix;       // K in the cap's level-0 texels
 };
 PolarCapFootprint polar_cap_footprint(const EnvironmentMap& map, const EnvFootprint& footprint);
+// The same for form (a) (a direction and its differentials, in map space; no roughness), without
+// an EnvFootprint.
+PolarCapFootprint polar_cap_footprint(const EnvironmentMap& map, Vec3 map_direction, Vec3 map_dr_dx,
+                                      Vec3 map_dr_dy);
 
 // Filters a valid cap footprint into out.
 void polar_cap_filter(const PolarCapFootprint& footprint, const LookupOptions& options, float* out);
