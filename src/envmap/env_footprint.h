@@ -7,14 +7,19 @@
 // the aperture of the pixel and the curvature of the surface (eqs. 1–5) — and K3 = B'B'ᵀ is how
 // far the sub-pixel bump slopes (roughness K_b = B Bᵀ) scatter it (eqs. 10–12).
 //
-//   n_m = n + |n| T b                                     perturbed normal (§2.2)
-//   v_r = 2 n_m (n_m·v) − v (n_m·n_m)                     eq. 4; |v_r| = |v||n_m|²
-//   A_v = ∂v_r/∂v   = 2 n_m n_mᵀ − (n_m·n_m) I            eq. 8 — with n_m (erratum 6)
-//   A_n = ∂v_r/∂n_m = 2 (n_m·v) I + 2 n_m vᵀ − 2 v n_mᵀ   eq. 9
-//   G   = S · J_P(A v_r) · A                              2×3, texels per unit of v_r; A = env
-//   rotation D   = G · [A_v ∂v/∂x + A_n ∂n/∂x,  A_v ∂v/∂y + A_n ∂n/∂y]   eq. 5; K12 = D Dᵀ (NOT
-//   DᵀD, erratum 1) M   = G A_n (2×3, erratum 3),  E = |n| T,  B' = M E B,  K3 = B' B'ᵀ     eqs.
-//   10–12
+// clang-format off
+//   n_m = n + |n| T b                                    perturbed normal (§2.2)
+//   v_r = 2 n_m (n_m·v) − v (n_m·n_m)                    eq. 4; |v_r| = |v||n_m|²
+//   A_v = ∂v_r/∂v   = 2 n_m n_mᵀ − (n_m·n_m) I           eq. 8, with n_m (erratum 6)
+//   A_n = ∂v_r/∂n_m = 2 (n_m·v) I + 2 n_m vᵀ − 2 v n_mᵀ  eq. 9
+//   G   = S · J_P(A v_r) · A                             2×3, texels per unit of v_r; A the
+//                                                        environment rotation
+//   D   = G · [A_v ∂v/∂x + A_n ∂n/∂x,                    eq. 5
+//              A_v ∂v/∂y + A_n ∂n/∂y]
+//   K12 = D Dᵀ                                           NOT DᵀD (erratum 1)
+//   M   = G A_n                                          2×3 (erratum 3)
+//   E   = |n| T,  B' = M E B,  K3 = B' B'ᵀ               eqs. 10–12
+// clang-format on
 //
 // Conventions (spec §1): v points from the surface TO the eye, any positive scale. With the paper's
 // camera (eye at the origin looking along +z, pixel (x, y) → ray (x, y, z0)), v = −(x, y, z0) and
