@@ -362,6 +362,21 @@ bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 map_direction, Vec
     return true;
 }
 
+// A lookup of a computed footprint: one probe at its centre, returned in `probe` for the caller to
+// filter, or any other lookup, done here into out.
+[[gnu::always_inline]] inline bool lookup_or_centre_probe(const EnvironmentMap& map,
+                                                          const EnvFootprint& footprint,
+                                                          const LookupOptions& options, float* out,
+                                                          CentreProbe& probe) {
+    const float lod = centre_probe_lod(map, footprint, options);
+    if (lod >= 0.0f) {
+        probe = centre_probe(map, footprint.coords, lod, options);
+        return true;
+    }
+    general_lookup(map, footprint, cap_footprint(map, footprint), options, out);
+    return false;
+}
+
 // A form (a) lookup, routed: a polar cap's (in its region), the common case in one pass
 // (plain_env_footprint()), or the careful path (compute_env_footprint()). A lookup that is one
 // probe at the footprint's centre (most are) is returned in `probe`, for the caller to filter (the
@@ -386,26 +401,19 @@ bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 map_direction, Vec
         general_lookup(map, plain.full(), PolarCapFootprint{}, options, out);  // outside the caps
         return false;
     }
-    const EnvFootprint f =
-        compute_env_footprint(map.layout(), map.texel_scale(), r, dr_dx, dr_dy, to_map.matrix());
-    const float lod = centre_probe_lod(map, f, options);
-    if (lod >= 0.0f) {
-        probe = centre_probe(map, f.coords, lod, options);
-        return true;
-    }
-    general_lookup(map, f, cap_footprint(map, f), options, out);
-    return false;
+    return lookup_or_centre_probe(
+        map,
+        compute_env_footprint(map.layout(), map.texel_scale(), r, dr_dx, dr_dy, to_map.matrix()),
+        options, out, probe);
 }
 
 }  // namespace
 
 void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
                         const LookupOptions& options, float* out) {
-    const float lod = centre_probe_lod(map, footprint, options);
-    if (lod >= 0.0f)
-        filter_centre_probe(map, centre_probe(map, footprint.coords, lod, options), out);
-    else
-        general_lookup(map, footprint, cap_footprint(map, footprint), options, out);
+    CentreProbe probe;
+    if (lookup_or_centre_probe(map, footprint, options, out, probe))
+        filter_centre_probe(map, probe, out);
 }
 
 void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
