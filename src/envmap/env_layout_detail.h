@@ -163,7 +163,9 @@ struct CubePoint {
     int face;
     T ma, sp, tp;
 
-    explicit CubePoint(Vec3T<T> r) : face(cube_face_of(r)) {
+    explicit CubePoint(Vec3T<T> r) : CubePoint(r, cube_face_of(r)) {}
+    // On a face known to be r's (cube_face_of(r)): a constant face folds the table away.
+    [[gnu::always_inline]] CubePoint(Vec3T<T> r, int face_of_r) : face(face_of_r) {
         const CubeFace& f = kCubeFaces[face];
         const T c[3] = {r.x, r.y, r.z};  // indexed: cheaper than selecting component by component
         ma = std::abs(c[f.axis]);        // in [1, 2) after prepare()
@@ -176,8 +178,7 @@ struct CubePoint {
 // (face, s, t) and J at a prepared direction.
 template <class T>
 [[gnu::always_inline]] inline EnvCoordsJacobianT<T> cube_coords_and_jacobian_at(
-    const Prepared<T>& p) {
-    const CubePoint<T> q(p.r);
+    const Prepared<T>& p, const CubePoint<T>& q) {
     const CubeFace& f = kCubeFaces[q.face];
     const T sigma = q.face % 2 == 0 ? T(1) : T(-1);
     // ∂s/∂r = k(g_s − s'σ e_a), ∂t/∂r = k(g_t − t'σ e_a), k = 1/(2|ma|): g_s, g_t and e_a are
@@ -192,8 +193,21 @@ template <class T>
 }
 
 template <class T>
+[[gnu::always_inline]] inline EnvCoordsJacobianT<T> cube_coords_and_jacobian_at(
+    const Prepared<T>& p) {
+    return cube_coords_and_jacobian_at(p, CubePoint<T>(p.r));
+}
+
+template <class T>
 EnvCoordsJacobianT<T> cube_coords_and_jacobian(Vec3T<T> r_in) {
     return cube_coords_and_jacobian_at(prepare(r_in));
+}
+
+// The same on face `Face`, which must be r_in's (cube_face_of()): the polar caps' ±Y.
+template <int Face, class T>
+EnvCoordsJacobianT<T> cube_coords_and_jacobian_on(Vec3T<T> r_in) {
+    const Prepared<T> p = prepare(r_in);
+    return cube_coords_and_jacobian_at(p, CubePoint<T>(p.r, Face));
 }
 
 // ρ = √(r_x² + r_z²) of a prepared r: no overflow, |r_i| < 2.

@@ -9,6 +9,7 @@
 #include "envmap/env_layout_detail.h"
 #include "envmap/env_sampling.h"
 #include "math/fast_atan2.h"
+#include "texture/filters.h"
 #include "texture/footprint_assembly.h"
 #include "texture/texture_lookup.h"
 
@@ -85,7 +86,8 @@ PolarCapFootprint cap_footprint(const EnvironmentMap& map, Vec3 r, Vec3 dx, Vec3
     f.cap = map.polar_cap(r.y > 0 ? 0 : 1);
     const float n = static_cast<float>(f.cap->width(0));
     // Face 2 or 3: |r_y| is the major axis within 30°.
-    const EnvCoordsJacobian cj = env_detail::cube_coords_and_jacobian(r);
+    const EnvCoordsJacobian cj = r.y > 0 ? env_detail::cube_coords_and_jacobian_on<2>(r)
+                                         : env_detail::cube_coords_and_jacobian_on<3>(r);
     f.coords = cj.coords;
     // K on the cap from the footprint's map-space direction differentials (env_footprint.h): this
     // keeps the anisotropy even where the lat-long footprint fell back to an isotropic one.
@@ -130,7 +132,14 @@ void polar_cap_filter(const PolarCapFootprint& f, const LookupOptions& options, 
         });
         return;
     }
-    texture_lookup(cap, c.s, c.t, make_footprint_ellipse(f.matrix), options, out);
+    const FootprintEllipse ellipse = make_footprint_ellipse(f.matrix);
+    if (options.filter == TextureFilter::footprint_assembly) {
+        // A valid cap footprint is finite and on the face, so texture_lookup()'s sanitising
+        // (reducing (s, t), bounding the ellipse) has nothing to do.
+        detail::filter_footprint_assembly(cap, c.s, c.t, ellipse, options, out);
+        return;
+    }
+    texture_lookup(cap, c.s, c.t, ellipse, options, out);
 }
 
 }  // namespace footprint
