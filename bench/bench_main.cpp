@@ -78,6 +78,8 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1.0f, 4.0f));
     envc->add_option("--probe-rule", env.probe_rule, "our lookups' footprint assembly probe rule")
         ->check(CLI::IsMember({"b", "gaussian"}));
+    envc->add_option("--lod-blend", env.lod_blend, "our lookups' footprint assembly level blend")
+        ->check(CLI::IsMember({"automatic", "linear", "variance"}));
     envc->add_option("--rounds", env.rounds, "timed passes per rate (the best counts)")
         ->check(CLI::Range(1, 100));
     envc->add_option("--error-subset", env.error_subset,

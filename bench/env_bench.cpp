@@ -224,6 +224,9 @@ int run_env_bench(const EnvBenchOptions& opt) {
     LookupOptions lo;  // footprint assembly, the library defaults
     lo.isotropic_ratio = opt.isotropic_ratio;
     lo.probe_rule = opt.probe_rule == "b" ? ProbeRule::moment_matched : ProbeRule::gaussian;
+    lo.lod_blend = opt.lod_blend == "linear"     ? LodBlend::linear
+                   : opt.lod_blend == "variance" ? LodBlend::variance_matched
+                                                 : LodBlend::automatic;
     struct Layout {
         const char* filter;
         const EnvironmentMap* map;
@@ -312,9 +315,10 @@ int run_env_bench(const EnvBenchOptions& opt) {
     std::printf(
         "environment: lat-long %d×%d float RGB (pyramid %.3f s); cube 6×%d² converted from it "
         "(%.3f s, pyramids %.3f s); RMSE against environment_reference() on the lat-long map, %zu "
-        "lookups per regime; our probe rule %s, isotropic_ratio %g\n",
+        "lookups per regime; our probe rule %s, isotropic_ratio %g, lod blend %s\n",
         width, height, latlong_build_seconds, opt.cube_size, convert_seconds, cube_build_seconds,
-        opt.error_subset, opt.probe_rule.c_str(), double(opt.isotropic_ratio));
+        opt.error_subset, opt.probe_rule.c_str(), double(opt.isotropic_ratio),
+        opt.lod_blend.c_str());
     if (oiio)
         std::printf(
             "OpenImageIO direction R = (-x, y, -z): point-lookup RMSE %.2g vs ours (unmapped R: "
@@ -362,6 +366,7 @@ int run_env_bench(const EnvBenchOptions& opt) {
         j["error_subset"] = opt.error_subset;
         j["isotropic_ratio"] = opt.isotropic_ratio;
         j["probe_rule"] = opt.probe_rule;
+        j["lod_blend"] = opt.lod_blend;
         j["oiio_version"] = OIIO_VERSION_STRING;
         j["oiio_convention_rmse"] = number_or_null(convention.mapped_rmse);
         j["hardware_threads"] = std::thread::hardware_concurrency();

@@ -36,6 +36,7 @@ struct EnvBenchOptions {
     std::string json_path;                // empty: no JSON
     float isotropic_ratio = 1;            // LookupOptions::isotropic_ratio of our lookups
     std::string probe_rule = "gaussian";  // LookupOptions::probe_rule: "gaussian" or "b" (Rule B)
+    std::string lod_blend = "automatic";  // LookupOptions::lod_blend: automatic, linear, variance
     int rounds = 3;  // each rate is the best of this many timed passes (noise only slows)
     bool quiet = false;
 };
