@@ -407,25 +407,22 @@ bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 map_direction, Vec
         options, out, probe);
 }
 
-}  // namespace
-
-void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
-                        const LookupOptions& options, float* out) {
+// A form (a) lookup (the single-call entry points).
+[[gnu::always_inline]] inline void single_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx,
+                                                 Vec3 dr_dy, const LookupOptions& options,
+                                                 const IdentitySkippingRotation& to_map,
+                                                 float* out) {
     CentreProbe probe;
-    if (lookup_or_centre_probe(map, footprint, options, out, probe))
+    if (lookup_or_centre_probe(map, r, dr_dx, dr_dy, options, to_map, out, probe))
         filter_centre_probe(map, probe, out);
 }
 
-void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
-                        const LookupOptions& options, float* out, const Mat3& rotation) {
-    CentreProbe probe;
-    if (lookup_or_centre_probe(map, r, dr_dx, dr_dy, options, IdentitySkippingRotation(rotation),
-                               out, probe))
-        filter_centre_probe(map, probe, out);
-}
-
-void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayDifferential> rays,
-                              const LookupOptions& options, float* out, const Mat3& rotation) {
+// Form (a) lookups of many rays (the batch entry points).
+[[gnu::always_inline]] inline void batch_lookup(const EnvironmentMap& map,
+                                                std::span<const EnvRayDifferential> rays,
+                                                const LookupOptions& options,
+                                                const IdentitySkippingRotation& to_map,
+                                                float* out) {
     // The lookups that are one probe at the footprint's centre (most of them) are deferred: their
     // texels are requested, and they are filtered once the group's footprints are all computed,
     // when the lines have arrived. Enough lookups in flight to cover a miss to memory, few enough
@@ -439,7 +436,6 @@ void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayD
     };
     Deferred deferred[kGroup];
     const int stride = map.face(0).stride();
-    const IdentitySkippingRotation to_map(rotation);
     for (std::size_t first = 0; first < rays.size(); first += kGroup) {
         const std::size_t count = std::min(kGroup, rays.size() - first);
         std::size_t pending = 0;
@@ -457,6 +453,35 @@ void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayD
         for (std::size_t i = 0; i < pending; ++i)
             filter_centre_probe(map, deferred[i].probe, deferred[i].out);
     }
+}
+
+}  // namespace
+
+void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
+                        const LookupOptions& options, float* out) {
+    CentreProbe probe;
+    if (lookup_or_centre_probe(map, footprint, options, out, probe))
+        filter_centre_probe(map, probe, out);
+}
+
+void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
+                        const LookupOptions& options, float* out) {
+    single_lookup(map, r, dr_dx, dr_dy, options, IdentitySkippingRotation::none(), out);
+}
+
+void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
+                        const LookupOptions& options, float* out, const Mat3& rotation) {
+    single_lookup(map, r, dr_dx, dr_dy, options, IdentitySkippingRotation(rotation), out);
+}
+
+void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayDifferential> rays,
+                              const LookupOptions& options, float* out) {
+    batch_lookup(map, rays, options, IdentitySkippingRotation::none(), out);
+}
+
+void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayDifferential> rays,
+                              const LookupOptions& options, float* out, const Mat3& rotation) {
+    batch_lookup(map, rays, options, IdentitySkippingRotation(rotation), out);
 }
 
 void environment_bilinear(const EnvironmentMap& map, Vec3 r, int level, float* out) {

@@ -89,9 +89,12 @@ void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint
                         const LookupOptions& options, float* out);
 
 // Form (a), like OpenImageIO's environment(): the map filtered over the footprint of direction r
-// with ray differentials ∂r/∂x, ∂r/∂y (compute_env_footprint form (a)), `rotation` = A.
+// with ray differentials ∂r/∂x, ∂r/∂y (compute_env_footprint form (a)), `rotation` = A (without
+// it: no rotation, and nothing spent on one).
 void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
-                        const LookupOptions& options, float* out, const Mat3& rotation = Mat3{});
+                        const LookupOptions& options, float* out);
+void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
+                        const LookupOptions& options, float* out, const Mat3& rotation);
 
 // One form-(a) lookup of a batch: a direction r and its ray differentials ∂r/∂x, ∂r/∂y.
 struct EnvRayDifferential {
@@ -105,8 +108,9 @@ struct EnvRayDifferential {
 // arrived. `out` receives rays.size()·channels() floats, ray by ray (the role of OpenImageIO's
 // batched environment(), without its 16-lane limit and structure-of-arrays layout).
 void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayDifferential> rays,
-                              const LookupOptions& options, float* out,
-                              const Mat3& rotation = Mat3{});
+                              const LookupOptions& options, float* out);
+void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayDifferential> rays,
+                              const LookupOptions& options, float* out, const Mat3& rotation);
 
 // A point sample: bilinear interpolation of level `level` at the direction r (any nonzero
 // length), seamless across cube-face edges and the lat-long seam. The building block of the

@@ -355,7 +355,8 @@ TEST(EnvironmentMap, BatchedLookupsEqualSingleLookups) {
     // environment_lookup_batch computes each group's footprints and requests their texels before
     // filtering: the results must be bit-identical to one call per ray, in every layout, for every
     // footprint size (one probe, probe lines, polar caps, the pole itself), with a rotation, and
-    // for batch sizes that leave a partial last group.
+    // for batch sizes that leave a partial last group. The overloads without a rotation must equal
+    // those given the identity.
     std::mt19937 rng(77);
     std::normal_distribution<float> normal;
     std::uniform_real_distribution<float> u(0, 1);
@@ -379,6 +380,18 @@ TEST(EnvironmentMap, BatchedLookupsEqualSingleLookups) {
             environment_lookup_batch(map, rays, LookupOptions{}, batched.data(), a);
             for (std::size_t i = 0; i < rays.size(); ++i)
                 EXPECT_EQ(single[i], batched[i]) << test::layout_name(layout) << " ray " << i;
+        }
+        std::vector<float> identity(rays.size()), unrotated(rays.size()), batched(rays.size());
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            environment_lookup(map, rays[i].direction, rays[i].d_dx, rays[i].d_dy, LookupOptions{},
+                               &identity[i], Mat3{});
+            environment_lookup(map, rays[i].direction, rays[i].d_dx, rays[i].d_dy, LookupOptions{},
+                               &unrotated[i]);
+        }
+        environment_lookup_batch(map, rays, LookupOptions{}, batched.data());
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            EXPECT_EQ(identity[i], unrotated[i]) << test::layout_name(layout) << " ray " << i;
+            EXPECT_EQ(identity[i], batched[i]) << test::layout_name(layout) << " ray " << i;
         }
     }
 }

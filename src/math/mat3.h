@@ -42,10 +42,14 @@ struct Mat3 {
 class IdentitySkippingRotation {
   public:
     explicit IdentitySkippingRotation(const Mat3& a) : a_(a), identity_(a.is_identity()) {}
+    // No rotation at all: nothing to test, and inlined callers fold the rotation away.
+    static IdentitySkippingRotation none() { return IdentitySkippingRotation(kIdentity, true); }
     Vec3 operator()(Vec3 v) const { return identity_ ? v : a_ * v; }
     const Mat3& matrix() const { return a_; }
 
   private:
+    IdentitySkippingRotation(const Mat3& a, bool identity) : a_(a), identity_(identity) {}
+    static constexpr Mat3 kIdentity{};
     const Mat3& a_;
     bool identity_;
 };
