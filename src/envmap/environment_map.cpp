@@ -283,8 +283,9 @@ PolarCapFootprint cap_footprint(const EnvironmentMap& map, const EnvFootprint& f
 }
 
 // Every other lookup (a line of probes, another filter), given the footprint's cap_footprint().
-void general_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
-                    const PolarCapFootprint& cap, const LookupOptions& options, float* out) {
+[[gnu::flatten]] void general_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
+                                     const PolarCapFootprint& cap, const LookupOptions& options,
+                                     float* out) {
     if (cap.valid) {
         polar_cap_filter(cap, options, out);
         return;

@@ -19,10 +19,10 @@ float probe_lod(float texel_size, float lod_bias, int max_level) {
                       static_cast<float>(max_level));
 }
 
-// a/√v_N for N Gaussian-weighted probes (footprint_assembly.h), at index N (from 2): Δ = σ_g ·
+// a/√v_N for N Gaussian-weighted probes (footprint_assembly.h), at index N ≥ 2: Δ = σ_g ·
 // factor[N]. v_N is the variance, in u units, of the weights exp(−½u²) on N even nodes over
-// [−κ, κ]. It decreases with N. Tabulated on first use (about 6 ms: not paid by programs that never
-// plan a Gaussian line), since a plan may look several up.
+// [−κ, κ]. Tabulated on first use (about 6 ms: not paid by programs that never plan a Gaussian
+// line), since a plan may look several up.
 constexpr int kSpacingTableSize = kMaxProbeCount + 1;
 const std::array<float, kSpacingTableSize>& gaussian_spacing_factors() {
     constexpr int kTableSize = kSpacingTableSize;
@@ -41,12 +41,6 @@ const std::array<float, kSpacingTableSize>& gaussian_spacing_factors() {
         return t;
     }();
     return table;
-}
-
-// ⌈x⌉ for 0 ≤ x < 2^31, without a libm call.
-int ceil_to_int(float x) {
-    const int i = static_cast<int>(x);
-    return i + (static_cast<float>(i) < x);
 }
 
 int floor_power_of_two(int n) {
@@ -170,12 +164,10 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
                 return factors[std::min(n, kSpacingTableSize - 1)];
             };
             float sigma = 0.5f * std::sqrt(l1 * l1 - tp * tp);
-            // First guess from the continuous truncated Gaussian (v ≈ 0.774 at κ = 2), then exact:
-            // the smallest N ≥ 2 with σ·factor[N] ≤ T_p. The factor decreases with N, so the search
-            // ends there from any start; a guess beyond the budget starts at the budget.
-            const float guess = 2 * kGaussianProbeExtent * sigma / (tp * 0.88f);
-            int n = guess < static_cast<float>(max_probes) ? std::max(2, ceil_to_int(guess) + 1)
-                                                           : std::max(2, max_probes);
+            // First guess from the continuous truncated Gaussian (v ≈ 0.774 at κ = 2), then exact.
+            int n = std::max(
+                2,
+                static_cast<int>(std::ceil(2 * kGaussianProbeExtent * sigma / (tp * 0.88f))) + 1);
             while (n < max_probes && sigma * spacing_factor(n) > tp) ++n;
             while (n > 2 && sigma * spacing_factor(n - 1) <= tp) --n;
             if (n >= max_probes) {
