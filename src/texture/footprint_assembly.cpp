@@ -19,13 +19,12 @@ float probe_lod(float texel_size, float lod_bias, int max_level) {
                       static_cast<float>(max_level));
 }
 
-// a/√v_N for N Gaussian-weighted probes (footprint_assembly.h), at index N ≥ 2: Δ = σ_g ·
-// factor[N]. v_N is the variance, in u units, of the weights exp(−½u²) on N even nodes over
-// [−κ, κ]. Tabulated on first use (about 6 ms: not paid by programs that never plan a Gaussian
-// line), since a plan may look several up.
-constexpr int kSpacingTableSize = kMaxProbeCount + 1;
-const std::array<float, kSpacingTableSize>& gaussian_spacing_factors() {
-    constexpr int kTableSize = kSpacingTableSize;
+// a/√v_N for N Gaussian-weighted probes (footprint_assembly.h): Δ = σ_g ·
+// gaussian_spacing_factor(N). v_N is the variance, in u units, of the weights exp(−½u²) on N even
+// nodes over [−κ, κ]. Tabulated on first use (about 6 ms: not paid by programs that never plan a
+// Gaussian line), since a plan may look several up.
+float gaussian_spacing_factor(int n) {
+    constexpr int kTableSize = 1025;
     static const std::array<float, kTableSize> table = [] {
         std::array<float, kTableSize> t{};
         for (int m = 2; m < kTableSize; ++m) {
@@ -40,7 +39,7 @@ const std::array<float, kSpacingTableSize>& gaussian_spacing_factors() {
         }
         return t;
     }();
-    return table;
+    return table[std::clamp(n, 2, kTableSize - 1)];
 }
 
 int floor_power_of_two(int n) {
@@ -159,10 +158,7 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
                 plan.texel_size = std::sqrt(tp * std::max(l1, kMinTexelSize));  // one probe
                 break;
             }
-            const std::array<float, kSpacingTableSize>& factors = gaussian_spacing_factors();
-            auto spacing_factor = [&](int n) {
-                return factors[std::min(n, kSpacingTableSize - 1)];
-            };
+            auto spacing_factor = [](int n) { return gaussian_spacing_factor(n); };
             float sigma = 0.5f * std::sqrt(l1 * l1 - tp * tp);
             // First guess from the continuous truncated Gaussian (v ≈ 0.774 at κ = 2), then exact.
             int n = std::max(
