@@ -77,12 +77,12 @@ bool in_polar_cap_region(Vec3 r) {
 namespace {
 
 // K on the cap from map-space direction spreads (pairs of columns, each pair adding (G a)(G a)ᵀ +
-// (G b)(G b)ᵀ), and whether the caps can filter it. `latlong_trace`: tr K of the lat-long
-// footprint, if one was computed (0 otherwise).
+// (G b)(G b)ᵀ), and whether the caps can filter it, for r in the caps' region
+// (in_polar_cap_region()). `latlong_trace`: tr K of the lat-long footprint, if one was computed (0
+// otherwise).
 PolarCapFootprint cap_footprint(const EnvironmentMap& map, Vec3 r, Vec3 dx, Vec3 dy,
                                 const Vec3* roughness, float latlong_trace) {
     PolarCapFootprint f;
-    if (!in_polar_cap_region(r)) return f;
     f.cap = map.polar_cap(r.y > 0 ? 0 : 1);
     const float n = static_cast<float>(f.cap->width(0));
     // Face 2 or 3: |r_y| is the major axis within 30°.
@@ -109,6 +109,7 @@ PolarCapFootprint cap_footprint(const EnvironmentMap& map, Vec3 r, Vec3 dx, Vec3
 }  // namespace
 
 PolarCapFootprint polar_cap_footprint(const EnvironmentMap& map, const EnvFootprint& footprint) {
+    if (!in_polar_cap_region(footprint.map_direction)) return {};
     const Vec3 roughness[2] = {footprint.map_roughness1, footprint.map_roughness2};
     return cap_footprint(map, footprint.map_direction, footprint.map_dr_dx, footprint.map_dr_dy,
                          roughness, footprint.matrix.trace());

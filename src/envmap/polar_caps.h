@@ -34,7 +34,7 @@ struct PolarCapFootprint {
 };
 PolarCapFootprint polar_cap_footprint(const EnvironmentMap& map, const EnvFootprint& footprint);
 // The same for form (a) (a direction and its differentials, in map space; no roughness), without
-// an EnvFootprint.
+// an EnvFootprint, for a direction the caller found in the caps' region (in_polar_cap_region()).
 PolarCapFootprint polar_cap_footprint(const EnvironmentMap& map, Vec3 map_direction, Vec3 map_dr_dx,
                                       Vec3 map_dr_dy);
 
