@@ -10,18 +10,26 @@
 //
 // Usage: footprint-env-instructions LAYOUT REGIME FORM [LOOKUPS]
 //   LAYOUT latlong | cube;  REGIME tiny | moderate | aniso32 | pole_band;  FORM single | batch
+//   FORM probes: no lookups; prints how many trilinear probes the regime's lookups take (the
+//   footprint assembly plan of each, on the face or polar cap it is filtered on), which is what
+//   their instruction counts mostly follow.
 // The map is smaller than the benchmark's (1024×512 lat-long, 6×512² cube converted from it), so
 // that building it under valgrind takes seconds; the footprints are sized in its texels.
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "env_lookups.h"
 #include "envmap/env_convert.h"
+#include "envmap/env_footprint.h"
 #include "envmap/env_image_io.h"
 #include "envmap/environment_map.h"
+#include "envmap/polar_caps.h"
+#include "math/footprint_ellipse.h"
+#include "texture/footprint_assembly.h"
 
 namespace footprint::bench {
 
@@ -37,11 +45,43 @@ namespace footprint::bench {
     environment_lookup_batch(map, lookups, options, out);
 }
 
+// The probe count of each lookup, as environment_lookup() plans it: on the polar cap of a lat-long
+// map near a pole, else on the face of the footprint's centre. Prints the histogram and the mean.
+void print_probe_counts(const EnvironmentMap& map, const std::vector<EnvLookup>& lookups,
+                        const LookupOptions& options) {
+    std::map<int, std::size_t> histogram;
+    double sum = 0;
+    for (const EnvLookup& q : lookups) {
+        const EnvFootprint f =
+            compute_env_footprint(map.layout(), map.texel_scale(), q.direction, q.d_dx, q.d_dy);
+        Sym2 k = f.matrix;
+        int max_level = map.face(f.coords.face).max_level();
+        const bool has_caps = map.layout() == EnvLayout::latlong && map.polar_cap(0);
+        if (const PolarCapFootprint cap =
+                has_caps ? polar_cap_footprint(map, f) : PolarCapFootprint{};
+            cap.valid) {
+            k = cap.matrix;
+            max_level = cap.cap->max_level();
+        }
+        const ProbePlan plan =
+            plan_probes(make_footprint_ellipse(k), options.probe_rule, options.max_probes,
+                        max_level, options.lod_bias, options.isotropic_ratio);
+        ++histogram[plan.count];
+        sum += plan.count;
+    }
+    std::printf("probes per lookup: mean %.2f;", sum / static_cast<double>(lookups.size()));
+    for (const auto& [count, lookups_with_it] : histogram)
+        std::printf(
+            " %d: %.1f %%", count,
+            100.0 * static_cast<double>(lookups_with_it) / static_cast<double>(lookups.size()));
+    std::printf("\n");
+}
+
 int run(int argc, char** argv) {
     if (argc < 4) {
         std::fprintf(stderr,
                      "usage: footprint-env-instructions latlong|cube "
-                     "tiny|moderate|aniso32|pole_band single|batch [lookups]\n");
+                     "tiny|moderate|aniso32|pole_band single|batch|probes [lookups]\n");
         return 2;
     }
     const std::string layout = argv[1], regime_name = argv[2], form = argv[3];
@@ -49,7 +89,7 @@ int run(int argc, char** argv) {
     for (const EnvRegime& r : kEnvRegimes)
         if (regime_name == r.name) regime = &r;
     if (!regime || (layout != "latlong" && layout != "cube") ||
-        (form != "single" && form != "batch")) {
+        (form != "single" && form != "batch" && form != "probes")) {
         std::fprintf(stderr, "footprint-env-instructions: unknown layout, regime or form\n");
         return 2;
     }
@@ -78,6 +118,10 @@ int run(int argc, char** argv) {
     const std::vector<EnvLookup> lookups =
         make_env_lookups(*regime, static_cast<std::size_t>(count), kWidth, kHeight, 7);
     const LookupOptions options;
+    if (form == "probes") {
+        print_probe_counts(*map, lookups, options);
+        return 0;
+    }
     std::vector<float> out(3 * lookups.size());
     // One uncounted lookup of each regime first: one-time initialisation on first use (a
     // function-local table) is not a lookup's cost.
