@@ -160,12 +160,18 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
             }
             auto spacing_factor = [](int n) { return gaussian_spacing_factor(n); };
             float sigma = 0.5f * std::sqrt(l1 * l1 - tp * tp);
-            // First guess from the continuous truncated Gaussian (v ≈ 0.774 at κ = 2), then exact.
-            int n = std::max(
-                2,
-                static_cast<int>(std::ceil(2 * kGaussianProbeExtent * sigma / (tp * 0.88f))) + 1);
-            while (n < max_probes && sigma * spacing_factor(n) > tp) ++n;
-            while (n > 2 && sigma * spacing_factor(n - 1) <= tp) --n;
+            int n = 2;
+            // Two probes (c = 2) first: c(3) = 2.17 > c(2) (the ends' weights e^−2), so the descent
+            // below, which stops where c(N − 1) is too large, would stop at four.
+            if (!(sigma * spacing_factor(2) <= tp)) {
+                // First guess from the continuous truncated Gaussian (v ≈ 0.774 at κ = 2), then
+                // exact.
+                n = std::max(3, static_cast<int>(
+                                    std::ceil(2 * kGaussianProbeExtent * sigma / (tp * 0.88f))) +
+                                    1);
+                while (n < max_probes && sigma * spacing_factor(n) > tp) ++n;
+                while (n > 3 && sigma * spacing_factor(n - 1) <= tp) --n;
+            }
             if (n >= max_probes) {
                 n = std::max(2, max_probes);
                 if (max_probes == 1) {  // one isotropic probe covering λ1

@@ -127,6 +127,40 @@ TEST(FootprintAssembly, GaussianPlansKeepRuleBsMomentsAndSpacing) {
         }
 }
 
+// The spacing factor a/√v of n Gaussian-weighted probes from its definition (footprint_assembly.h):
+// weights exp(−½u²) on n even nodes over [−2, 2], Δ = σ_g · a/√v.
+double spacing_factor_by_definition(int n) {
+    const double a = 4.0 / (n - 1);
+    double sw = 0, swu = 0;
+    for (int i = 0; i < n; ++i) {
+        const double u = (i - 0.5 * (n - 1)) * a, w = std::exp(-0.5 * u * u);
+        sw += w;
+        swu += w * u * u;
+    }
+    return a / std::sqrt(swu / sw);
+}
+
+TEST(FootprintAssembly, GaussianPlansTakeTheFewestProbes) {
+    // No count from 2 to N − 1 closes the gaps (σ_g·c(n) ≤ T_p). The factor is not monotonic,
+    // c(3) = 2.17 > c(2) = 2: a search down from above that stopped at the first count too few
+    // took four probes where two do, for 1.36 < λ1/T_p ≤ √2.
+    int lines = 0;
+    for (float l1 = 2.01f; l1 < 80; l1 *= 1.01f) {
+        const FootprintEllipse e = make_footprint_ellipse(l1, 2.0f, 0.4f);
+        const ProbePlan plan = plan_probes(e, ProbeRule::gaussian, kMaxProbeCount, 12);
+        if (plan.count == 1) continue;
+        ++lines;
+        const double tp = plan.texel_size, sigma = 0.5 * std::sqrt(double{l1} * l1 - tp * tp);
+        for (int n = 2; n < plan.count; ++n)
+            EXPECT_GT(sigma * spacing_factor_by_definition(n), tp * (1 - 1e-5))
+                << "λ1 = " << l1 << ": " << n << " probes would do, the plan takes " << plan.count;
+    }
+    EXPECT_GT(lines, 300);
+    EXPECT_EQ(
+        plan_probes(make_footprint_ellipse(2.8f, 2.0f, 0.4f), ProbeRule::gaussian, 30, 12).count,
+        2);  // λ1/T_p = 1.4
+}
+
 TEST(FootprintAssembly, KernelCovarianceIsQuarterK) {
     // Hundreds of random footprints: all orientations, anisotropy 1–64, major semi-axis 0.1–500
     // texels, with a probe budget that never clamps (⌈√(3·64²)⌉ = 111 probes), for both weightings
