@@ -15,6 +15,7 @@
 //   their instruction counts mostly follow.
 // The map is smaller than the benchmark's (1024×512 lat-long, 6×512² cube converted from it), so
 // that building it under valgrind takes seconds; the footprints are sized in its texels.
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -50,6 +51,7 @@ namespace footprint::bench {
 void print_probe_counts(const EnvironmentMap& map, const std::vector<EnvLookup>& lookups,
                         const LookupOptions& options) {
     std::map<int, std::size_t> histogram;
+    std::vector<float> anisotropy;  // λ1 / max(λ2, 1), as the plans see it
     double sum = 0;
     for (const EnvLookup& q : lookups) {
         const EnvFootprint f =
@@ -63,9 +65,10 @@ void print_probe_counts(const EnvironmentMap& map, const std::vector<EnvLookup>&
             k = cap.matrix;
             max_level = cap.cap->max_level();
         }
-        const ProbePlan plan =
-            plan_probes(make_footprint_ellipse(k), options.probe_rule, options.max_probes,
-                        max_level, options.lod_bias, options.isotropic_ratio);
+        const FootprintEllipse ellipse = make_footprint_ellipse(k);
+        anisotropy.push_back(ellipse.major_radius / std::max(ellipse.minor_radius, 1.0f));
+        const ProbePlan plan = plan_probes(ellipse, options.probe_rule, options.max_probes,
+                                           max_level, options.lod_bias, options.isotropic_ratio);
         ++histogram[plan.count];
         sum += plan.count;
     }
@@ -74,6 +77,10 @@ void print_probe_counts(const EnvironmentMap& map, const std::vector<EnvLookup>&
         std::printf(
             " %d: %.1f %%", count,
             100.0 * static_cast<double>(lookups_with_it) / static_cast<double>(lookups.size()));
+    std::sort(anisotropy.begin(), anisotropy.end());
+    std::printf("\nanisotropy λ1/max(λ2, 1) percentiles:");
+    for (int percent : {10, 25, 50, 75, 90})
+        std::printf(" %d: %.2f", percent, anisotropy[(anisotropy.size() - 1) * percent / 100]);
     std::printf("\n");
 }
 
