@@ -282,11 +282,24 @@ PolarCapFootprint cap_footprint(const EnvironmentMap& map, const EnvFootprint& f
                : PolarCapFootprint{};
 }
 
+// What general_lookup() reads of a footprint: taken from an EnvFootprint or, without building one,
+// from a PlainEnvFootprint (implicitly: either is passed as is).
+struct FootprintCentre {
+    const EnvCoords& coords;
+    const Sym2& matrix;
+    Vec3 map_direction;
+
+    FootprintCentre(const EnvFootprint& f)
+        : coords(f.coords), matrix(f.matrix), map_direction(f.map_direction) {}
+    FootprintCentre(const PlainEnvFootprint& f)
+        : coords(f.coords), matrix(f.matrix), map_direction(f.map_direction) {}
+};
+
 // Every other lookup (a line of probes, another filter), given the footprint's cap_footprint().
 // Flattened: everything it calls that can be inlined is, so that its probe loop compiles the same
 // however much else this file inlines (GCC's unit-growth limit had pushed the probe taps out of
 // line once the rotation-free entry points were added: 11 % more instructions per aniso32 lookup).
-[[gnu::flatten]] void general_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
+[[gnu::flatten]] void general_lookup(const EnvironmentMap& map, const FootprintCentre& footprint,
                                      const PolarCapFootprint& cap, const LookupOptions& options,
                                      float* out) {
     if (cap.valid) {
@@ -402,7 +415,7 @@ bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 map_direction, Vec
             probe = centre_probe(map, plain.coords, lod, options);
             return true;
         }
-        general_lookup(map, plain.full(), PolarCapFootprint{}, options, out);  // outside the caps
+        general_lookup(map, plain, PolarCapFootprint{}, options, out);  // outside the caps
         return false;
     }
     return lookup_or_centre_probe(
