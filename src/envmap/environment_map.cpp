@@ -285,8 +285,8 @@ PolarCapFootprint cap_footprint(const EnvironmentMap& map, const EnvFootprint& f
 // What general_lookup() reads of a footprint: taken from an EnvFootprint or, without building one,
 // from a PlainEnvFootprint (implicitly: either is passed as is).
 struct FootprintCentre {
-    const EnvCoords& coords;
-    const Sym2& matrix;
+    EnvCoords coords;
+    Sym2 matrix;
     Vec3 map_direction;
 
     FootprintCentre(const EnvFootprint& f)

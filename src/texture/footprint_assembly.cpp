@@ -24,7 +24,7 @@ float probe_lod(float texel_size, float lod_bias, int max_level) {
 // nodes over [−κ, κ]. Tabulated on first use (about 6 ms: not paid by programs that never plan a
 // Gaussian line), since a plan may look several up.
 float gaussian_spacing_factor(int n) {
-    constexpr int kTableSize = 1025;
+    constexpr int kTableSize = kMaxProbeCount + 1;  // every count a plan may hold
     static const std::array<float, kTableSize> table = [] {
         std::array<float, kTableSize> t{};
         for (int m = 2; m < kTableSize; ++m) {
