@@ -171,8 +171,7 @@ struct Bounds {
 
 // Checks one group: the lookups within `bounds`, the mistaken ones with RMSE ≥ 2× the bound.
 void check_group(const char* name, const EnvironmentMap& map, const std::vector<Lookup>& lookups,
-                 Bounds bounds, Mistake mistake, const EnvReferenceOptions& reference = {},
-                 bool bound_catches_mistake = true) {
+                 Bounds bounds, Mistake mistake, const EnvReferenceOptions& reference = {}) {
     const Errors e = measure(map, lookups, Mistake::none, reference);
     const Errors wrong = measure(map, lookups, mistake, reference);
     std::printf(
@@ -181,9 +180,7 @@ void check_group(const char* name, const EnvironmentMap& map, const std::vector<
         name, lookups.size(), e.rmse, bounds.rmse, e.max, bounds.max, wrong.rmse);
     EXPECT_LT(e.rmse, bounds.rmse) << name;
     EXPECT_LT(e.max, bounds.max) << name;
-    if (bound_catches_mistake) {
-        EXPECT_GT(wrong.rmse, 2 * bounds.rmse) << name << ": the bound would not catch the mistake";
-    }
+    EXPECT_GT(wrong.rmse, 2 * bounds.rmse) << name << ": the bound would not catch the mistake";
 }
 
 Vec3d random_direction(std::mt19937& rng) {
@@ -223,10 +220,12 @@ std::vector<Lookup> random_lookups(const EnvironmentMap& map, int count, double 
 // (environment_map.h): 60°–85° 0.0045 / 0.021 [transposed: 0.029], 85°–89.9° 0.0062 / 0.042
 // [transposed: 0.025], exactly at ±Y 0.0044 / 0.020 [point: 0.053] — on a par with ordinary
 // footprints (without the caps: 0.0073, 0.032 and 0.036, spec §3.4's isotropic probe at the pole
-// covering a narrow wedge of azimuths only). The sphere map near its rim only locks in today's
-// quality against regressions (its bound does not catch the mistake): 0.017 / 0.065
-// [transposed: 0.037] — the footprint's lod comes from the centre, while the radial scale changes
-// fast along the probe line there.
+// covering a narrow wedge of azimuths only). The sphere map near its rim: 0.0095 / 0.057
+// [transposed: 0.039]. There a round footprint is 6.7:1 to 67:1 in texels, and N_max is scaled by
+// that distortion (environment_map.h); with N_max = 30 as elsewhere the group's RMSE was 0.017,
+// its bound no better than a regression guard. What remains is at the map's sampling limit: at
+// r̂_z = −0.97 the rim leaves the shortest waves about one texel each radially, and footprints
+// under a texel across are bilinear samples (T_min), not the reference's Gaussian.
 constexpr Bounds kTinyBounds{0.0015, 0.009};
 constexpr Bounds kModerateBounds{0.007, 0.04};
 constexpr Bounds kAnisotropicBounds{0.0065, 0.028};
@@ -235,7 +234,7 @@ constexpr Bounds kCubeCornerBounds{0.0075, 0.045};
 constexpr Bounds kSeamBounds{0.0055, 0.026};
 constexpr Bounds kPoleBandBounds{0.0065, 0.032};
 constexpr Bounds kNearPoleBounds{0.009, 0.063};
-constexpr Bounds kSphereRimBounds{0.024, 0.1};  // regression guard only (see above)
+constexpr Bounds kSphereRimBounds{0.013, 0.085};
 constexpr Bounds kSphereBounds{0.0085, 0.045};
 constexpr Bounds kEquatorBounds{0.0035, 0.021};
 constexpr Bounds kParaboloidBounds{0.008, 0.05};
@@ -343,7 +342,8 @@ TEST(EnvAccuracy, LatLongPoles) {
 }
 
 // ---- Sphere map: away from the rim (r̂_z > −0.5) and near, not at, the rim (r̂_z ∈ [−0.97,
-// −0.7]), where the texel footprint is stretched radially and λ1 is clamped ≤ W/2 (spec §3.2).
+// −0.7]), where the map squeezes a footprint radially and stretches it along the rim (6.7:1 to 67:1
+// for a round one) and λ1 is clamped ≤ W/2 (spec §3.2).
 // Sized by angle: σ1 = 1…8 × 4/W rad (the mean texel angle of the equal-area map), ≤ 8:1.
 TEST(EnvAccuracy, SphereMap) {
     const double texel = 4.0 / 256;
@@ -363,7 +363,7 @@ TEST(EnvAccuracy, SphereMap) {
     }
     check_group("sphere r_z > -0.5", sphere_map(), inner, kSphereBounds, Mistake::transposed);
     check_group("sphere near rim r_z -0.97..-0.7", sphere_map(), rim, kSphereRimBounds,
-                Mistake::transposed, {}, false);
+                Mistake::transposed);
 }
 
 // ---- Dual paraboloid: footprints across the equator (r̂_z ∈ [−0.1, 0.1]), so that probes and

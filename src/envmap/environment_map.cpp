@@ -56,12 +56,36 @@ struct TangentProbes {
         return p;
     }
 
+    // The ratio of J_t's singular values (≥ 1): how much the layout stretches a round footprint.
+    float distortion() const {
+        const float frobenius_sq = inv[0][0] * inv[0][0] + inv[0][1] * inv[0][1] +
+                                   inv[1][0] * inv[1][0] + inv[1][1] * inv[1][1];
+        const float det = std::fabs(inv[0][0] * inv[1][1] - inv[0][1] * inv[1][0]);
+        // σ1² = (F + √(F² − 4 det²))/2 and σ1 σ2 = det, so σ1/σ2 = σ1²/det.
+        const float major_sq =
+            0.5f *
+            (frobenius_sq + std::sqrt(std::max(0.0f, frobenius_sq * frobenius_sq - 4 * det * det)));
+        const float ratio = major_sq / det;
+        return std::isfinite(ratio) ? std::max(ratio, 1.0f) : 1.0f;
+    }
+
     EnvCoords place(EnvLayout layout, Vec2 offset) const {
         const float a = inv[0][0] * offset.x + inv[0][1] * offset.y;
         const float b = inv[1][0] * offset.x + inv[1][1] * offset.y;
         return env_coords(layout, centre + a * e1 + b * e2);
     }
 };
+
+// N_max for a sphere-map line centred at `direction`: scaled by the map's distortion there
+// (TangentProbes::distortion()), within kMaxProbeCount. Out of line: the rare layout.
+[[gnu::noinline]] int sphere_probe_limit(const EnvironmentMap& map, Vec3 direction,
+                                         int max_probes) {
+    const TangentProbes tangent = TangentProbes::at(map, direction);
+    if (!tangent.valid) return max_probes;
+    const float scaled =
+        std::ceil(static_cast<float>(std::max(max_probes, 1)) * tangent.distortion());
+    return scaled < static_cast<float>(kMaxProbeCount) ? static_cast<int>(scaled) : kMaxProbeCount;
+}
 
 // The lat-long probes' great circle without trigonometry per probe: placed exactly at both ends
 // (TangentProbes) and interpolated quadratically through them and the centre in (s, t),
@@ -323,9 +347,14 @@ struct FootprintCentre {
     }
     // Footprint assembly (spec §2.8–2.9): probes along r1 on the centre face's (s, t) plane, each
     // placed on the face that owns its direction (place_probe), all at the centre face's lod.
-    const ProbePlan plan =
-        plan_probes(e, options.probe_rule, options.max_probes, centre.max_level(), options.lod_bias,
-                    options.isotropic_ratio);
+    // N_max bounds the anisotropy on the sphere (environment_map.h): towards the sphere map's rim
+    // the map adds up to 67:1 of its own, so a line there may take N_max × its distortion.
+    const int max_probes =
+        map.layout() == EnvLayout::sphere
+            ? sphere_probe_limit(map, footprint.map_direction, options.max_probes)
+            : options.max_probes;
+    const ProbePlan plan = plan_probes(e, options.probe_rule, max_probes, centre.max_level(),
+                                       options.lod_bias, options.isotropic_ratio);
     const LodBlend blend = effective_lod_blend(plan, options.lod_blend);
     float weights[kMaxProbeCount];
     probe_weights(plan, weights);

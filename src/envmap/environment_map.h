@@ -17,6 +17,13 @@
 // through the rim (§3.2, where λ1 is also clamped to W/2), paraboloid probes onto the other
 // hemisphere (§3.3). Bilinear taps cross cube-face edges (seamless cube filtering).
 //
+// LookupOptions::max_probes (N_max) bounds a footprint's anisotropy on the sphere. A layout adds
+// its own in texels: at most 2:1 on a cube face or on the lat-long map outside its polar caps,
+// none on the conformal paraboloid, but without bound towards the sphere map's rim, where a round
+// footprint is 2/(1 + r̂_z):1 (6.7:1 at r̂_z = −0.7, 67:1 at −0.97). A sphere-map line may therefore
+// take N_max times the map's distortion at its centre (the ratio of the singular values of its
+// Jacobian), up to 1 024 probes, instead of raising its lod and blurring across the rim.
+//
 // Lat-long polar caps (beyond the spec's §3.4). Towards a pole a lat-long texel shrinks to nothing
 // in s, a footprint there is 1/sin θ long in s (Rule B needs that many probes, and its probe budget
 // then blurs t instead), and a footprint that reaches the pole has no (s, t) ellipse at all — the
