@@ -233,12 +233,29 @@ void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
     float weights[kMaxProbeCount];
     probe_weights(plan, weights);
     const TrilinearLevels levels = trilinear_levels(plan.lod, pyramid.max_level(), blend);
+    auto position = [&](int i) {
+        const float k = first + static_cast<float>(i);
+        return Vec2{s + k * du, t + k * dv};
+    };
+    auto wrapped_probe_taps = [&](int i) {
+        const Vec2 p = position(i);
+        return probe_taps(pyramid, p.x, p.y, levels);
+    };
+    // A line whose ends' taps lie on the levels, a texel clear of their edges, needs no wrapping.
+    const MipPyramid::LevelView& fine = pyramid.level(levels.l0);
+    const MipPyramid::LevelView& coarse =
+        pyramid.level(levels.w > 0.0f ? levels.l0 + 1 : levels.l0);
+    auto inside_probe_taps = [&](int i) {
+        const Vec2 p = position(i);
+        return probe_taps_inside(fine, coarse, p.x, p.y, levels);
+    };
+    const Vec2 a = position(0), b = position(plan.count - 1);
+    const bool inside = line_inside(fine, coarse, a.x, a.y, b.x, b.y);
     dispatch_stride(pyramid.stride(), [&]<int S>() {
+        const int stride = pyramid.stride();
         const Texel<S> result =
-            blend_probe_line<S>(plan.count, weights, levels, pyramid.stride(), [&](int i) {
-                const float k = first + static_cast<float>(i);
-                return probe_taps(pyramid, s + k * du, t + k * dv, levels);
-            });
+            inside ? blend_probe_line<S>(plan.count, weights, levels, stride, inside_probe_taps)
+                   : blend_probe_line<S>(plan.count, weights, levels, stride, wrapped_probe_taps);
         store(result, pyramid.channels(), out);
     });
 }

@@ -247,6 +247,37 @@ template <int S, class TapsOf>
     return result;
 }
 
+// Whether every probe of a straight line from (s0, t0) to (s1, t1) has its taps on `fine` and
+// `coarse` (pass fine twice for one level), with a texel to spare, so that the positions rounded
+// between the ends cannot leave: then probe_taps_inside() may address them.
+inline bool line_inside(const MipPyramid::LevelView& fine, const MipPyramid::LevelView& coarse,
+                        float s0, float t0, float s1, float t1) {
+    typedef float F4 __attribute__((vector_size(16)));
+    typedef int I4 __attribute__((vector_size(16)));
+    const I4 size{fine.width, fine.height, coarse.width, coarse.height};
+    const F4 scale = __builtin_convertvector(size, F4);
+    const I4 a = __builtin_convertvector(F4{s0, t0, s0, t0} * scale - 0.5f, I4);  // ⌊⌋ for ≥ 0
+    const I4 b = __builtin_convertvector(F4{s1, t1, s1, t1} * scale - 0.5f, I4);
+    const I4 ok = (a >= 1) & (a + 2 < size) & (b >= 1) & (b + 2 < size);
+    return (ok[0] & ok[1] & ok[2] & ok[3]) != 0;
+}
+
+// The taps of a trilinear probe at (s, t) on levels that hold all of them (line_inside()): what
+// trilinear_taps() gives there, without its edge tests.
+[[gnu::always_inline]] inline ProbeTaps probe_taps_inside(const MipPyramid::LevelView& fine,
+                                                          const MipPyramid::LevelView& coarse,
+                                                          float s, float t,
+                                                          TrilinearLevels levels) {
+    if (levels.w == 0.0f) {
+        const BilinearPosition p = bilinear_position(fine, s, t);
+        return {taps_at(fine, p.x0, p.x0 + 1, p.y0, p.y0 + 1, p.fx, p.fy), {}};
+    }
+    const BilinearPositionPair p = bilinear_positions(fine, coarse, s, t);
+    return {taps_at(fine, p.fine.x0, p.fine.x0 + 1, p.fine.y0, p.fine.y0 + 1, p.fine.fx, p.fine.fy),
+            taps_at(coarse, p.coarse.x0, p.coarse.x0 + 1, p.coarse.y0, p.coarse.y0 + 1, p.coarse.fx,
+                    p.coarse.fy)};
+}
+
 // Writes the first `channels` values of a texel.
 template <int S>
 inline void store(const Texel<S>& t, int channels, float* out) {

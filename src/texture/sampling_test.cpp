@@ -77,5 +77,60 @@ TEST(Sampling, ProbeLineIsTheWeightedMeanOfItsProbes) {
     }
 }
 
+// line_inside() admits a straight line only when every probe on it has all its taps on both levels,
+// and there probe_taps_inside() addresses exactly the taps that trilinear_taps() (with its edge
+// tests and wrapping) does: the same texels, the same fractions. Random lines on levels of odd
+// sizes, near and across the edges, of one and two levels.
+TEST(Sampling, LinesInsideTheLevelsNeedNoEdgeTests) {
+    const MipPyramid pyramid = MipPyramid::build(random_image(53, 29, 3, 11));
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> coordinate(-0.1f, 1.1f), unit(0, 1);
+    int admitted = 0, refused = 0;
+    for (int l = 0; l + 1 < pyramid.max_level(); ++l) {
+        for (int k = 0; k < 600; ++k) {
+            const float lod = static_cast<float>(l) + (k % 2 ? 0.0f : unit(rng));
+            const detail::TrilinearLevels levels =
+                detail::trilinear_levels(lod, pyramid.max_level(), LodBlend::linear);
+            const MipPyramid::LevelView& fine = pyramid.level(levels.l0);
+            const MipPyramid::LevelView& coarse =
+                pyramid.level(levels.w > 0.0f ? levels.l0 + 1 : levels.l0);
+            const float s0 = coordinate(rng), t0 = coordinate(rng);
+            const float ds = 0.3f * (unit(rng) - 0.5f), dt = 0.3f * (unit(rng) - 0.5f);
+            const int count = 2 + k % 7;
+            auto position = [&](int i) {
+                const float u = static_cast<float>(i) / static_cast<float>(count - 1);
+                return std::pair{s0 + u * ds, t0 + u * dt};
+            };
+            const auto [s1, t1] = position(count - 1);
+            if (!detail::line_inside(fine, coarse, s0, t0, s1, t1)) {
+                ++refused;
+                continue;
+            }
+            ++admitted;
+            for (int i = 0; i < count; ++i) {
+                const auto [s, t] = position(i);
+                const detail::ProbeTaps want = detail::probe_taps(pyramid, s, t, levels);
+                const detail::ProbeTaps got = detail::probe_taps_inside(fine, coarse, s, t, levels);
+                const detail::BilinearPositionPair p =
+                    detail::bilinear_positions(fine, coarse, s, t);
+                ASSERT_TRUE(p.fine.inside && p.coarse.inside) << "probe " << i << " leaves";
+                const int tap_levels = levels.w > 0.0f ? 2 : 1;
+                for (int level = 0; level < tap_levels; ++level) {
+                    const detail::BilinearTaps& w = level ? want.coarse : want.fine;
+                    const detail::BilinearTaps& g = level ? got.coarse : got.fine;
+                    ASSERT_EQ(g.a, w.a);
+                    ASSERT_EQ(g.b, w.b);
+                    ASSERT_EQ(g.c, w.c);
+                    ASSERT_EQ(g.d, w.d);
+                    ASSERT_EQ(g.fx, w.fx);
+                    ASSERT_EQ(g.fy, w.fy);
+                }
+            }
+        }
+    }
+    EXPECT_GT(admitted, 500);  // both answers exercised
+    EXPECT_GT(refused, 500);
+}
+
 }  // namespace
 }  // namespace footprint
