@@ -319,8 +319,8 @@ struct FootprintCentre {
         : coords(f.coords), matrix(f.matrix), map_direction(f.map_direction) {}
 };
 
-// A cube line of probes whose ends' taps lie on the centre face's levels, a texel clear of its
-// edges: all its probes lie there too (a face is convex), at the positions place_probe() is given,
+// A cube line of probes whose ends' taps lie on the centre face's levels (detail::line_inside()):
+// all its probes' taps lie there too (a face is convex), at the positions place_probe() is given,
 // so they are read without placing each on its face. False, with nothing written, for any other
 // line. Out of line, so that general_lookup()'s other loops compile as they did without it, and
 // given the plan and centre by value, so that its loop keeps them in registers (4 % fewer

@@ -241,7 +241,7 @@ void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
         const Vec2 p = position(i);
         return probe_taps(pyramid, p.x, p.y, levels);
     };
-    // A line whose ends' taps lie on the levels, a texel clear of their edges, needs no wrapping.
+    // A line whose ends' taps lie on the levels (line_inside()) needs no wrapping.
     const MipPyramid::LevelView& fine = pyramid.level(levels.l0);
     const MipPyramid::LevelView& coarse =
         pyramid.level(levels.w > 0.0f ? levels.l0 + 1 : levels.l0);
