@@ -56,16 +56,12 @@ struct TangentProbes {
         return p;
     }
 
-    // The ratio of J_t's singular values (≥ 1): how much the layout stretches a round footprint.
+    // The ratio of J_t's singular values (≥ 1): how much the layout stretches a round footprint,
+    // the anisotropy of the ellipse of J_t⁻¹'s columns.
     float distortion() const {
-        const float frobenius_sq = inv[0][0] * inv[0][0] + inv[0][1] * inv[0][1] +
-                                   inv[1][0] * inv[1][0] + inv[1][1] * inv[1][1];
-        const float det = std::fabs(inv[0][0] * inv[1][1] - inv[0][1] * inv[1][0]);
-        // σ1² = (F + √(F² − 4 det²))/2 and σ1 σ2 = det, so σ1/σ2 = σ1²/det.
-        const float major_sq =
-            0.5f *
-            (frobenius_sq + std::sqrt(std::max(0.0f, frobenius_sq * frobenius_sq - 4 * det * det)));
-        const float ratio = major_sq / det;
+        const FootprintEllipse e =
+            make_footprint_ellipse(Vec2{inv[0][0], inv[1][0]}, Vec2{inv[0][1], inv[1][1]});
+        const float ratio = e.major_radius / e.minor_radius;
         return std::isfinite(ratio) ? std::max(ratio, 1.0f) : 1.0f;
     }
 
@@ -328,24 +324,14 @@ struct FootprintCentre {
 [[gnu::noinline, gnu::flatten]] bool cube_line_on_face(const MipPyramid& face, const EnvCoords c,
                                                        const ProbePlan plan, const float* weights,
                                                        detail::TrilinearLevels levels, float* out) {
-    const MipPyramid::LevelView& fine = face.level(levels.l0);
-    const MipPyramid::LevelView& coarse = face.level(levels.w > 0.0f ? levels.l0 + 1 : levels.l0);
     const Vec2 size{static_cast<float>(face.width(0)), static_cast<float>(face.height(0))};
-    auto position = [&](int i) {
-        const Vec2 o = plan.offset(i);
-        return Vec2{c.s + o.x / size.x, c.t + o.y / size.y};
-    };
-    const Vec2 first = position(0), last = position(plan.count - 1);
-    if (!detail::line_inside(fine, coarse, first.x, first.y, last.x, last.y)) return false;
-    detail::dispatch_stride(face.stride(), [&]<int S>() {
-        const detail::Texel<S> result =
-            detail::blend_probe_line<S>(plan.count, weights, levels, face.stride(), [&](int i) {
-                const Vec2 p = position(i);
-                return detail::probe_taps_inside(fine, coarse, p.x, p.y, levels);
-            });
-        detail::store(result, face.channels(), out);
-    });
-    return true;
+    return detail::blend_probe_line_inside(
+        face, plan.count, weights, levels,
+        [&](int i) {
+            const Vec2 o = plan.offset(i);
+            return Vec2{c.s + o.x / size.x, c.t + o.y / size.y};
+        },
+        out);
 }
 
 // Every other lookup (a line of probes, another filter), given the footprint's cap_footprint().

@@ -237,25 +237,14 @@ void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
         const float k = first + static_cast<float>(i);
         return Vec2{s + k * du, t + k * dv};
     };
-    auto wrapped_probe_taps = [&](int i) {
-        const Vec2 p = position(i);
-        return probe_taps(pyramid, p.x, p.y, levels);
-    };
-    // A line whose ends' taps lie on the levels (line_inside()) needs no wrapping.
-    const MipPyramid::LevelView& fine = pyramid.level(levels.l0);
-    const MipPyramid::LevelView& coarse =
-        pyramid.level(levels.w > 0.0f ? levels.l0 + 1 : levels.l0);
-    auto inside_probe_taps = [&](int i) {
-        const Vec2 p = position(i);
-        return probe_taps_inside(fine, coarse, p.x, p.y, levels);
-    };
-    const Vec2 a = position(0), b = position(plan.count - 1);
-    const bool inside = line_inside(fine, coarse, a.x, a.y, b.x, b.y);
+    // A line whose ends' taps lie on the levels needs no wrapping.
+    if (blend_probe_line_inside(pyramid, plan.count, weights, levels, position, out)) return;
     dispatch_stride(pyramid.stride(), [&]<int S>() {
-        const int stride = pyramid.stride();
         const Texel<S> result =
-            inside ? blend_probe_line<S>(plan.count, weights, levels, stride, inside_probe_taps)
-                   : blend_probe_line<S>(plan.count, weights, levels, stride, wrapped_probe_taps);
+            blend_probe_line<S>(plan.count, weights, levels, pyramid.stride(), [&](int i) {
+                const Vec2 p = position(i);
+                return probe_taps(pyramid, p.x, p.y, levels);
+            });
         store(result, pyramid.channels(), out);
     });
 }

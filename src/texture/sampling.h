@@ -309,6 +309,30 @@ inline void dispatch_stride(int stride, F&& f) {
     }
 }
 
+// A line of `count` probes on `pyramid`'s `levels`, probe i at position_of(i) (a Vec2 (s, t), as
+// c + k·Δ): when line_inside() admits its ends, blended with probe_taps_inside() (no edge tests)
+// and written to out, true; otherwise nothing written, false, for the caller's edge-aware path.
+template <class PositionOf>
+[[gnu::always_inline]] inline bool blend_probe_line_inside(const MipPyramid& pyramid, int count,
+                                                           const float* weights,
+                                                           TrilinearLevels levels,
+                                                           PositionOf&& position_of, float* out) {
+    const MipPyramid::LevelView& fine = pyramid.level(levels.l0);
+    const MipPyramid::LevelView& coarse =
+        pyramid.level(levels.w > 0.0f ? levels.l0 + 1 : levels.l0);
+    const auto first = position_of(0), last = position_of(count - 1);
+    if (!line_inside(fine, coarse, first.x, first.y, last.x, last.y)) return false;
+    dispatch_stride(pyramid.stride(), [&]<int S>() {
+        const Texel<S> result =
+            blend_probe_line<S>(count, weights, levels, pyramid.stride(), [&](int i) {
+                const auto p = position_of(i);
+                return probe_taps_inside(fine, coarse, p.x, p.y, levels);
+            });
+        store(result, pyramid.channels(), out);
+    });
+    return true;
+}
+
 // A bilinear sample of level 0 at reduced (s, t), written to out: the magnification and
 // no-MIP path of every filter.
 inline void lookup_level0_bilinear(const MipPyramid& pyramid, float s, float t, float* out) {
