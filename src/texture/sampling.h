@@ -214,37 +214,53 @@ template <int S>
     return blend_probe<S>(probe_taps(pyramid, s, t, levels), levels);
 }
 
-// A line of `count` trilinear probes, all on `levels`: Σ weights[i]·probe_i / Σ weights[i]
-// (spec §2.9), each level summed on its own and the two blended once. taps_of(i) places probe i
-// and addresses its taps (ProbeTaps), once. Software-pipelined: probe i + kAhead is placed,
-// addressed and requested while probe i is read, so that cache misses overlap (a bounded number in
-// flight) instead of arriving one probe at a time.
-template <int S, class TapsOf>
-[[gnu::always_inline]] inline Texel<S> blend_probe_line(int count, const float* weights,
-                                                        TrilinearLevels levels, int stride,
-                                                        TapsOf&& taps_of) {
+// The software pipeline every line of probes runs (spec §2.9: Σ weights[i]·probe_i / Σ weights[i],
+// each level summed on its own and the two blended once, by coarse_weight = TrilinearLevels::w).
+// line.place(i) places probe i, addresses its taps and requests them (prefetch), once;
+// line.fine(probe) and line.coarse(probe) read them. Probe i + kAhead is placed while probe i is
+// read, so that cache misses overlap (a bounded number in flight) instead of arriving one probe at
+// a time.
+template <int S, class Line>
+[[gnu::always_inline]] inline Texel<S> blend_line_ahead(int count, const float* weights,
+                                                        float coarse_weight, Line&& line) {
     constexpr int kAhead = 6, kRing = 8;
-    ProbeTaps ring[kRing];
-    auto request = [&](int i) {
-        ProbeTaps& taps = ring[i % kRing];
-        taps = taps_of(i);
-        prefetch_probe(taps, levels, stride);
-    };
-    for (int i = 0; i < std::min(kAhead, count); ++i) request(i);
+    decltype(line.place(0)) ring[kRing];
+    for (int i = 0; i < std::min(kAhead, count); ++i) ring[i] = line.place(i);
     Texel<S> fine{}, coarse{};
     for (int i = 0; i < count; ++i) {
-        if (i + kAhead < count) request(i + kAhead);
-        const ProbeTaps& taps = ring[i % kRing];
-        add_scaled(fine, weights[i], blend_taps<S>(taps.fine));
-        if (levels.w > 0.0f) add_scaled(coarse, weights[i], blend_taps<S>(taps.coarse));
+        if (i + kAhead < count) ring[(i + kAhead) % kRing] = line.place(i + kAhead);
+        const auto& probe = ring[i % kRing];
+        add_scaled(fine, weights[i], line.fine(probe));
+        if (coarse_weight > 0.0f) add_scaled(coarse, weights[i], line.coarse(probe));
     }
     float weight_sum = 0;
     for (int i = 0; i < count; ++i) weight_sum += weights[i];
     const float weight = 1.0f / weight_sum;
     Texel<S> result = fine;
     result.v *= weight;
-    if (levels.w > 0.0f) result.v += levels.w * (weight * coarse.v - result.v);
+    if (coarse_weight > 0.0f) result.v += coarse_weight * (weight * coarse.v - result.v);
     return result;
+}
+
+// A line of `count` trilinear probes, all on `levels` (blend_line_ahead): taps_of(i) places probe
+// i and addresses its taps (ProbeTaps, read with any level's layout and edges).
+template <int S, class TapsOf>
+[[gnu::always_inline]] inline Texel<S> blend_probe_line(int count, const float* weights,
+                                                        TrilinearLevels levels, int stride,
+                                                        TapsOf&& taps_of) {
+    struct Line {
+        TapsOf& taps_of;
+        TrilinearLevels levels;
+        int stride;
+        ProbeTaps place(int i) const {
+            const ProbeTaps taps = taps_of(i);
+            prefetch_probe(taps, levels, stride);
+            return taps;
+        }
+        Texel<S> fine(const ProbeTaps& taps) const { return blend_taps<S>(taps.fine); }
+        Texel<S> coarse(const ProbeTaps& taps) const { return blend_taps<S>(taps.coarse); }
+    };
+    return blend_line_ahead<S>(count, weights, levels.w, Line{taps_of, levels, stride});
 }
 
 // Whether every probe of a straight line from (s0, t0) to (s1, t1) has its taps on `fine` and
@@ -309,6 +325,71 @@ inline void dispatch_stride(int stride, F&& f) {
     }
 }
 
+// A probe of a line inside row-major levels (the default layout): the upper-left tap of each level,
+// whose other taps are one texel (S floats) right and one row down, and the fractions (fine x, y,
+// coarse x, y). Two pointers and one register instead of ProbeTaps' eight pointers: less to
+// address, keep and read back per probe.
+struct RowMajorProbe {
+    const float* fine;
+    const float* coarse;
+    typedef float F4 __attribute__((vector_size(16)));
+    F4 fraction;
+};
+
+// The bilinear blend of the taps at `upper_left` on a row-major level: blend_taps() exactly.
+template <int S>
+[[gnu::always_inline]] inline Texel<S> blend_row_major(const float* upper_left,
+                                                       std::ptrdiff_t row_floats, float fx,
+                                                       float fy) {
+    const float wa = (1 - fx) * (1 - fy), wb = fx * (1 - fy), wc = (1 - fx) * fy, wd = fx * fy;
+    const float* lower_left = upper_left + row_floats;
+    Texel<S> r;
+    r.v = wa * Texel<S>::load(upper_left).v + wb * Texel<S>::load(upper_left + S).v +
+          wc * Texel<S>::load(lower_left).v + wd * Texel<S>::load(lower_left + S).v;
+    return r;
+}
+
+// The line of blend_probe_line_inside() on row-major levels (RowMajorProbe): the positions of
+// bilinear_positions(), level sizes converted once per line.
+template <int S, class PositionOf>
+struct RowMajorLine {
+    typedef float F4 __attribute__((vector_size(16)));
+    typedef int I4 __attribute__((vector_size(16)));
+    const MipPyramid::LevelView &fine_level, &coarse_level;
+    PositionOf& position_of;
+    bool two_levels;
+    F4 size = __builtin_convertvector(
+        (I4{fine_level.width, fine_level.height, coarse_level.width, coarse_level.height}), F4);
+
+    RowMajorProbe place(int i) const {
+        const auto position = position_of(i);
+        const F4 p = F4{position.x, position.y, position.x, position.y} * size - 0.5f;
+        const I4 truncated = __builtin_convertvector(p, I4);
+        const I4 lower = truncated + (p < __builtin_convertvector(truncated, F4));  // ⌊p⌋
+        const RowMajorProbe probe{
+            fine_level.base + lower[1] * fine_level.row_floats + lower[0] * S,
+            coarse_level.base + lower[3] * coarse_level.row_floats + lower[2] * S,
+            p - __builtin_convertvector(lower, F4)};
+        request(probe.fine, fine_level.row_floats);
+        if (two_levels) request(probe.coarse, coarse_level.row_floats);
+        return probe;
+    }
+    static void request(const float* upper_left, std::ptrdiff_t row_floats) {  // prefetch_taps()
+        prefetch(upper_left);
+        prefetch(upper_left + 2 * S - 1);
+        prefetch(upper_left + row_floats);
+        prefetch(upper_left + row_floats + 2 * S - 1);
+    }
+    Texel<S> fine(const RowMajorProbe& probe) const {
+        return blend_row_major<S>(probe.fine, fine_level.row_floats, probe.fraction[0],
+                                  probe.fraction[1]);
+    }
+    Texel<S> coarse(const RowMajorProbe& probe) const {
+        return blend_row_major<S>(probe.coarse, coarse_level.row_floats, probe.fraction[2],
+                                  probe.fraction[3]);
+    }
+};
+
 // A line of `count` probes on `pyramid`'s `levels`, probe i at position_of(i) (a Vec2 (s, t), as
 // c + k·Δ): when line_inside() admits its ends, blended with probe_taps_inside() (no edge tests)
 // and written to out, true; otherwise nothing written, false, for the caller's edge-aware path.
@@ -322,12 +403,16 @@ template <class PositionOf>
         pyramid.level(levels.w > 0.0f ? levels.l0 + 1 : levels.l0);
     const auto first = position_of(0), last = position_of(count - 1);
     if (!line_inside(fine, coarse, first.x, first.y, last.x, last.y)) return false;
+    const bool row_major = fine.tile_log2 == 0 && coarse.tile_log2 == 0;
     dispatch_stride(pyramid.stride(), [&]<int S>() {
         const Texel<S> result =
-            blend_probe_line<S>(count, weights, levels, pyramid.stride(), [&](int i) {
-                const auto p = position_of(i);
-                return probe_taps_inside(fine, coarse, p.x, p.y, levels);
-            });
+            row_major ? blend_line_ahead<S>(
+                            count, weights, levels.w,
+                            RowMajorLine<S, PositionOf>{fine, coarse, position_of, levels.w > 0.0f})
+                      : blend_probe_line<S>(count, weights, levels, pyramid.stride(), [&](int i) {
+                            const auto p = position_of(i);
+                            return probe_taps_inside(fine, coarse, p.x, p.y, levels);
+                        });
         store(result, pyramid.channels(), out);
     });
     return true;

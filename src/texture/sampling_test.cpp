@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <iterator>
 #include <random>
 #include <vector>
 
@@ -130,6 +132,62 @@ TEST(Sampling, LinesInsideTheLevelsNeedNoEdgeTests) {
     }
     EXPECT_GT(admitted, 500);  // both answers exercised
     EXPECT_GT(refused, 500);
+}
+
+// blend_probe_line_inside() reads a line inside its levels exactly as the general line does
+// (blend_probe_line() over probe_taps(), with its edge tests): bit for bit, on row-major levels
+// (RowMajorLine, two pointers a probe) and tiled ones (probe_taps_inside()), for RGB (stride 4) and
+// one channel, lines of one and two levels, shorter and longer than the look-ahead. Lines that
+// leave the levels are refused and write nothing.
+TEST(Sampling, LinesInsideTheLevelsReadAsTheGeneralLine) {
+    for (const int tile_log2 : {0, 2}) {
+        for (const int channels : {3, 1}) {
+            MipPyramidOptions options;
+            options.tile_log2 = tile_log2;
+            const MipPyramid pyramid =
+                MipPyramid::build(random_image(61, 37, channels, 13), options);
+            std::mt19937 rng(7);
+            std::uniform_real_distribution<float> coordinate(-0.05f, 1.05f), unit(0, 1);
+            std::vector<float> weights(23);
+            int admitted = 0, refused = 0;
+            for (int k = 0; k < 1500; ++k) {
+                const float lod = (k % 3 ? 2.5f : 2.0f) * unit(rng);
+                const detail::TrilinearLevels levels =
+                    detail::trilinear_levels(lod, pyramid.max_level(), LodBlend::linear);
+                const int count = 2 + k % 22;
+                for (int i = 0; i < count; ++i) weights[i] = 0.25f + unit(rng);
+                const float s0 = coordinate(rng), t0 = coordinate(rng);
+                const float ds = 0.02f * (unit(rng) - 0.5f), dt = 0.02f * (unit(rng) - 0.5f);
+                const float first = -0.5f * static_cast<float>(count - 1);
+                auto position = [&](int i) {
+                    const float c = first + static_cast<float>(i);
+                    return Vec2{s0 + c * ds, t0 + c * dt};
+                };
+                float got[MipPyramid::kMaxChannels];
+                std::fill(std::begin(got), std::end(got), -1.0f);
+                if (!detail::blend_probe_line_inside(pyramid, count, weights.data(), levels,
+                                                     position, got)) {
+                    ++refused;
+                    ASSERT_EQ(got[0], -1.0f) << "a refused line wrote its result";
+                    continue;
+                }
+                ++admitted;
+                detail::dispatch_stride(pyramid.stride(), [&]<int S>() {
+                    const detail::Texel<S> want = detail::blend_probe_line<S>(
+                        count, weights.data(), levels, pyramid.stride(), [&](int i) {
+                            const Vec2 p = position(i);
+                            return detail::probe_taps(pyramid, p.x, p.y, levels);
+                        });
+                    for (int c = 0; c < channels; ++c)
+                        ASSERT_EQ(got[c], want.v[c])
+                            << "tile_log2 " << tile_log2 << ", " << count << " probes at lod "
+                            << lod << ", channel " << c;
+                });
+            }
+            EXPECT_GT(admitted, 500) << "tile_log2 " << tile_log2;
+            EXPECT_GT(refused, 100) << "tile_log2 " << tile_log2;
+        }
+    }
 }
 
 }  // namespace
