@@ -7,6 +7,7 @@
 
 #include <algorithm>
 
+#include "envmap/cube_edges.h"
 #include "envmap/environment_map.h"
 #include "texture/sampling.h"
 
@@ -14,8 +15,8 @@ namespace footprint::detail {
 
 // One texel of a level of `face`, where (x, y) may lie beyond the level's edge: such a tap is taken
 // from wherever the direction of its centre lies — the neighbour cube face (seamless cube
-// filtering, §3.1), across a lat-long pole (the seam wraps the same way), back through the sphere
-// map's rim, or on the other paraboloid hemisphere.
+// filtering, §3.1; by integers beyond one edge, cube_edges.h), across a lat-long pole (the seam
+// wraps the same way), back through the sphere map's rim, or on the other paraboloid hemisphere.
 inline const float* env_texel(const EnvironmentMap& map, int face, int level, int x, int y) {
     const MipPyramid::LevelView& view = map.face(face).level(level);
     if (x >= 0 && y >= 0 && x < view.width && y < view.height) return view.texel(x, y);
@@ -29,6 +30,13 @@ inline const float* env_texel(const EnvironmentMap& map, int face, int level, in
         x %= view.width;
         if (x < 0) x += view.width;
         return view.texel(x, std::clamp(y, 0, view.height - 1));
+    }
+    if (map.layout() == EnvLayout::cube &&
+        (x < 0 || x >= view.width) != (y < 0 || y >= view.height)) {
+        // Beyond one edge: the neighbour face's texel by integers (cube_edges.h), the one the
+        // direction below finds.
+        const CubeTexel across = cube_texel_across_edge(face, x, y, view.width);
+        return map.face(across.face).level(level).texel(across.x, across.y);
     }
     const float w = static_cast<float>(view.width), h = static_cast<float>(view.height);
     const EnvCoords c = env_coords(
