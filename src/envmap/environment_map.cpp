@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "envmap/env_sampling.h"
+#include "envmap/latlong_path.h"
 #include "envmap/polar_caps.h"
 #include "texture/footprint_assembly.h"
 #include "texture/sampling.h"
@@ -82,40 +83,6 @@ struct TangentProbes {
         std::ceil(static_cast<float>(std::max(max_probes, 1)) * tangent.distortion());
     return scaled < static_cast<float>(kMaxProbeCount) ? static_cast<int>(scaled) : kMaxProbeCount;
 }
-
-// The lat-long probes' great circle without trigonometry per probe: placed exactly at both ends
-// (TangentProbes) and interpolated quadratically through them and the centre in (s, t),
-// p(u) = c + u·h + u²·q, u ∈ [−1, 1]. Over the extent of a probe line away from the poles (the
-// pole fallback takes footprints that reach one) the cubic remainder is a small fraction of a
-// texel; probes that would cross a pole are placed exactly.
-struct QuadraticPath {
-    bool valid = false;
-    Vec2 centre, h, q;  // (s, t), and the linear and quadratic terms
-
-    static QuadraticPath through(const TangentProbes& tangent, const EnvCoords& c, Vec2 end) {
-        const EnvCoords a = tangent.place(EnvLayout::latlong, end);
-        const EnvCoords b = tangent.place(EnvLayout::latlong, -end);
-        auto unwrapped = [](float ds) { return ds - std::nearbyint(ds); };  // across the seam
-        const Vec2 da{unwrapped(a.s - c.s), a.t - c.t}, db{unwrapped(b.s - c.s), b.t - c.t};
-        QuadraticPath p;
-        p.centre = {c.s, c.t};
-        p.h = 0.5f * (da - db);
-        p.q = 0.5f * (da + db);
-        p.valid = true;
-        return p;
-    }
-
-    // Probe i of n; false when it would leave t ∈ [0, 1] (over a pole).
-    bool place(int i, int n, EnvCoords& out) const {
-        const float half = 0.5f * static_cast<float>(n - 1);
-        const float u = (static_cast<float>(i) - half) / half;
-        const float t = centre.y + u * (h.y + u * q.y);
-        if (!(t >= 0.0f && t <= 1.0f)) return false;
-        const float s = centre.x + u * (h.x + u * q.x);
-        out = {0, s - std::floor(s), t};
-        return true;
-    }
-};
 
 // Where a probe centre (s, t) of `face` lands: itself while it lies on the face's valid region,
 // otherwise the face and (s, t) that own its direction (spec §3.1 [E6s], §3.3, §3.4): cube
@@ -334,6 +301,21 @@ struct FootprintCentre {
         out);
 }
 
+// A lat-long line of probes on its quadratic path whose taps all lie on the map's levels, clear of
+// the seam and the poles (the path's bounds() admitted by detail::line_inside()): its probes are
+// read without placing each (the seam's wrap leaves s ∈ (0, 1) as it is). False, with nothing
+// written, for any other line. Out of line and given the path by value, as cube_line_on_face().
+[[gnu::noinline, gnu::flatten]] bool latlong_path_inside(const MipPyramid& map,
+                                                         const QuadraticPath path, int count,
+                                                         const float* weights,
+                                                         detail::TrilinearLevels levels,
+                                                         float* out) {
+    const auto [lower, upper] = path.bounds();
+    return detail::blend_probe_path_inside(
+        map, count, weights, levels, lower, upper, [&](int i) { return path.position(i, count); },
+        out);
+}
+
 // Every other lookup (a line of probes, another filter), given the footprint's cap_footprint().
 // Flattened: everything it calls that can be inlined is, so that its probe loop compiles the same
 // however much else this file inlines (GCC's unit-growth limit had pushed the probe taps out of
@@ -375,14 +357,18 @@ struct FootprintCentre {
     probe_weights(plan, weights);
     const TangentProbes tangent =
         plan.count > 1 ? TangentProbes::at(map, footprint.map_direction) : TangentProbes{};
-    const QuadraticPath path = map.layout() == EnvLayout::latlong && tangent.valid && plan.count > 2
-                                   ? QuadraticPath::through(tangent, c, plan.offset(plan.count - 1))
-                                   : QuadraticPath{};
+    const QuadraticPath path =
+        map.layout() == EnvLayout::latlong && tangent.valid && plan.count > 2
+            ? QuadraticPath::through(
+                  c, tangent.place(EnvLayout::latlong, plan.offset(plan.count - 1)),
+                  tangent.place(EnvLayout::latlong, -plan.offset(plan.count - 1)))
+            : QuadraticPath{};
     // All probes read plan.lod's levels (the centre face's).
     const detail::TrilinearLevels levels =
         detail::trilinear_levels(plan.lod, centre.max_level(), blend);
     if (map.layout() == EnvLayout::cube && cube_line_on_face(centre, c, plan, weights, levels, out))
         return;
+    if (path.valid && latlong_path_inside(centre, path, plan.count, weights, levels, out)) return;
     // Each probe is placed on the face or at the direction that owns it (place_probe,
     // TangentProbes, QuadraticPath), its taps read seamlessly.
     auto place = [&](int i) {

@@ -390,19 +390,21 @@ struct RowMajorLine {
     }
 };
 
-// A line of `count` probes on `pyramid`'s `levels`, probe i at position_of(i) (a Vec2 (s, t), as
-// c + k·Δ): when line_inside() admits its ends, blended with probe_taps_inside() (no edge tests)
-// and written to out, true; otherwise nothing written, false, for the caller's edge-aware path.
-template <class PositionOf>
-[[gnu::always_inline]] inline bool blend_probe_line_inside(const MipPyramid& pyramid, int count,
+// A path of `count` probes on `pyramid`'s `levels`, probe i at position_of(i) (a Vec2 (s, t)),
+// every position within the box of corners `lower` and `upper` (to rounding: line_inside()'s
+// margin): when line_inside() admits the box, blended without edge tests — RowMajorLine on
+// row-major levels, probe_taps_inside() on tiled ones — and written to out, true; otherwise nothing
+// written, false, for the caller's edge-aware path.
+template <class Corner, class PositionOf>
+[[gnu::always_inline]] inline bool blend_probe_path_inside(const MipPyramid& pyramid, int count,
                                                            const float* weights,
-                                                           TrilinearLevels levels,
-                                                           PositionOf&& position_of, float* out) {
+                                                           TrilinearLevels levels, Corner lower,
+                                                           Corner upper, PositionOf&& position_of,
+                                                           float* out) {
     const MipPyramid::LevelView& fine = pyramid.level(levels.l0);
     const MipPyramid::LevelView& coarse =
         pyramid.level(levels.w > 0.0f ? levels.l0 + 1 : levels.l0);
-    const auto first = position_of(0), last = position_of(count - 1);
-    if (!line_inside(fine, coarse, first.x, first.y, last.x, last.y)) return false;
+    if (!line_inside(fine, coarse, lower.x, lower.y, upper.x, upper.y)) return false;
     const bool row_major = fine.tile_log2 == 0 && coarse.tile_log2 == 0;
     dispatch_stride(pyramid.stride(), [&]<int S>() {
         const Texel<S> result =
@@ -416,6 +418,16 @@ template <class PositionOf>
         store(result, pyramid.channels(), out);
     });
     return true;
+}
+
+// The same for a straight line, positions c + k·Δ: its ends bound it (line_inside()).
+template <class PositionOf>
+[[gnu::always_inline]] inline bool blend_probe_line_inside(const MipPyramid& pyramid, int count,
+                                                           const float* weights,
+                                                           TrilinearLevels levels,
+                                                           PositionOf&& position_of, float* out) {
+    return blend_probe_path_inside(pyramid, count, weights, levels, position_of(0),
+                                   position_of(count - 1), position_of, out);
 }
 
 // A bilinear sample of level 0 at reduced (s, t), written to out: the magnification and
