@@ -55,6 +55,23 @@ inline int floor_to_int(float x) {
     return i - (x < static_cast<float>(i));
 }
 
+// Four floats or ints in one SSE register: the (x, y) texel coordinates of a trilinear probe's two
+// levels, handled at once.
+typedef float Float4 __attribute__((vector_size(16)));
+typedef int Int4 __attribute__((vector_size(16)));
+
+// ⌊p⌋ and p − ⌊p⌋ of four texel coordinates (|p| < 2^31; one conversion and one compare for all
+// four, no libm).
+struct FloorAndFraction {
+    Int4 lower;
+    Float4 fraction;
+};
+inline FloorAndFraction floor_and_fraction(Float4 p) {
+    const Int4 truncated = __builtin_convertvector(p, Int4);
+    const Int4 lower = truncated + (p < __builtin_convertvector(truncated, Float4));  // true = −1
+    return {lower, p - __builtin_convertvector(lower, Float4)};
+}
+
 // A bilinear sample's four taps (a b in the upper row, c d below) and its fractional position.
 struct BilinearTaps {
     const float *a, *b, *c, *d;
@@ -85,14 +102,10 @@ struct BilinearPositionPair {
 inline BilinearPositionPair bilinear_positions(const MipPyramid::LevelView& fine,
                                                const MipPyramid::LevelView& coarse, float s,
                                                float t) {
-    typedef float F4 __attribute__((vector_size(16)));
-    typedef int I4 __attribute__((vector_size(16)));
-    const I4 size{fine.width, fine.height, coarse.width, coarse.height};
-    const F4 p = F4{s, t, s, t} * __builtin_convertvector(size, F4) - 0.5f;
-    const I4 truncated = __builtin_convertvector(p, I4);
-    const I4 lower = truncated + (p < __builtin_convertvector(truncated, F4));  // ⌊p⌋ (true = −1)
-    const F4 fraction = p - __builtin_convertvector(lower, F4);
-    const I4 on_level = (lower >= 0) & (lower + 1 < size);
+    const Int4 size{fine.width, fine.height, coarse.width, coarse.height};
+    const auto [lower, fraction] =
+        floor_and_fraction(Float4{s, t, s, t} * __builtin_convertvector(size, Float4) - 0.5f);
+    const Int4 on_level = (lower >= 0) & (lower + 1 < size);
     return {{lower[0], lower[1], fraction[0], fraction[1], (on_level[0] & on_level[1]) != 0},
             {lower[2], lower[3], fraction[2], fraction[3], (on_level[2] & on_level[3]) != 0}};
 }
@@ -107,22 +120,30 @@ inline BilinearTaps taps_at(const MipPyramid::LevelView& view, int xa, int xb, i
 }
 
 // Requests the cache lines of a sample's taps (a tap of `stride` floats may straddle a line).
+inline void prefetch_taps(const float* a, const float* b, const float* c, const float* d,
+                          int stride) {
+    prefetch(a);
+    prefetch(b + stride - 1);
+    prefetch(c);
+    prefetch(d + stride - 1);
+}
 inline void prefetch_taps(const BilinearTaps& taps, int stride) {
-    prefetch(taps.a);
-    prefetch(taps.b + stride - 1);
-    prefetch(taps.c);
-    prefetch(taps.d + stride - 1);
+    prefetch_taps(taps.a, taps.b, taps.c, taps.d, stride);
 }
 
 // The bilinear blend of four taps.
 template <int S>
-[[gnu::always_inline]] inline Texel<S> blend_taps(const BilinearTaps& taps) {
-    const float fx = taps.fx, fy = taps.fy;
+[[gnu::always_inline]] inline Texel<S> blend_taps(const float* a, const float* b, const float* c,
+                                                  const float* d, float fx, float fy) {
     const float wa = (1 - fx) * (1 - fy), wb = fx * (1 - fy), wc = (1 - fx) * fy, wd = fx * fy;
     Texel<S> r;
-    r.v = wa * Texel<S>::load(taps.a).v + wb * Texel<S>::load(taps.b).v +
-          wc * Texel<S>::load(taps.c).v + wd * Texel<S>::load(taps.d).v;
+    r.v = wa * Texel<S>::load(a).v + wb * Texel<S>::load(b).v + wc * Texel<S>::load(c).v +
+          wd * Texel<S>::load(d).v;
     return r;
+}
+template <int S>
+[[gnu::always_inline]] inline Texel<S> blend_taps(const BilinearTaps& taps) {
+    return blend_taps<S>(taps.a, taps.b, taps.c, taps.d, taps.fx, taps.fy);
 }
 
 // The taps of a bilinear sample of one level at position p; taps beyond the level's edge are
@@ -272,14 +293,13 @@ template <int S, class TapsOf>
 // levels up to 16 384 wide).
 inline bool line_inside(const MipPyramid::LevelView& fine, const MipPyramid::LevelView& coarse,
                         float s0, float t0, float s1, float t1) {
-    typedef float F4 __attribute__((vector_size(16)));
-    typedef int I4 __attribute__((vector_size(16)));
     constexpr float kMargin = 1.0f / 64;
-    const F4 size =
-        __builtin_convertvector((I4{fine.width, fine.height, coarse.width, coarse.height}), F4);
-    const F4 a = F4{s0, t0, s0, t0} * size - 0.5f, b = F4{s1, t1, s1, t1} * size - 0.5f;
-    const F4 last = size - (1.0f + kMargin);
-    const I4 ok = (a >= kMargin) & (a <= last) & (b >= kMargin) & (b <= last);  // false for NaN
+    const Float4 size = __builtin_convertvector(
+        (Int4{fine.width, fine.height, coarse.width, coarse.height}), Float4);
+    const Float4 a = Float4{s0, t0, s0, t0} * size - 0.5f;
+    const Float4 b = Float4{s1, t1, s1, t1} * size - 0.5f;
+    const Float4 last = size - (1.0f + kMargin);
+    const Int4 ok = (a >= kMargin) & (a <= last) & (b >= kMargin) & (b <= last);  // false for NaN
     return (ok[0] & ok[1] & ok[2] & ok[3]) != 0;
 }
 
@@ -332,61 +352,45 @@ inline void dispatch_stride(int stride, F&& f) {
 struct RowMajorProbe {
     const float* fine;
     const float* coarse;
-    typedef float F4 __attribute__((vector_size(16)));
-    F4 fraction;
+    Float4 fraction;
 };
 
-// The bilinear blend of the taps at `upper_left` on a row-major level: blend_taps() exactly.
-template <int S>
-[[gnu::always_inline]] inline Texel<S> blend_row_major(const float* upper_left,
-                                                       std::ptrdiff_t row_floats, float fx,
-                                                       float fy) {
-    const float wa = (1 - fx) * (1 - fy), wb = fx * (1 - fy), wc = (1 - fx) * fy, wd = fx * fy;
-    const float* lower_left = upper_left + row_floats;
-    Texel<S> r;
-    r.v = wa * Texel<S>::load(upper_left).v + wb * Texel<S>::load(upper_left + S).v +
-          wc * Texel<S>::load(lower_left).v + wd * Texel<S>::load(lower_left + S).v;
-    return r;
-}
-
-// The line of blend_probe_line_inside() on row-major levels (RowMajorProbe): the positions of
+// The probes of blend_probe_path_inside() on row-major levels (RowMajorProbe): the positions of
 // bilinear_positions(), level sizes converted once per line.
 template <int S, class PositionOf>
 struct RowMajorLine {
-    typedef float F4 __attribute__((vector_size(16)));
-    typedef int I4 __attribute__((vector_size(16)));
     const MipPyramid::LevelView &fine_level, &coarse_level;
     PositionOf& position_of;
     bool two_levels;
-    F4 size = __builtin_convertvector(
-        (I4{fine_level.width, fine_level.height, coarse_level.width, coarse_level.height}), F4);
+    Float4 size = __builtin_convertvector(
+        (Int4{fine_level.width, fine_level.height, coarse_level.width, coarse_level.height}),
+        Float4);
 
     RowMajorProbe place(int i) const {
         const auto position = position_of(i);
-        const F4 p = F4{position.x, position.y, position.x, position.y} * size - 0.5f;
-        const I4 truncated = __builtin_convertvector(p, I4);
-        const I4 lower = truncated + (p < __builtin_convertvector(truncated, F4));  // ⌊p⌋
+        const auto [lower, fraction] = floor_and_fraction(
+            Float4{position.x, position.y, position.x, position.y} * size - 0.5f);
         const RowMajorProbe probe{
             fine_level.base + lower[1] * fine_level.row_floats + lower[0] * S,
-            coarse_level.base + lower[3] * coarse_level.row_floats + lower[2] * S,
-            p - __builtin_convertvector(lower, F4)};
+            coarse_level.base + lower[3] * coarse_level.row_floats + lower[2] * S, fraction};
         request(probe.fine, fine_level.row_floats);
         if (two_levels) request(probe.coarse, coarse_level.row_floats);
         return probe;
     }
-    static void request(const float* upper_left, std::ptrdiff_t row_floats) {  // prefetch_taps()
-        prefetch(upper_left);
-        prefetch(upper_left + 2 * S - 1);
-        prefetch(upper_left + row_floats);
-        prefetch(upper_left + row_floats + 2 * S - 1);
+    // The taps at `upper_left` of a row-major level: one texel right and one row down.
+    static void request(const float* upper_left, std::ptrdiff_t row_floats) {
+        prefetch_taps(upper_left, upper_left + S, upper_left + row_floats,
+                      upper_left + row_floats + S, S);
+    }
+    static Texel<S> blend(const float* upper_left, std::ptrdiff_t row_floats, float fx, float fy) {
+        return blend_taps<S>(upper_left, upper_left + S, upper_left + row_floats,
+                             upper_left + row_floats + S, fx, fy);
     }
     Texel<S> fine(const RowMajorProbe& probe) const {
-        return blend_row_major<S>(probe.fine, fine_level.row_floats, probe.fraction[0],
-                                  probe.fraction[1]);
+        return blend(probe.fine, fine_level.row_floats, probe.fraction[0], probe.fraction[1]);
     }
     Texel<S> coarse(const RowMajorProbe& probe) const {
-        return blend_row_major<S>(probe.coarse, coarse_level.row_floats, probe.fraction[2],
-                                  probe.fraction[3]);
+        return blend(probe.coarse, coarse_level.row_floats, probe.fraction[2], probe.fraction[3]);
     }
 };
 
