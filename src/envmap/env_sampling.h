@@ -85,4 +85,24 @@ template <int S>
             return env_taps(map, face, level, view, p);
         });
 }
+
+// The same where it is cheapest to ask for: a probe whose taps all lie on its face's row-major
+// levels (most) is addressed inline, without the edge handling.
+[[gnu::always_inline]] inline ProbeTaps probe_taps_on_face(const EnvironmentMap& map, int face,
+                                                           float s, float t,
+                                                           TrilinearLevels levels) {
+    const MipPyramid& pyramid = map.face(face);
+    const MipPyramid::LevelView& fine = pyramid.level(levels.l0);
+    const MipPyramid::LevelView& coarse =
+        pyramid.level(levels.w > 0.0f ? levels.l0 + 1 : levels.l0);
+    const BilinearPositionPair p = bilinear_positions(fine, coarse, s, t);
+    if (!(p.fine.inside && p.coarse.inside && fine.tile_log2 == 0 && coarse.tile_log2 == 0))
+        return probe_taps(map, face, s, t, levels);
+    auto taps = [](const MipPyramid::LevelView& view, const BilinearPosition& q) {
+        const float* a = view.base + q.y0 * view.row_floats + q.x0 * view.stride;
+        return BilinearTaps{
+            a, a + view.stride, a + view.row_floats, a + view.row_floats + view.stride, q.fx, q.fy};
+    };
+    return {taps(fine, p.fine), levels.w > 0.0f ? taps(coarse, p.coarse) : BilinearTaps{}};
+}
 }  // namespace footprint::detail

@@ -243,23 +243,31 @@ float centre_probe_lod(const EnvironmentMap& map, const EnvFootprint& footprint,
     return single_probe_lod(footprint.matrix, options, map.face(footprint.coords.face).max_level());
 }
 
-// The taps of the one trilinear probe at c, lod (centre_probe_lod()).
+// The one trilinear probe at the footprint's centre, c at lod (centre_probe_lod()): where it is and
+// which levels it reads. A single lookup reads it at once (filter_centre_probe); the batch
+// requests its taps first and reads them later (filter_probe_taps).
 struct CentreProbe {
-    detail::ProbeTaps taps;
+    EnvCoords coords;
     detail::TrilinearLevels levels;
 };
 [[gnu::always_inline]] inline CentreProbe centre_probe(const EnvironmentMap& map,
                                                        const EnvCoords& c, float lod,
                                                        const LookupOptions& options) {
-    const detail::TrilinearLevels levels = detail::trilinear_levels(
-        lod, map.face(c.face).max_level(), single_probe_blend(options.lod_blend));
-    return {detail::probe_taps(map, c.face, c.s, c.t, levels), levels};
+    return {c, detail::trilinear_levels(lod, map.face(c.face).max_level(),
+                                        single_probe_blend(options.lod_blend))};
+}
+
+void filter_probe_taps(const EnvironmentMap& map, const detail::ProbeTaps& taps,
+                       detail::TrilinearLevels levels, float* out) {
+    detail::dispatch_stride(map.face(0).stride(), [&]<int S>() {
+        detail::store(detail::blend_probe<S>(taps, levels), map.channels(), out);
+    });
 }
 
 void filter_centre_probe(const EnvironmentMap& map, const CentreProbe& probe, float* out) {
-    detail::dispatch_stride(map.face(0).stride(), [&]<int S>() {
-        detail::store(detail::blend_probe<S>(probe.taps, probe.levels), map.channels(), out);
-    });
+    const EnvCoords& c = probe.coords;
+    filter_probe_taps(map, detail::probe_taps_on_face(map, c.face, c.s, c.t, probe.levels),
+                      probe.levels, out);
 }
 
 // A lat-long footprint near a pole, carried onto its polar cap; invalid elsewhere.
@@ -482,7 +490,8 @@ bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 map_direction, Vec
     constexpr std::size_t kGroup = 16;
     const int channels = map.channels();
     struct Deferred {
-        CentreProbe probe;
+        detail::ProbeTaps taps;
+        detail::TrilinearLevels levels;
         float* out;
     };
     Deferred deferred[kGroup];
@@ -493,16 +502,17 @@ bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 map_direction, Vec
         for (std::size_t i = 0; i < count; ++i) {
             const EnvRayDifferential& ray = rays[first + i];
             float* result = out + (first + i) * channels;
-            Deferred& d = deferred[pending];
+            CentreProbe probe;
             if (!lookup_or_centre_probe(map, ray.direction, ray.d_dx, ray.d_dy, options, to_map,
-                                        result, d.probe))
+                                        result, probe))
                 continue;
-            d.out = result;
-            detail::prefetch_probe(d.probe.taps, d.probe.levels, stride);
-            ++pending;
+            const EnvCoords& c = probe.coords;
+            Deferred& d = deferred[pending++];
+            d = {detail::probe_taps(map, c.face, c.s, c.t, probe.levels), probe.levels, result};
+            detail::prefetch_probe(d.taps, d.levels, stride);
         }
         for (std::size_t i = 0; i < pending; ++i)
-            filter_centre_probe(map, deferred[i].probe, deferred[i].out);
+            filter_probe_taps(map, deferred[i].taps, deferred[i].levels, deferred[i].out);
     }
 }
 

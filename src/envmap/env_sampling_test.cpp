@@ -1,0 +1,53 @@
+// env_sampling.h's shortcut for a probe on its own face (probe_taps_on_face) against the general
+// seamless taps (probe_taps): the same texels and fractions, on every layout, at every level.
+#include "envmap/env_sampling.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "envmap/env_test_maps.h"
+
+namespace footprint {
+namespace {
+
+void expect_same_taps(const detail::BilinearTaps& got, const detail::BilinearTaps& want) {
+    EXPECT_EQ(got.a, want.a);
+    EXPECT_EQ(got.b, want.b);
+    EXPECT_EQ(got.c, want.c);
+    EXPECT_EQ(got.d, want.d);
+    EXPECT_EQ(got.fx, want.fx);
+    EXPECT_EQ(got.fy, want.fy);
+}
+
+TEST(EnvSampling, ProbeOnItsFaceReadsTheSeamlessTaps) {
+    for (const EnvLayout layout :
+         {EnvLayout::cube, EnvLayout::latlong, EnvLayout::sphere, EnvLayout::paraboloid}) {
+        const EnvironmentMap map = test::env_noise_map(layout, 37, 3);
+        std::mt19937 rng(11);
+        std::uniform_real_distribution<float> unit(0, 1);
+        int on_face = 0, beyond = 0;
+        for (int k = 0; k < 4000; ++k) {
+            const int face = static_cast<int>(unit(rng) * static_cast<float>(map.face_count())) %
+                             map.face_count();
+            const float s = 1.02f * unit(rng) - 0.01f, t = 1.02f * unit(rng) - 0.01f;
+            const float lod = (k % 2 ? 1.0f : 0.0f) * unit(rng) * 4.0f + static_cast<float>(k % 3);
+            const MipPyramid& pyramid = map.face(face);
+            const detail::TrilinearLevels levels =
+                detail::trilinear_levels(std::min(lod, static_cast<float>(pyramid.max_level())),
+                                         pyramid.max_level(), LodBlend::linear);
+            const detail::ProbeTaps want = detail::probe_taps(map, face, s, t, levels);
+            const detail::ProbeTaps got = detail::probe_taps_on_face(map, face, s, t, levels);
+            expect_same_taps(got.fine, want.fine);
+            if (levels.w > 0.0f) expect_same_taps(got.coarse, want.coarse);
+            const detail::BilinearPosition p =
+                detail::bilinear_position(pyramid.level(levels.l0), s, t);
+            (p.inside ? on_face : beyond) += 1;
+        }
+        EXPECT_GT(on_face, 1000);  // both the shortcut and the seamless path exercised
+        EXPECT_GT(beyond, 100);
+    }
+}
+
+}  // namespace
+}  // namespace footprint
