@@ -244,6 +244,18 @@ template <int S>
 template <int S, class Line>
 [[gnu::always_inline]] inline Texel<S> blend_line_ahead(int count, const float* weights,
                                                         float coarse_weight, Line&& line) {
+    if (count == 2) {  // the most common line (near-isotropic footprints): no ring, no loops
+        const auto first = line.place(0), second = line.place(1);
+        Texel<S> fine{}, coarse{};
+        add_scaled(fine, weights[0], line.fine(first));
+        if (coarse_weight > 0.0f) add_scaled(coarse, weights[0], line.coarse(first));
+        add_scaled(fine, weights[1], line.fine(second));
+        if (coarse_weight > 0.0f) add_scaled(coarse, weights[1], line.coarse(second));
+        const float weight = 1.0f / (0.0f + weights[0] + weights[1]);
+        fine.v *= weight;
+        if (coarse_weight > 0.0f) fine.v += coarse_weight * (weight * coarse.v - fine.v);
+        return fine;
+    }
     constexpr int kAhead = 6, kRing = 8;
     decltype(line.place(0)) ring[kRing];
     for (int i = 0; i < std::min(kAhead, count); ++i) ring[i] = line.place(i);
