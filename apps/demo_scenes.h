@@ -15,9 +15,9 @@
 //   brushed_sphere    a brushed-metal sphere: anisotropic roughness stretches the highlights
 //                     and the reflections across the grooves
 // Each scene also has a short camera_path (a dolly, truck or pan over a fraction of a unit) for
-// temporal-stability measurements. Assets come from apps/demo_assets.h (generated in code) and, where present, from the shared
-// data folder (real HDR environments and normal maps; each scene falls back to a generated asset
-// when a file is absent, and says which in DemoScene::assets).
+// temporal-stability measurements. Assets come from apps/demo_assets.h (generated in code) and,
+// where present, from the shared data folder (real HDR environments and normal maps; each scene
+// falls back to a generated asset when a file is absent, and says which in DemoScene::assets).
 #pragma once
 
 #include <filesystem>
