@@ -1,9 +1,6 @@
 #include "envmap/cube_edges.h"
 
-#include <algorithm>
 #include <array>
-
-#include "envmap/env_layout.h"
 
 namespace footprint {
 
@@ -37,17 +34,6 @@ void tap_beyond(int side, int k, int w, int& x, int& y) {
     y = side == 2 ? -1 : side == 3 ? w : k;
 }
 
-// The texel holding the direction of the centre of tap (x, y) of `face`, w wide: what
-// env_sampling.h's env_texel() reads without this table.
-CubeTexel texel_by_direction(int face, int x, int y, int w) {
-    const float size = static_cast<float>(w);
-    const EnvCoords c = env_coords(
-        EnvLayout::cube, env_direction(EnvLayout::cube, face, (static_cast<float>(x) + 0.5f) / size,
-                                       (static_cast<float>(y) + 0.5f) / size));
-    return {c.face, std::clamp(static_cast<int>(c.s * size), 0, w - 1),
-            std::clamp(static_cast<int>(c.t * size), 0, w - 1)};
-}
-
 // Each face's four edges, read from the directions of the first and last taps along them on faces
 // 8 texels wide (enough to tell first, last, along and reversed apart).
 std::array<std::array<CubeEdge, 4>, 6> tabulate_edges() {
@@ -62,8 +48,10 @@ std::array<std::array<CubeEdge, 4>, 6> tabulate_edges() {
             int x0, y0, x1, y1;
             tap_beyond(side, 0, kWidth, x0, y0);
             tap_beyond(side, kWidth - 1, kWidth, x1, y1);
-            const CubeTexel a = texel_by_direction(face, x0, y0, kWidth);
-            const CubeTexel b = texel_by_direction(face, x1, y1, kWidth);
+            const EnvTexel a =
+                env_texel_of_direction(EnvLayout::cube, face, x0, y0, kWidth, kWidth);
+            const EnvTexel b =
+                env_texel_of_direction(EnvLayout::cube, face, x1, y1, kWidth, kWidth);
             edges[face][side] = {a.face, classify(a.x, b.x), classify(a.y, b.y)};
         }
     }
@@ -72,7 +60,7 @@ std::array<std::array<CubeEdge, 4>, 6> tabulate_edges() {
 
 }  // namespace
 
-CubeTexel cube_texel_across_edge(int face, int x, int y, int w) {
+EnvTexel cube_texel_across_edge(int face, int x, int y, int w) {
     static const std::array<std::array<CubeEdge, 4>, 6> edges = tabulate_edges();
     const int side = x < 0 ? 0 : x >= w ? 1 : y < 0 ? 2 : 3;
     const int k = side < 2 ? y : x;

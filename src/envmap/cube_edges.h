@@ -21,14 +21,13 @@
 // lookup (env_sampling.h).
 #pragma once
 
+#include "envmap/env_layout.h"
+
 namespace footprint {
 
-struct CubeTexel {
-    int face, x, y;
-};
-
 // The texel of the neighbour face that tap (x, y) of `face` (w × w texels) reads: (x, y) one
-// texel beyond exactly one edge, the other coordinate in [0, w).
-CubeTexel cube_texel_across_edge(int face, int x, int y, int w);
+// texel beyond exactly one edge, the other coordinate in [0, w). The same as
+// env_texel_of_direction(EnvLayout::cube, face, x, y, w, w), without the direction.
+EnvTexel cube_texel_across_edge(int face, int x, int y, int w);
 
 }  // namespace footprint

@@ -312,4 +312,13 @@ FOOTPRINT_ENV_LAYOUT_INSTANTIATE(double)
 
 #undef FOOTPRINT_ENV_LAYOUT_INSTANTIATE
 
+EnvTexel env_texel_of_direction(EnvLayout layout, int face, int x, int y, int w, int h) {
+    const float width = static_cast<float>(w), height = static_cast<float>(h);
+    const EnvCoords c =
+        env_coords(layout, env_direction(layout, face, (static_cast<float>(x) + 0.5f) / width,
+                                         (static_cast<float>(y) + 0.5f) / height));
+    return {c.face, std::clamp(static_cast<int>(c.s * width), 0, w - 1),
+            std::clamp(static_cast<int>(c.t * height), 0, h - 1)};
+}
+
 }  // namespace footprint

@@ -209,4 +209,13 @@ using EnvCoordsJacobian = EnvCoordsJacobianT<float>;
 template <class T>
 Vec3T<T> env_direction(EnvLayout layout, int face, T s, T t);
 
+// ---- Texels of a level w × h.
+struct EnvTexel {
+    int face, x, y;
+};
+// The texel holding the direction of the centre of texel (x, y) of `face`, which may lie beyond
+// the level: on the neighbouring cube face, over a lat-long pole, back through the sphere map's
+// rim, on the other paraboloid hemisphere (the seamless taps of envmap/env_sampling.h).
+EnvTexel env_texel_of_direction(EnvLayout layout, int face, int x, int y, int w, int h);
+
 }  // namespace footprint

@@ -35,16 +35,11 @@ inline const float* env_texel(const EnvironmentMap& map, int face, int level, in
         (x < 0 || x >= view.width) != (y < 0 || y >= view.height)) {
         // Beyond one edge: the neighbour face's texel by integers (cube_edges.h), the one the
         // direction below finds.
-        const CubeTexel across = cube_texel_across_edge(face, x, y, view.width);
+        const EnvTexel across = cube_texel_across_edge(face, x, y, view.width);
         return map.face(across.face).level(level).texel(across.x, across.y);
     }
-    const float w = static_cast<float>(view.width), h = static_cast<float>(view.height);
-    const EnvCoords c = env_coords(
-        map.layout(), env_direction(map.layout(), face, (static_cast<float>(x) + 0.5f) / w,
-                                    (static_cast<float>(y) + 0.5f) / h));
-    const MipPyramid::LevelView& other = map.face(c.face).level(level);
-    return other.texel(std::clamp(static_cast<int>(c.s * w), 0, view.width - 1),
-                       std::clamp(static_cast<int>(c.t * h), 0, view.height - 1));
+    const EnvTexel t = env_texel_of_direction(map.layout(), face, x, y, view.width, view.height);
+    return map.face(t.face).level(level).texel(t.x, t.y);
 }
 
 // The taps of a bilinear sample at position p on level `level` of `face`, some beyond its edges:
@@ -99,9 +94,8 @@ template <int S>
     if (!(p.fine.inside && p.coarse.inside && fine.tile_log2 == 0 && coarse.tile_log2 == 0))
         return probe_taps(map, face, s, t, levels);
     auto taps = [](const MipPyramid::LevelView& view, const BilinearPosition& q) {
-        const float* a = view.base + q.y0 * view.row_floats + q.x0 * view.stride;
-        return BilinearTaps{
-            a, a + view.stride, a + view.row_floats, a + view.row_floats + view.stride, q.fx, q.fy};
+        return row_major_taps(view.base + q.y0 * view.row_floats + q.x0 * view.stride,
+                              view.row_floats, view.stride, q.fx, q.fy);
     };
     return {taps(fine, p.fine), levels.w > 0.0f ? taps(coarse, p.coarse) : BilinearTaps{}};
 }

@@ -7,18 +7,10 @@
 #include <random>
 
 #include "envmap/env_test_maps.h"
+#include "texture/test_taps.h"
 
 namespace footprint {
 namespace {
-
-void expect_same_taps(const detail::BilinearTaps& got, const detail::BilinearTaps& want) {
-    EXPECT_EQ(got.a, want.a);
-    EXPECT_EQ(got.b, want.b);
-    EXPECT_EQ(got.c, want.c);
-    EXPECT_EQ(got.d, want.d);
-    EXPECT_EQ(got.fx, want.fx);
-    EXPECT_EQ(got.fy, want.fy);
-}
 
 TEST(EnvSampling, ProbeOnItsFaceReadsTheSeamlessTaps) {
     for (const EnvLayout layout :
@@ -38,8 +30,12 @@ TEST(EnvSampling, ProbeOnItsFaceReadsTheSeamlessTaps) {
                                          pyramid.max_level(), LodBlend::linear);
             const detail::ProbeTaps want = detail::probe_taps(map, face, s, t, levels);
             const detail::ProbeTaps got = detail::probe_taps_on_face(map, face, s, t, levels);
-            expect_same_taps(got.fine, want.fine);
-            if (levels.w > 0.0f) expect_same_taps(got.coarse, want.coarse);
+            EXPECT_TRUE(test::same_taps(got.fine, want.fine))
+                << "face " << face << " at " << s << ", " << t;
+            if (levels.w > 0.0f) {
+                EXPECT_TRUE(test::same_taps(got.coarse, want.coarse))
+                    << "face " << face << " at " << s << ", " << t;
+            }
             const detail::BilinearPosition p =
                 detail::bilinear_position(pyramid.level(levels.l0), s, t);
             (p.inside ? on_face : beyond) += 1;

@@ -119,31 +119,31 @@ inline BilinearTaps taps_at(const MipPyramid::LevelView& view, int xa, int xb, i
     return {upper + ca, upper + cb, lower + ca, lower + cb, fx, fy};
 }
 
-// Requests the cache lines of a sample's taps (a tap of `stride` floats may straddle a line).
-inline void prefetch_taps(const float* a, const float* b, const float* c, const float* d,
-                          int stride) {
-    prefetch(a);
-    prefetch(b + stride - 1);
-    prefetch(c);
-    prefetch(d + stride - 1);
+// The taps of a row-major level (tile_log2 = 0) from the upper-left one: one texel (`stride`
+// floats) right and one row down.
+inline BilinearTaps row_major_taps(const float* upper_left, std::ptrdiff_t row_floats, int stride,
+                                   float fx, float fy) {
+    const float* lower_left = upper_left + row_floats;
+    return {upper_left, upper_left + stride, lower_left, lower_left + stride, fx, fy};
 }
+
+// Requests the cache lines of a sample's taps (a tap of `stride` floats may straddle a line).
 inline void prefetch_taps(const BilinearTaps& taps, int stride) {
-    prefetch_taps(taps.a, taps.b, taps.c, taps.d, stride);
+    prefetch(taps.a);
+    prefetch(taps.b + stride - 1);
+    prefetch(taps.c);
+    prefetch(taps.d + stride - 1);
 }
 
 // The bilinear blend of four taps.
 template <int S>
-[[gnu::always_inline]] inline Texel<S> blend_taps(const float* a, const float* b, const float* c,
-                                                  const float* d, float fx, float fy) {
+[[gnu::always_inline]] inline Texel<S> blend_taps(const BilinearTaps& taps) {
+    const float fx = taps.fx, fy = taps.fy;
     const float wa = (1 - fx) * (1 - fy), wb = fx * (1 - fy), wc = (1 - fx) * fy, wd = fx * fy;
     Texel<S> r;
-    r.v = wa * Texel<S>::load(a).v + wb * Texel<S>::load(b).v + wc * Texel<S>::load(c).v +
-          wd * Texel<S>::load(d).v;
+    r.v = wa * Texel<S>::load(taps.a).v + wb * Texel<S>::load(taps.b).v +
+          wc * Texel<S>::load(taps.c).v + wd * Texel<S>::load(taps.d).v;
     return r;
-}
-template <int S>
-[[gnu::always_inline]] inline Texel<S> blend_taps(const BilinearTaps& taps) {
-    return blend_taps<S>(taps.a, taps.b, taps.c, taps.d, taps.fx, taps.fy);
 }
 
 // The taps of a bilinear sample of one level at position p; taps beyond the level's edge are
@@ -244,27 +244,23 @@ template <int S>
 template <int S, class Line>
 [[gnu::always_inline]] inline Texel<S> blend_line_ahead(int count, const float* weights,
                                                         float coarse_weight, Line&& line) {
-    if (count == 2) {  // the most common line (near-isotropic footprints): no ring, no loops
-        const auto first = line.place(0), second = line.place(1);
-        Texel<S> fine{}, coarse{};
-        add_scaled(fine, weights[0], line.fine(first));
-        if (coarse_weight > 0.0f) add_scaled(coarse, weights[0], line.coarse(first));
-        add_scaled(fine, weights[1], line.fine(second));
-        if (coarse_weight > 0.0f) add_scaled(coarse, weights[1], line.coarse(second));
-        const float weight = 1.0f / (0.0f + weights[0] + weights[1]);
-        fine.v *= weight;
-        if (coarse_weight > 0.0f) fine.v += coarse_weight * (weight * coarse.v - fine.v);
-        return fine;
-    }
-    constexpr int kAhead = 6, kRing = 8;
-    decltype(line.place(0)) ring[kRing];
-    for (int i = 0; i < std::min(kAhead, count); ++i) ring[i] = line.place(i);
     Texel<S> fine{}, coarse{};
-    for (int i = 0; i < count; ++i) {
-        if (i + kAhead < count) ring[(i + kAhead) % kRing] = line.place(i + kAhead);
-        const auto& probe = ring[i % kRing];
+    auto read = [&](const auto& probe, int i) {
         add_scaled(fine, weights[i], line.fine(probe));
         if (coarse_weight > 0.0f) add_scaled(coarse, weights[i], line.coarse(probe));
+    };
+    if (count == 2) {  // the most common line (near-isotropic footprints): no ring
+        const auto first = line.place(0), second = line.place(1);
+        read(first, 0);
+        read(second, 1);
+    } else {
+        constexpr int kAhead = 6, kRing = 8;
+        decltype(line.place(0)) ring[kRing];
+        for (int i = 0; i < std::min(kAhead, count); ++i) ring[i] = line.place(i);
+        for (int i = 0; i < count; ++i) {
+            if (i + kAhead < count) ring[(i + kAhead) % kRing] = line.place(i + kAhead);
+            read(ring[i % kRing], i);
+        }
     }
     float weight_sum = 0;
     for (int i = 0; i < count; ++i) weight_sum += weights[i];
@@ -389,14 +385,11 @@ struct RowMajorLine {
         if (two_levels) request(probe.coarse, coarse_level.row_floats);
         return probe;
     }
-    // The taps at `upper_left` of a row-major level: one texel right and one row down.
     static void request(const float* upper_left, std::ptrdiff_t row_floats) {
-        prefetch_taps(upper_left, upper_left + S, upper_left + row_floats,
-                      upper_left + row_floats + S, S);
+        prefetch_taps(row_major_taps(upper_left, row_floats, S, 0, 0), S);
     }
     static Texel<S> blend(const float* upper_left, std::ptrdiff_t row_floats, float fx, float fy) {
-        return blend_taps<S>(upper_left, upper_left + S, upper_left + row_floats,
-                             upper_left + row_floats + S, fx, fy);
+        return blend_taps<S>(row_major_taps(upper_left, row_floats, S, fx, fy));
     }
     Texel<S> fine(const RowMajorProbe& probe) const {
         return blend(probe.fine, fine_level.row_floats, probe.fraction[0], probe.fraction[1]);
