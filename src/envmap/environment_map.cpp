@@ -290,6 +290,23 @@ struct FootprintCentre {
         : coords(f.coords), matrix(f.matrix), map_direction(f.map_direction) {}
 };
 
+// The position on face c.face of each probe of a cube line centred at c: c + the probe's offset, in
+// (s, t).
+struct FacePositions {
+    const EnvCoords& c;
+    const ProbePlan& plan;
+    Vec2 size;
+
+    FacePositions(const MipPyramid& face, const EnvCoords& c, const ProbePlan& plan)
+        : c(c),
+          plan(plan),
+          size{static_cast<float>(face.width(0)), static_cast<float>(face.height(0))} {}
+    Vec2 operator()(int i) const {
+        const Vec2 o = plan.offset(i);
+        return Vec2{c.s + o.x / size.x, c.t + o.y / size.y};
+    }
+};
+
 // A cube line of probes whose ends' taps lie on the centre face's levels (detail::line_inside()):
 // all its probes' taps lie there too (a face is convex), at the positions place_probe() is given,
 // so they are read without placing each on its face. False, with nothing written, for any other
@@ -299,14 +316,27 @@ struct FootprintCentre {
 [[gnu::noinline, gnu::flatten]] bool cube_line_on_face(const MipPyramid& face, const EnvCoords c,
                                                        const ProbePlan plan, const float* weights,
                                                        detail::TrilinearLevels levels, float* out) {
-    const Vec2 size{static_cast<float>(face.width(0)), static_cast<float>(face.height(0))};
-    return detail::blend_probe_line_inside(
-        face, plan.count, weights, levels,
-        [&](int i) {
-            const Vec2 o = plan.offset(i);
-            return Vec2{c.s + o.x / size.x, c.t + o.y / size.y};
-        },
-        out);
+    return detail::blend_probe_line_inside(face, plan.count, weights, levels,
+                                           FacePositions{face, c, plan}, out);
+}
+
+// The cube lines on their face (cube_line_on_face()) of at most kDeferredProbes probes: the batch
+// requests them and reads them once its group's footprints are computed.
+constexpr int kDeferredProbes = 8;
+using DeferredCubeLine = detail::RequestedLine<kDeferredProbes>;
+
+// cube_line_on_face()'s line, requested into `line` for a later read (DeferredCubeLine::blend());
+// false, with nothing requested, for any other line or one of more than kDeferredProbes probes.
+[[gnu::noinline, gnu::flatten]] bool request_cube_line_on_face(
+    const MipPyramid& face, const EnvCoords c, const ProbePlan plan, const float* weights,
+    detail::TrilinearLevels levels, DeferredCubeLine& line) {
+    const FacePositions position_of{face, c, plan};
+    bool requested = false;
+    detail::dispatch_stride(face.stride(), [&]<int S>() {
+        requested = line.request<S>(face, plan.count, weights, levels, position_of(0),
+                                    position_of(plan.count - 1), position_of);
+    });
+    return requested;
 }
 
 // A lat-long line of probes on its quadratic path whose taps all lie on the map's levels, clear of
@@ -324,16 +354,18 @@ struct FootprintCentre {
         out);
 }
 
-// Every other lookup (a line of probes, another filter), given the footprint's cap_footprint().
-// Flattened: everything it calls that can be inlined is, so that its probe loop compiles the same
-// however much else this file inlines (GCC's unit-growth limit had pushed the probe taps out of
-// line once the rotation-free entry points were added: 11 % more instructions per aniso32 lookup).
-[[gnu::flatten]] void general_lookup(const EnvironmentMap& map, const FootprintCentre& footprint,
+// Every other lookup (a line of probes, another filter), given the footprint's cap_footprint(),
+// done into out; or, given `defer` (the batch), a cube line on its face requested into it for a
+// later read: then true. Flattened: everything it calls that can be inlined is, so that its probe
+// loop compiles the same however much else this file inlines (GCC's unit-growth limit had pushed
+// the probe taps out of line once the rotation-free entry points were added: 11 % more
+// instructions per aniso32 lookup).
+[[gnu::flatten]] bool general_lookup(const EnvironmentMap& map, const FootprintCentre& footprint,
                                      const PolarCapFootprint& cap, const LookupOptions& options,
-                                     float* out) {
+                                     float* out, DeferredCubeLine* defer) {
     if (cap.valid) {
         polar_cap_filter(cap, options, out);
-        return;
+        return false;
     }
     const EnvCoords& c = footprint.coords;
     const MipPyramid& centre = map.face(c.face);
@@ -348,7 +380,7 @@ struct FootprintCentre {
     }
     if (options.filter != TextureFilter::footprint_assembly) {
         texture_lookup(centre, c.s, c.t, e, options, out);  // on the centre face only
-        return;
+        return false;
     }
     // Footprint assembly (spec §2.8–2.9): probes along r1 on the centre face's (s, t) plane, each
     // placed on the face that owns its direction (place_probe), all at the centre face's lod.
@@ -374,9 +406,13 @@ struct FootprintCentre {
     // All probes read plan.lod's levels (the centre face's).
     const detail::TrilinearLevels levels =
         detail::trilinear_levels(plan.lod, centre.max_level(), blend);
-    if (map.layout() == EnvLayout::cube && cube_line_on_face(centre, c, plan, weights, levels, out))
-        return;
-    if (path.valid && latlong_path_inside(centre, path, plan.count, weights, levels, out)) return;
+    if (map.layout() == EnvLayout::cube) {
+        if (defer && request_cube_line_on_face(centre, c, plan, weights, levels, *defer))
+            return true;
+        if (cube_line_on_face(centre, c, plan, weights, levels, out)) return false;
+    }
+    if (path.valid && latlong_path_inside(centre, path, plan.count, weights, levels, out))
+        return false;
     // Each probe is placed on the face or at the direction that owns it (place_probe,
     // TangentProbes, QuadraticPath), its taps read seamlessly.
     auto place = [&](int i) {
@@ -396,6 +432,7 @@ struct FootprintCentre {
             });
         detail::store(result, centre.channels(), out);
     });
+    return false;
 }
 
 // Whether the polar caps of a lat-long map take a direction (map space) rather than the map.
@@ -421,49 +458,59 @@ bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 map_direction, Vec
     return true;
 }
 
+// What lookup_or_centre_probe() did with a lookup: done it into out, left its centre probe to the
+// caller, or (given a DeferredCubeLine) requested its cube line there for the caller to read.
+enum class Routed { done, centre_probe, deferred_line };
+
 // A lookup of a computed footprint: one probe at its centre, returned in `probe` for the caller to
-// filter, or any other lookup, done here into out.
-[[gnu::always_inline]] inline bool lookup_or_centre_probe(const EnvironmentMap& map,
-                                                          const EnvFootprint& footprint,
-                                                          const LookupOptions& options, float* out,
-                                                          CentreProbe& probe) {
+// filter, a cube line on its face requested into `defer` where given, or any other lookup, done
+// here into out.
+[[gnu::always_inline]] inline Routed lookup_or_centre_probe(const EnvironmentMap& map,
+                                                            const EnvFootprint& footprint,
+                                                            const LookupOptions& options,
+                                                            float* out, CentreProbe& probe,
+                                                            DeferredCubeLine* defer) {
     const float lod = centre_probe_lod(map, footprint, options);
     if (lod >= 0.0f) {
         probe = centre_probe(map, footprint.coords, lod, options);
-        return true;
+        return Routed::centre_probe;
     }
-    general_lookup(map, footprint, cap_footprint(map, footprint), options, out);
-    return false;
+    return general_lookup(map, footprint, cap_footprint(map, footprint), options, out, defer)
+               ? Routed::deferred_line
+               : Routed::done;
 }
 
 // A form (a) lookup, routed: a polar cap's (in its region), the common case in one pass
 // (plain_env_footprint()), or the careful path (compute_env_footprint()). A lookup that is one
 // probe at the footprint's centre (most are) is returned in `probe`, for the caller to filter (the
-// batch defers it until its texels have arrived); every other lookup is done here, into out.
-[[gnu::always_inline]] inline bool lookup_or_centre_probe(const EnvironmentMap& map, Vec3 r,
-                                                          Vec3 dr_dx, Vec3 dr_dy,
-                                                          const LookupOptions& options,
-                                                          const IdentitySkippingRotation& to_map,
-                                                          float* out, CentreProbe& probe) {
+// batch defers it until its texels have arrived); given `defer` (the batch), a cube line on its
+// face is requested there; every other lookup is done here, into out.
+[[gnu::always_inline]] inline Routed lookup_or_centre_probe(const EnvironmentMap& map, Vec3 r,
+                                                            Vec3 dr_dx, Vec3 dr_dy,
+                                                            const LookupOptions& options,
+                                                            const IdentitySkippingRotation& to_map,
+                                                            float* out, CentreProbe& probe,
+                                                            DeferredCubeLine* defer) {
     const Vec3 map_direction = to_map(r);
     if (in_caps_region(map, map_direction)) {
         if (polar_cap_lookup(map, r, map_direction, dr_dx, dr_dy, to_map, options, out))
-            return false;
+            return Routed::done;
     } else if (PlainEnvFootprint plain; plain_env_footprint(map.layout(), map.texel_scale(), r,
                                                             dr_dx, dr_dy, to_map, plain)) {
         const float lod =
             single_probe_lod(plain.matrix, options, map.face(plain.coords.face).max_level());
         if (lod >= 0.0f) {
             probe = centre_probe(map, plain.coords, lod, options);
-            return true;
+            return Routed::centre_probe;
         }
-        general_lookup(map, plain, PolarCapFootprint{}, options, out);  // outside the caps
-        return false;
+        return general_lookup(map, plain, PolarCapFootprint{}, options, out, defer)  // no caps
+                   ? Routed::deferred_line
+                   : Routed::done;
     }
     return lookup_or_centre_probe(
         map,
         compute_env_footprint(map.layout(), map.texel_scale(), r, dr_dx, dr_dy, to_map.matrix()),
-        options, out, probe);
+        options, out, probe, defer);
 }
 
 // A form (a) lookup (the single-call entry points).
@@ -472,7 +519,8 @@ bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 map_direction, Vec
                                                  const IdentitySkippingRotation& to_map,
                                                  float* out) {
     CentreProbe probe;
-    if (lookup_or_centre_probe(map, r, dr_dx, dr_dy, options, to_map, out, probe))
+    if (lookup_or_centre_probe(map, r, dr_dx, dr_dy, options, to_map, out, probe, nullptr) ==
+        Routed::centre_probe)
         filter_centre_probe(map, probe, out);
 }
 
@@ -482,37 +530,55 @@ bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 map_direction, Vec
                                                 const LookupOptions& options,
                                                 const IdentitySkippingRotation& to_map,
                                                 float* out) {
-    // The lookups that are one probe at the footprint's centre (most of them) are deferred: their
-    // texels are requested, and they are filtered once the group's footprints are all computed,
-    // when the lines have arrived. Enough lookups in flight to cover a miss to memory, few enough
-    // that their texels are still cached when read. Every other lookup (probe lines, polar caps)
-    // is done at once: measured (footprint-bench env), deferring those costs more than it saves.
+    // The lookups that are one probe at the footprint's centre (most of them) and the cube lines on
+    // their face (DeferredCubeLine) are deferred: their texels are requested, and they are
+    // filtered once the group's footprints are all computed, when the texels have arrived. Enough
+    // lookups in flight to cover a miss to memory, few enough that their texels are still cached
+    // when read. Every other lookup (other lines, polar caps) is done at once.
     constexpr std::size_t kGroup = 16;
     const int channels = map.channels();
-    struct Deferred {
+    struct DeferredProbe {
         detail::ProbeTaps taps;
         detail::TrilinearLevels levels;
         float* out;
     };
-    Deferred deferred[kGroup];
+    struct DeferredLine {
+        DeferredCubeLine line;
+        float* out;
+    };
+    DeferredProbe probes[kGroup];
+    DeferredLine lines[kGroup];
     const int stride = map.face(0).stride();
     for (std::size_t first = 0; first < rays.size(); first += kGroup) {
         const std::size_t count = std::min(kGroup, rays.size() - first);
-        std::size_t pending = 0;
+        std::size_t pending_probes = 0, pending_lines = 0;
         for (std::size_t i = 0; i < count; ++i) {
             const EnvRayDifferential& ray = rays[first + i];
             float* result = out + (first + i) * channels;
             CentreProbe probe;
-            if (!lookup_or_centre_probe(map, ray.direction, ray.d_dx, ray.d_dy, options, to_map,
-                                        result, probe))
-                continue;
-            const EnvCoords& c = probe.coords;
-            Deferred& d = deferred[pending++];
-            d = {detail::probe_taps(map, c.face, c.s, c.t, probe.levels), probe.levels, result};
-            detail::prefetch_probe(d.taps, d.levels, stride);
+            switch (lookup_or_centre_probe(map, ray.direction, ray.d_dx, ray.d_dy, options, to_map,
+                                           result, probe, &lines[pending_lines].line)) {
+                case Routed::done:
+                    break;
+                case Routed::deferred_line:
+                    lines[pending_lines++].out = result;
+                    break;
+                case Routed::centre_probe: {
+                    const EnvCoords& c = probe.coords;
+                    DeferredProbe& d = probes[pending_probes++];
+                    d = {detail::probe_taps(map, c.face, c.s, c.t, probe.levels), probe.levels,
+                         result};
+                    detail::prefetch_probe(d.taps, d.levels, stride);
+                    break;
+                }
+            }
         }
-        for (std::size_t i = 0; i < pending; ++i)
-            filter_probe_taps(map, deferred[i].taps, deferred[i].levels, deferred[i].out);
+        for (std::size_t i = 0; i < pending_probes; ++i)
+            filter_probe_taps(map, probes[i].taps, probes[i].levels, probes[i].out);
+        detail::dispatch_stride(stride, [&]<int S>() {
+            for (std::size_t i = 0; i < pending_lines; ++i)
+                detail::store(lines[i].line.template blend<S>(), channels, lines[i].out);
+        });
     }
 }
 
@@ -521,7 +587,8 @@ bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 map_direction, Vec
 void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
                         const LookupOptions& options, float* out) {
     CentreProbe probe;
-    if (lookup_or_centre_probe(map, footprint, options, out, probe))
+    if (lookup_or_centre_probe(map, footprint, options, out, probe, nullptr) ==
+        Routed::centre_probe)
         filter_centre_probe(map, probe, out);
 }
 

@@ -363,6 +363,20 @@ struct RowMajorProbe {
     Float4 fraction;
 };
 
+// A RowMajorProbe's bilinear blend on its fine and on its coarse level.
+template <int S>
+[[gnu::always_inline]] inline Texel<S> blend_row_major_fine(const RowMajorProbe& probe,
+                                                            std::ptrdiff_t row_floats) {
+    return blend_taps<S>(
+        row_major_taps(probe.fine, row_floats, S, probe.fraction[0], probe.fraction[1]));
+}
+template <int S>
+[[gnu::always_inline]] inline Texel<S> blend_row_major_coarse(const RowMajorProbe& probe,
+                                                              std::ptrdiff_t row_floats) {
+    return blend_taps<S>(
+        row_major_taps(probe.coarse, row_floats, S, probe.fraction[2], probe.fraction[3]));
+}
+
 // The probes of blend_probe_path_inside() on row-major levels (RowMajorProbe): the positions of
 // bilinear_positions(), level sizes converted once per line.
 template <int S, class PositionOf>
@@ -374,7 +388,7 @@ struct RowMajorLine {
         (Int4{fine_level.width, fine_level.height, coarse_level.width, coarse_level.height}),
         Float4);
 
-    RowMajorProbe place(int i) const {
+    [[gnu::always_inline]] RowMajorProbe place(int i) const {
         const auto position = position_of(i);
         const auto [lower, fraction] = floor_and_fraction(
             Float4{position.x, position.y, position.x, position.y} * size - 0.5f);
@@ -388,14 +402,76 @@ struct RowMajorLine {
     static void request(const float* upper_left, std::ptrdiff_t row_floats) {
         prefetch_taps(row_major_taps(upper_left, row_floats, S, 0, 0), S);
     }
-    static Texel<S> blend(const float* upper_left, std::ptrdiff_t row_floats, float fx, float fy) {
-        return blend_taps<S>(row_major_taps(upper_left, row_floats, S, fx, fy));
-    }
     Texel<S> fine(const RowMajorProbe& probe) const {
-        return blend(probe.fine, fine_level.row_floats, probe.fraction[0], probe.fraction[1]);
+        return blend_row_major_fine<S>(probe, fine_level.row_floats);
     }
     Texel<S> coarse(const RowMajorProbe& probe) const {
-        return blend(probe.coarse, coarse_level.row_floats, probe.fraction[2], probe.fraction[3]);
+        return blend_row_major_coarse<S>(probe, coarse_level.row_floats);
+    }
+};
+
+// The levels a line of probes on `levels` reads (coarse = fine when levels.w = 0), and whether
+// every probe of a path within the box of corners `lower` and `upper` has its taps on them
+// (line_inside()).
+struct LineLevels {
+    const MipPyramid::LevelView& fine;
+    const MipPyramid::LevelView& coarse;
+
+    LineLevels(const MipPyramid& pyramid, TrilinearLevels levels)
+        : fine(pyramid.level(levels.l0)),
+          coarse(pyramid.level(levels.w > 0.0f ? levels.l0 + 1 : levels.l0)) {}
+    template <class Corner>
+    bool hold(Corner lower, Corner upper) const {
+        return line_inside(fine, coarse, lower.x, lower.y, upper.x, upper.y);
+    }
+    bool row_major() const { return fine.tile_log2 == 0 && coarse.tile_log2 == 0; }
+};
+
+// A line of at most N probes inside row-major levels, placed and requested now (request()) and
+// read later (blend()), for callers that request many lines before reading any so that their
+// misses to memory overlap (the environment batch). blend() returns exactly what
+// blend_probe_path_inside() returns for the same path.
+template <int N>
+struct RequestedLine {
+    int count = 0;
+    float coarse_weight = 0;  // TrilinearLevels::w
+    std::ptrdiff_t fine_row_floats = 0, coarse_row_floats = 0;
+    float weights[N];
+    RowMajorProbe probes[N];
+
+    // blend_probe_path_inside()'s arguments: false, with nothing requested, unless it would read
+    // the path by RowMajorLine and count ≤ N.
+    template <int S, class Corner, class PositionOf>
+    [[gnu::always_inline]] bool request(const MipPyramid& pyramid, int probe_count,
+                                        const float* probe_weights, TrilinearLevels levels,
+                                        Corner lower, Corner upper, PositionOf&& position_of) {
+        const LineLevels on(pyramid, levels);
+        if (probe_count > N || !on.row_major() || !on.hold(lower, upper)) return false;
+        const RowMajorLine<S, PositionOf> line{on.fine, on.coarse, position_of, levels.w > 0.0f};
+        for (int i = 0; i < probe_count; ++i) {
+            probes[i] = line.place(i);
+            weights[i] = probe_weights[i];
+        }
+        count = probe_count;
+        coarse_weight = levels.w;
+        fine_row_floats = on.fine.row_floats;
+        coarse_row_floats = on.coarse.row_floats;
+        return true;
+    }
+
+    template <int S>
+    [[gnu::always_inline]] Texel<S> blend() const {
+        struct Requested {
+            const RequestedLine& line;
+            RowMajorProbe place(int i) const { return line.probes[i]; }
+            Texel<S> fine(const RowMajorProbe& probe) const {
+                return blend_row_major_fine<S>(probe, line.fine_row_floats);
+            }
+            Texel<S> coarse(const RowMajorProbe& probe) const {
+                return blend_row_major_coarse<S>(probe, line.coarse_row_floats);
+            }
+        };
+        return blend_line_ahead<S>(count, weights, coarse_weight, Requested{*this});
     }
 };
 
@@ -410,11 +486,10 @@ template <class Corner, class PositionOf>
                                                            TrilinearLevels levels, Corner lower,
                                                            Corner upper, PositionOf&& position_of,
                                                            float* out) {
-    const MipPyramid::LevelView& fine = pyramid.level(levels.l0);
-    const MipPyramid::LevelView& coarse =
-        pyramid.level(levels.w > 0.0f ? levels.l0 + 1 : levels.l0);
-    if (!line_inside(fine, coarse, lower.x, lower.y, upper.x, upper.y)) return false;
-    const bool row_major = fine.tile_log2 == 0 && coarse.tile_log2 == 0;
+    const LineLevels on(pyramid, levels);
+    if (!on.hold(lower, upper)) return false;
+    const MipPyramid::LevelView &fine = on.fine, &coarse = on.coarse;
+    const bool row_major = on.row_major();
     dispatch_stride(pyramid.stride(), [&]<int S>() {
         const Texel<S> result =
             row_major ? blend_line_ahead<S>(

@@ -136,6 +136,8 @@ TEST(Sampling, LinesInsideTheLevelsNeedNoEdgeTests) {
 // one channel, lines of one and two levels, shorter and longer than the look-ahead. Lines that
 // leave the levels are refused and write nothing.
 TEST(Sampling, LinesInsideTheLevelsReadAsTheGeneralLine) {
+    // Also: the same lines requested now and read later (detail::RequestedLine) read exactly the
+    // same.
     for (const int tile_log2 : {0, 2}) {
         for (const int channels : {3, 1}) {
             MipPyramidOptions options;
@@ -145,7 +147,7 @@ TEST(Sampling, LinesInsideTheLevelsReadAsTheGeneralLine) {
             std::mt19937 rng(7);
             std::uniform_real_distribution<float> coordinate(-0.05f, 1.05f), unit(0, 1);
             std::vector<float> weights(23);
-            int admitted = 0, refused = 0;
+            int admitted = 0, refused = 0, requests = 0;
             for (int k = 0; k < 1500; ++k) {
                 const float lod = (k % 3 ? 2.5f : 2.0f) * unit(rng);
                 const detail::TrilinearLevels levels =
@@ -161,27 +163,48 @@ TEST(Sampling, LinesInsideTheLevelsReadAsTheGeneralLine) {
                 };
                 float got[MipPyramid::kMaxChannels];
                 std::fill(std::begin(got), std::end(got), -1.0f);
+                // The same line requested now and read later (the environment batch's lines).
+                constexpr int kRequestedProbes = 8;
+                detail::RequestedLine<kRequestedProbes> requested;
+                bool request_taken = false;
+                detail::dispatch_stride(pyramid.stride(), [&]<int S>() {
+                    request_taken =
+                        requested.request<S>(pyramid, count, weights.data(), levels, position(0),
+                                             position(count - 1), position);
+                });
                 if (!detail::blend_probe_line_inside(pyramid, count, weights.data(), levels,
                                                      position, got)) {
                     ++refused;
                     ASSERT_EQ(got[0], -1.0f) << "a refused line wrote its result";
+                    ASSERT_FALSE(request_taken) << "a line outside the levels was requested";
                     continue;
                 }
                 ++admitted;
+                ASSERT_EQ(request_taken, tile_log2 == 0 && count <= kRequestedProbes)
+                    << "tile_log2 " << tile_log2 << ", " << count << " probes";
+                requests += request_taken;
                 detail::dispatch_stride(pyramid.stride(), [&]<int S>() {
                     const detail::Texel<S> want = detail::blend_probe_line<S>(
                         count, weights.data(), levels, pyramid.stride(), [&](int i) {
                             const Vec2 p = position(i);
                             return detail::probe_taps(pyramid, p.x, p.y, levels);
                         });
-                    for (int c = 0; c < channels; ++c)
+                    const detail::Texel<S> read_later = request_taken ? requested.blend<S>() : want;
+                    for (int c = 0; c < channels; ++c) {
                         ASSERT_EQ(got[c], want.v[c])
                             << "tile_log2 " << tile_log2 << ", " << count << " probes at lod "
                             << lod << ", channel " << c;
+                        ASSERT_EQ(read_later.v[c], want.v[c])
+                            << "requested line: " << count << " probes at lod " << lod
+                            << ", channel " << c;
+                    }
                 });
             }
             EXPECT_GT(admitted, 500) << "tile_log2 " << tile_log2;
             EXPECT_GT(refused, 100) << "tile_log2 " << tile_log2;
+            if (tile_log2 == 0) {
+                EXPECT_GT(requests, 100);
+            }
         }
     }
 }
