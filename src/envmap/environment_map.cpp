@@ -407,7 +407,8 @@ using DeferredCubeLine = detail::RequestedLine<kDeferredProbes>;
     const detail::TrilinearLevels levels =
         detail::trilinear_levels(plan.lod, centre.max_level(), blend);
     if (map.layout() == EnvLayout::cube) {
-        if (defer && request_cube_line_on_face(centre, c, plan, weights, levels, *defer))
+        if (defer && plan.count <= kDeferredProbes &&
+            request_cube_line_on_face(centre, c, plan, weights, levels, *defer))
             return true;
         if (cube_line_on_face(centre, c, plan, weights, levels, out)) return false;
     }
