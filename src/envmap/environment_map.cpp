@@ -459,18 +459,17 @@ bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 map_direction, Vec
     return true;
 }
 
-// What lookup_or_centre_probe() did with a lookup: done it into out, left its centre probe to the
+// What route_lookup() did with a lookup: done it into out, left its centre probe to the
 // caller, or (given a DeferredCubeLine) requested its cube line there for the caller to read.
 enum class Routed { done, centre_probe, deferred_line };
 
 // A lookup of a computed footprint: one probe at its centre, returned in `probe` for the caller to
 // filter, a cube line on its face requested into `defer` where given, or any other lookup, done
 // here into out.
-[[gnu::always_inline]] inline Routed lookup_or_centre_probe(const EnvironmentMap& map,
-                                                            const EnvFootprint& footprint,
-                                                            const LookupOptions& options,
-                                                            float* out, CentreProbe& probe,
-                                                            DeferredCubeLine* defer) {
+[[gnu::always_inline]] inline Routed route_lookup(const EnvironmentMap& map,
+                                                  const EnvFootprint& footprint,
+                                                  const LookupOptions& options, float* out,
+                                                  CentreProbe& probe, DeferredCubeLine* defer) {
     const float lod = centre_probe_lod(map, footprint, options);
     if (lod >= 0.0f) {
         probe = centre_probe(map, footprint.coords, lod, options);
@@ -486,12 +485,11 @@ enum class Routed { done, centre_probe, deferred_line };
 // probe at the footprint's centre (most are) is returned in `probe`, for the caller to filter (the
 // batch defers it until its texels have arrived); given `defer` (the batch), a cube line on its
 // face is requested there; every other lookup is done here, into out.
-[[gnu::always_inline]] inline Routed lookup_or_centre_probe(const EnvironmentMap& map, Vec3 r,
-                                                            Vec3 dr_dx, Vec3 dr_dy,
-                                                            const LookupOptions& options,
-                                                            const IdentitySkippingRotation& to_map,
-                                                            float* out, CentreProbe& probe,
-                                                            DeferredCubeLine* defer) {
+[[gnu::always_inline]] inline Routed route_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx,
+                                                  Vec3 dr_dy, const LookupOptions& options,
+                                                  const IdentitySkippingRotation& to_map,
+                                                  float* out, CentreProbe& probe,
+                                                  DeferredCubeLine* defer) {
     const Vec3 map_direction = to_map(r);
     if (in_caps_region(map, map_direction)) {
         if (polar_cap_lookup(map, r, map_direction, dr_dx, dr_dy, to_map, options, out))
@@ -508,7 +506,7 @@ enum class Routed { done, centre_probe, deferred_line };
                    ? Routed::deferred_line
                    : Routed::done;
     }
-    return lookup_or_centre_probe(
+    return route_lookup(
         map,
         compute_env_footprint(map.layout(), map.texel_scale(), r, dr_dx, dr_dy, to_map.matrix()),
         options, out, probe, defer);
@@ -520,7 +518,7 @@ enum class Routed { done, centre_probe, deferred_line };
                                                  const IdentitySkippingRotation& to_map,
                                                  float* out) {
     CentreProbe probe;
-    if (lookup_or_centre_probe(map, r, dr_dx, dr_dy, options, to_map, out, probe, nullptr) ==
+    if (route_lookup(map, r, dr_dx, dr_dy, options, to_map, out, probe, nullptr) ==
         Routed::centre_probe)
         filter_centre_probe(map, probe, out);
 }
@@ -557,8 +555,8 @@ enum class Routed { done, centre_probe, deferred_line };
             const EnvRayDifferential& ray = rays[first + i];
             float* result = out + (first + i) * channels;
             CentreProbe probe;
-            switch (lookup_or_centre_probe(map, ray.direction, ray.d_dx, ray.d_dy, options, to_map,
-                                           result, probe, &lines[pending_lines].line)) {
+            switch (route_lookup(map, ray.direction, ray.d_dx, ray.d_dy, options, to_map, result,
+                                 probe, &lines[pending_lines].line)) {
                 case Routed::done:
                     break;
                 case Routed::deferred_line:
@@ -588,8 +586,7 @@ enum class Routed { done, centre_probe, deferred_line };
 void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
                         const LookupOptions& options, float* out) {
     CentreProbe probe;
-    if (lookup_or_centre_probe(map, footprint, options, out, probe, nullptr) ==
-        Routed::centre_probe)
+    if (route_lookup(map, footprint, options, out, probe, nullptr) == Routed::centre_probe)
         filter_centre_probe(map, probe, out);
 }
 
