@@ -74,15 +74,6 @@ void probe_weights(const ProbePlan& plan, float* weights) {
     }
 }
 
-LodBlend effective_lod_blend(const ProbePlan& plan, LodBlend blend) {
-    if (plan.count == 1) return single_probe_blend(blend);
-    return blend == LodBlend::automatic ? LodBlend::variance_matched : blend;
-}
-
-LodBlend single_probe_blend(LodBlend blend) {
-    return blend == LodBlend::automatic ? LodBlend::linear : blend;
-}
-
 namespace {
 
 // λ1² and λ2² of K (spec §2.7), without square roots of λ.

@@ -64,10 +64,15 @@ constexpr int kMaxProbeCount = 1024;
 // (two probes weigh 1 each).
 void probe_weights(const ProbePlan& plan, float* weights);
 
-// LodBlend::automatic resolved for a plan: linear for one probe, variance-matched for several.
-LodBlend effective_lod_blend(const ProbePlan& plan, LodBlend blend);
-// The same for a single probe.
-LodBlend single_probe_blend(LodBlend blend);
+// LodBlend::automatic resolved for a single probe: linear.
+inline LodBlend single_probe_blend(LodBlend blend) {
+    return blend == LodBlend::automatic ? LodBlend::linear : blend;
+}
+// The same for a plan: linear for one probe, variance-matched for several.
+inline LodBlend effective_lod_blend(const ProbePlan& plan, LodBlend blend) {
+    if (plan.count == 1) return single_probe_blend(blend);
+    return blend == LodBlend::automatic ? LodBlend::variance_matched : blend;
+}
 
 // The probes for a footprint ellipse (finite, λ1 ≥ λ2 ≥ 0). max_probes ≥ 1; max_level = the
 // pyramid's coarsest level. lod_bias is added before clamping.

@@ -327,9 +327,20 @@ inline bool line_inside(const MipPyramid::LevelView& fine, const MipPyramid::Lev
                     p.coarse.fy)};
 }
 
-// Writes the first `channels` values of a texel.
+// Writes the first `channels` values of a texel. RGB in texels four floats wide (the common case)
+// and texels as wide as their channels are written without the per-channel tests.
 template <int S>
 inline void store(const Texel<S>& t, int channels, float* out) {
+    if (channels == S) {
+        __builtin_memcpy(out, &t.v, sizeof(t.v));
+        return;
+    }
+    if constexpr (S == 4) {
+        if (channels == 3) {
+            out[0] = t.v[0], out[1] = t.v[1], out[2] = t.v[2];
+            return;
+        }
+    }
     for (int k = 0; k < S; ++k)
         if (k < channels) out[k] = t.v[k];
 }
