@@ -86,17 +86,14 @@ template <int S>
 [[gnu::always_inline]] inline ProbeTaps probe_taps_on_face(const EnvironmentMap& map, int face,
                                                            float s, float t,
                                                            TrilinearLevels levels) {
-    const MipPyramid& pyramid = map.face(face);
-    const MipPyramid::LevelView& fine = pyramid.level(levels.l0);
-    const MipPyramid::LevelView& coarse =
-        pyramid.level(levels.w > 0.0f ? levels.l0 + 1 : levels.l0);
-    const BilinearPositionPair p = bilinear_positions(fine, coarse, s, t);
-    if (!(p.fine.inside && p.coarse.inside && fine.tile_log2 == 0 && coarse.tile_log2 == 0))
+    const LineLevels on(map.face(face), levels);
+    const BilinearPositionPair p = bilinear_positions(on.fine, on.coarse, s, t);
+    if (!(p.fine.inside && p.coarse.inside && on.row_major()))
         return probe_taps(map, face, s, t, levels);
     auto taps = [](const MipPyramid::LevelView& view, const BilinearPosition& q) {
         return row_major_taps(view.base + q.y0 * view.row_floats + q.x0 * view.stride,
                               view.row_floats, view.stride, q.fx, q.fy);
     };
-    return {taps(fine, p.fine), levels.w > 0.0f ? taps(coarse, p.coarse) : BilinearTaps{}};
+    return {taps(on.fine, p.fine), levels.w > 0.0f ? taps(on.coarse, p.coarse) : BilinearTaps{}};
 }
 }  // namespace footprint::detail
