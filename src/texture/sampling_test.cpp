@@ -134,10 +134,9 @@ TEST(Sampling, LinesInsideTheLevelsNeedNoEdgeTests) {
 // (blend_probe_line() over probe_taps(), with its edge tests): bit for bit, on row-major levels
 // (RowMajorLine, two pointers a probe) and tiled ones (probe_taps_inside()), for RGB (stride 4) and
 // one channel, lines of one and two levels, shorter and longer than the look-ahead. Lines that
-// leave the levels are refused and write nothing.
+// leave the levels are refused and write nothing. The same lines requested now and read later
+// (detail::RequestedLine, up to its eight probes on row-major levels) read exactly the same.
 TEST(Sampling, LinesInsideTheLevelsReadAsTheGeneralLine) {
-    // Also: the same lines requested now and read later (detail::RequestedLine) read exactly the
-    // same.
     for (const int tile_log2 : {0, 2}) {
         for (const int channels : {3, 1}) {
             MipPyramidOptions options;
