@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "envmap/env_layout_detail.h"
+#include "math/float4.h"
 
 namespace footprint {
 
@@ -157,6 +159,101 @@ bool plain_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, Vec3 dr_dx,
     out.matrix = footprint_matrix(out.d_dx, out.d_dy);
     // A non-finite differential makes D, and so K, non-finite (0·∞ is NaN): one test for all.
     return std::isfinite(out.matrix.xx + out.matrix.xy + out.matrix.yy);
+}
+
+namespace {
+
+// Three Float4: a Vec3 of each of four lanes.
+struct Vec3x4 {
+    Float4 x, y, z;
+};
+
+Vec3x4 gather(const EnvRayDifferential* rays, Vec3 EnvRayDifferential::*member) {
+    const Vec3 &a = rays[0].*member, &b = rays[1].*member, &c = rays[2].*member,
+               &d = rays[3].*member;
+    return {{a.x, b.x, c.x, d.x}, {a.y, b.y, c.y, d.y}, {a.z, b.z, c.z, d.z}};
+}
+
+// A v (Mat3::operator*'s order of operations), or v where A is the identity.
+Vec3x4 rotate(const IdentitySkippingRotation& to_map, const Vec3x4& v) {
+    if (to_map.is_identity()) return v;
+    const auto& m = to_map.matrix().m;
+    auto row = [&](int i) {
+        return Float4(m[i][0]) * v.x + Float4(m[i][1]) * v.y + Float4(m[i][2]) * v.z;
+    };
+    return {row(0), row(1), row(2)};
+}
+
+Float4 dot(const Vec3x4& a, const Vec3x4& b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+}  // namespace
+
+// The operations of plain_env_footprint() for EnvLayout::cube (prepare(), CubePoint,
+// cube_coords_and_jacobian_at(), finish(), MapJacobian, footprint_matrix()), lane by lane in the
+// same order, with the face table's entries chosen by selects.
+void plain_cube_footprints4(Vec2 texel_scale, const EnvRayDifferential* rays,
+                            const IdentitySkippingRotation& to_map, PlainCubeFootprints4& out) {
+    const Vec3x4 r = gather(rays, &EnvRayDifferential::direction);
+    const Vec3x4 m = rotate(to_map, r);
+    // prepare()'s common case, max |component| within 2^±100 and no NaN, and |r| > 0.
+    const Float4 big = max_like_std(max_like_std(abs(m.x), abs(m.y)), abs(m.z));
+    Mask4 plain = (big >= Float4(0x1p-100f)) & (big <= Float4(0x1p100f)) &
+                  is_not_nan(m.x + m.y + m.z) & (dot(r, r) > Float4(0.0f));
+    // 2^-exponent, exponent = (bits >> 23) − 127, from the bits: (254 − (bits >> 23)) << 23.
+    const Float4 scale = float_from_bits(shift_left<23>(Int4(254) - shift_right<23>(bits_of(big))));
+    const Vec3x4 p{m.x * scale, m.y * scale, m.z * scale};
+
+    // cube_face_of(): the axis a (x, unless |y| > |x|; then z if |z| exceeds that) and its sign.
+    const Mask4 y_over_x = abs(p.y) > abs(p.x);
+    const Mask4 z_axis = abs(p.z) > select(y_over_x, abs(p.y), abs(p.x));
+    const Mask4 y_axis = y_over_x & !z_axis;
+    const Mask4 x_axis = !(y_over_x | z_axis);
+    const Float4 c_axis = select(z_axis, p.z, select(y_over_x, p.y, p.x));
+    const Mask4 negative = c_axis < Float4(0.0f);
+    const Int4 face = shift_left<1>(select(z_axis, Int4(2), select(y_axis, Int4(1), Int4(0)))) +
+                      select(negative, Int4(1), Int4(0));
+    // CubePoint: ma = |c[a]|, s' = s_sign·c[s_axis]/ma, t' = t_sign·c[t_axis]/ma (kCubeFaces).
+    const Float4 one(1.0f), minus_one(-1.0f);
+    const Float4 ma = abs(c_axis);
+    const Float4 c_s = select(x_axis, p.z, p.x), c_t = select(y_axis, p.z, p.y);
+    const Float4 s_sign =
+        select(x_axis, select(negative, one, minus_one), select(z_axis & negative, minus_one, one));
+    const Float4 t_sign = select(y_axis & !negative, one, minus_one);
+    const Float4 sp = s_sign * c_s / ma, tp = t_sign * c_t / ma;
+
+    // cube_coords_and_jacobian_at(): ∂s/∂r = k(g_s − s'σ e_a), ∂t/∂r = k(g_t − t'σ e_a), then
+    // finish()'s exact 2^-exponent.
+    const Float4 sigma = select(negative, minus_one, one);
+    const Float4 k = one / (Float4(2.0f) * ma);
+    const Float4 ds_a = k * (Float4(0.0f) - sp * sigma), dt_a = k * (Float4(0.0f) - tp * sigma);
+    const Float4 ds_s = k * s_sign, dt_t = k * t_sign, zero(0.0f);
+    // a = x: s_axis z, t_axis y; a = y: s_axis x, t_axis z; a = z: s_axis x, t_axis y.
+    const Vec3x4 ds{select(x_axis, ds_a, ds_s) * scale, select(y_axis, ds_a, zero) * scale,
+                    select(x_axis, ds_s, select(z_axis, ds_a, zero)) * scale};
+    const Vec3x4 dt{select(x_axis, dt_a, zero) * scale, select(y_axis, dt_a, dt_t) * scale,
+                    select(y_axis, dt_t, select(z_axis, dt_a, zero)) * scale};
+
+    // MapJacobian: D's columns; K = D Dᵀ (footprint_matrix()).
+    const Vec3x4 mdx = rotate(to_map, gather(rays, &EnvRayDifferential::d_dx));
+    const Vec3x4 mdy = rotate(to_map, gather(rays, &EnvRayDifferential::d_dy));
+    const Float4 width(texel_scale.x), height(texel_scale.y);
+    const Float4 dxs = width * dot(ds, mdx), dxt = height * dot(dt, mdx);
+    const Float4 dys = width * dot(ds, mdy), dyt = height * dot(dt, mdy);
+    const Float4 xx = dxs * dxs + dys * dys, xy = dxs * dxt + dys * dyt, yy = dxt * dxt + dyt * dyt;
+    plain = plain & (abs(xx + xy + yy) < Float4(std::numeric_limits<float>::infinity()));
+
+    out.plain = plain.bits();
+    face.store(out.face);
+    (Float4(0.5f) * (sp + one)).store(out.s);
+    (Float4(0.5f) * (tp + one)).store(out.t);
+    xx.store(out.xx);
+    xy.store(out.xy);
+    yy.store(out.yy);
+    m.x.store(out.map_x);
+    m.y.store(out.map_y);
+    m.z.store(out.map_z);
 }
 
 EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, const ReflectionGeometry& g,

@@ -253,16 +253,41 @@ TEST(EnvFootprint, DegenerateInputsStayFinite) {
 // for the common case, and declines every rare one. Directions are drawn on the whole sphere, on
 // cube edges and corners, at the lat-long seam and near the poles, at scales from 2^-110 to 2^110;
 // differentials from 0 to huge, sometimes non-finite; with and without a rotation.
-TEST(EnvFootprint, PlainFootprintIsTheFullOneBitForBit) {
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<float> unit(-1, 1), exponent(-110, 110), spread(-12, 4);
-    const float nan = std::nanf(""), inf = INFINITY;
-    auto same = [](float a, float b) { return std::memcmp(&a, &b, sizeof(float)) == 0; };
-    auto same3 = [&](Vec3 a, Vec3 b) { return same(a.x, b.x) && same(a.y, b.y) && same(a.z, b.z); };
-    auto same2 = [&](Vec2 a, Vec2 b) { return same(a.x, b.x) && same(a.y, b.y); };
-    auto direction = [&](int kind) -> Vec3 {
+bool same(float a, float b) {
+    return std::memcmp(&a, &b, sizeof(float)) == 0;
+}
+bool same3(Vec3 a, Vec3 b) {
+    return same(a.x, b.x) && same(a.y, b.y) && same(a.z, b.z);
+}
+bool same2(Vec2 a, Vec2 b) {
+    return same(a.x, b.x) && same(a.y, b.y);
+}
+
+// Form-(a) rays for the fast paths' bit-for-bit tests: directions anywhere, at poles, cube edges
+// and corners, the lat-long seam and on the axes (signed zeros), at scales 2^±110; differentials at
+// moderate scales, with some NaN, infinite, zero or huge. Ray i is ordinary() where it is drawn
+// to be one of the common lookups.
+struct RandomRays {
+    std::mt19937 rng{7};
+    std::uniform_real_distribution<float> unit{-1, 1}, exponent{-110, 110}, spread{-12, 4};
+
+    static bool ordinary(int i, const EnvRayDifferential& ray) {
+        return i % 5 == 0 && std::isfinite(ray.d_dx.y) && std::isfinite(ray.d_dy.z);
+    }
+    EnvRayDifferential operator()(int i) {
+        const Vec3 r = direction(i);
+        const float size = std::ldexp(1.0f, static_cast<int>(spread(rng))) * std::sqrt(dot(r, r));
+        Vec3 dx = size * Vec3{unit(rng), unit(rng), unit(rng)};
+        Vec3 dy = size * Vec3{unit(rng), unit(rng), unit(rng)};
+        if (i % 97 == 0) dx.y = std::nanf("");
+        if (i % 89 == 0) dy.z = INFINITY;
+        if (i % 83 == 0) dx = dy = {};
+        if (i % 79 == 0) dx = 1e30f * dx;
+        return {r, dx, dy};
+    }
+    Vec3 direction(int kind) {
         Vec3 r{unit(rng), unit(rng), unit(rng)};
-        switch (kind % 5) {
+        switch (kind % 6) {
             case 1:
                 r.y = std::copysign(1.0f, r.y), r.x *= 1e-3f, r.z *= 1e-3f;
                 break;  // a pole
@@ -275,26 +300,26 @@ TEST(EnvFootprint, PlainFootprintIsTheFullOneBitForBit) {
             case 4:
                 r.x = 1e-7f * r.x, r.z = -std::fabs(r.z);
                 break;  // the lat-long seam
+            case 5:
+                r = kind % 4 == 1 ? Vec3{-0.0f, 0.0f, r.z} : Vec3{r.x, -0.0f, 0.0f};
+                break;  // an axis, with signed zeros
         }
         return std::ldexp(1.0f, static_cast<int>(exponent(rng)) / (kind % 3 == 0 ? 1 : 8)) * r;
-    };
-    const Mat3 rotations[] = {Mat3{}, rotation_xyz_degrees(20, -35, 50)};
+    }
+};
+
+const Mat3 kRotations[] = {Mat3{}, rotation_xyz_degrees(20, -35, 50)};
+
+TEST(EnvFootprint, PlainFootprintIsTheFullOneBitForBit) {
+    const float nan = std::nanf(""), inf = INFINITY;
+    RandomRays rays;
     for (EnvLayout layout : {EnvLayout::latlong, EnvLayout::cube, EnvLayout::sphere}) {
         const Vec2 scale = layout == EnvLayout::latlong ? Vec2{2048, 1024} : Vec2{1024, 1024};
         int answered = 0, common = 0;
-        for (const Mat3& rotation : rotations)
+        for (const Mat3& rotation : kRotations)
             for (int i = 0; i < 4000; ++i) {
-                const Vec3 r = direction(i);
-                const float size =
-                    std::ldexp(1.0f, static_cast<int>(spread(rng))) * std::sqrt(dot(r, r));
-                Vec3 dx = size * Vec3{unit(rng), unit(rng), unit(rng)};
-                Vec3 dy = size * Vec3{unit(rng), unit(rng), unit(rng)};
-                if (i % 97 == 0) dx.y = nan;
-                if (i % 89 == 0) dy.z = inf;
-                if (i % 83 == 0) dx = dy = {};
-                if (i % 79 == 0) dx = 1e30f * dx;
-                const bool ordinary = i % 5 == 0 && std::isfinite(dx.y) && std::isfinite(dy.z);
-                common += ordinary;
+                const auto [r, dx, dy] = rays(i);
+                common += RandomRays::ordinary(i, {r, dx, dy});
                 PlainEnvFootprint plain;
                 const bool answers = plain_env_footprint(layout, scale, r, dx, dy,
                                                          IdentitySkippingRotation(rotation), plain);
@@ -342,6 +367,49 @@ TEST(EnvFootprint, PlainFootprintIsTheFullOneBitForBit) {
                                      plain));  // beyond 2^100
     EXPECT_TRUE(plain_env_footprint(EnvLayout::latlong, {2048, 1024}, {1, 0.3f, -0.2f}, d, d,
                                     identity, plain));
+}
+
+TEST(EnvFootprint, FourCubeFootprintsAreThePlainOnesBitForBit) {
+    RandomRays random;
+    const Vec2 scale{1024, 1024};
+    for (const Mat3& rotation : kRotations) {
+        const IdentitySkippingRotation to_map(rotation);
+        int answered = 0, taken = 0;
+        for (int first = 0; first < 8000; first += 4) {
+            EnvRayDifferential rays[4];
+            for (int lane = 0; lane < 4; ++lane) rays[lane] = random(first + lane);
+            PlainCubeFootprints4 four;
+            plain_cube_footprints4(scale, rays, to_map, four);
+            for (int lane = 0; lane < 4; ++lane) {
+                const auto& [r, dx, dy] = rays[lane];
+                PlainEnvFootprint plain;
+                const bool answers =
+                    plain_env_footprint(EnvLayout::cube, scale, r, dx, dy, to_map, plain);
+                const bool took = four.plain >> lane & 1;
+                answered += answers;
+                taken += took;
+                SCOPED_TRACE(testing::Message() << "ray " << first + lane << " (" << r.x << ", "
+                                                << r.y << ", " << r.z << ")");
+                if (!took) {
+                    // Left to the scalar path: refused there too, or beyond 2^100 (its rare path).
+                    const Vec3 m = to_map(r);
+                    EXPECT_TRUE(!answers || max_abs_component(m) > 0x1p100f);
+                    continue;
+                }
+                ASSERT_TRUE(answers);
+                EXPECT_EQ(four.coords(lane).face, plain.coords.face);
+                EXPECT_TRUE(same(four.coords(lane).s, plain.coords.s) &&
+                            same(four.coords(lane).t, plain.coords.t));
+                const Sym2 k = four.matrix(lane);
+                EXPECT_TRUE(same(k.xx, plain.matrix.xx) && same(k.xy, plain.matrix.xy) &&
+                            same(k.yy, plain.matrix.yy));
+                EXPECT_TRUE(same3(four.map_direction(lane), plain.map_direction));
+            }
+        }
+        // Nearly every ray the scalar fast path answers is taken four at a time.
+        EXPECT_GT(taken, answered * 98 / 100);
+        EXPECT_GT(answered, 8000 / 2);
+    }
 }
 
 }  // namespace

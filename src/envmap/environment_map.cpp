@@ -245,7 +245,7 @@ float centre_probe_lod(const EnvironmentMap& map, const EnvFootprint& footprint,
 
 // The one trilinear probe at the footprint's centre, c at lod (centre_probe_lod()): where it is and
 // which levels it reads. A single lookup reads it at once (filter_centre_probe); the batch
-// requests its taps first and reads them later (filter_probe_taps).
+// requests its taps first and reads them later (batch_lookup()).
 struct CentreProbe {
     EnvCoords coords;
     detail::TrilinearLevels levels;
@@ -288,6 +288,8 @@ struct FootprintCentre {
         : coords(f.coords), matrix(f.matrix), map_direction(f.map_direction) {}
     FootprintCentre(const PlainEnvFootprint& f)
         : coords(f.coords), matrix(f.matrix), map_direction(f.map_direction) {}
+    FootprintCentre(const PlainCubeFootprints4& f, int lane)
+        : coords(f.coords(lane)), matrix(f.matrix(lane)), map_direction(f.map_direction(lane)) {}
 };
 
 // The position on face c.face of each probe of a cube line centred at c: c + the probe's offset, in
@@ -550,15 +552,55 @@ enum class Routed { done, centre_probe, deferred_line };
     DeferredProbe probes[kGroup];
     DeferredLine lines[kGroup];
     const int stride = map.face(0).stride();
+    // On a cube map the group's plain footprints (plain_env_footprint()) and their single-probe
+    // lods are computed four at a time; the lookups they do not take go the scalar way.
+    const bool cube = map.layout() == EnvLayout::cube;
+    const bool rule_b = has_single_probe_rule(options);  // else every lod is −1
+    const int max_level = map.face(0).max_level();       // every face's
+    PlainCubeFootprints4 plain[kGroup / 4];
+    float lods[kGroup];
     for (std::size_t first = 0; first < rays.size(); first += kGroup) {
         const std::size_t count = std::min(kGroup, rays.size() - first);
+        if (cube)
+            for (std::size_t lane = 0; lane < count; lane += 4) {
+                EnvRayDifferential tail[4];  // the last lanes, padded with the last ray
+                const EnvRayDifferential* four = &rays[first + lane];
+                if (count - lane < 4) {
+                    for (std::size_t i = 0; i < 4; ++i)
+                        tail[i] = rays[first + std::min(lane + i, count - 1)];
+                    four = tail;
+                }
+                PlainCubeFootprints4& p = plain[lane / 4];
+                plain_cube_footprints4(map.texel_scale(), four, to_map, p);
+                (rule_b ? single_probe_lod(Float4(p.xx[0], p.xx[1], p.xx[2], p.xx[3]),
+                                           Float4(p.xy[0], p.xy[1], p.xy[2], p.xy[3]),
+                                           Float4(p.yy[0], p.yy[1], p.yy[2], p.yy[3]),
+                                           options.lod_bias, max_level, options.isotropic_ratio)
+                        : Float4(-1.0f))
+                    .store(lods + lane);
+            }
         std::size_t pending_probes = 0, pending_lines = 0;
         for (std::size_t i = 0; i < count; ++i) {
             const EnvRayDifferential& ray = rays[first + i];
             float* result = out + (first + i) * channels;
             CentreProbe probe;
-            switch (route_lookup(map, ray.direction, ray.d_dx, ray.d_dy, options, to_map, result,
-                                 probe, &lines[pending_lines].line)) {
+            Routed routed;
+            if (const PlainCubeFootprints4& p = plain[i / 4]; cube && (p.plain >> (i % 4) & 1)) {
+                // route_lookup()'s plain branch, from the lane.
+                if (lods[i] >= 0.0f) {
+                    probe = centre_probe(map, p.coords(i % 4), lods[i], options);
+                    routed = Routed::centre_probe;
+                } else {
+                    routed = general_lookup(map, FootprintCentre(p, i % 4), PolarCapFootprint{},
+                                            options, result, &lines[pending_lines].line)
+                                 ? Routed::deferred_line
+                                 : Routed::done;
+                }
+            } else {
+                routed = route_lookup(map, ray.direction, ray.d_dx, ray.d_dy, options, to_map,
+                                      result, probe, &lines[pending_lines].line);
+            }
+            switch (routed) {
                 case Routed::done:
                     break;
                 case Routed::deferred_line:
@@ -574,9 +616,10 @@ enum class Routed { done, centre_probe, deferred_line };
                 }
             }
         }
-        for (std::size_t i = 0; i < pending_probes; ++i)
-            filter_probe_taps(map, probes[i].taps, probes[i].levels, probes[i].out);
         detail::dispatch_stride(stride, [&]<int S>() {
+            for (std::size_t i = 0; i < pending_probes; ++i)
+                detail::store(detail::blend_probe<S>(probes[i].taps, probes[i].levels), channels,
+                              probes[i].out);
             for (std::size_t i = 0; i < pending_lines; ++i)
                 detail::store(lines[i].line.template blend<S>(), channels, lines[i].out);
         });

@@ -103,10 +103,8 @@ void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_d
 void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
                         const LookupOptions& options, float* out, const Mat3& rotation);
 
-// One form-(a) lookup of a batch: a direction r and its ray differentials ∂r/∂x, ∂r/∂y.
-struct EnvRayDifferential {
-    Vec3 direction, d_dx, d_dy;
-};
+// One form-(a) lookup of a batch: EnvRayDifferential (env_footprint.h), a direction r and its ray
+// differentials ∂r/∂x, ∂r/∂y.
 
 // environment_lookup() form (a) for many rays at once: bit-identical results, faster. A lookup at
 // a random direction waits on memory for its texels, so in each group of 16 rays the lookups that

@@ -370,17 +370,26 @@ TEST(EnvironmentMap, BatchedLookupsEqualSingleLookups) {
                                        : Vec3{normal(rng), normal(rng), normal(rng)};
             const float angle = 0.002f * std::exp2(8 * u(rng));  // 0.1 … 30 texels
             test::isotropic_differentials(ray.direction, angle, ray.d_dx, ray.d_dy);
-            ray.d_dx = ray.d_dx * (1 + 15 * u(rng));  // anisotropy up to 16:1
+            ray.d_dx = ray.d_dx * (1 + 15 * u(rng));                     // anisotropy up to 16:1
+            if (i % 11 == 4) ray.direction = 0x1p-110f * ray.direction;  // the careful paths
+            if (i % 11 == 7) ray.direction = 0x1p101f * ray.direction;
+            if (i % 13 == 6) ray.d_dy.x = std::nanf("");
         }
-        for (const Mat3& a : {Mat3{}, rotation}) {
-            std::vector<float> single(rays.size()), batched(rays.size());
-            for (std::size_t i = 0; i < rays.size(); ++i)
-                environment_lookup(map, rays[i].direction, rays[i].d_dx, rays[i].d_dy,
-                                   LookupOptions{}, &single[i], a);
-            environment_lookup_batch(map, rays, LookupOptions{}, batched.data(), a);
-            for (std::size_t i = 0; i < rays.size(); ++i)
-                EXPECT_EQ(single[i], batched[i]) << test::layout_name(layout) << " ray " << i;
-        }
+        // Rule B (whose near-isotropic lookups are one probe, decided four at a time on a cube
+        // map), Rule A, and another filter.
+        LookupOptions rule_a, trilinear;
+        rule_a.probe_rule = ProbeRule::ext;
+        trilinear.filter = TextureFilter::trilinear;
+        for (const LookupOptions& options : {LookupOptions{}, rule_a, trilinear})
+            for (const Mat3& a : {Mat3{}, rotation}) {
+                std::vector<float> single(rays.size()), batched(rays.size());
+                for (std::size_t i = 0; i < rays.size(); ++i)
+                    environment_lookup(map, rays[i].direction, rays[i].d_dx, rays[i].d_dy, options,
+                                       &single[i], a);
+                environment_lookup_batch(map, rays, options, batched.data(), a);
+                for (std::size_t i = 0; i < rays.size(); ++i)
+                    EXPECT_EQ(single[i], batched[i]) << test::layout_name(layout) << " ray " << i;
+            }
         std::vector<float> identity(rays.size()), unrotated(rays.size()), batched(rays.size());
         for (std::size_t i = 0; i < rays.size(); ++i) {
             environment_lookup(map, rays[i].direction, rays[i].d_dx, rays[i].d_dy, LookupOptions{},

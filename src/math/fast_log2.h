@@ -10,6 +10,8 @@
 #include <bit>
 #include <cstdint>
 
+#include "math/float4.h"
+
 namespace footprint {
 
 inline float fast_log2(float x) {
@@ -25,6 +27,21 @@ inline float fast_log2(float x) {
     const float series =
         t * (2.88539008f + t2 * (0.961796694f + t2 * (0.577078016f + t2 * 0.412198583f)));
     return static_cast<float>(exponent) + series;
+}
+
+// The same for four x at once (math/float4.h): each lane is fast_log2(x) bit for bit.
+inline Float4 fast_log2(Float4 x) {
+    const Int4 bits = bits_of(x);
+    const Int4 exponent = (shift_right<23>(bits) & Int4(0xff)) - Int4(127);
+    const Float4 m = float_from_bits((bits & Int4(0x007fffff)) | Int4(0x3f800000));  // [1, 2)
+    const Mask4 high = m > Float4(1.41421356f);
+    const Float4 reduced = select(high, m * Float4(0.5f), m);
+    const Int4 e = select(high, exponent + Int4(1), exponent);
+    const Float4 t = (reduced - Float4(1.0f)) / (reduced + Float4(1.0f)), t2 = t * t;
+    const Float4 series =
+        t * (Float4(2.88539008f) +
+             t2 * (Float4(0.961796694f) + t2 * (Float4(0.577078016f) + t2 * Float4(0.412198583f))));
+    return to_float(e) + series;
 }
 
 }  // namespace footprint

@@ -46,6 +46,7 @@ class IdentitySkippingRotation {
     static IdentitySkippingRotation none() { return IdentitySkippingRotation(kIdentity, true); }
     Vec3 operator()(Vec3 v) const { return identity_ ? v : a_ * v; }
     const Mat3& matrix() const { return a_; }
+    bool is_identity() const { return identity_; }
 
   private:
     IdentitySkippingRotation(const Mat3& a, bool identity) : a_(a), identity_(identity) {}

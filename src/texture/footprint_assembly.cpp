@@ -101,11 +101,27 @@ float single_probe_lod(const Sym2& k, float lod_bias, int max_level, float isotr
                       static_cast<float>(max_level));
 }
 
+// The same operations lane by lane (axes_squared() included), with selects for the branches.
+Float4 single_probe_lod(Float4 xx, Float4 xy, Float4 yy, float lod_bias, int max_level,
+                        float isotropic_ratio) {
+    const Float4 zero(0.0f), one(1.0f), top(static_cast<float>(max_level));
+    const Mask4 magnified = (xx + yy <= one) & (xx >= zero) & (yy >= zero);
+    const Float4 w = sqrt((xx - yy) * (xx - yy) + Float4(4.0f) * xy * xy);
+    const Float4 major_sq = Float4(0.5f) * (xx + yy + w);
+    const Float4 minor_sq =
+        select(major_sq > zero, max_like_std(zero, xx * yy - xy * xy) / major_sq, zero);
+    const Float4 tp_sq = max_like_std(minor_sq, one);
+    const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
+    const Mask4 one_probe = major_sq <= Float4(ratio * ratio) * tp_sq;
+    const Float4 lod = clamp_like_std(
+        Float4(0.25f) * fast_log2(max_like_std(major_sq, one) * tp_sq) + Float4(lod_bias), zero,
+        top);
+    return select(magnified, Float4(std::clamp(lod_bias, 0.0f, static_cast<float>(max_level))),
+                  select(one_probe, lod, Float4(-1.0f)));
+}
+
 float single_probe_lod(const Sym2& k, const LookupOptions& options, int max_level) {
-    if (options.filter != TextureFilter::footprint_assembly ||
-        (options.probe_rule != ProbeRule::moment_matched &&
-         options.probe_rule != ProbeRule::gaussian))
-        return -1.0f;
+    if (!has_single_probe_rule(options)) return -1.0f;
     return single_probe_lod(k, options.lod_bias, max_level, options.isotropic_ratio);
 }
 

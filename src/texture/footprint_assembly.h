@@ -20,6 +20,7 @@
 // log2(λ1/N).
 #pragma once
 
+#include "math/float4.h"
 #include "math/footprint_ellipse.h"
 #include "texture/texture_lookup.h"
 
@@ -53,9 +54,21 @@ constexpr float kIsotropicRatio = 1.001f;
 float single_probe_lod(const Sym2& k, float lod_bias, int max_level,
                        float isotropic_ratio = kIsotropicRatio);
 
-// The same for a lookup with `options`: −1 unless they ask for footprint assembly by Rule B (either
-// weighting), the filters whose near-isotropic footprints are one probe at the centre.
+// Whether `options` ask for footprint assembly by Rule B (either weighting), the filters whose
+// near-isotropic footprints are one probe at the centre.
+inline bool has_single_probe_rule(const LookupOptions& options) {
+    return options.filter == TextureFilter::footprint_assembly &&
+           (options.probe_rule == ProbeRule::moment_matched ||
+            options.probe_rule == ProbeRule::gaussian);
+}
+
+// The same for a lookup with `options`: −1 unless has_single_probe_rule(options).
 float single_probe_lod(const Sym2& k, const LookupOptions& options, int max_level);
+
+// single_probe_lod(k, lod_bias, max_level, isotropic_ratio) for four footprints K_i = [[xx_i,
+// xy_i], [xy_i, yy_i]] at once (math/float4.h): lane i is the scalar result bit for bit.
+Float4 single_probe_lod(Float4 xx, Float4 xy, Float4 yy, float lod_bias, int max_level,
+                        float isotropic_ratio = kIsotropicRatio);
 
 // The most probes a plan holds (max_probes is clamped to it).
 constexpr int kMaxProbeCount = 1024;

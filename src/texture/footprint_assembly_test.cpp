@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "texture/kernel_moments.h"
@@ -240,6 +241,62 @@ TEST(FootprintAssembly, IsotropicRatioTakesOneProbeOfTheGeometricMean) {
             }
         }
     }
+}
+
+TEST(FootprintAssembly, FourSingleProbeLodsAreTheScalarOnesBitForBit) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(-1, 1), log_size(-8, 70);
+    const float nan = std::nanf(""), inf = INFINITY;
+    // Footprints of every kind: magnified, one probe, several, at the ratio's edge, negative or
+    // indefinite, overflowing, NaN and infinite.
+    auto random_k = [&](int i) -> Sym2 {
+        const float size = std::exp2(log_size(rng) * (i % 3 == 0 ? 0.1f : 1.0f));
+        switch (i % 8) {
+            case 0:
+                return make_footprint_ellipse(size, size / std::fabs(1 + 0.002f * u(rng)),
+                                              3 * u(rng))
+                    .matrix;  // near the isotropic ratio
+            case 1:
+                return {nan, 0, 1};
+            case 2:
+                return {inf, u(rng), 1};
+            case 3:
+                return {size * u(rng), size * u(rng), size * u(rng)};  // maybe indefinite
+            case 4:
+                return {0, 0, 0};
+            default:
+                return make_footprint_ellipse(size, size * std::fabs(u(rng)), 3 * u(rng)).matrix;
+        }
+    };
+    for (const float bias : {0.0f, 0.5f, -1.0f})
+        for (const int max_level : {0, 3, 11})
+            for (const float ratio : {kIsotropicRatio, 1.3f})
+                for (int i = 0; i < 4000; i += 4) {
+                    Sym2 k[4];
+                    for (int lane = 0; lane < 4; ++lane) k[lane] = random_k(i + lane);
+                    if (i == 0) {
+                        // λ1² = ratio²·T_p² exactly: one probe, at the rule's edge.
+                        const float tie = ratio * ratio;
+                        k[1] = {tie, 0, 1};
+                        k[2] = {4 * tie, 0, 4};
+                        k[3] = {std::nextafter(tie, 2.0f), 0, 1};
+                    }
+                    float lods[4];
+                    single_probe_lod(Float4(k[0].xx, k[1].xx, k[2].xx, k[3].xx),
+                                     Float4(k[0].xy, k[1].xy, k[2].xy, k[3].xy),
+                                     Float4(k[0].yy, k[1].yy, k[2].yy, k[3].yy), bias, max_level,
+                                     ratio)
+                        .store(lods);
+                    for (int lane = 0; lane < 4; ++lane) {
+                        const float expected = single_probe_lod(k[lane], bias, max_level, ratio);
+                        ASSERT_TRUE(std::isnan(expected)
+                                        ? std::isnan(lods[lane])
+                                        : std::memcmp(&expected, &lods[lane], sizeof(float)) == 0)
+                            << "K = (" << k[lane].xx << ", " << k[lane].xy << ", " << k[lane].yy
+                            << ") bias " << bias << " max level " << max_level << " ratio " << ratio
+                            << ": " << lods[lane] << " vs " << expected;
+                    }
+                }
 }
 
 TEST(FootprintAssembly, ClampedProbeBudgetRaisesTheMinorAxisOnly) {
