@@ -6,7 +6,8 @@
 #include <numbers>
 
 #include "envmap/env_layout_detail.h"
-#include "math/float4.h"
+#include "envmap/env_layout_detail4.h"
+#include "math/fast_atan2.h"
 
 namespace footprint {
 
@@ -163,97 +164,107 @@ bool plain_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, Vec3 dr_dx,
 
 namespace {
 
-// Three Float4: a Vec3 of each of four lanes.
-struct Vec3x4 {
-    Float4 x, y, z;
+// latlong_coords_at() and latlong_jacobian_at() of prepared directions, four at once, for the
+// lanes with ρ > 0.
+struct LatLongCoordsJacobian4 {
+    Float4 s, t;
+    env_detail::Vec3x4 ds, dt;
+};
+LatLongCoordsJacobian4 latlong_coords_and_jacobian4(const env_detail::Prepared4& prepared,
+                                                    Float4 rho) {
+    using namespace env_detail;
+    const Vec3x4& r = prepared.p;
+    const Float4 zero(0.0f), one(1.0f), pi(kPi<float>), two_pi(2 * kPi<float>);
+    const Float4 t = fast_atan2(rho, r.y) / pi;
+    const Float4 s = Float4(0.5f) + fast_atan2(r.x, -r.z) / two_pi;
+    const Float4 cx = r.x / rho, cz = r.z / rho;
+    const Float4 inv_rho = min_like_std(one / rho, Float4(std::numeric_limits<float>::max()));
+    const Float4 p2 = dot(r, r);
+    const Float4 a = inv_rho / two_pi, b = one / (pi * p2);
+    const Float4 scale = prepared.scale;
+    return {clamp_like_std(s, zero, one),
+            clamp_like_std(t, zero, one),
+            {a * -cz * scale, a * zero * scale, a * cx * scale},
+            {b * (r.y * cx) * scale, b * -rho * scale, b * (r.y * cz) * scale}};
+}
+
+// Where four prepared directions land and their Jacobians.
+struct Position4 {
+    Int4 face;
+    Float4 s, t;
+    env_detail::Vec3x4 ds, dt;
 };
 
-Vec3x4 gather(const EnvRayDifferential* rays, Vec3 EnvRayDifferential::*member) {
-    const Vec3 &a = rays[0].*member, &b = rays[1].*member, &c = rays[2].*member,
-               &d = rays[3].*member;
-    return {{a.x, b.x, c.x, d.x}, {a.y, b.y, c.y, d.y}, {a.z, b.z, c.z, d.z}};
-}
-
-// A v (Mat3::operator*'s order of operations), or v where A is the identity.
-Vec3x4 rotate(const IdentitySkippingRotation& to_map, const Vec3x4& v) {
-    if (to_map.is_identity()) return v;
-    const auto& m = to_map.matrix().m;
-    auto row = [&](int i) {
-        return Float4(m[i][0]) * v.x + Float4(m[i][1]) * v.y + Float4(m[i][2]) * v.z;
-    };
-    return {row(0), row(1), row(2)};
-}
-
-Float4 dot(const Vec3x4& a, const Vec3x4& b) {
-    return a.x * b.x + a.y * b.y + a.z * b.z;
+// plain_env_footprint() for four lanes at once (env_layout_detail4.h), the layout's part given by
+// locate(prepared, A r, ∂r/∂x, ∂r/∂y, plain): the position, with the lanes it refuses cleared from
+// plain.
+template <class Locate>
+[[gnu::always_inline]] inline void plain_footprints4(Vec2 texel_scale,
+                                                     const EnvRayDifferential* rays,
+                                                     const IdentitySkippingRotation& to_map,
+                                                     Locate&& locate, PlainEnvFootprints4& out) {
+    using namespace env_detail;
+    const Vec3x4 r = gather(rays, &EnvRayDifferential::direction);
+    const Vec3x4 m = rotate(to_map, r);
+    const Prepared4 prepared = prepare4(m);
+    const Vec3x4 dx = gather(rays, &EnvRayDifferential::d_dx);
+    const Vec3x4 dy = gather(rays, &EnvRayDifferential::d_dy);
+    // |r| > 0, as compute_env_footprint() requires.
+    Mask4 plain = prepared.common & (dot(r, r) > Float4(0.0f));
+    const Position4 position = locate(prepared, m, dx, dy, plain);
+    // MapJacobian: D's columns; K = D Dᵀ.
+    const Vec3x4 mdx = rotate(to_map, dx), mdy = rotate(to_map, dy);
+    const Float4 width(texel_scale.x), height(texel_scale.y);
+    const Sym2x4 k =
+        footprint_matrix4(width * dot(position.ds, mdx), height * dot(position.dt, mdx),
+                          width * dot(position.ds, mdy), height * dot(position.dt, mdy));
+    out.plain = (plain & k.finite()).bits();
+    position.face.store(out.face);
+    position.s.store(out.s);
+    position.t.store(out.t);
+    k.xx.store(out.xx);
+    k.xy.store(out.xy);
+    k.yy.store(out.yy);
+    m.x.store(out.map_x);
+    m.y.store(out.map_y);
+    m.z.store(out.map_z);
 }
 
 }  // namespace
 
-// The operations of plain_env_footprint() for EnvLayout::cube (prepare(), CubePoint,
-// cube_coords_and_jacobian_at(), finish(), MapJacobian, footprint_matrix()), lane by lane in the
-// same order, with the face table's entries chosen by selects.
-void plain_cube_footprints4(Vec2 texel_scale, const EnvRayDifferential* rays,
-                            const IdentitySkippingRotation& to_map, PlainCubeFootprints4& out) {
-    const Vec3x4 r = gather(rays, &EnvRayDifferential::direction);
-    const Vec3x4 m = rotate(to_map, r);
-    // prepare()'s common case, max |component| within 2^±100 and no NaN, and |r| > 0.
-    const Float4 big = max_like_std(max_like_std(abs(m.x), abs(m.y)), abs(m.z));
-    Mask4 plain = (big >= Float4(0x1p-100f)) & (big <= Float4(0x1p100f)) &
-                  is_not_nan(m.x + m.y + m.z) & (dot(r, r) > Float4(0.0f));
-    // 2^-exponent, exponent = (bits >> 23) − 127, from the bits: (254 − (bits >> 23)) << 23.
-    const Float4 scale = float_from_bits(shift_left<23>(Int4(254) - shift_right<23>(bits_of(big))));
-    const Vec3x4 p{m.x * scale, m.y * scale, m.z * scale};
-
-    // cube_face_of(): the axis a (x, unless |y| > |x|; then z if |z| exceeds that) and its sign.
-    const Mask4 y_over_x = abs(p.y) > abs(p.x);
-    const Mask4 z_axis = abs(p.z) > select(y_over_x, abs(p.y), abs(p.x));
-    const Mask4 y_axis = y_over_x & !z_axis;
-    const Mask4 x_axis = !(y_over_x | z_axis);
-    const Float4 c_axis = select(z_axis, p.z, select(y_over_x, p.y, p.x));
-    const Mask4 negative = c_axis < Float4(0.0f);
-    const Int4 face = shift_left<1>(select(z_axis, Int4(2), select(y_axis, Int4(1), Int4(0)))) +
-                      select(negative, Int4(1), Int4(0));
-    // CubePoint: ma = |c[a]|, s' = s_sign·c[s_axis]/ma, t' = t_sign·c[t_axis]/ma (kCubeFaces).
-    const Float4 one(1.0f), minus_one(-1.0f);
-    const Float4 ma = abs(c_axis);
-    const Float4 c_s = select(x_axis, p.z, p.x), c_t = select(y_axis, p.z, p.y);
-    const Float4 s_sign =
-        select(x_axis, select(negative, one, minus_one), select(z_axis & negative, minus_one, one));
-    const Float4 t_sign = select(y_axis & !negative, one, minus_one);
-    const Float4 sp = s_sign * c_s / ma, tp = t_sign * c_t / ma;
-
-    // cube_coords_and_jacobian_at(): ∂s/∂r = k(g_s − s'σ e_a), ∂t/∂r = k(g_t − t'σ e_a), then
-    // finish()'s exact 2^-exponent.
-    const Float4 sigma = select(negative, minus_one, one);
-    const Float4 k = one / (Float4(2.0f) * ma);
-    const Float4 ds_a = k * (Float4(0.0f) - sp * sigma), dt_a = k * (Float4(0.0f) - tp * sigma);
-    const Float4 ds_s = k * s_sign, dt_t = k * t_sign, zero(0.0f);
-    // a = x: s_axis z, t_axis y; a = y: s_axis x, t_axis z; a = z: s_axis x, t_axis y.
-    const Vec3x4 ds{select(x_axis, ds_a, ds_s) * scale, select(y_axis, ds_a, zero) * scale,
-                    select(x_axis, ds_s, select(z_axis, ds_a, zero)) * scale};
-    const Vec3x4 dt{select(x_axis, dt_a, zero) * scale, select(y_axis, dt_a, dt_t) * scale,
-                    select(y_axis, dt_t, select(z_axis, dt_a, zero)) * scale};
-
-    // MapJacobian: D's columns; K = D Dᵀ (footprint_matrix()).
-    const Vec3x4 mdx = rotate(to_map, gather(rays, &EnvRayDifferential::d_dx));
-    const Vec3x4 mdy = rotate(to_map, gather(rays, &EnvRayDifferential::d_dy));
-    const Float4 width(texel_scale.x), height(texel_scale.y);
-    const Float4 dxs = width * dot(ds, mdx), dxt = height * dot(dt, mdx);
-    const Float4 dys = width * dot(ds, mdy), dyt = height * dot(dt, mdy);
-    const Float4 xx = dxs * dxs + dys * dys, xy = dxs * dxt + dys * dyt, yy = dxt * dxt + dyt * dyt;
-    plain = plain & (abs(xx + xy + yy) < Float4(std::numeric_limits<float>::infinity()));
-
-    out.plain = plain.bits();
-    face.store(out.face);
-    (Float4(0.5f) * (sp + one)).store(out.s);
-    (Float4(0.5f) * (tp + one)).store(out.t);
-    xx.store(out.xx);
-    xy.store(out.xy);
-    yy.store(out.yy);
-    m.x.store(out.map_x);
-    m.y.store(out.map_y);
-    m.z.store(out.map_z);
+void plain_env_footprints4(EnvLayout layout, Vec2 texel_scale, const EnvRayDifferential* rays,
+                           const IdentitySkippingRotation& to_map, PlainEnvFootprints4& out) {
+    using namespace env_detail;
+    if (layout == EnvLayout::cube) {
+        plain_footprints4(
+            texel_scale, rays, to_map,
+            [](const Prepared4& prepared, const Vec3x4&, const Vec3x4&, const Vec3x4&, Mask4&) {
+                const CubeCoordsJacobian4 c =
+                    cube_coords_and_jacobian4(prepared, cube_axes4(prepared.p));
+                return Position4{c.face, c.s, c.t, c.ds, c.dt};
+            },
+            out);
+        return;
+    }
+    if (layout != EnvLayout::latlong) {
+        out.plain = 0;
+        return;
+    }
+    plain_footprints4(
+        texel_scale, rays, to_map,
+        [](const Prepared4& prepared, const Vec3x4& m, const Vec3x4& dx, const Vec3x4& dy,
+           Mask4& plain) {
+            const Vec3x4& p = prepared.p;
+            const Float4 rho = sqrt(p.x * p.x + p.z * p.z);
+            const LatLongCoordsJacobian4 c = latlong_coords_and_jacobian4(prepared, rho);
+            // Not the pole (ρ = 0), and clear of it: ρ of A r at least the differentials' spread.
+            const Float4 rho2 = m.x * m.x + m.z * m.z;
+            plain = plain & !(rho == Float4(0.0f)) &
+                    (abs(rho2) < Float4(std::numeric_limits<float>::infinity())) &
+                    (rho2 > Float4(0x1p-100f)) & !(sqrt(rho2) < sqrt(dot(dx, dx) + dot(dy, dy)));
+            return Position4{Int4(0), c.s, c.t, c.ds, c.dt};
+        },
+        out);
 }
 
 EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, const ReflectionGeometry& g,

@@ -114,12 +114,13 @@ struct EnvRayDifferential {
     Vec3 direction, d_dx, d_dy;
 };
 
-// plain_env_footprint() on a cube map for four rays at once, in structure-of-arrays form
-// (math/float4.h), for the batch: where bit i of `plain` is set, lane i holds exactly (bit for bit)
-// the coords, K and map direction that plain_env_footprint(EnvLayout::cube, …) sets for rays[i].
-// A clear bit leaves the ray to the scalar functions: every ray that plain_env_footprint() refuses,
-// and those with max |A r| in (2^100, 2^101), which it takes through prepare()'s rare path.
-struct PlainCubeFootprints4 {
+// plain_env_footprint() on a cube or lat-long map for four rays at once, in structure-of-arrays
+// form (math/float4.h), for the batch: where bit i of `plain` is set, lane i holds exactly (bit
+// for bit) the coords, K and map direction that plain_env_footprint(layout, …) sets for rays[i].
+// A clear bit leaves the ray to the scalar functions: every ray that plain_env_footprint()
+// refuses, and those with max |A r| in (2^100, 2^101), which it takes through prepare()'s rare
+// path.
+struct PlainEnvFootprints4 {
     int plain = 0;
     int face[4];
     float s[4], t[4];                    // coords
@@ -130,8 +131,8 @@ struct PlainCubeFootprints4 {
     Sym2 matrix(int i) const { return {xx[i], xy[i], yy[i]}; }
     Vec3 map_direction(int i) const { return {map_x[i], map_y[i], map_z[i]}; }
 };
-void plain_cube_footprints4(Vec2 texel_scale, const EnvRayDifferential* rays,
-                            const IdentitySkippingRotation& to_map, PlainCubeFootprints4& out);
+void plain_env_footprints4(EnvLayout layout, Vec2 texel_scale, const EnvRayDifferential* rays,
+                           const IdentitySkippingRotation& to_map, PlainEnvFootprints4& out);
 
 // Form (b), Schilling's. `texel_scale` = S = (W0, H0) of level 0 (a cube map's face size for both).
 EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale,

@@ -288,7 +288,7 @@ struct FootprintCentre {
         : coords(f.coords), matrix(f.matrix), map_direction(f.map_direction) {}
     FootprintCentre(const PlainEnvFootprint& f)
         : coords(f.coords), matrix(f.matrix), map_direction(f.map_direction) {}
-    FootprintCentre(const PlainCubeFootprints4& f, int lane)
+    FootprintCentre(const PlainEnvFootprints4& f, int lane)
         : coords(f.coords(lane)), matrix(f.matrix(lane)), map_direction(f.map_direction(lane)) {}
 };
 
@@ -324,7 +324,7 @@ struct FacePositions {
 
 // The cube lines on their face (cube_line_on_face()) of at most kDeferredProbes probes: the batch
 // requests them and reads them once its group's footprints are computed.
-constexpr int kDeferredProbes = 8;
+constexpr int kDeferredProbes = detail::kRequestedLineProbes;
 using DeferredCubeLine = detail::RequestedLine<kDeferredProbes>;
 
 // cube_line_on_face()'s line, requested into `line` for a later read (DeferredCubeLine::blend());
@@ -533,16 +533,16 @@ enum class Routed { done, centre_probe, deferred_line };
                                                 const LookupOptions& options,
                                                 const IdentitySkippingRotation& to_map,
                                                 float* out) {
-    // The lookups that are one probe at the footprint's centre (most of them) and the cube lines on
-    // their face (DeferredCubeLine) are deferred: their texels are requested, and they are
-    // filtered once the group's footprints are all computed, when the texels have arrived. Enough
-    // lookups in flight to cover a miss to memory, few enough that their texels are still cached
-    // when read. Every other lookup (other lines, polar caps) is done at once.
+    // The lookups that are one probe (most of them: at the footprint's centre, or on a polar cap),
+    // the cube lines on their face (DeferredCubeLine) and the short lines on a polar cap are
+    // deferred: their texels are requested, and they are filtered once the group's footprints are
+    // all computed, when the texels have arrived. Enough lookups in flight to cover a miss to
+    // memory, few enough that their texels are still cached when read. Every other lookup is done
+    // at once.
     constexpr std::size_t kGroup = 16;
     const int channels = map.channels();
     struct DeferredProbe {
-        detail::ProbeTaps taps;
-        detail::TrilinearLevels levels;
+        detail::RequestedProbe probe;
         float* out;
     };
     struct DeferredLine {
@@ -551,17 +551,20 @@ enum class Routed { done, centre_probe, deferred_line };
     };
     DeferredProbe probes[kGroup];
     DeferredLine lines[kGroup];
-    const int stride = map.face(0).stride();
-    // On a cube map the group's plain footprints (plain_env_footprint()) and their single-probe
-    // lods are computed four at a time; the lookups they do not take go the scalar way.
-    const bool cube = map.layout() == EnvLayout::cube;
+    const int stride = map.face(0).stride();  // the caps' too (the same channels)
+    // Four at a time: a lat-long map's polar-cap footprints (where it has caps), and the plain
+    // footprints (plain_env_footprint()) of cube and lat-long maps elsewhere, with their
+    // single-probe lods. The lookups they do not take go the scalar way (route_lookup()).
+    const bool four_at_once = map.layout() == EnvLayout::cube || map.layout() == EnvLayout::latlong;
+    const bool caps = map.layout() == EnvLayout::latlong && map.polar_cap(0);
     const bool rule_b = has_single_probe_rule(options);  // else every lod is −1
     const int max_level = map.face(0).max_level();       // every face's
-    PlainCubeFootprints4 plain[kGroup / 4];
+    PlainEnvFootprints4 plain[kGroup / 4];
+    PolarCapFootprints4 capped[kGroup / 4];
     float lods[kGroup];
     for (std::size_t first = 0; first < rays.size(); first += kGroup) {
         const std::size_t count = std::min(kGroup, rays.size() - first);
-        if (cube)
+        if (four_at_once)
             for (std::size_t lane = 0; lane < count; lane += 4) {
                 EnvRayDifferential tail[4];  // the last lanes, padded with the last ray
                 const EnvRayDifferential* four = &rays[first + lane];
@@ -570,8 +573,14 @@ enum class Routed { done, centre_probe, deferred_line };
                         tail[i] = rays[first + std::min(lane + i, count - 1)];
                     four = tail;
                 }
-                PlainCubeFootprints4& p = plain[lane / 4];
-                plain_cube_footprints4(map.texel_scale(), four, to_map, p);
+                PlainEnvFootprints4& p = plain[lane / 4];
+                p.plain = 0;
+                if (caps) {
+                    polar_cap_footprints4(map, four, to_map, options, capped[lane / 4]);
+                    if (capped[lane / 4].region == 0xf)
+                        continue;  // no lane for plain_env_footprint()
+                }
+                plain_env_footprints4(map.layout(), map.texel_scale(), four, to_map, p);
                 (rule_b ? single_probe_lod(Float4(p.xx[0], p.xx[1], p.xx[2], p.xx[3]),
                                            Float4(p.xy[0], p.xy[1], p.xy[2], p.xy[3]),
                                            Float4(p.yy[0], p.yy[1], p.yy[2], p.yy[3]),
@@ -583,15 +592,33 @@ enum class Routed { done, centre_probe, deferred_line };
         for (std::size_t i = 0; i < count; ++i) {
             const EnvRayDifferential& ray = rays[first + i];
             float* result = out + (first + i) * channels;
+            const int lane = static_cast<int>(i % 4);
+            if (const PolarCapFootprints4& c = capped[i / 4]; caps && (c.valid >> lane & 1)) {
+                // route_lookup()'s polar cap branch, from the lane.
+                switch (polar_cap_request(c.footprint(map, lane), c.lod[lane], options, result,
+                                          probes[pending_probes].probe,
+                                          lines[pending_lines].line)) {
+                    case detail::Requested::done:
+                        break;
+                    case detail::Requested::probe:
+                        probes[pending_probes++].out = result;
+                        break;
+                    case detail::Requested::line:
+                        lines[pending_lines++].out = result;
+                        break;
+                }
+                continue;
+            }
             CentreProbe probe;
             Routed routed;
-            if (const PlainCubeFootprints4& p = plain[i / 4]; cube && (p.plain >> (i % 4) & 1)) {
+            const PlainEnvFootprints4& p = plain[i / 4];
+            if (four_at_once && (p.plain >> lane & 1) && !(capped[i / 4].region >> lane & 1)) {
                 // route_lookup()'s plain branch, from the lane.
                 if (lods[i] >= 0.0f) {
-                    probe = centre_probe(map, p.coords(i % 4), lods[i], options);
+                    probe = centre_probe(map, p.coords(lane), lods[i], options);
                     routed = Routed::centre_probe;
                 } else {
-                    routed = general_lookup(map, FootprintCentre(p, i % 4), PolarCapFootprint{},
+                    routed = general_lookup(map, FootprintCentre(p, lane), PolarCapFootprint{},
                                             options, result, &lines[pending_lines].line)
                                  ? Routed::deferred_line
                                  : Routed::done;
@@ -609,17 +636,16 @@ enum class Routed { done, centre_probe, deferred_line };
                 case Routed::centre_probe: {
                     const EnvCoords& c = probe.coords;
                     DeferredProbe& d = probes[pending_probes++];
-                    d = {detail::probe_taps(map, c.face, c.s, c.t, probe.levels), probe.levels,
+                    d = {{detail::probe_taps(map, c.face, c.s, c.t, probe.levels), probe.levels},
                          result};
-                    detail::prefetch_probe(d.taps, d.levels, stride);
+                    d.probe.request(stride);
                     break;
                 }
             }
         }
         detail::dispatch_stride(stride, [&]<int S>() {
             for (std::size_t i = 0; i < pending_probes; ++i)
-                detail::store(detail::blend_probe<S>(probes[i].taps, probes[i].levels), channels,
-                              probes[i].out);
+                detail::store(probes[i].probe.template blend<S>(), channels, probes[i].out);
             for (std::size_t i = 0; i < pending_lines; ++i)
                 detail::store(lines[i].line.template blend<S>(), channels, lines[i].out);
         });

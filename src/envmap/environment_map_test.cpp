@@ -1,6 +1,8 @@
 #include "envmap/environment_map.h"
 
 #include "envmap/env_test_maps.h"
+#include "envmap/polar_caps.h"
+#include "texture/footprint_assembly.h"
 
 #include <gtest/gtest.h>
 
@@ -349,6 +351,72 @@ TEST(EnvironmentMap, PolarCapLookupsSkipOnlyTheUnusedLatLongFootprint) {
         ++compared;
     }
     EXPECT_EQ(compared, 400);
+}
+
+TEST(EnvironmentMap, PolarCapFootprintsFourAtOnceAreTheScalarOnes) {
+    // polar_cap_footprints4() against in_polar_cap_region(), polar_cap_footprint() and
+    // single_probe_lod() ray by ray, bit for bit: near both poles, at the region's 30° edge, with
+    // a rotation, footprints up to too large for the cap, non-finite differentials and directions,
+    // directions at 2^±110.
+    const EnvironmentMap map = test::env_noise_map(EnvLayout::latlong, 64, 26);
+    ASSERT_NE(map.polar_cap(0), nullptr);
+    std::mt19937 rng(29);
+    std::uniform_real_distribution<float> u(0, 1);
+    int valid = 0;
+    for (const Mat3& rotation : {Mat3{}, rotation_xyz_degrees(10, 20, 30)}) {
+        const IdentitySkippingRotation to_map(rotation);
+        for (int first = 0; first < 2000; first += 4) {
+            EnvRayDifferential rays[4];
+            for (int lane = 0; lane < 4; ++lane) {
+                const int i = first + lane;
+                const float colatitude = (i % 7 == 0 ? 30.0f : 45.0f * u(rng)) * 3.14159265f / 180;
+                const float phi = 2 * 3.14159265f * u(rng), pole = i % 2 ? 1.0f : -1.0f;
+                EnvRayDifferential& ray = rays[lane];
+                ray.direction = {std::sin(colatitude) * std::cos(phi), pole * std::cos(colatitude),
+                                 std::sin(colatitude) * std::sin(phi)};
+                test::isotropic_differentials(ray.direction, 0.5f * u(rng) * u(rng), ray.d_dx,
+                                              ray.d_dy);
+                if (i % 41 == 3) ray.d_dy.z = INFINITY;
+                if (i % 43 == 5) ray.direction.x = NAN;
+                if (i % 13 == 9) ray.direction = 0x1p-110f * ray.direction;
+                if (i % 17 == 2) ray.direction = 0x1p101f * ray.direction;
+            }
+            PolarCapFootprints4 four;
+            polar_cap_footprints4(map, rays, to_map, LookupOptions{}, four);
+            for (int lane = 0; lane < 4; ++lane) {
+                const auto& [r, dx, dy] = rays[lane];
+                const Vec3 m = to_map(r);
+                SCOPED_TRACE(testing::Message() << "ray " << first + lane << " (" << r.x << ", "
+                                                << r.y << ", " << r.z << ")");
+                EXPECT_EQ(four.region >> lane & 1, in_polar_cap_region(m));
+                const bool spread = is_finite(dx) && is_finite(dy);
+                const PolarCapFootprint cap =
+                    is_finite(r) ? polar_cap_footprint(map, m, spread ? to_map(dx) : Vec3{},
+                                                       spread ? to_map(dy) : Vec3{})
+                                 : PolarCapFootprint{};
+                if (!(four.valid >> lane & 1)) {
+                    // Left to the scalar path: not the caps', or prepare()'s rare case.
+                    const float big = max_abs_component(m);
+                    EXPECT_TRUE(!(in_polar_cap_region(m) && cap.valid) || big < 0x1p-100f ||
+                                big > 0x1p100f);
+                    continue;
+                }
+                ++valid;
+                ASSERT_TRUE(in_polar_cap_region(m) && cap.valid);
+                const PolarCapFootprint f = four.footprint(map, lane);
+                EXPECT_EQ(f.cap, cap.cap);
+                EXPECT_EQ(f.coords.face, cap.coords.face);
+                EXPECT_EQ(f.coords.s, cap.coords.s);
+                EXPECT_EQ(f.coords.t, cap.coords.t);
+                EXPECT_EQ(f.matrix.xx, cap.matrix.xx);
+                EXPECT_EQ(f.matrix.xy, cap.matrix.xy);
+                EXPECT_EQ(f.matrix.yy, cap.matrix.yy);
+                EXPECT_EQ(four.lod[lane],
+                          single_probe_lod(cap.matrix, LookupOptions{}, cap.cap->max_level()));
+            }
+        }
+    }
+    EXPECT_GT(valid, 2 * 2000 / 4);  // the rays within 30° of a pole, their footprints on the cap
 }
 
 TEST(EnvironmentMap, BatchedLookupsEqualSingleLookups) {

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <tbb/parallel_for.h>
 
 #include "envmap/env_layout_detail.h"
+#include "envmap/env_layout_detail4.h"
 #include "envmap/env_sampling.h"
 #include "math/fast_atan2.h"
 #include "texture/filters.h"
@@ -120,27 +122,116 @@ PolarCapFootprint polar_cap_footprint(const EnvironmentMap& map, Vec3 map_direct
     return cap_footprint(map, map_direction, map_dr_dx, map_dr_dy, nullptr, 0.0f);
 }
 
-void polar_cap_filter(const PolarCapFootprint& f, const LookupOptions& options, float* out) {
+namespace {
+
+// polar_cap_filter() at the footprint's single_probe_lod(), or given `probe` and `line`,
+// polar_cap_request().
+[[gnu::always_inline]] inline detail::Requested filter_cap(
+    const PolarCapFootprint& f, float lod, const LookupOptions& options, float* out,
+    detail::RequestedProbe* probe, detail::RequestedLine<detail::kRequestedLineProbes>* line) {
     const MipPyramid& cap = *f.cap;
     const EnvCoords& c = f.coords;
     // One probe (the common case): no ellipse axes.
-    const float lod = single_probe_lod(f.matrix, options, cap.max_level());
     if (lod >= 0.0f) {
+        if (probe) {
+            const detail::TrilinearLevels levels = detail::trilinear_levels(
+                lod, cap.max_level(), single_probe_blend(options.lod_blend));
+            *probe = {detail::probe_taps(cap, c.s, c.t, levels), levels};
+            probe->request(cap.stride());
+            return detail::Requested::probe;
+        }
         detail::dispatch_stride(cap.stride(), [&]<int S>() {
             detail::store(detail::sample_trilinear<S>(cap, c.s, c.t, lod,
                                                       single_probe_blend(options.lod_blend)),
                           cap.channels(), out);
         });
-        return;
+        return detail::Requested::done;
     }
     const FootprintEllipse ellipse = make_footprint_ellipse(f.matrix);
     if (options.filter == TextureFilter::footprint_assembly) {
         // A valid cap footprint is finite and on the face, so texture_lookup()'s sanitising
         // (reducing (s, t), bounding the ellipse) has nothing to do.
+        if (probe)
+            return detail::request_footprint_assembly(cap, c.s, c.t, ellipse, options, out, *probe,
+                                                      *line);
         detail::filter_footprint_assembly(cap, c.s, c.t, ellipse, options, out);
-        return;
+        return detail::Requested::done;
     }
     texture_lookup(cap, c.s, c.t, ellipse, options, out);
+    return detail::Requested::done;
+}
+
+}  // namespace
+
+void polar_cap_filter(const PolarCapFootprint& f, const LookupOptions& options, float* out) {
+    filter_cap(f, single_probe_lod(f.matrix, options, f.cap->max_level()), options, out, nullptr,
+               nullptr);
+}
+
+detail::Requested polar_cap_request(const PolarCapFootprint& f, float lod,
+                                    const LookupOptions& options, float* out,
+                                    detail::RequestedProbe& probe,
+                                    detail::RequestedLine<detail::kRequestedLineProbes>& line) {
+    return filter_cap(f, lod, options, out, &probe, &line);
+}
+
+// The operations of in_polar_cap_region(), the environment's polar_cap_lookup() and
+// cap_footprint() (form (a)), four lanes at once (env_layout_detail4.h).
+void polar_cap_footprints4(const EnvironmentMap& map, const EnvRayDifferential* rays,
+                           const IdentitySkippingRotation& to_map, const LookupOptions& options,
+                           PolarCapFootprints4& out) {
+    using namespace env_detail;
+    const Vec3x4 r = gather(rays, &EnvRayDifferential::direction);
+    const Vec3x4 m = rotate(to_map, r);
+    const Float4 len = sqrt(dot(m, m)), zero(0.0f), one(1.0f);
+    const Float4 infinity(std::numeric_limits<float>::infinity());
+    auto finite = [&](Float4 x) { return abs(x) < infinity; };
+    auto all_finite = [&](const Vec3x4& v) { return finite(v.x) & finite(v.y) & finite(v.z); };
+    const Mask4 region = (len > zero) & (abs(m.y) >= Float4(kPolarCapCosine) * len);
+    out.region = region.bits();
+    out.valid = 0;
+    if (out.region == 0) return;
+    // prepare()'s common case (A r finite, so r is finite as polar_cap_lookup() requires).
+    const Prepared4 prepared = prepare4(m);
+    Mask4 valid = region & prepared.common;
+    // Faces 2 (+Y) and 3 (−Y).
+    const Mask4 north = m.y > zero, none = zero > one, all = !none;
+    const CubeCoordsJacobian4 position =
+        cube_coords_and_jacobian4(prepared, {none, all, none, !north});
+    // K on the cap from the map-space differentials, zero where either is not finite (a point
+    // lookup).
+    const Vec3x4 dx = gather(rays, &EnvRayDifferential::d_dx);
+    const Vec3x4 dy = gather(rays, &EnvRayDifferential::d_dy);
+    const Mask4 spread = all_finite(dx) & all_finite(dy);
+    const Vec3x4 mdx = rotate(to_map, dx), mdy = rotate(to_map, dy);
+    auto spread_only = [&](const Vec3x4& v) {
+        return Vec3x4{select(spread, v.x, zero), select(spread, v.y, zero),
+                      select(spread, v.z, zero)};
+    };
+    const MipPyramid& cap = *map.polar_cap(0);  // both caps are the same size
+    const Float4 n(static_cast<float>(cap.width(0)));
+    const Vec3x4 wx = spread_only(mdx), wy = spread_only(mdy);
+    const Sym2x4 k = footprint_matrix4(n * dot(position.ds, wx), n * dot(position.dt, wx),
+                                       n * dot(position.ds, wy), n * dot(position.dt, wy));
+    valid = valid & finite(k.xx) & finite(k.xy) & finite(k.yy);
+    // On the face: the probes and their kernels reach about 2λ1 ≤ 2√tr K from the centre.
+    const Float4 reach = (Float4(2.0f) * sqrt(k.xx + k.yy) + one) / n;
+    const Float4 s = position.s, t = position.t;
+    valid =
+        valid & (s - reach >= zero) & (s + reach <= one) & (t - reach >= zero) & (t + reach <= one);
+
+    out.valid = valid.bits();
+    if (out.valid == 0) return;
+    select(north, Int4(0), Int4(1)).store(out.cap);
+    s.store(out.s);
+    t.store(out.t);
+    k.xx.store(out.xx);
+    k.xy.store(out.xy);
+    k.yy.store(out.yy);
+    (has_single_probe_rule(options) ? single_probe_lod(k.xx, k.xy, k.yy, options.lod_bias,
+                                                       cap.max_level(), options.isotropic_ratio)
+                                    : Float4(-1.0f))
+        .store(out.lod);
 }
 
 }  // namespace footprint

@@ -8,6 +8,7 @@
 #include "envmap/env_footprint.h"
 #include "envmap/environment_map.h"
 #include "image/image.h"
+#include "texture/filters.h"
 #include "texture/texture_lookup.h"
 
 namespace footprint {
@@ -40,5 +41,35 @@ PolarCapFootprint polar_cap_footprint(const EnvironmentMap& map, Vec3 map_direct
 
 // Filters a valid cap footprint into out.
 void polar_cap_filter(const PolarCapFootprint& footprint, const LookupOptions& options, float* out);
+
+// polar_cap_footprint() (form (a)) for four rays at once on a lat-long map with caps, in
+// structure-of-arrays form (math/float4.h), for the batch. Bit i of `region` is set where ray i's
+// map direction A r lies in the caps' region (in_polar_cap_region()). Where bit i of `valid` is
+// set, the caps take it (polar_cap_footprint() valid, r and its differentials as the single lookup
+// passes them), and lane i holds exactly (bit for bit) that footprint's cap, coords and K, and
+// `lod` its single_probe_lod() for `options`. A clear bit leaves the ray to the scalar functions.
+struct PolarCapFootprints4 {
+    int region = 0, valid = 0;
+    int cap[4];  // 0: +Y, 1: −Y
+    float s[4], t[4];
+    float xx[4], xy[4], yy[4];
+    float lod[4];
+
+    PolarCapFootprint footprint(const EnvironmentMap& map, int i) const {
+        return {true, map.polar_cap(cap[i]), {2 + cap[i], s[i], t[i]}, {xx[i], xy[i], yy[i]}};
+    }
+};
+void polar_cap_footprints4(const EnvironmentMap& map, const EnvRayDifferential* rays,
+                           const IdentitySkippingRotation& to_map, const LookupOptions& options,
+                           PolarCapFootprints4& out);
+
+// polar_cap_filter() for callers that request many lookups before reading any (the batch), given
+// the footprint's single_probe_lod(): a lookup of one probe is requested into `probe`, a line of
+// probes on the cap as request_footprint_assembly() requests it into `line`; any other lookup is
+// filtered into out at once.
+detail::Requested polar_cap_request(const PolarCapFootprint& footprint, float lod,
+                                    const LookupOptions& options, float* out,
+                                    detail::RequestedProbe& probe,
+                                    detail::RequestedLine<detail::kRequestedLineProbes>& line);
 
 }  // namespace footprint

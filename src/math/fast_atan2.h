@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "math/float4.h"
+
 namespace footprint {
 
 inline float fast_atan2(float y, float x) {
@@ -29,6 +31,26 @@ inline float fast_atan2(float y, float x) {
     if (std::signbit(x)) r = kPi - r;
     if (std::isnan(x) || std::isnan(y)) return x + y;
     return std::copysign(r, y);
+}
+
+// The same for four (y, x) at once (math/float4.h): each lane is fast_atan2(y, x) bit for bit
+// (a NaN lane may carry another NaN).
+inline Float4 fast_atan2(Float4 y, Float4 x) {
+    const Float4 ax = abs(x), ay = abs(y);
+    const Float4 big = max_like_std(ax, ay), small = min_like_std(ax, ay);
+    const Float4 a = select(big > Float4(0.0f), small / big, Float4(0.0f)), s = a * a;
+    Float4 r =
+        a *
+        (Float4(0.999999344f) +
+         s * (Float4(-0.333298594f) +
+              s * (Float4(0.199465662f) +
+                   s * (Float4(-0.139086291f) +
+                        s * (Float4(0.0964219496f) +
+                             s * (Float4(-0.0559122972f) +
+                                  s * (Float4(0.0218629353f) + s * Float4(-0.00405456079f))))))));
+    r = select(ay > ax, Float4(1.57079632679f) - r, r);
+    r = select(sign_bit(x), Float4(3.14159265359f) - r, r);
+    return select(is_not_nan(x) & is_not_nan(y), copysign(r, y), x + y);
 }
 
 }  // namespace footprint

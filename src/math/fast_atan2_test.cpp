@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
 namespace footprint {
@@ -34,6 +35,28 @@ TEST(FastAtan2, AxesSignsAndZerosFollowStdAtan2) {
         }
     EXPECT_TRUE(std::isnan(fast_atan2(NAN, 1.0f)));
     EXPECT_TRUE(std::isnan(fast_atan2(1.0f, NAN)));
+}
+
+TEST(FastAtan2, FourAtOnceIsTheScalarFastAtan2BitForBit) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> angle(-3.14159265f, 3.14159265f), scale(-30, 30);
+    const float special[] = {0.0f, -0.0f, 1.0f, -1.0f, 1e-30f, -1e30f, INFINITY, -INFINITY, NAN};
+    for (int i = 0; i < 200000; ++i) {
+        float y[4], x[4], out[4];
+        for (int k = 0; k < 4; ++k) {
+            const float phi = angle(rng), r = std::exp2(scale(rng));
+            y[k] = r * std::sin(phi), x[k] = r * std::cos(phi);
+            if (i < 81 && k == 0) y[k] = special[i % 9], x[k] = special[i / 9];
+            if (k == 1) x[k] = std::fabs(y[k]) * (i % 2 ? 1.0f : -1.0f);  // |y| = |x|
+        }
+        fast_atan2(Float4(y[0], y[1], y[2], y[3]), Float4(x[0], x[1], x[2], x[3])).store(out);
+        for (int k = 0; k < 4; ++k) {
+            const float expected = fast_atan2(y[k], x[k]);
+            ASSERT_TRUE(std::isnan(expected) ? std::isnan(out[k])
+                                             : std::memcmp(&expected, &out[k], sizeof(float)) == 0)
+                << y[k] << " " << x[k] << ": " << out[k] << " vs " << expected;
+        }
+    }
 }
 
 }  // namespace

@@ -76,6 +76,9 @@ inline Mask4 operator>(Float4 a, Float4 b) {
 inline Mask4 operator>=(Float4 a, Float4 b) {
     return {_mm_cmpge_ps(a.v, b.v)};
 }
+inline Mask4 operator==(Float4 a, Float4 b) {
+    return {_mm_cmpeq_ps(a.v, b.v)};
+}
 inline Mask4 is_not_nan(Float4 a) {
     return {_mm_cmpord_ps(a.v, a.v)};
 }
@@ -84,6 +87,15 @@ inline Float4 abs(Float4 a) {
 }
 inline Float4 sqrt(Float4 a) {
     return _mm_sqrt_ps(a.v);
+}
+// Where the sign bit is set (std::signbit), and |magnitude| with the sign of `sign`
+// (std::copysign).
+inline Mask4 sign_bit(Float4 a) {
+    return {_mm_castsi128_ps(_mm_srai_epi32(_mm_castps_si128(a.v), 31))};
+}
+inline Float4 copysign(Float4 magnitude, Float4 sign) {
+    const __m128 sign_mask = _mm_set1_ps(-0.0f);
+    return _mm_or_ps(_mm_andnot_ps(sign_mask, magnitude.v), _mm_and_ps(sign_mask, sign.v));
 }
 // _mm_max_ps(x, y) = (x > y) ? x : y, so std::max(a, b) = (b > a) ? b : a is _mm_max_ps(b, a).
 inline Float4 max_like_std(Float4 a, Float4 b) {
@@ -197,6 +209,9 @@ inline Mask4 operator>(Float4 a, Float4 b) {
 inline Mask4 operator>=(Float4 a, Float4 b) {
     return b <= a;
 }
+inline Mask4 operator==(Float4 a, Float4 b) {
+    return mask_each([&](int i) { return a.lane[i] == b.lane[i]; });
+}
 inline Mask4 is_not_nan(Float4 a) {
     return mask_each([&](int i) { return !std::isnan(a.lane[i]); });
 }
@@ -205,6 +220,12 @@ inline Float4 abs(Float4 a) {
 }
 inline Float4 sqrt(Float4 a) {
     return float_each([&](int i) { return std::sqrt(a.lane[i]); });
+}
+inline Mask4 sign_bit(Float4 a) {
+    return mask_each([&](int i) { return std::signbit(a.lane[i]); });
+}
+inline Float4 copysign(Float4 magnitude, Float4 sign) {
+    return float_each([&](int i) { return std::copysign(magnitude.lane[i], sign.lane[i]); });
 }
 inline Float4 max_like_std(Float4 a, Float4 b) {
     return float_each([&](int i) { return a.lane[i] < b.lane[i] ? b.lane[i] : a.lane[i]; });

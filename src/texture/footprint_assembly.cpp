@@ -217,9 +217,14 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
 
 namespace detail {
 
-void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
-                               const FootprintEllipse& footprint, const LookupOptions& options,
-                               float* out) {
+namespace {
+
+// filter_footprint_assembly(), or given `probe` and `line`, request_footprint_assembly().
+[[gnu::always_inline]] inline Requested assemble(const MipPyramid& pyramid, float s, float t,
+                                                 const FootprintEllipse& footprint,
+                                                 const LookupOptions& options, float* out,
+                                                 RequestedProbe* probe,
+                                                 RequestedLine<kRequestedLineProbes>* line) {
     const ProbePlan plan =
         plan_probes(footprint, options.probe_rule, options.max_probes, pyramid.max_level(),
                     options.lod_bias, options.isotropic_ratio);
@@ -231,10 +236,16 @@ void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
     const float first = -0.5f * static_cast<float>(plan.count - 1);
     const LodBlend blend = effective_lod_blend(plan, options.lod_blend);
     if (plan.count == 1) {  // one isotropic probe: both levels' taps issued together
+        if (probe) {
+            const TrilinearLevels levels = trilinear_levels(plan.lod, pyramid.max_level(), blend);
+            *probe = {probe_taps(pyramid, s, t, levels), levels};
+            probe->request(pyramid.stride());
+            return Requested::probe;
+        }
         dispatch_stride(pyramid.stride(), [&]<int S>() {
             store(sample_trilinear<S>(pyramid, s, t, plan.lod, blend), pyramid.channels(), out);
         });
-        return;
+        return Requested::done;
     }
     // C = Σ w_i trilinear(c + o_i) / Σ w_i (spec §2.9).
     float weights[kMaxProbeCount];
@@ -244,8 +255,17 @@ void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
         const float k = first + static_cast<float>(i);
         return Vec2{s + k * du, t + k * dv};
     };
+    if (line && plan.count <= kRequestedLineProbes) {
+        bool requested = false;
+        dispatch_stride(pyramid.stride(), [&]<int S>() {
+            requested = line->template request<S>(pyramid, plan.count, weights, levels, position(0),
+                                                  position(plan.count - 1), position);
+        });
+        if (requested) return Requested::line;
+    }
     // A line whose ends' taps lie on the levels needs no wrapping.
-    if (blend_probe_line_inside(pyramid, plan.count, weights, levels, position, out)) return;
+    if (blend_probe_line_inside(pyramid, plan.count, weights, levels, position, out))
+        return Requested::done;
     dispatch_stride(pyramid.stride(), [&]<int S>() {
         const Texel<S> result =
             blend_probe_line<S>(plan.count, weights, levels, pyramid.stride(), [&](int i) {
@@ -254,6 +274,23 @@ void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
             });
         store(result, pyramid.channels(), out);
     });
+    return Requested::done;
+}
+
+}  // namespace
+
+void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
+                               const FootprintEllipse& footprint, const LookupOptions& options,
+                               float* out) {
+    assemble(pyramid, s, t, footprint, options, out, nullptr, nullptr);
+}
+
+Requested request_footprint_assembly(const MipPyramid& pyramid, float s, float t,
+                                     const FootprintEllipse& footprint,
+                                     const LookupOptions& options, float* out,
+                                     RequestedProbe& probe,
+                                     RequestedLine<kRequestedLineProbes>& line) {
+    return assemble(pyramid, s, t, footprint, options, out, &probe, &line);
 }
 
 }  // namespace detail

@@ -227,6 +227,20 @@ template <int S>
     return r;
 }
 
+// A trilinear probe addressed (set in place: {probe_taps(…), levels}) and requested now, read later
+// (blend()): what sample_trilinear() returns, for callers that request many probes before reading
+// any.
+struct RequestedProbe {
+    ProbeTaps taps;
+    TrilinearLevels levels;
+
+    void request(int stride) const { prefetch_probe(taps, levels, stride); }
+    template <int S>
+    [[gnu::always_inline]] Texel<S> blend() const {
+        return blend_probe<S>(taps, levels);
+    }
+};
+
 // Trilinear probe at a fractional level lod ∈ [0, max_level].
 template <int S>
 [[gnu::always_inline]] inline Texel<S> sample_trilinear(const MipPyramid& pyramid, float s, float t,
