@@ -196,8 +196,9 @@ struct Position4 {
 };
 
 // plain_env_footprint() for four lanes at once (env_layout_detail4.h), the layout's part given by
-// locate(prepared, A r, ∂r/∂x, ∂r/∂y, plain): the position, with the lanes it refuses cleared from
-// plain.
+// locate(prepared, A r, rays, plain): the position, with the lanes it refuses cleared from plain.
+// (Each result is stored once computed, and each differential gathered where it is used: fewer
+// registers live, fewer spilled.)
 template <class Locate>
 [[gnu::always_inline]] inline void plain_footprints4(Vec2 texel_scale,
                                                      const EnvRayDifferential* rays,
@@ -206,28 +207,31 @@ template <class Locate>
     using namespace env_detail;
     const Vec3x4 r = gather(rays, &EnvRayDifferential::direction);
     const Vec3x4 m = rotate(to_map, r);
-    const Prepared4 prepared = prepare4(m);
-    const Vec3x4 dx = gather(rays, &EnvRayDifferential::d_dx);
-    const Vec3x4 dy = gather(rays, &EnvRayDifferential::d_dy);
-    // |r| > 0, as compute_env_footprint() requires.
-    Mask4 plain = prepared.common & (dot(r, r) > Float4(0.0f));
-    const Position4 position = locate(prepared, m, dx, dy, plain);
-    // MapJacobian: D's columns; K = D Dᵀ.
-    const Vec3x4 mdx = rotate(to_map, dx), mdy = rotate(to_map, dy);
-    const Float4 width(texel_scale.x), height(texel_scale.y);
-    const Sym2x4 k =
-        footprint_matrix4(width * dot(position.ds, mdx), height * dot(position.dt, mdx),
-                          width * dot(position.ds, mdy), height * dot(position.dt, mdy));
-    out.plain = (plain & k.finite()).bits();
-    position.face.store(out.face);
-    position.s.store(out.s);
-    position.t.store(out.t);
-    k.xx.store(out.xx);
-    k.xy.store(out.xy);
-    k.yy.store(out.yy);
     m.x.store(out.map_x);
     m.y.store(out.map_y);
     m.z.store(out.map_z);
+    const Prepared4 prepared = prepare4(m);
+    // |r| > 0, as compute_env_footprint() requires.
+    Mask4 plain = prepared.common & (dot(r, r) > Float4(0.0f));
+    const Position4 position = locate(prepared, m, rays, plain);
+    position.face.store(out.face);
+    position.s.store(out.s);
+    position.t.store(out.t);
+    // MapJacobian: D's columns; K = D Dᵀ.
+    const Float4 width(texel_scale.x), height(texel_scale.y);
+    auto column = [&](Vec3 EnvRayDifferential::*member, Float4& ds, Float4& dt) {
+        const Vec3x4 d = rotate(to_map, gather(rays, member));
+        ds = width * dot(position.ds, d);
+        dt = height * dot(position.dt, d);
+    };
+    Float4 dxs, dxt, dys, dyt;
+    column(&EnvRayDifferential::d_dx, dxs, dxt);
+    column(&EnvRayDifferential::d_dy, dys, dyt);
+    const Sym2x4 k = footprint_matrix4(dxs, dxt, dys, dyt);
+    k.xx.store(out.xx);
+    k.xy.store(out.xy);
+    k.yy.store(out.yy);
+    out.plain = (plain & k.finite()).bits();
 }
 
 }  // namespace
@@ -238,7 +242,7 @@ void plain_env_footprints4(EnvLayout layout, Vec2 texel_scale, const EnvRayDiffe
     if (layout == EnvLayout::cube) {
         plain_footprints4(
             texel_scale, rays, to_map,
-            [](const Prepared4& prepared, const Vec3x4&, const Vec3x4&, const Vec3x4&, Mask4&) {
+            [](const Prepared4& prepared, const Vec3x4&, const EnvRayDifferential*, Mask4&) {
                 const CubeCoordsJacobian4 c =
                     cube_coords_and_jacobian4(prepared, cube_axes4(prepared.p));
                 return Position4{c.face, c.s, c.t, c.ds, c.dt};
@@ -252,8 +256,10 @@ void plain_env_footprints4(EnvLayout layout, Vec2 texel_scale, const EnvRayDiffe
     }
     plain_footprints4(
         texel_scale, rays, to_map,
-        [](const Prepared4& prepared, const Vec3x4& m, const Vec3x4& dx, const Vec3x4& dy,
+        [](const Prepared4& prepared, const Vec3x4& m, const EnvRayDifferential* rays,
            Mask4& plain) {
+            const Vec3x4 dx = gather(rays, &EnvRayDifferential::d_dx);
+            const Vec3x4 dy = gather(rays, &EnvRayDifferential::d_dy);
             const Vec3x4& p = prepared.p;
             const Float4 rho = sqrt(p.x * p.x + p.z * p.z);
             const LatLongCoordsJacobian4 c = latlong_coords_and_jacobian4(prepared, rho);
