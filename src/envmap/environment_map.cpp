@@ -356,6 +356,9 @@ using DeferredCubeLine = detail::RequestedLine<kDeferredProbes>;
         out);
 }
 
+bool lookup_plan(const EnvironmentMap& map, const FootprintCentre& footprint, const ProbePlan& plan,
+                 const LookupOptions& options, float* out, DeferredCubeLine* defer);
+
 // Every other lookup (a line of probes, another filter), given the footprint's cap_footprint(),
 // done into out; or, given `defer` (the batch), a cube line on its face requested into it for a
 // later read: then true. Flattened: everything it calls that can be inlined is, so that its probe
@@ -392,8 +395,20 @@ using DeferredCubeLine = detail::RequestedLine<kDeferredProbes>;
         map.layout() == EnvLayout::sphere
             ? sphere_probe_limit(map, footprint.map_direction, options.max_probes)
             : options.max_probes;
-    const ProbePlan plan = plan_probes(e, options.probe_rule, max_probes, centre.max_level(),
-                                       options.lod_bias, options.isotropic_ratio);
+    return lookup_plan(map, footprint,
+                       plan_probes(e, options.probe_rule, max_probes, centre.max_level(),
+                                   options.lod_bias, options.isotropic_ratio),
+                       options, out, defer);
+}
+
+// Footprint assembly of a planned line (general_lookup()'s, or the batch's two_probe_plans4()):
+// done into out, or, given `defer`, a cube line on its face requested into it (then true).
+[[gnu::flatten]] bool lookup_plan(const EnvironmentMap& map, const FootprintCentre& footprint,
+                                  const ProbePlan& plan, const LookupOptions& options, float* out,
+                                  DeferredCubeLine* defer) {
+    const EnvCoords& c = footprint.coords;
+    const MipPyramid& centre = map.face(c.face);
+    const Vec2 size = map.texel_scale();
     const LodBlend blend = effective_lod_blend(plan, options.lod_blend);
     float weights[kMaxProbeCount];
     probe_weights(plan, weights);
@@ -562,6 +577,7 @@ enum class Routed { done, centre_probe, deferred_line };
     PlainEnvFootprints4 plain[kGroup / 4];
     PolarCapFootprints4 capped[kGroup / 4];
     float lods[kGroup];
+    TwoProbePlans4 plans[kGroup / 4];
     for (std::size_t first = 0; first < rays.size(); first += kGroup) {
         const std::size_t count = std::min(kGroup, rays.size() - first);
         if (four_at_once)
@@ -581,12 +597,22 @@ enum class Routed { done, centre_probe, deferred_line };
                         continue;  // no lane for plain_env_footprint()
                 }
                 plain_env_footprints4(map.layout(), map.texel_scale(), four, to_map, p);
-                (rule_b ? single_probe_lod(Float4(p.xx[0], p.xx[1], p.xx[2], p.xx[3]),
-                                           Float4(p.xy[0], p.xy[1], p.xy[2], p.xy[3]),
-                                           Float4(p.yy[0], p.yy[1], p.yy[2], p.yy[3]),
-                                           options.lod_bias, max_level, options.isotropic_ratio)
-                        : Float4(-1.0f))
-                    .store(lods + lane);
+                TwoProbePlans4& two = plans[lane / 4];
+                two.two = 0;
+                if (!rule_b) {
+                    Float4(-1.0f).store(lods + lane);
+                    continue;
+                }
+                const Float4 xx(p.xx[0], p.xx[1], p.xx[2], p.xx[3]);
+                const Float4 xy(p.xy[0], p.xy[1], p.xy[2], p.xy[3]);
+                const Float4 yy(p.yy[0], p.yy[1], p.yy[2], p.yy[3]);
+                const Float4 lod = single_probe_lod(xx, xy, yy, options.lod_bias, max_level,
+                                                    options.isotropic_ratio);
+                lod.store(lods + lane);
+                // The lines among them: planned here where they are two probes.
+                if (((lod < Float4(0.0f)).bits() & p.plain) != 0)
+                    two_probe_plans4(xx, xy, yy, options.probe_rule, options.max_probes, max_level,
+                                     options.lod_bias, options.isotropic_ratio, two);
             }
         std::size_t pending_probes = 0, pending_lines = 0;
         for (std::size_t i = 0; i < count; ++i) {
@@ -617,6 +643,11 @@ enum class Routed { done, centre_probe, deferred_line };
                 if (lods[i] >= 0.0f) {
                     probe = centre_probe(map, p.coords(lane), lods[i], options);
                     routed = Routed::centre_probe;
+                } else if (const TwoProbePlans4& two = plans[i / 4]; two.two >> lane & 1) {
+                    routed = lookup_plan(map, FootprintCentre(p, lane), two.plan(lane), options,
+                                         result, &lines[pending_lines].line)
+                                 ? Routed::deferred_line
+                                 : Routed::done;
                 } else {
                     routed = general_lookup(map, FootprintCentre(p, lane), PolarCapFootprint{},
                                             options, result, &lines[pending_lines].line)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "math/fast_log2.h"
 
@@ -118,6 +119,56 @@ Float4 single_probe_lod(Float4 xx, Float4 xy, Float4 yy, float lod_bias, int max
         top);
     return select(magnified, Float4(std::clamp(lod_bias, 0.0f, static_cast<float>(max_level))),
                   select(one_probe, lod, Float4(-1.0f)));
+}
+
+// make_footprint_ellipse() and plan_probes()' two-probe case of Rule B, lane by lane in the same
+// order of operations, with selects for the branches.
+void two_probe_plans4(Float4 xx, Float4 xy, Float4 yy, ProbeRule rule, int max_probes,
+                      int max_level, float lod_bias, float isotropic_ratio, TwoProbePlans4& out) {
+    out.two = 0;
+    if ((rule != ProbeRule::moment_matched && rule != ProbeRule::gaussian) ||
+        std::clamp(max_probes, 1, kMaxProbeCount) <= 2)
+        return;  // not Rule B, or a budget that clamps two probes
+    const Float4 zero(0.0f), one(1.0f);
+    // make_footprint_ellipse(): λ1, λ2 and r1.
+    const Float4 w = sqrt((xx - yy) * (xx - yy) + Float4(4.0f) * xy * xy);
+    const Float4 major_sq = max_like_std(zero, Float4(0.5f) * (xx + yy + w));
+    const Float4 minor_sq =
+        select(major_sq > zero, max_like_std(zero, xx * yy - xy * xy) / major_sq, zero);
+    const Float4 l1 = sqrt(major_sq), l2 = min_like_std(sqrt(minor_sq), l1);
+    const Mask4 xx_major = xx >= yy;
+    const Float4 rx = select(xx_major, xx - yy + w, Float4(2.0f) * xy);
+    const Float4 ry = select(xx_major, Float4(2.0f) * xy, yy - xx + w);
+    const Float4 len = sqrt(rx * rx + ry * ry);
+    const Mask4 unit = (len > zero) & (abs(len) < Float4(std::numeric_limits<float>::infinity()));
+    const Float4 r1x = select(unit, rx / len, one), r1y = select(unit, ry / len, zero);
+    // plan_probes(): more than one probe, and exactly two.
+    const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
+    const Float4 tp = max_like_std(l2, one);
+    Mask4 two = !(l1 <= tp * Float4(ratio));
+    Float4 spacing;
+    if (rule == ProbeRule::moment_matched) {
+        // N = ⌈√(max(1, 3(λ1/T_p)² − 2))⌉ = 2 exactly where the root lies in (1, 2].
+        const Float4 r = l1 / tp;
+        const Float4 root = sqrt(max_like_std(one, Float4(3.0f) * r * r - Float4(2.0f)));
+        two = two & (root > one) & (root <= Float4(2.0f));
+        spacing = sqrt(max_like_std(zero, Float4(3.0f) * (l1 * l1 - tp * tp)) / Float4(3.0f));
+        out.weight_falloff = 0.0f;
+    } else {
+        const Float4 sigma = Float4(0.5f) * sqrt(l1 * l1 - tp * tp);
+        spacing = sigma * Float4(gaussian_spacing_factor(2));
+        two = two & (spacing <= tp);
+        out.weight_falloff = 2 * kGaussianProbeExtent / 1.0f;
+    }
+    out.two = two.bits();
+    if (out.two == 0) return;
+    (spacing * r1x).store(out.step_x);
+    (spacing * r1y).store(out.step_y);
+    tp.store(out.texel_size);
+    // probe_lod()
+    clamp_like_std(fast_log2(max_like_std(tp, one)) + Float4(lod_bias), zero,
+                   Float4(static_cast<float>(max_level)))
+        .store(out.lod);
 }
 
 float single_probe_lod(const Sym2& k, const LookupOptions& options, int max_level) {

@@ -299,6 +299,67 @@ TEST(FootprintAssembly, FourSingleProbeLodsAreTheScalarOnesBitForBit) {
                 }
 }
 
+TEST(FootprintAssembly, FourTwoProbePlansAreTheScalarOnesBitForBit) {
+    std::mt19937 rng(12);
+    std::uniform_real_distribution<float> u(0, 1);
+    auto same = [](float a, float b) { return std::memcmp(&a, &b, sizeof(float)) == 0; };
+    int two = 0, scalar_two = 0;
+    for (const ProbeRule rule : {ProbeRule::moment_matched, ProbeRule::gaussian, ProbeRule::ext})
+        for (const int max_probes : {30, 3, 2})
+            for (const float ratio : {kIsotropicRatio, 1.25f})
+                for (int i = 0; i < 4000; i += 4) {
+                    // Anisotropies around the one-, two- and three-probe boundaries, any size and
+                    // angle; every 7th footprint degenerate.
+                    Sym2 k[4];
+                    for (int lane = 0; lane < 4; ++lane) {
+                        const float major = std::exp2(12 * u(rng) - 2);
+                        const float minor = major / (1 + 2.5f * u(rng));
+                        k[lane] = (i + lane) % 7 == 0
+                                      ? Sym2{major, 0, 0}
+                                      : make_footprint_ellipse(major, minor, 6.3f * u(rng)).matrix;
+                    }
+                    if (i < 400) {
+                        // At the rule's edges exactly: λ1 = ratio·T_p (one probe or two), and
+                        // λ1/T_p ulps around √2, where Rule B's ⌈√(3(λ1/T_p)² − 2)⌉ turns 3.
+                        // (√(x·x) rounds back to x, so λ1 of diag(x², 1) is x.)
+                        k[0] = {ratio * ratio, 0, 1};
+                        float r = std::sqrt(2.0f);
+                        for (int step = 0; step < i / 4; ++step) r = std::nextafter(r, 2.0f);
+                        for (int lane = 1; lane < 4; ++lane) {
+                            k[lane] = {r * r, 0, 1};
+                            r = std::nextafter(r, 0.0f);
+                        }
+                    }
+                    TwoProbePlans4 plans;
+                    two_probe_plans4(Float4(k[0].xx, k[1].xx, k[2].xx, k[3].xx),
+                                     Float4(k[0].xy, k[1].xy, k[2].xy, k[3].xy),
+                                     Float4(k[0].yy, k[1].yy, k[2].yy, k[3].yy), rule, max_probes,
+                                     9, 0.25f, ratio, plans);
+                    for (int lane = 0; lane < 4; ++lane) {
+                        const ProbePlan expected = plan_probes(make_footprint_ellipse(k[lane]),
+                                                               rule, max_probes, 9, 0.25f, ratio);
+                        scalar_two += expected.count == 2;
+                        if (!(plans.two >> lane & 1)) {
+                            // Left to plan_probes(): only lines of another count, another rule or
+                            // a budget of two.
+                            EXPECT_TRUE(expected.count != 2 || rule == ProbeRule::ext ||
+                                        max_probes <= 2);
+                            continue;
+                        }
+                        ++two;
+                        const ProbePlan plan = plans.plan(lane);
+                        ASSERT_EQ(expected.count, 2);
+                        EXPECT_TRUE(same(plan.step.x, expected.step.x) &&
+                                    same(plan.step.y, expected.step.y));
+                        EXPECT_TRUE(same(plan.lod, expected.lod));
+                        EXPECT_TRUE(same(plan.texel_size, expected.texel_size));
+                        EXPECT_TRUE(same(plan.weight_falloff, expected.weight_falloff));
+                    }
+                }
+    EXPECT_GT(two, 2000);
+    EXPECT_GT(scalar_two, two);  // Rule A's and the budget of two's are the scalar's
+}
+
 TEST(FootprintAssembly, ClampedProbeBudgetRaisesTheMinorAxisOnly) {
     // With N_max = 16 the spec's kernel is ¼(λ1² r1r1ᵀ + max(λ2, T_p)² r2r2ᵀ): the major axis keeps
     // its full length, the minor one grows to the raised probe size T_p.
