@@ -577,7 +577,8 @@ enum class Routed { done, centre_probe, deferred_line };
     PlainEnvFootprints4 plain[kGroup / 4];
     PolarCapFootprints4 capped[kGroup / 4];
     float lods[kGroup];
-    TwoProbePlans4 plans[kGroup / 4];
+    TwoProbePlans4 plans[kGroup / 4], cap_plans[kGroup / 4];
+    const int cap_max_level = caps ? map.polar_cap(0)->max_level() : 0;  // both caps
     for (std::size_t first = 0; first < rays.size(); first += kGroup) {
         const std::size_t count = std::min(kGroup, rays.size() - first);
         if (four_at_once)
@@ -592,9 +593,21 @@ enum class Routed { done, centre_probe, deferred_line };
                 PlainEnvFootprints4& p = plain[lane / 4];
                 p.plain = 0;
                 if (caps) {
-                    polar_cap_footprints4(map, four, to_map, options, capped[lane / 4]);
-                    if (capped[lane / 4].region == 0xf)
-                        continue;  // no lane for plain_env_footprint()
+                    PolarCapFootprints4& c = capped[lane / 4];
+                    polar_cap_footprints4(map, four, to_map, options, c);
+                    // The cap lines among them: planned here where they are two probes.
+                    cap_plans[lane / 4].two = 0;
+                    if (rule_b &&
+                        (c.valid &
+                         (Float4(c.lod[0], c.lod[1], c.lod[2], c.lod[3]) < Float4(0.0f)).bits()) !=
+                            0)
+                        two_probe_plans4(Float4(c.xx[0], c.xx[1], c.xx[2], c.xx[3]),
+                                         Float4(c.xy[0], c.xy[1], c.xy[2], c.xy[3]),
+                                         Float4(c.yy[0], c.yy[1], c.yy[2], c.yy[3]),
+                                         options.probe_rule, options.max_probes, cap_max_level,
+                                         options.lod_bias, options.isotropic_ratio,
+                                         cap_plans[lane / 4]);
+                    if (c.region == 0xf) continue;  // no lane for plain_env_footprint()
                 }
                 plain_env_footprints4(map.layout(), map.texel_scale(), four, to_map, p);
                 TwoProbePlans4& two = plans[lane / 4];
@@ -621,9 +634,15 @@ enum class Routed { done, centre_probe, deferred_line };
             const int lane = static_cast<int>(i % 4);
             if (const PolarCapFootprints4& c = capped[i / 4]; caps && (c.valid >> lane & 1)) {
                 // route_lookup()'s polar cap branch, from the lane.
-                switch (polar_cap_request(c.footprint(map, lane), c.lod[lane], options, result,
-                                          probes[pending_probes].probe,
-                                          lines[pending_lines].line)) {
+                const PolarCapFootprint f = c.footprint(map, lane);
+                const TwoProbePlans4& two = cap_plans[i / 4];
+                switch (two.two >> lane & 1
+                            ? detail::request_footprint_assembly(
+                                  *f.cap, f.coords.s, f.coords.t, two.plan(lane), options, result,
+                                  probes[pending_probes].probe, lines[pending_lines].line)
+                            : polar_cap_request(f, c.lod[lane], options, result,
+                                                probes[pending_probes].probe,
+                                                lines[pending_lines].line)) {
                     case detail::Requested::done:
                         break;
                     case detail::Requested::probe:

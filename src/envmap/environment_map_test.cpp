@@ -431,11 +431,12 @@ TEST(EnvironmentMap, BatchedLookupsEqualSingleLookups) {
     const Mat3 rotation = rotation_xyz_degrees(20, -35, 50);
     for (EnvLayout layout : test::kAllEnvLayouts) {
         const EnvironmentMap map = test::env_noise_map(layout, 32, 5);
-        std::vector<EnvRayDifferential> rays(37);
+        std::vector<EnvRayDifferential> rays(73);
         for (std::size_t i = 0; i < rays.size(); ++i) {
             EnvRayDifferential& ray = rays[i];
             ray.direction = i % 9 == 0 ? Vec3{0, i % 2 ? 1.0f : -1.0f, 0}
                                        : Vec3{normal(rng), normal(rng), normal(rng)};
+            if (i % 3 == 1) ray.direction.y = 4 * std::copysign(1.0f, normal(rng));  // a polar cap
             const float angle = 0.002f * std::exp2(8 * u(rng));  // 0.1 … 30 texels
             test::isotropic_differentials(ray.direction, angle, ray.d_dx, ray.d_dy);
             ray.d_dx = ray.d_dx * (1 + 15 * u(rng));                     // anisotropy up to 16:1

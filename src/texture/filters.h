@@ -3,6 +3,7 @@
 #pragma once
 
 #include "math/footprint_ellipse.h"
+#include "texture/footprint_assembly.h"
 #include "texture/sampling.h"
 #include "texture/texture_lookup.h"
 
@@ -24,6 +25,11 @@ Requested request_footprint_assembly(const MipPyramid& pyramid, float s, float t
                                      const FootprintEllipse& footprint,
                                      const LookupOptions& options, float* out,
                                      RequestedProbe& probe,
+                                     RequestedLine<kRequestedLineProbes>& line);
+// The same for a footprint already planned (as plan_probes() plans it for `pyramid` and `options`).
+Requested request_footprint_assembly(const MipPyramid& pyramid, float s, float t,
+                                     const ProbePlan& plan, const LookupOptions& options,
+                                     float* out, RequestedProbe& probe,
                                      RequestedLine<kRequestedLineProbes>& line);
 
 // EWA (ewa.h).

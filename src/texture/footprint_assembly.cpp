@@ -270,15 +270,21 @@ namespace detail {
 
 namespace {
 
-// filter_footprint_assembly(), or given `probe` and `line`, request_footprint_assembly().
-[[gnu::always_inline]] inline Requested assemble(const MipPyramid& pyramid, float s, float t,
+// The plan of a footprint on `pyramid`.
+[[gnu::always_inline]] inline ProbePlan plan_for(const MipPyramid& pyramid,
                                                  const FootprintEllipse& footprint,
+                                                 const LookupOptions& options) {
+    return plan_probes(footprint, options.probe_rule, options.max_probes, pyramid.max_level(),
+                       options.lod_bias, options.isotropic_ratio);
+}
+
+// filter_footprint_assembly(), or given `probe` and `line`, request_footprint_assembly(), of a
+// footprint planned (plan_for()).
+[[gnu::always_inline]] inline Requested assemble(const MipPyramid& pyramid, float s, float t,
+                                                 const ProbePlan& plan,
                                                  const LookupOptions& options, float* out,
                                                  RequestedProbe* probe,
                                                  RequestedLine<kRequestedLineProbes>* line) {
-    const ProbePlan plan =
-        plan_probes(footprint, options.probe_rule, options.max_probes, pyramid.max_level(),
-                    options.lod_bias, options.isotropic_ratio);
     // Offsets are in level-0 texels; divide by S = diag(W0, H0) for normalised units (spec §2.9).
     // Positions need no per-probe reduction: the footprint is bounded to a few texture sizes, and
     // sample_bilinear wraps taps outside the level.
@@ -333,7 +339,7 @@ namespace {
 void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
                                const FootprintEllipse& footprint, const LookupOptions& options,
                                float* out) {
-    assemble(pyramid, s, t, footprint, options, out, nullptr, nullptr);
+    assemble(pyramid, s, t, plan_for(pyramid, footprint, options), options, out, nullptr, nullptr);
 }
 
 Requested request_footprint_assembly(const MipPyramid& pyramid, float s, float t,
@@ -341,7 +347,15 @@ Requested request_footprint_assembly(const MipPyramid& pyramid, float s, float t
                                      const LookupOptions& options, float* out,
                                      RequestedProbe& probe,
                                      RequestedLine<kRequestedLineProbes>& line) {
-    return assemble(pyramid, s, t, footprint, options, out, &probe, &line);
+    return assemble(pyramid, s, t, plan_for(pyramid, footprint, options), options, out, &probe,
+                    &line);
+}
+
+Requested request_footprint_assembly(const MipPyramid& pyramid, float s, float t,
+                                     const ProbePlan& plan, const LookupOptions& options,
+                                     float* out, RequestedProbe& probe,
+                                     RequestedLine<kRequestedLineProbes>& line) {
+    return assemble(pyramid, s, t, plan, options, out, &probe, &line);
 }
 
 }  // namespace detail
