@@ -401,7 +401,7 @@ bool lookup_plan(const EnvironmentMap& map, const FootprintCentre& footprint, co
                        options, out, defer);
 }
 
-// Footprint assembly of a planned line (general_lookup()'s, or the batch's two_probe_plans4()):
+// Footprint assembly of a planned line (general_lookup()'s, or the batch's short_plans4()):
 // done into out, or, given `defer`, a cube line on its face requested into it (then true).
 [[gnu::flatten]] bool lookup_plan(const EnvironmentMap& map, const FootprintCentre& footprint,
                                   const ProbePlan& plan, const LookupOptions& options, float* out,
@@ -577,7 +577,7 @@ enum class Routed { done, centre_probe, deferred_line };
     PlainEnvFootprints4 plain[kGroup / 4];
     PolarCapFootprints4 capped[kGroup / 4];
     float lods[kGroup];
-    TwoProbePlans4 plans[kGroup / 4], cap_plans[kGroup / 4];
+    ShortPlans4 plans[kGroup / 4], cap_plans[kGroup / 4];
     const int cap_max_level = caps ? map.polar_cap(0)->max_level() : 0;  // both caps
     for (std::size_t first = 0; first < rays.size(); first += kGroup) {
         const std::size_t count = std::min(kGroup, rays.size() - first);
@@ -595,23 +595,22 @@ enum class Routed { done, centre_probe, deferred_line };
                 if (caps) {
                     PolarCapFootprints4& c = capped[lane / 4];
                     polar_cap_footprints4(map, four, to_map, options, c);
-                    // The cap lines among them: planned here where they are two probes.
-                    cap_plans[lane / 4].two = 0;
+                    // The short cap lines among them, planned here.
+                    cap_plans[lane / 4].planned = 0;
                     if (rule_b &&
                         (c.valid &
                          (Float4(c.lod[0], c.lod[1], c.lod[2], c.lod[3]) < Float4(0.0f)).bits()) !=
                             0)
-                        two_probe_plans4(Float4(c.xx[0], c.xx[1], c.xx[2], c.xx[3]),
-                                         Float4(c.xy[0], c.xy[1], c.xy[2], c.xy[3]),
-                                         Float4(c.yy[0], c.yy[1], c.yy[2], c.yy[3]),
-                                         options.probe_rule, options.max_probes, cap_max_level,
-                                         options.lod_bias, options.isotropic_ratio,
-                                         cap_plans[lane / 4]);
+                        short_plans4(Float4(c.xx[0], c.xx[1], c.xx[2], c.xx[3]),
+                                     Float4(c.xy[0], c.xy[1], c.xy[2], c.xy[3]),
+                                     Float4(c.yy[0], c.yy[1], c.yy[2], c.yy[3]), options.probe_rule,
+                                     options.max_probes, cap_max_level, options.lod_bias,
+                                     options.isotropic_ratio, cap_plans[lane / 4]);
                     if (c.region == 0xf) continue;  // no lane for plain_env_footprint()
                 }
                 plain_env_footprints4(map.layout(), map.texel_scale(), four, to_map, p);
-                TwoProbePlans4& two = plans[lane / 4];
-                two.two = 0;
+                ShortPlans4& two = plans[lane / 4];
+                two.planned = 0;
                 if (!rule_b) {
                     Float4(-1.0f).store(lods + lane);
                     continue;
@@ -622,10 +621,10 @@ enum class Routed { done, centre_probe, deferred_line };
                 const Float4 lod = single_probe_lod(xx, xy, yy, options.lod_bias, max_level,
                                                     options.isotropic_ratio);
                 lod.store(lods + lane);
-                // The lines among them: planned here where they are two probes.
+                // The short lines among them, planned here.
                 if (((lod < Float4(0.0f)).bits() & p.plain) != 0)
-                    two_probe_plans4(xx, xy, yy, options.probe_rule, options.max_probes, max_level,
-                                     options.lod_bias, options.isotropic_ratio, two);
+                    short_plans4(xx, xy, yy, options.probe_rule, options.max_probes, max_level,
+                                 options.lod_bias, options.isotropic_ratio, two);
             }
         std::size_t pending_probes = 0, pending_lines = 0;
         for (std::size_t i = 0; i < count; ++i) {
@@ -635,8 +634,8 @@ enum class Routed { done, centre_probe, deferred_line };
             if (const PolarCapFootprints4& c = capped[i / 4]; caps && (c.valid >> lane & 1)) {
                 // route_lookup()'s polar cap branch, from the lane.
                 const PolarCapFootprint f = c.footprint(map, lane);
-                const TwoProbePlans4& two = cap_plans[i / 4];
-                switch (two.two >> lane & 1
+                const ShortPlans4& two = cap_plans[i / 4];
+                switch (two.planned >> lane & 1
                             ? detail::request_footprint_assembly(
                                   *f.cap, f.coords.s, f.coords.t, two.plan(lane), options, result,
                                   probes[pending_probes].probe, lines[pending_lines].line)
@@ -662,7 +661,7 @@ enum class Routed { done, centre_probe, deferred_line };
                 if (lods[i] >= 0.0f) {
                     probe = centre_probe(map, p.coords(lane), lods[i], options);
                     routed = Routed::centre_probe;
-                } else if (const TwoProbePlans4& two = plans[i / 4]; two.two >> lane & 1) {
+                } else if (const ShortPlans4& two = plans[i / 4]; two.planned >> lane & 1) {
                     routed = lookup_plan(map, FootprintCentre(p, lane), two.plan(lane), options,
                                          result, &lines[pending_lines].line)
                                  ? Routed::deferred_line

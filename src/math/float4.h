@@ -135,6 +135,12 @@ template <int N>
 Int4 shift_left(Int4 a) {
     return _mm_slli_epi32(a.v, N);
 }
+inline Mask4 operator==(Int4 a, Int4 b) {
+    return {_mm_castsi128_ps(_mm_cmpeq_epi32(a.v, b.v))};
+}
+inline Mask4 operator>(Int4 a, Int4 b) {
+    return {_mm_castsi128_ps(_mm_cmpgt_epi32(a.v, b.v))};
+}
 inline Int4 select(Mask4 m, Int4 a, Int4 b) {
     const __m128i mi = _mm_castps_si128(m.v);
     return _mm_or_si128(_mm_and_si128(mi, a.v), _mm_andnot_si128(mi, b.v));
@@ -279,6 +285,12 @@ Int4 shift_left(Int4 a) {
         return static_cast<std::int32_t>(static_cast<std::uint32_t>(a.lane[i]) << N);
     });
 }
+inline Mask4 operator==(Int4 a, Int4 b) {
+    return mask_each([&](int i) { return a.lane[i] == b.lane[i]; });
+}
+inline Mask4 operator>(Int4 a, Int4 b) {
+    return mask_each([&](int i) { return a.lane[i] > b.lane[i]; });
+}
 inline Int4 select(Mask4 m, Int4 a, Int4 b) {
     return int_each([&](int i) { return m.lane[i] ? a.lane[i] : b.lane[i]; });
 }
@@ -293,6 +305,10 @@ inline Float4 to_float(Int4 a) {
 }
 
 #endif
+
+inline Mask4 operator<=(Int4 a, Int4 b) {
+    return !(a > b);
+}
 
 // std::clamp(v, lo, hi) = (v < lo) ? lo : (hi < v) ? hi : v.
 inline Float4 clamp_like_std(Float4 v, Float4 lo, Float4 hi) {

@@ -121,14 +121,21 @@ Float4 single_probe_lod(Float4 xx, Float4 xy, Float4 yy, float lod_bias, int max
                   select(one_probe, lod, Float4(-1.0f)));
 }
 
-// make_footprint_ellipse() and plan_probes()' two-probe case of Rule B, lane by lane in the same
-// order of operations, with selects for the branches.
-void two_probe_plans4(Float4 xx, Float4 xy, Float4 yy, ProbeRule rule, int max_probes,
-                      int max_level, float lod_bias, float isotropic_ratio, TwoProbePlans4& out) {
-    out.two = 0;
-    if ((rule != ProbeRule::moment_matched && rule != ProbeRule::gaussian) ||
-        std::clamp(max_probes, 1, kMaxProbeCount) <= 2)
-        return;  // not Rule B, or a budget that clamps two probes
+// make_footprint_ellipse() and plan_probes()' short lines by Rule B, lane by lane in the same order
+// of operations, with selects for the branches. Gaussian weighting: N is the fewest probes from 3
+// on whose spacing σ·c(N) is at most T_p (plan_probes()' search ends there from any first guess),
+// which is 3 plus the number of N ≥ 3 with σ·c(N) > T_p, as c(N) falls with N (checked once).
+void short_plans4(Float4 xx, Float4 xy, Float4 yy, ProbeRule rule, int max_probes, int max_level,
+                  float lod_bias, float isotropic_ratio, ShortPlans4& out) {
+    out.planned = 0;
+    max_probes = std::clamp(max_probes, 1, kMaxProbeCount);
+    static const bool spacing_falls = [] {
+        for (int n = 3; n < kMaxProbeCount; ++n)
+            if (!(gaussian_spacing_factor(n + 1) < gaussian_spacing_factor(n))) return false;
+        return true;
+    }();
+    if (rule != ProbeRule::moment_matched && (rule != ProbeRule::gaussian || !spacing_falls))
+        return;
     const Float4 zero(0.0f), one(1.0f);
     // make_footprint_ellipse(): λ1, λ2 and r1.
     const Float4 w = sqrt((xx - yy) * (xx - yy) + Float4(4.0f) * xy * xy);
@@ -142,29 +149,53 @@ void two_probe_plans4(Float4 xx, Float4 xy, Float4 yy, ProbeRule rule, int max_p
     const Float4 len = sqrt(rx * rx + ry * ry);
     const Mask4 unit = (len > zero) & (abs(len) < Float4(std::numeric_limits<float>::infinity()));
     const Float4 r1x = select(unit, rx / len, one), r1y = select(unit, ry / len, zero);
-    // plan_probes(): more than one probe, and exactly two.
+    // plan_probes(): more than one probe, N ≤ kShortLineProbes and within the budget.
     const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
     const Float4 tp = max_like_std(l2, one);
-    Mask4 two = !(l1 <= tp * Float4(ratio));
-    Float4 spacing;
+    Mask4 planned = !(l1 <= tp * Float4(ratio));
+    Int4 n(2);
+    Float4 spacing, falloff(0.0f);
     if (rule == ProbeRule::moment_matched) {
-        // N = ⌈√(max(1, 3(λ1/T_p)² − 2))⌉ = 2 exactly where the root lies in (1, 2].
+        // N = ⌈√(max(1, 3(λ1/T_p)² − 2))⌉: 1 + the number of k = 1 … 7 below the root.
         const Float4 r = l1 / tp;
         const Float4 root = sqrt(max_like_std(one, Float4(3.0f) * r * r - Float4(2.0f)));
-        two = two & (root > one) & (root <= Float4(2.0f));
-        spacing = sqrt(max_like_std(zero, Float4(3.0f) * (l1 * l1 - tp * tp)) / Float4(3.0f));
-        out.weight_falloff = 0.0f;
+        n = Int4(1);
+        for (int k = 1; k < kShortLineProbes; ++k)
+            n = select(root > Float4(static_cast<float>(k)), n + Int4(1), n);
+        planned = planned & (root > one) &
+                  (root <= Float4(static_cast<float>(std::min(kShortLineProbes, max_probes))));
+        const Float4 n_float = to_float(n);
+        spacing = sqrt(max_like_std(zero, Float4(3.0f) * (l1 * l1 - tp * tp)) /
+                       (n_float * n_float - one));
     } else {
         const Float4 sigma = Float4(0.5f) * sqrt(l1 * l1 - tp * tp);
-        spacing = sigma * Float4(gaussian_spacing_factor(2));
-        two = two & (spacing <= tp);
-        out.weight_falloff = 2 * kGaussianProbeExtent / 1.0f;
+        const Float4 c2(gaussian_spacing_factor(2));
+        const Mask4 two = sigma * c2 <= tp;
+        if (((!two) & planned).bits() == 0) {  // two probes wherever a line (the commonest case)
+            spacing = sigma * c2;
+            falloff = Float4(2 * kGaussianProbeExtent);
+        } else {
+            Int4 more(3);  // N ≥ 3: 3 + the count of N with σ·c(N) > T_p
+            for (int k = 3; k <= kShortLineProbes; ++k)
+                more =
+                    select(sigma * Float4(gaussian_spacing_factor(k)) > tp, more + Int4(1), more);
+            n = select(two, Int4(2), more);
+            Float4 factor = c2;
+            for (int k = 3; k <= kShortLineProbes; ++k)
+                factor = select(n == Int4(k), Float4(gaussian_spacing_factor(k)), factor);
+            spacing = sigma * factor;
+            falloff = Float4(2 * kGaussianProbeExtent) / to_float(n - Int4(1));
+        }
+        // Within kShortLineProbes, and N < N_max (plan_probes() clamps N ≥ N_max).
+        planned = planned & (n <= Int4(std::min(kShortLineProbes, max_probes - 1)));
     }
-    out.two = two.bits();
-    if (out.two == 0) return;
+    out.planned = planned.bits();
+    if (out.planned == 0) return;
+    n.store(out.count);
     (spacing * r1x).store(out.step_x);
     (spacing * r1y).store(out.step_y);
     tp.store(out.texel_size);
+    falloff.store(out.weight_falloff);
     // probe_lod()
     clamp_like_std(fast_log2(max_like_std(tp, one)) + Float4(lod_bias), zero,
                    Float4(static_cast<float>(max_level)))

@@ -71,26 +71,27 @@ Float4 single_probe_lod(Float4 xx, Float4 xy, Float4 yy, float lod_bias, int max
                         float isotropic_ratio = kIsotropicRatio);
 
 // plan_probes(make_footprint_ellipse(K_i), rule, …) for four footprints K_i at once where it is a
-// line of two probes by Rule B (either weighting): the commonest line, footprints just past the
-// isotropic ratio. Where bit i of `two` is set, plan(i) is that plan bit for bit; elsewhere
-// plan_probes() decides (one probe, more than two, another rule, a clamped probe budget).
-struct TwoProbePlans4 {
-    int two = 0;
-    float step_x[4], step_y[4], lod[4], texel_size[4];
-    float weight_falloff = 0;  // the rule's, the same for every two-probe plan
+// line of 2 to kShortLineProbes probes by Rule B (either weighting): the common lines, footprints
+// up to about 8:1. Where bit i of `planned` is set, plan(i) is that plan bit for bit; elsewhere
+// plan_probes() decides (one probe, a longer line, another rule, a clamped probe budget).
+constexpr int kShortLineProbes = 8;
+struct ShortPlans4 {
+    int planned = 0;
+    int count[4];
+    float step_x[4], step_y[4], lod[4], texel_size[4], weight_falloff[4];
 
     ProbePlan plan(int i) const {
         ProbePlan p;
-        p.count = 2;
+        p.count = count[i];
         p.step = {step_x[i], step_y[i]};
         p.lod = lod[i];
         p.texel_size = texel_size[i];
-        p.weight_falloff = weight_falloff;
+        p.weight_falloff = weight_falloff[i];
         return p;
     }
 };
-void two_probe_plans4(Float4 xx, Float4 xy, Float4 yy, ProbeRule rule, int max_probes,
-                      int max_level, float lod_bias, float isotropic_ratio, TwoProbePlans4& out);
+void short_plans4(Float4 xx, Float4 xy, Float4 yy, ProbeRule rule, int max_probes, int max_level,
+                  float lod_bias, float isotropic_ratio, ShortPlans4& out);
 
 // The most probes a plan holds (max_probes is clamped to it).
 constexpr int kMaxProbeCount = 1024;

@@ -299,21 +299,21 @@ TEST(FootprintAssembly, FourSingleProbeLodsAreTheScalarOnesBitForBit) {
                 }
 }
 
-TEST(FootprintAssembly, FourTwoProbePlansAreTheScalarOnesBitForBit) {
+TEST(FootprintAssembly, FourShortPlansAreTheScalarOnesBitForBit) {
     std::mt19937 rng(12);
     std::uniform_real_distribution<float> u(0, 1);
     auto same = [](float a, float b) { return std::memcmp(&a, &b, sizeof(float)) == 0; };
-    int two = 0, scalar_two = 0;
+    int planned = 0, scalar_short = 0;
     for (const ProbeRule rule : {ProbeRule::moment_matched, ProbeRule::gaussian, ProbeRule::ext})
-        for (const int max_probes : {30, 3, 2})
+        for (const int max_probes : {30, 8, 5, 3, 2})
             for (const float ratio : {kIsotropicRatio, 1.25f})
                 for (int i = 0; i < 4000; i += 4) {
-                    // Anisotropies around the one-, two- and three-probe boundaries, any size and
-                    // angle; every 7th footprint degenerate.
+                    // Anisotropies from one probe to beyond kShortLineProbes (up to 12:1), any
+                    // size and angle; every 7th footprint degenerate.
                     Sym2 k[4];
                     for (int lane = 0; lane < 4; ++lane) {
                         const float major = std::exp2(12 * u(rng) - 2);
-                        const float minor = major / (1 + 2.5f * u(rng));
+                        const float minor = major / std::exp2(3.6f * u(rng) * u(rng));
                         k[lane] = (i + lane) % 7 == 0
                                       ? Sym2{major, 0, 0}
                                       : make_footprint_ellipse(major, minor, 6.3f * u(rng)).matrix;
@@ -330,25 +330,29 @@ TEST(FootprintAssembly, FourTwoProbePlansAreTheScalarOnesBitForBit) {
                             r = std::nextafter(r, 0.0f);
                         }
                     }
-                    TwoProbePlans4 plans;
-                    two_probe_plans4(Float4(k[0].xx, k[1].xx, k[2].xx, k[3].xx),
-                                     Float4(k[0].xy, k[1].xy, k[2].xy, k[3].xy),
-                                     Float4(k[0].yy, k[1].yy, k[2].yy, k[3].yy), rule, max_probes,
-                                     9, 0.25f, ratio, plans);
+                    ShortPlans4 plans;
+                    short_plans4(Float4(k[0].xx, k[1].xx, k[2].xx, k[3].xx),
+                                 Float4(k[0].xy, k[1].xy, k[2].xy, k[3].xy),
+                                 Float4(k[0].yy, k[1].yy, k[2].yy, k[3].yy), rule, max_probes, 9,
+                                 0.25f, ratio, plans);
                     for (int lane = 0; lane < 4; ++lane) {
                         const ProbePlan expected = plan_probes(make_footprint_ellipse(k[lane]),
                                                                rule, max_probes, 9, 0.25f, ratio);
-                        scalar_two += expected.count == 2;
-                        if (!(plans.two >> lane & 1)) {
-                            // Left to plan_probes(): only lines of another count, another rule or
-                            // a budget of two.
-                            EXPECT_TRUE(expected.count != 2 || rule == ProbeRule::ext ||
-                                        max_probes <= 2);
+                        // Short lines within the budget (below it: at N_max a plan may be
+                        // clamped).
+                        const bool short_line = expected.count >= 2 &&
+                                                expected.count <= kShortLineProbes &&
+                                                expected.count < max_probes;
+                        scalar_short += short_line;
+                        if (!(plans.planned >> lane & 1)) {
+                            // Left to plan_probes(): only other lines, or another rule.
+                            EXPECT_TRUE(!short_line || rule == ProbeRule::ext)
+                                << expected.count << " probes, N_max " << max_probes;
                             continue;
                         }
-                        ++two;
+                        ++planned;
                         const ProbePlan plan = plans.plan(lane);
-                        ASSERT_EQ(expected.count, 2);
+                        ASSERT_EQ(plan.count, expected.count);
                         EXPECT_TRUE(same(plan.step.x, expected.step.x) &&
                                     same(plan.step.y, expected.step.y));
                         EXPECT_TRUE(same(plan.lod, expected.lod));
@@ -356,8 +360,8 @@ TEST(FootprintAssembly, FourTwoProbePlansAreTheScalarOnesBitForBit) {
                         EXPECT_TRUE(same(plan.weight_falloff, expected.weight_falloff));
                     }
                 }
-    EXPECT_GT(two, 2000);
-    EXPECT_GT(scalar_two, two);  // Rule A's and the budget of two's are the scalar's
+    EXPECT_GT(planned, 8000);
+    EXPECT_GT(scalar_short, planned);  // Rule A's are the scalar's
 }
 
 TEST(FootprintAssembly, ClampedProbeBudgetRaisesTheMinorAxisOnly) {
