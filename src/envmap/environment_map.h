@@ -106,12 +106,13 @@ void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_d
 // One form-(a) lookup of a batch: EnvRayDifferential (env_footprint.h), a direction r and its ray
 // differentials ∂r/∂x, ∂r/∂y.
 
-// environment_lookup() form (a) for many rays at once: bit-identical results, faster. A lookup at
-// a random direction waits on memory for its texels, so in each group of 16 rays the lookups that
-// are one probe at their footprint's centre (most) have their texels requested when their
-// footprint is computed and are filtered after the group's last footprint, when the lines have
-// arrived. `out` receives rays.size()·channels() floats, ray by ray (the role of OpenImageIO's
-// batched environment(), without its 16-lane limit and structure-of-arrays layout).
+// environment_lookup() form (a) for many rays at once: bit-identical results, faster. In each
+// group of 16 rays the footprints, single-probe lods and short-line plans are computed four rays
+// at a time (math/float4.h), and the lookups that are one probe or a short line on one face (most)
+// have their texels requested then and are filtered after the group's last footprint, when the
+// texels have arrived, instead of each waiting on memory in turn. `out` receives
+// rays.size()·channels() floats, ray by ray (the role of OpenImageIO's batched environment(),
+// without its 16-lane limit and structure-of-arrays layout).
 void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayDifferential> rays,
                               const LookupOptions& options, float* out);
 void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayDifferential> rays,
