@@ -542,18 +542,80 @@ enum class Routed { done, centre_probe, deferred_line };
         filter_centre_probe(map, probe, out);
 }
 
+// The footprints of four rays of a batch, computed at once (math/float4.h), each lane exactly what
+// route_lookup() computes for its ray: the polar-cap footprint where a lat-long map's caps take it,
+// the plain footprint (plain_env_footprint()) of a cube or lat-long map elsewhere, the
+// single-probe lods, and the plans of the short lines among them. A lane that none of them takes
+// goes the scalar way (route_lookup()).
+struct FourFootprints {
+    // What every group computes the same way: the map's and the options' constants.
+    struct Setting {
+        bool four_at_once;  // a cube or lat-long map
+        bool caps;          // a lat-long map with polar caps
+        bool rule_b;        // has_single_probe_rule(): else every lod is −1 and no plan is made
+        int max_level, cap_max_level;  // every face's, both caps'
+
+        Setting(const EnvironmentMap& map, const LookupOptions& options)
+            : four_at_once(map.layout() == EnvLayout::cube || map.layout() == EnvLayout::latlong),
+              caps(map.layout() == EnvLayout::latlong && map.polar_cap(0)),
+              rule_b(has_single_probe_rule(options)),
+              max_level(map.face(0).max_level()),
+              cap_max_level(caps ? map.polar_cap(0)->max_level() : 0) {}
+    };
+
+    PolarCapFootprints4 capped;  // region: the caps' lanes; valid: the lanes they take
+    PlainEnvFootprints4 plain;   // outside the caps' region
+    float lod[4];                // the plain footprints' single-probe lods (< 0: a line)
+    ShortPlans4 plans, cap_plans;
+
+    [[gnu::always_inline]] void compute(const EnvironmentMap& map, const EnvRayDifferential* rays,
+                                        const IdentitySkippingRotation& to_map,
+                                        const LookupOptions& options, const Setting& setting) {
+        plain.plain = plans.planned = 0;
+        if (setting.caps) {
+            polar_cap_footprints4(map, rays, to_map, options, capped);
+            cap_plans.planned = 0;
+            if (setting.rule_b && (capped.valid & (load(capped.lod) < Float4(0.0f)).bits()) != 0)
+                short_plans4(load(capped.xx), load(capped.xy), load(capped.yy), options.probe_rule,
+                             options.max_probes, setting.cap_max_level, options.lod_bias,
+                             options.isotropic_ratio, cap_plans);
+            if (capped.region == 0xf) return;  // no lane for plain_env_footprint()
+        }
+        plain_env_footprints4(map.layout(), map.texel_scale(), rays, to_map, plain);
+        if (!setting.rule_b) {
+            Float4(-1.0f).store(lod);
+            return;
+        }
+        const Float4 xx = load(plain.xx), xy = load(plain.xy), yy = load(plain.yy);
+        const Float4 lods = single_probe_lod(xx, xy, yy, options.lod_bias, setting.max_level,
+                                             options.isotropic_ratio);
+        lods.store(lod);
+        if (((lods < Float4(0.0f)).bits() & plain.plain) != 0)
+            short_plans4(xx, xy, yy, options.probe_rule, options.max_probes, setting.max_level,
+                         options.lod_bias, options.isotropic_ratio, plans);
+    }
+
+    bool cap_takes(int lane) const { return capped.valid >> lane & 1; }
+    bool plain_takes(int lane) const {
+        return (plain.plain >> lane & 1) && !(capped.region >> lane & 1);
+    }
+
+  private:
+    static Float4 load(const float* x) { return {x[0], x[1], x[2], x[3]}; }
+};
+
 // Form (a) lookups of many rays (the batch entry points).
 [[gnu::always_inline]] inline void batch_lookup(const EnvironmentMap& map,
                                                 std::span<const EnvRayDifferential> rays,
                                                 const LookupOptions& options,
                                                 const IdentitySkippingRotation& to_map,
                                                 float* out) {
-    // The lookups that are one probe (most of them: at the footprint's centre, or on a polar cap),
-    // the cube lines on their face (DeferredCubeLine) and the short lines on a polar cap are
-    // deferred: their texels are requested, and they are filtered once the group's footprints are
-    // all computed, when the texels have arrived. Enough lookups in flight to cover a miss to
-    // memory, few enough that their texels are still cached when read. Every other lookup is done
-    // at once.
+    // The footprints are computed four at a time (FourFootprints). The lookups that are one probe
+    // (most of them: at the footprint's centre, or on a polar cap), the cube lines on their face
+    // (DeferredCubeLine) and the short lines on a polar cap are deferred: their texels are
+    // requested, and they are filtered once the group's footprints are all computed, when the
+    // texels have arrived. Enough lookups in flight to cover a miss to memory, few enough that
+    // their texels are still cached when read. Every other lookup is done at once.
     constexpr std::size_t kGroup = 16;
     const int channels = map.channels();
     struct DeferredProbe {
@@ -567,21 +629,11 @@ enum class Routed { done, centre_probe, deferred_line };
     DeferredProbe probes[kGroup];
     DeferredLine lines[kGroup];
     const int stride = map.face(0).stride();  // the caps' too (the same channels)
-    // Four at a time: a lat-long map's polar-cap footprints (where it has caps), and the plain
-    // footprints (plain_env_footprint()) of cube and lat-long maps elsewhere, with their
-    // single-probe lods. The lookups they do not take go the scalar way (route_lookup()).
-    const bool four_at_once = map.layout() == EnvLayout::cube || map.layout() == EnvLayout::latlong;
-    const bool caps = map.layout() == EnvLayout::latlong && map.polar_cap(0);
-    const bool rule_b = has_single_probe_rule(options);  // else every lod is −1
-    const int max_level = map.face(0).max_level();       // every face's
-    PlainEnvFootprints4 plain[kGroup / 4];
-    PolarCapFootprints4 capped[kGroup / 4];
-    float lods[kGroup];
-    ShortPlans4 plans[kGroup / 4], cap_plans[kGroup / 4];
-    const int cap_max_level = caps ? map.polar_cap(0)->max_level() : 0;  // both caps
+    const FourFootprints::Setting setting(map, options);
+    FourFootprints footprints[kGroup / 4];
     for (std::size_t first = 0; first < rays.size(); first += kGroup) {
         const std::size_t count = std::min(kGroup, rays.size() - first);
-        if (four_at_once)
+        if (setting.four_at_once)
             for (std::size_t lane = 0; lane < count; lane += 4) {
                 EnvRayDifferential tail[4];  // the last lanes, padded with the last ray
                 const EnvRayDifferential* four = &rays[first + lane];
@@ -590,56 +642,23 @@ enum class Routed { done, centre_probe, deferred_line };
                         tail[i] = rays[first + std::min(lane + i, count - 1)];
                     four = tail;
                 }
-                PlainEnvFootprints4& p = plain[lane / 4];
-                p.plain = 0;
-                if (caps) {
-                    PolarCapFootprints4& c = capped[lane / 4];
-                    polar_cap_footprints4(map, four, to_map, options, c);
-                    // The short cap lines among them, planned here.
-                    cap_plans[lane / 4].planned = 0;
-                    if (rule_b &&
-                        (c.valid &
-                         (Float4(c.lod[0], c.lod[1], c.lod[2], c.lod[3]) < Float4(0.0f)).bits()) !=
-                            0)
-                        short_plans4(Float4(c.xx[0], c.xx[1], c.xx[2], c.xx[3]),
-                                     Float4(c.xy[0], c.xy[1], c.xy[2], c.xy[3]),
-                                     Float4(c.yy[0], c.yy[1], c.yy[2], c.yy[3]), options.probe_rule,
-                                     options.max_probes, cap_max_level, options.lod_bias,
-                                     options.isotropic_ratio, cap_plans[lane / 4]);
-                    if (c.region == 0xf) continue;  // no lane for plain_env_footprint()
-                }
-                plain_env_footprints4(map.layout(), map.texel_scale(), four, to_map, p);
-                ShortPlans4& two = plans[lane / 4];
-                two.planned = 0;
-                if (!rule_b) {
-                    Float4(-1.0f).store(lods + lane);
-                    continue;
-                }
-                const Float4 xx(p.xx[0], p.xx[1], p.xx[2], p.xx[3]);
-                const Float4 xy(p.xy[0], p.xy[1], p.xy[2], p.xy[3]);
-                const Float4 yy(p.yy[0], p.yy[1], p.yy[2], p.yy[3]);
-                const Float4 lod = single_probe_lod(xx, xy, yy, options.lod_bias, max_level,
-                                                    options.isotropic_ratio);
-                lod.store(lods + lane);
-                // The short lines among them, planned here.
-                if (((lod < Float4(0.0f)).bits() & p.plain) != 0)
-                    short_plans4(xx, xy, yy, options.probe_rule, options.max_probes, max_level,
-                                 options.lod_bias, options.isotropic_ratio, two);
+                footprints[lane / 4].compute(map, four, to_map, options, setting);
             }
         std::size_t pending_probes = 0, pending_lines = 0;
         for (std::size_t i = 0; i < count; ++i) {
             const EnvRayDifferential& ray = rays[first + i];
             float* result = out + (first + i) * channels;
+            const FourFootprints& f = footprints[i / 4];
             const int lane = static_cast<int>(i % 4);
-            if (const PolarCapFootprints4& c = capped[i / 4]; caps && (c.valid >> lane & 1)) {
+            if (setting.caps && f.cap_takes(lane)) {
                 // route_lookup()'s polar cap branch, from the lane.
-                const PolarCapFootprint f = c.footprint(map, lane);
-                const ShortPlans4& two = cap_plans[i / 4];
-                switch (two.planned >> lane & 1
+                const PolarCapFootprint cap = f.capped.footprint(map, lane);
+                switch (f.cap_plans.planned >> lane & 1
                             ? detail::request_footprint_assembly(
-                                  *f.cap, f.coords.s, f.coords.t, two.plan(lane), options, result,
-                                  probes[pending_probes].probe, lines[pending_lines].line)
-                            : polar_cap_request(f, c.lod[lane], options, result,
+                                  *cap.cap, cap.coords.s, cap.coords.t, f.cap_plans.plan(lane),
+                                  options, result, probes[pending_probes].probe,
+                                  lines[pending_lines].line)
+                            : polar_cap_request(cap, f.capped.lod[lane], options, result,
                                                 probes[pending_probes].probe,
                                                 lines[pending_lines].line)) {
                     case detail::Requested::done:
@@ -655,20 +674,20 @@ enum class Routed { done, centre_probe, deferred_line };
             }
             CentreProbe probe;
             Routed routed;
-            const PlainEnvFootprints4& p = plain[i / 4];
-            if (four_at_once && (p.plain >> lane & 1) && !(capped[i / 4].region >> lane & 1)) {
+            if (setting.four_at_once && f.plain_takes(lane)) {
                 // route_lookup()'s plain branch, from the lane.
-                if (lods[i] >= 0.0f) {
-                    probe = centre_probe(map, p.coords(lane), lods[i], options);
+                DeferredCubeLine* defer = &lines[pending_lines].line;
+                if (f.lod[lane] >= 0.0f) {
+                    probe = centre_probe(map, f.plain.coords(lane), f.lod[lane], options);
                     routed = Routed::centre_probe;
-                } else if (const ShortPlans4& two = plans[i / 4]; two.planned >> lane & 1) {
-                    routed = lookup_plan(map, FootprintCentre(p, lane), two.plan(lane), options,
-                                         result, &lines[pending_lines].line)
+                } else if (f.plans.planned >> lane & 1) {
+                    routed = lookup_plan(map, FootprintCentre(f.plain, lane), f.plans.plan(lane),
+                                         options, result, defer)
                                  ? Routed::deferred_line
                                  : Routed::done;
                 } else {
-                    routed = general_lookup(map, FootprintCentre(p, lane), PolarCapFootprint{},
-                                            options, result, &lines[pending_lines].line)
+                    routed = general_lookup(map, FootprintCentre(f.plain, lane),
+                                            PolarCapFootprint{}, options, result, defer)
                                  ? Routed::deferred_line
                                  : Routed::done;
                 }
