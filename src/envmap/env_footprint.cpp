@@ -265,9 +265,8 @@ void plain_env_footprints4(EnvLayout layout, Vec2 texel_scale, const EnvRayDiffe
             const LatLongCoordsJacobian4 c = latlong_coords_and_jacobian4(prepared, rho);
             // Not the pole (ρ = 0), and clear of it: ρ of A r at least the differentials' spread.
             const Float4 rho2 = m.x * m.x + m.z * m.z;
-            plain = plain & !(rho == Float4(0.0f)) &
-                    (abs(rho2) < Float4(std::numeric_limits<float>::infinity())) &
-                    (rho2 > Float4(0x1p-100f)) & !(sqrt(rho2) < sqrt(dot(dx, dx) + dot(dy, dy)));
+            plain = plain & !(rho == Float4(0.0f)) & is_finite(rho2) & (rho2 > Float4(0x1p-100f)) &
+                    !(sqrt(rho2) < sqrt(dot(dx, dx) + dot(dy, dy)));
             return Position4{Int4(0), c.s, c.t, c.ds, c.dt};
         },
         out);

@@ -24,6 +24,11 @@ Vec3x4 gather(const T* items, Vec3 T::*member) {
     return {{a.x, b.x, c.x, d.x}, {a.y, b.y, c.y, d.y}, {a.z, b.z, c.z, d.z}};
 }
 
+// is_finite(Vec3) of each lane.
+inline Mask4 is_finite(const Vec3x4& v) {
+    return is_finite(v.x) & is_finite(v.y) & is_finite(v.z);
+}
+
 inline Float4 dot(const Vec3x4& a, const Vec3x4& b) {
     return a.x * b.x + a.y * b.y + a.z * b.z;
 }
@@ -107,9 +112,7 @@ inline CubeCoordsJacobian4 cube_coords_and_jacobian4(const Prepared4& prepared,
 // test: the sum of its entries).
 struct Sym2x4 {
     Float4 xx, xy, yy;
-    Mask4 finite() const {
-        return abs(xx + xy + yy) < Float4(std::numeric_limits<float>::infinity());
-    }
+    Mask4 finite() const { return is_finite(xx + xy + yy); }
 };
 inline Sym2x4 footprint_matrix4(Float4 dxs, Float4 dxt, Float4 dys, Float4 dyt) {
     return {dxs * dxs + dys * dys, dxs * dxt + dys * dyt, dxt * dxt + dyt * dyt};

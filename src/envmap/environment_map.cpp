@@ -575,10 +575,12 @@ struct FourFootprints {
         if (setting.caps) {
             polar_cap_footprints4(map, rays, to_map, options, capped);
             cap_plans.planned = 0;
-            if (setting.rule_b && (capped.valid & (load(capped.lod) < Float4(0.0f)).bits()) != 0)
-                short_plans4(load(capped.xx), load(capped.xy), load(capped.yy), options.probe_rule,
-                             options.max_probes, setting.cap_max_level, options.lod_bias,
-                             options.isotropic_ratio, cap_plans);
+            if (setting.rule_b &&
+                (capped.valid & (Float4::load(capped.lod) < Float4(0.0f)).bits()) != 0)
+                short_plans4(Float4::load(capped.xx), Float4::load(capped.xy),
+                             Float4::load(capped.yy), options.probe_rule, options.max_probes,
+                             setting.cap_max_level, options.lod_bias, options.isotropic_ratio,
+                             cap_plans);
             if (capped.region == 0xf) return;  // no lane for plain_env_footprint()
         }
         plain_env_footprints4(map.layout(), map.texel_scale(), rays, to_map, plain);
@@ -586,7 +588,8 @@ struct FourFootprints {
             Float4(-1.0f).store(lod);
             return;
         }
-        const Float4 xx = load(plain.xx), xy = load(plain.xy), yy = load(plain.yy);
+        const Float4 xx = Float4::load(plain.xx), xy = Float4::load(plain.xy),
+                     yy = Float4::load(plain.yy);
         const Float4 lods = single_probe_lod(xx, xy, yy, options.lod_bias, setting.max_level,
                                              options.isotropic_ratio);
         lods.store(lod);
@@ -599,9 +602,6 @@ struct FourFootprints {
     bool plain_takes(int lane) const {
         return (plain.plain >> lane & 1) && !(capped.region >> lane & 1);
     }
-
-  private:
-    static Float4 load(const float* x) { return {x[0], x[1], x[2], x[3]}; }
 };
 
 // Form (a) lookups of many rays (the batch entry points).

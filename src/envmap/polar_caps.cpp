@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numbers>
 
 #include <tbb/parallel_for.h>
@@ -184,9 +183,6 @@ void polar_cap_footprints4(const EnvironmentMap& map, const EnvRayDifferential* 
     const Vec3x4 r = gather(rays, &EnvRayDifferential::direction);
     const Vec3x4 m = rotate(to_map, r);
     const Float4 len = sqrt(dot(m, m)), zero(0.0f), one(1.0f);
-    const Float4 infinity(std::numeric_limits<float>::infinity());
-    auto finite = [&](Float4 x) { return abs(x) < infinity; };
-    auto all_finite = [&](const Vec3x4& v) { return finite(v.x) & finite(v.y) & finite(v.z); };
     const Mask4 region = (len > zero) & (abs(m.y) >= Float4(kPolarCapCosine) * len);
     out.region = region.bits();
     out.valid = 0;
@@ -202,7 +198,7 @@ void polar_cap_footprints4(const EnvironmentMap& map, const EnvRayDifferential* 
     // lookup).
     const Vec3x4 dx = gather(rays, &EnvRayDifferential::d_dx);
     const Vec3x4 dy = gather(rays, &EnvRayDifferential::d_dy);
-    const Mask4 spread = all_finite(dx) & all_finite(dy);
+    const Mask4 spread = is_finite(dx) & is_finite(dy);
     const Vec3x4 mdx = rotate(to_map, dx), mdy = rotate(to_map, dy);
     auto spread_only = [&](const Vec3x4& v) {
         return Vec3x4{select(spread, v.x, zero), select(spread, v.y, zero),
@@ -213,7 +209,7 @@ void polar_cap_footprints4(const EnvironmentMap& map, const EnvRayDifferential* 
     const Vec3x4 wx = spread_only(mdx), wy = spread_only(mdy);
     const Sym2x4 k = footprint_matrix4(n * dot(position.ds, wx), n * dot(position.dt, wx),
                                        n * dot(position.ds, wy), n * dot(position.dt, wy));
-    valid = valid & finite(k.xx) & finite(k.xy) & finite(k.yy);
+    valid = valid & is_finite(k.xx) & is_finite(k.xy) & is_finite(k.yy);
     // On the face: the probes and their kernels reach about 2λ1 ≤ 2√tr K from the centre.
     const Float4 reach = (Float4(2.0f) * sqrt(k.xx + k.yy) + one) / n;
     const Float4 s = position.s, t = position.t;

@@ -15,6 +15,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 // FOOTPRINT_FLOAT4_SCALAR forces the four-scalar form (to test it on an SSE2 machine).
 #if defined(__SSE2__) && !defined(FOOTPRINT_FLOAT4_SCALAR)
@@ -47,6 +48,7 @@ struct Float4 {
     Float4(__m128 v) : v(v) {}
     Float4(float x) : v(_mm_set1_ps(x)) {}
     Float4(float a, float b, float c, float d) : v(_mm_setr_ps(a, b, c, d)) {}
+    static Float4 load(const float* in) { return _mm_loadu_ps(in); }  // in[0..3]
     void store(float* out) const { _mm_storeu_ps(out, v); }
 };
 inline Float4 operator+(Float4 a, Float4 b) {
@@ -180,6 +182,7 @@ struct Float4 {
     Float4() : lane{} {}
     Float4(float x) : lane{x, x, x, x} {}
     Float4(float a, float b, float c, float d) : lane{a, b, c, d} {}
+    static Float4 load(const float* in) { return {in[0], in[1], in[2], in[3]}; }
     void store(float* out) const {
         for (int i = 0; i < 4; ++i) out[i] = lane[i];
     }
@@ -308,6 +311,11 @@ inline Float4 to_float(Int4 a) {
 
 inline Mask4 operator<=(Int4 a, Int4 b) {
     return !(a > b);
+}
+
+// std::isfinite: neither NaN nor ±∞.
+inline Mask4 is_finite(Float4 a) {
+    return abs(a) < Float4(std::numeric_limits<float>::infinity());
 }
 
 // std::clamp(v, lo, hi) = (v < lo) ? lo : (hi < v) ? hi : v.

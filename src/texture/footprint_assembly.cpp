@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 
 #include "math/fast_log2.h"
 
@@ -102,15 +101,30 @@ float single_probe_lod(const Sym2& k, float lod_bias, int max_level, float isotr
                       static_cast<float>(max_level));
 }
 
-// The same operations lane by lane (axes_squared() included), with selects for the branches.
+namespace {
+
+// axes_squared() of four K, with w = √((k_xx − k_yy)² + 4k_xy²) (make_footprint_ellipse() takes
+// its eigenvector from w). major_sq is ½(tr K + w) itself: make_footprint_ellipse() raises it to
+// 0 first, which gives the same minor_sq (that is 0 unless major_sq > 0).
+struct AxesSquared4 {
+    Float4 w, major_sq, minor_sq;
+};
+AxesSquared4 axes_squared4(Float4 xx, Float4 xy, Float4 yy) {
+    const Float4 zero(0.0f);
+    const Float4 w = sqrt((xx - yy) * (xx - yy) + Float4(4.0f) * xy * xy);
+    const Float4 major_sq = Float4(0.5f) * (xx + yy + w);
+    return {w, major_sq,
+            select(major_sq > zero, max_like_std(zero, xx * yy - xy * xy) / major_sq, zero)};
+}
+
+}  // namespace
+
+// The same operations lane by lane (axes_squared4()), with selects for the branches.
 Float4 single_probe_lod(Float4 xx, Float4 xy, Float4 yy, float lod_bias, int max_level,
                         float isotropic_ratio) {
     const Float4 zero(0.0f), one(1.0f), top(static_cast<float>(max_level));
     const Mask4 magnified = (xx + yy <= one) & (xx >= zero) & (yy >= zero);
-    const Float4 w = sqrt((xx - yy) * (xx - yy) + Float4(4.0f) * xy * xy);
-    const Float4 major_sq = Float4(0.5f) * (xx + yy + w);
-    const Float4 minor_sq =
-        select(major_sq > zero, max_like_std(zero, xx * yy - xy * xy) / major_sq, zero);
+    const auto [w, major_sq, minor_sq] = axes_squared4(xx, xy, yy);
     const Float4 tp_sq = max_like_std(minor_sq, one);
     const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
     const Mask4 one_probe = major_sq <= Float4(ratio * ratio) * tp_sq;
@@ -138,16 +152,13 @@ void short_plans4(Float4 xx, Float4 xy, Float4 yy, ProbeRule rule, int max_probe
         return;
     const Float4 zero(0.0f), one(1.0f);
     // make_footprint_ellipse(): λ1, λ2 and r1.
-    const Float4 w = sqrt((xx - yy) * (xx - yy) + Float4(4.0f) * xy * xy);
-    const Float4 major_sq = max_like_std(zero, Float4(0.5f) * (xx + yy + w));
-    const Float4 minor_sq =
-        select(major_sq > zero, max_like_std(zero, xx * yy - xy * xy) / major_sq, zero);
-    const Float4 l1 = sqrt(major_sq), l2 = min_like_std(sqrt(minor_sq), l1);
+    const auto [w, major_sq, minor_sq] = axes_squared4(xx, xy, yy);
+    const Float4 l1 = sqrt(max_like_std(zero, major_sq)), l2 = min_like_std(sqrt(minor_sq), l1);
     const Mask4 xx_major = xx >= yy;
     const Float4 rx = select(xx_major, xx - yy + w, Float4(2.0f) * xy);
     const Float4 ry = select(xx_major, Float4(2.0f) * xy, yy - xx + w);
     const Float4 len = sqrt(rx * rx + ry * ry);
-    const Mask4 unit = (len > zero) & (abs(len) < Float4(std::numeric_limits<float>::infinity()));
+    const Mask4 unit = (len > zero) & is_finite(len);
     const Float4 r1x = select(unit, rx / len, one), r1y = select(unit, ry / len, zero);
     // plan_probes(): more than one probe, N ≤ kShortLineProbes and within the budget.
     const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
