@@ -5,8 +5,8 @@
 #
 #   bash bench/env-instructions.sh [BUILD_DIR]     (default build/; needs valgrind)
 #
-# Prints one line per case: instructions per lookup (only the lookups are counted) and the
-# checksum of the results (equal checksums: the same results, bit for bit in practice).
+# Prints one line per case: instructions per lookup (only the lookups are counted) and a hash of
+# the results' bits (equal hashes: the same results, bit for bit).
 set -euo pipefail
 build=${1:-build}
 driver=$build/footprint-env-instructions
@@ -21,14 +21,14 @@ count_one() {  # layout regime form
     valgrind --tool=callgrind --callgrind-out-file="$out/$1.$2.$3.cg" \
         --toggle-collect='footprint::bench::run_*' "$driver" "$1" "$2" "$3" "$lookups" >"$log" 2>&1 ||
         { echo "env-instructions: $1 $2 $3 failed:" >&2; cat "$log" >&2; return 1; }
-    local collected checksum
+    local collected results
     collected=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$log")
-    checksum=$(sed -n 's/.*checksum \([0-9.]*\).*/\1/p' "$log")
-    printf '%-8s %-10s %-7s %8d  %s\n' "$1" "$2" "$3" $((collected / lookups)) "$checksum"
+    results=$(sed -n 's/.*results \([0-9a-f]*\).*/\1/p' "$log")
+    printf '%-8s %-10s %-7s %8d  %s\n' "$1" "$2" "$3" $((collected / lookups)) "$results"
 }
 export -f count_one
 export driver out
-printf '%-8s %-10s %-7s %8s  %s\n' layout regime form instr/lookup checksum
+printf '%-8s %-10s %-7s %8s  %s\n' layout regime form instr/lookup results
 for layout in latlong cube; do
     for regime in tiny moderate aniso32 pole_band; do
         for form in single batch; do echo "$layout $regime $form"; done

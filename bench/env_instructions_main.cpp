@@ -5,8 +5,8 @@
 // and repeatable: bench/env-instructions.sh runs this program under
 //   valgrind --tool=callgrind --toggle-collect='footprint::bench::run_*'
 // so that only the lookups are counted (not building the map or the lookups), and divides by the
-// lookup count. It prints the mean of the results, a checksum that tells whether a change kept the
-// results bit for bit.
+// lookup count. It prints the mean of the results and a hash of their bits (FNV-1a, 64 bits), which
+// tells whether a change kept the results bit for bit.
 //
 // Usage: footprint-env-instructions LAYOUT REGIME FORM [LOOKUPS]
 //   LAYOUT latlong | cube;  REGIME tiny | moderate | aniso32 | pole_band;  FORM single | batch
@@ -16,6 +16,7 @@
 // The map is smaller than the benchmark's (1024×512 lat-long, 6×512² cube converted from it), so
 // that building it under valgrind takes seconds; the footprints are sized in its texels.
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -140,9 +141,19 @@ int run(int argc, char** argv) {
     else
         run_single(*map, lookups, options, out.data());
     double sum = 0;
-    for (float v : out) sum += v;
-    std::printf("%s %s %s: %d lookups, checksum %.7f\n", layout.c_str(), regime->name, form.c_str(),
-                count, sum / static_cast<double>(out.size()));
+    std::uint64_t bits_hash = 14695981039346656037ull;  // FNV-1a
+    for (float v : out) {
+        sum += v;
+        std::uint32_t bits;
+        std::memcpy(&bits, &v, sizeof bits);
+        for (int byte = 0; byte < 4; ++byte) {
+            bits_hash ^= (bits >> (8 * byte)) & 0xffu;
+            bits_hash *= 1099511628211ull;
+        }
+    }
+    std::printf("%s %s %s: %d lookups, mean %.7f, results %016llx\n", layout.c_str(), regime->name,
+                form.c_str(), count, sum / static_cast<double>(out.size()),
+                static_cast<unsigned long long>(bits_hash));
     return 0;
 }
 
