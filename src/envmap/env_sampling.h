@@ -13,13 +13,14 @@
 
 namespace footprint::detail {
 
-// One texel of a level of `face`, where (x, y) may lie beyond the level's edge: such a tap is taken
-// from wherever the direction of its centre lies — the neighbour cube face (seamless cube
-// filtering, §3.1; by integers beyond one edge, cube_edges.h), across a lat-long pole (the seam
-// wraps the same way), back through the sphere map's rim, or on the other paraboloid hemisphere.
-inline const float* env_texel(const EnvironmentMap& map, int face, int level, int x, int y) {
+// The texel (x, y) of a level of `face` that lies beyond the level's edge, taken from wherever the
+// direction of its centre lies — the neighbour cube face (seamless cube filtering, §3.1; by
+// integers beyond one edge, cube_edges.h), across a lat-long pole (the seam wraps the same way),
+// back through the sphere map's rim, or on the other paraboloid hemisphere. A texel of the level
+// itself, never of its border: it is what a cube face's border is filled with.
+inline const float* env_texel_beyond_edge(const EnvironmentMap& map, int face, int level, int x,
+                                          int y) {
     const MipPyramid::LevelView& view = map.face(face).level(level);
-    if (x >= 0 && y >= 0 && x < view.width && y < view.height) return view.texel(x, y);
     if (map.layout() == EnvLayout::latlong) {
         // Over a pole, row −1 − k is row k half a turn around; the seam wraps (exact for texel
         // centres, and no trigonometry).
@@ -40,6 +41,16 @@ inline const float* env_texel(const EnvironmentMap& map, int face, int level, in
     }
     const EnvTexel t = env_texel_of_direction(map.layout(), face, x, y, view.width, view.height);
     return map.face(t.face).level(level).texel(t.x, t.y);
+}
+
+// One texel of a level of `face`, where (x, y) may lie beyond the level's edge: a texel of the
+// level or of its border (a cube face's neighbours' texels, stored with it), or one read by
+// direction (env_texel_beyond_edge()).
+inline const float* env_texel(const EnvironmentMap& map, int face, int level, int x, int y) {
+    const MipPyramid::LevelView& view = map.face(face).level(level);
+    const int b = view.border;
+    if (x >= -b && y >= -b && x < view.width + b && y < view.height + b) return view.texel(x, y);
+    return env_texel_beyond_edge(map, face, level, x, y);
 }
 
 // The taps of a bilinear sample at position p on level `level` of `face`, some beyond its edges:

@@ -146,6 +146,22 @@ std::vector<Image> with_continued_exterior(EnvLayout layout, const std::vector<I
     }
     return result;
 }
+
+// Fills each cube face's one-texel border (MipPyramidOptions::border), on every level, with the
+// texels env_texel_beyond_edge() reads there: a neighbour face's edge texels along each edge, and
+// at each corner the texel its direction finds. Bilinear taps then cross face edges as plain reads.
+void fill_cube_borders(const EnvironmentMap& map, std::vector<MipPyramid>& faces) {
+    for (int f = 0; f < 6; ++f)
+        for (int l = 0; l < faces[f].level_count(); ++l) {
+            const int w = faces[f].width(l), stride = faces[f].stride();
+            auto fill = [&](int x, int y) {
+                std::copy_n(detail::env_texel_beyond_edge(map, f, l, x, y), stride,
+                            faces[f].writable_texel(l, x, y));
+            };
+            for (int i = -1; i <= w; ++i) fill(i, -1), fill(i, w);
+            for (int i = 0; i < w; ++i) fill(-1, i), fill(w, i);
+        }
+}
 }  // namespace
 
 Vec2 EnvironmentMap::texel_scale() const {
@@ -182,6 +198,7 @@ Result<EnvironmentMap> EnvironmentMap::from_cube_faces(const std::array<Image, 6
     map.layout_ = EnvLayout::cube;
     MipPyramidOptions options;
     options.wrap_s = options.wrap_t = WrapMode::clamp;
+    options.border = 1;  // the neighbour faces' texels, filled below: taps cross edges as reads
     for (int f = 0; f < 6; ++f) {
         const std::string name = std::string("cube face ") + kNames[f];
         if (Status s = check_image(faces[f], name); !s) return s.error();
@@ -192,6 +209,7 @@ Result<EnvironmentMap> EnvironmentMap::from_cube_faces(const std::array<Image, 6
             return Error{name + " differs in size or channels from face +X"};
         map.faces_.push_back(MipPyramid::build(faces[f], options));
     }
+    fill_cube_borders(map, map.faces_);
     return map;
 }
 

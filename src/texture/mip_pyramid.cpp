@@ -43,6 +43,8 @@ void MipPyramid::allocate(int width, int height, int channels, const MipPyramidO
     channels_ = channels;
     stride_ = texel_stride(channels);
     tile_log2_ = options.tile_log2;
+    assert(options.border >= 0 && (options.border == 0 || options.tile_log2 == 0));
+    const int border = options.border;
     // Level geometry (spec §1) and one allocation for all levels, each padded to whole tiles.
     const int tile = 1 << tile_log2_;
     std::size_t total = 0;
@@ -54,15 +56,18 @@ void MipPyramid::allocate(int width, int height, int channels, const MipPyramidO
         l.tiles_x = (w + tile - 1) / tile;
         const int tiles_y = (h + tile - 1) / tile;
         l.offset = total;
-        total += static_cast<std::size_t>(l.tiles_x) * tiles_y * tile * tile * stride_;
+        total += static_cast<std::size_t>(l.tiles_x * tile + 2 * border) *
+                 (tiles_y * tile + 2 * border) * stride_;
         levels_.push_back(l);
         if (w == 1 && h == 1) break;
     }
     storage_ = detail::TexelStorage(total);
     views_.clear();
-    for (const Level& l : levels_)
-        views_.push_back({storage_.data() + l.offset, l.width, l.height, l.tiles_x, tile_log2_,
-                          stride_, tile - 1, std::ptrdiff_t(l.width) * stride_});
+    for (const Level& l : levels_) {
+        const std::ptrdiff_t row_floats = std::ptrdiff_t(l.width + 2 * border) * stride_;
+        views_.push_back({storage_.data() + l.offset + border * (row_floats + stride_), l.width,
+                          l.height, l.tiles_x, tile_log2_, stride_, tile - 1, row_floats, border});
+    }
 }
 
 MipPyramid MipPyramid::build(const Image& level0, const MipPyramidOptions& options) {
@@ -71,11 +76,12 @@ MipPyramid MipPyramid::build(const Image& level0, const MipPyramidOptions& optio
     MipPyramid p;
     p.allocate(level0.width, level0.height, level0.channels, options);
 
-    // Row-major storage is its own scratch: each level is downsampled straight from the previous
-    // one in place. Tiled layouts go through row-major buffers and are scattered into tiles.
-    const bool row_major = p.tile_log2_ == 0;
+    // Row-major storage without a border is its own scratch: each level is downsampled straight
+    // from the previous one in place. Tiled and bordered layouts go through row-major buffers and
+    // are copied into their rows or scattered into tiles.
+    const bool in_place = p.tile_log2_ == 0 && options.border == 0;
     std::vector<float> current;
-    if (row_major) {
+    if (in_place) {
         copy_padded(level0, p.stride_, p.storage_.data());
     } else {
         current = padded_to_stride(level0, p.stride_);
@@ -84,7 +90,7 @@ MipPyramid MipPyramid::build(const Image& level0, const MipPyramidOptions& optio
 
     for (int l = 1; l < p.level_count(); ++l) {
         const int sw = p.width(l - 1), sh = p.height(l - 1), dw = p.width(l), dh = p.height(l);
-        if (row_major) {
+        if (in_place) {
             detail::downsample<float, float>(p.storage_.data() + p.levels_[l - 1].offset, sw, sh,
                                              p.storage_.data() + p.levels_[l].offset, dw, dh,
                                              p.stride_, options);
@@ -150,13 +156,15 @@ Result<MipPyramid> MipPyramid::from_levels(const std::vector<Image>& levels,
 void MipPyramid::store_level(int level, const std::vector<float>& row_major) {
     const Level& l = levels_[level];
     if (tile_log2_ == 0) {
-        std::copy(row_major.begin(), row_major.end(), storage_.data() + l.offset);
+        const std::size_t row = static_cast<std::size_t>(l.width) * stride_;
+        for (int y = 0; y < l.height; ++y)
+            std::copy_n(&row_major[y * row], row, writable_texel(level, 0, y));
         return;
     }
     tbb::parallel_for(0, l.height, [&](int y) {
         for (int x = 0; x < l.width; ++x) {
             const float* src = &row_major[(static_cast<std::size_t>(y) * l.width + x) * stride_];
-            std::copy_n(src, stride_, storage_.data() + (texel(level, x, y) - storage_.data()));
+            std::copy_n(src, stride_, writable_texel(level, x, y));
         }
     });
 }

@@ -48,6 +48,12 @@ struct MipPyramidOptions {
     DownsampleFilter downsample = DownsampleFilter::box;
     int tile_log2 = 0;  // tiles of 2^k × 2^k texels; 0 = row-major, the fastest measured (above)
     bool summed_area_table = false;  // also build a SAT of level 0 (TextureFilter::summed_area)
+    // Texels stored around every level, beyond its edges (row-major layout only): a sample whose
+    // taps reach at most `border` texels beyond the level reads them like any other (no wrap or
+    // seam logic). They start at zero; the pyramid's owner fills them (writable_texel()) — an
+    // environment map's cube faces with their neighbours' texels, so that bilinear taps cross
+    // face edges without a test.
+    int border = 0;
 };
 
 class MipPyramid {
@@ -79,19 +85,22 @@ class MipPyramid {
     int height(int level) const { return levels_[level].height; }
     WrapMode wrap_s() const { return options_.wrap_s; }
     WrapMode wrap_t() const { return options_.wrap_t; }
+    int border() const { return options_.border; }
     const MipPyramidOptions& options() const { return options_; }
     bool empty() const { return levels_.empty(); }
 
     // Read access to one level: texel(x, y) is `stride()` floats, the first `channels()`
-    // meaningful; x ∈ [0, width), y ∈ [0, height). The address separates into a column and a row
-    // part, texel(x, y) = base + column(x) + row(y), for tiles too, so that a bilinear sample's
-    // four taps cost two of each. Built once per level: level() hands out a reference.
+    // meaningful; x ∈ [0, width), y ∈ [0, height), or up to `border` texels beyond. The address
+    // separates into a column and a row part, texel(x, y) = base + column(x) + row(y), for tiles
+    // too, so that a bilinear sample's four taps cost two of each. Built once per level: level()
+    // hands out a reference.
     struct LevelView {
         const float* base;
         int width, height;
         int tiles_x, tile_log2, stride;
         int inner_mask;  // 2^tile_log2 − 1: a texel's column (or row) inside its tile; 0 row-major
         std::ptrdiff_t row_floats;  // row-major: floats from one row to the next
+        int border;                 // texels stored beyond each edge (MipPyramidOptions::border)
         // Offsets in floats from base (row-major, the default layout, needs no tile arithmetic).
         std::ptrdiff_t column(int x) const {
             if (tile_log2 == 0) return static_cast<std::ptrdiff_t>(x) * stride;
@@ -109,6 +118,12 @@ class MipPyramid {
     };
     const LevelView& level(int l) const { return views_[l]; }
     const float* texel(int l, int x, int y) const { return level(l).texel(x, y); }
+
+    // The stored texel (x, y) of level l, x ∈ [−border, width + border), y likewise, for the
+    // pyramid's owner to fill its border.
+    float* writable_texel(int l, int x, int y) {
+        return storage_.data() + (level(l).texel(x, y) - storage_.data());
+    }
 
     // Per-axis variance (level-0 texels², about level-0 texel centres) of the downsampling kernel
     // that made level l from level 0: (T²−1)/12 for the box pyramid with texel size T. EWA

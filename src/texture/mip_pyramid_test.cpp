@@ -124,6 +124,47 @@ TEST(MipPyramid, EveryTileLayoutStoresTheSameTexels) {
         }
 }
 
+TEST(MipPyramid, ABorderKeepsTheLevelsAndStoresTexelsAroundThem) {
+    // Levels with a border hold the same texels as without, bit for bit (built and from_levels);
+    // the border starts at zero, is written through writable_texel() alone, and a bilinear sample
+    // whose taps reach into it counts as inside.
+    const Image image = random_image(13, 6, 3, 8);
+    MipPyramidOptions options;
+    const MipPyramid plain = MipPyramid::build(image, options);
+    options.border = 2;
+    MipPyramid bordered = MipPyramid::build(image, options);
+    std::vector<Image> levels;
+    for (int l = 0; l < plain.level_count(); ++l) levels.push_back(plain.level_image(l));
+    const MipPyramid from_levels = MipPyramid::from_levels(levels, options).value();
+    ASSERT_EQ(bordered.level_count(), plain.level_count());
+    for (int l = 0; l < plain.level_count(); ++l) {
+        const int w = plain.width(l), h = plain.height(l);
+        EXPECT_EQ(bordered.level(l).border, 2);
+        EXPECT_EQ(bordered.level(l).row_floats, (w + 4) * 4);
+        for (int y = -2; y < h + 2; ++y)
+            for (int x = -2; x < w + 2; ++x)
+                for (int c = 0; c < 4; ++c) {
+                    const bool on_level = x >= 0 && y >= 0 && x < w && y < h;
+                    const float want = on_level ? plain.texel(l, x, y)[c] : 0.0f;
+                    ASSERT_EQ(bordered.texel(l, x, y)[c], want) << l << " " << x << " " << y;
+                    ASSERT_EQ(from_levels.texel(l, x, y)[c], want) << l << " " << x << " " << y;
+                }
+    }
+    // Writing every border texel of one level leaves the others and the level itself as they were.
+    const int w = bordered.width(1), h = bordered.height(1);
+    for (int y = -2; y < h + 2; ++y)
+        for (int x = -2; x < w + 2; ++x)
+            if (x < 0 || y < 0 || x >= w || y >= h) bordered.writable_texel(1, x, y)[0] = 7;
+    for (int l = 0; l < plain.level_count(); ++l)
+        for (int y = -2; y < plain.height(l) + 2; ++y)
+            for (int x = -2; x < plain.width(l) + 2; ++x) {
+                const bool on_level = x >= 0 && y >= 0 && x < plain.width(l) && y < plain.height(l);
+                const float want = on_level ? plain.texel(l, x, y)[0] : l == 1 ? 7.0f : 0.0f;
+                ASSERT_EQ(bordered.texel(l, x, y)[0], want) << l << " " << x << " " << y;
+            }
+    EXPECT_EQ(bordered.level_image(1).pixels, plain.level_image(1).pixels);
+}
+
 TEST(MipPyramid, FromLevelsValidatesTheChain) {
     std::vector<Image> levels = {Image(4, 2, 1, 1.0f), Image(2, 1, 1, 2.0f), Image(1, 1, 1, 3.0f)};
     const Result<MipPyramid> ok = MipPyramid::from_levels(levels);

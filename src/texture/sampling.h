@@ -83,14 +83,15 @@ struct BilinearTaps {
 struct BilinearPosition {
     int x0, y0;
     float fx, fy;
-    bool inside;  // all four taps lie on the level
+    bool inside;  // all four taps lie on the level or its border (MipPyramidOptions::border)
 };
 inline BilinearPosition bilinear_position(const MipPyramid::LevelView& view, float s, float t) {
     const float x = s * static_cast<float>(view.width) - 0.5f;
     const float y = t * static_cast<float>(view.height) - 0.5f;
     const int x0 = floor_to_int(x), y0 = floor_to_int(y);
+    const int b = view.border;
     return {x0, y0, x - static_cast<float>(x0), y - static_cast<float>(y0),
-            x0 >= 0 && y0 >= 0 && x0 + 1 < view.width && y0 + 1 < view.height};
+            x0 >= -b && y0 >= -b && x0 + 1 < view.width + b && y0 + 1 < view.height + b};
 }
 
 // The positions of a sample at (s, t) on two levels at once (a trilinear probe's): the same
@@ -105,7 +106,8 @@ inline BilinearPositionPair bilinear_positions(const MipPyramid::LevelView& fine
     const Int4 size{fine.width, fine.height, coarse.width, coarse.height};
     const auto [lower, fraction] =
         floor_and_fraction(Float4{s, t, s, t} * __builtin_convertvector(size, Float4) - 0.5f);
-    const Int4 on_level = (lower >= 0) & (lower + 1 < size);
+    const Int4 border{fine.border, fine.border, coarse.border, coarse.border};
+    const Int4 on_level = (lower >= -border) & (lower + 1 < size + border);
     return {{lower[0], lower[1], fraction[0], fraction[1], (on_level[0] & on_level[1]) != 0},
             {lower[2], lower[3], fraction[2], fraction[3], (on_level[2] & on_level[3]) != 0}};
 }
@@ -308,20 +310,26 @@ template <int S, class TapsOf>
 
 // Whether every probe of a straight line from (s0, t0) to (s1, t1) has its taps on `fine` and
 // `coarse` (pass fine twice for one level): then probe_taps_inside() may address them. Tested at
-// the ends, whose texel positions X = s·W − ½ must lie in [m, W − 1 − m] on both levels. The
-// probes between them lie between them (a level is convex), and so do their rounded positions
-// when they are computed as c + k·Δ (every step monotone in k in IEEE arithmetic); the margin
-// m = 1/64 texel covers positions rounded otherwise (a few ulp of s times W: under 0.002 texel on
-// levels up to 16 384 wide).
+// the ends, whose texel positions X = s·W − ½ must lie in [m, W − 1 − m] on both levels; on a
+// level with a border (MipPyramidOptions::border), in [−½ + m, W − ½ − m]: the probes' centres on
+// the level itself, s ∈ [0, 1] (a cube map's probe beyond its face is placed on its own face,
+// spec §3.1), their taps at most one texel beyond. The probes between the ends lie between them (a
+// level is convex), and so do their rounded positions when they are computed as c + k·Δ (every
+// step monotone in k in IEEE arithmetic); the margin m = 1/64 texel covers positions rounded
+// otherwise (a few ulp of s times W: under 0.002 texel on levels up to 16 384 wide).
 inline bool line_inside(const MipPyramid::LevelView& fine, const MipPyramid::LevelView& coarse,
                         float s0, float t0, float s1, float t1) {
     constexpr float kMargin = 1.0f / 64;
     const Float4 size = __builtin_convertvector(
         (Int4{fine.width, fine.height, coarse.width, coarse.height}), Float4);
+    const float fine_reach = fine.border > 0 ? 0.5f : 0.0f;
+    const float coarse_reach = coarse.border > 0 ? 0.5f : 0.0f;
+    const Float4 reach{fine_reach, fine_reach, coarse_reach, coarse_reach};
+    const Float4 first = kMargin - reach;
+    const Float4 last = size - (1.0f + kMargin) + reach;
     const Float4 a = Float4{s0, t0, s0, t0} * size - 0.5f;
     const Float4 b = Float4{s1, t1, s1, t1} * size - 0.5f;
-    const Float4 last = size - (1.0f + kMargin);
-    const Int4 ok = (a >= kMargin) & (a <= last) & (b >= kMargin) & (b <= last);  // false for NaN
+    const Int4 ok = (a >= first) & (a <= last) & (b >= first) & (b <= last);  // false for NaN
     return (ok[0] & ok[1] & ok[2] & ok[3]) != 0;
 }
 

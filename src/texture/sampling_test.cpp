@@ -15,34 +15,44 @@ namespace {
 
 // bilinear_positions() (both levels of a trilinear probe in one SSE register) gives exactly what
 // bilinear_position() gives on each level: the same taps, fractions and on-level flags, for
-// positions inside, on the edges and beyond them, on levels of odd sizes down to 1×1.
+// positions inside, on the edges and beyond them, on levels of odd sizes down to 1×1, with and
+// without a border (where a tap reaching into the border counts as inside).
 TEST(Sampling, PairedPositionsEqualOneLevelAtATime) {
-    const MipPyramid pyramid = MipPyramid::build(random_image(37, 19, 3, 5));
-    std::mt19937 rng(3);
-    std::uniform_real_distribution<float> coordinate(-0.6f, 1.6f);
-    int inside = 0, outside = 0;
-    for (int l = 0; l < pyramid.max_level(); ++l) {
-        const MipPyramid::LevelView& fine = pyramid.level(l);
-        const MipPyramid::LevelView& coarse = pyramid.level(l + 1);
-        for (int k = 0; k < 2000; ++k) {
-            const float s = k < 4 ? float(k % 2) : coordinate(rng);
-            const float t = k < 4 ? float(k / 2) : coordinate(rng);
-            const detail::BilinearPositionPair pair =
-                detail::bilinear_positions(fine, coarse, s, t);
-            for (const auto& [view, got] :
-                 {std::pair{&fine, pair.fine}, std::pair{&coarse, pair.coarse}}) {
-                const detail::BilinearPosition want = detail::bilinear_position(*view, s, t);
-                ASSERT_EQ(got.x0, want.x0) << "level " << l << " s " << s << " t " << t;
-                ASSERT_EQ(got.y0, want.y0) << "level " << l << " s " << s << " t " << t;
-                ASSERT_EQ(got.fx, want.fx) << "level " << l << " s " << s << " t " << t;
-                ASSERT_EQ(got.fy, want.fy) << "level " << l << " s " << s << " t " << t;
-                ASSERT_EQ(got.inside, want.inside) << "level " << l << " s " << s << " t " << t;
-                (want.inside ? inside : outside) += 1;
+    for (const int border : {0, 1}) {
+        MipPyramidOptions options;
+        options.border = border;
+        const MipPyramid pyramid = MipPyramid::build(random_image(37, 19, 3, 5), options);
+        std::mt19937 rng(3);
+        std::uniform_real_distribution<float> coordinate(-0.6f, 1.6f);
+        int inside = 0, outside = 0;
+        for (int l = 0; l < pyramid.max_level(); ++l) {
+            const MipPyramid::LevelView& fine = pyramid.level(l);
+            const MipPyramid::LevelView& coarse = pyramid.level(l + 1);
+            for (int k = 0; k < 2000; ++k) {
+                const float s = k < 4 ? float(k % 2) : coordinate(rng);
+                const float t = k < 4 ? float(k / 2) : coordinate(rng);
+                const detail::BilinearPositionPair pair =
+                    detail::bilinear_positions(fine, coarse, s, t);
+                for (const auto& [view, got] :
+                     {std::pair{&fine, pair.fine}, std::pair{&coarse, pair.coarse}}) {
+                    const detail::BilinearPosition want = detail::bilinear_position(*view, s, t);
+                    ASSERT_EQ(got.x0, want.x0) << "level " << l << " s " << s << " t " << t;
+                    ASSERT_EQ(got.y0, want.y0) << "level " << l << " s " << s << " t " << t;
+                    ASSERT_EQ(got.fx, want.fx) << "level " << l << " s " << s << " t " << t;
+                    ASSERT_EQ(got.fy, want.fy) << "level " << l << " s " << s << " t " << t;
+                    ASSERT_EQ(got.inside, want.inside) << "level " << l << " s " << s << " t " << t;
+                    // Inside: the four taps, columns x0 and x0 + 1, rows y0 and y0 + 1, are stored.
+                    const bool stored =
+                        want.x0 >= -border && want.x0 + 1 <= view->width - 1 + border &&
+                        want.y0 >= -border && want.y0 + 1 <= view->height - 1 + border;
+                    ASSERT_EQ(want.inside, stored) << "level " << l << " s " << s << " t " << t;
+                    (want.inside ? inside : outside) += 1;
+                }
             }
         }
+        EXPECT_GT(inside, 1000);  // both branches exercised
+        EXPECT_GT(outside, 1000);
     }
-    EXPECT_GT(inside, 1000);  // both branches exercised
-    EXPECT_GT(outside, 1000);
 }
 
 // blend_probe_line() (probes placed and requested ahead through a ring) equals the plain weighted
@@ -83,51 +93,61 @@ TEST(Sampling, ProbeLineIsTheWeightedMeanOfItsProbes) {
 // line_inside() admits a straight line only when every probe on it has all its taps on both levels,
 // and there probe_taps_inside() addresses exactly the taps that trilinear_taps() (with its edge
 // tests and wrapping) does: the same texels, the same fractions. Random lines on levels of odd
-// sizes, near and across the edges, of one and two levels.
+// sizes, near and across the edges, of one and two levels. With a border, an admitted line's
+// probes also have their centres on the level, s, t ∈ [0, 1] (their taps may reach the border).
 TEST(Sampling, LinesInsideTheLevelsNeedNoEdgeTests) {
-    const MipPyramid pyramid = MipPyramid::build(random_image(53, 29, 3, 11));
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<float> coordinate(-0.1f, 1.1f), unit(0, 1);
-    int admitted = 0, refused = 0;
-    for (int l = 0; l + 1 < pyramid.max_level(); ++l) {
-        for (int k = 0; k < 600; ++k) {
-            const float lod = static_cast<float>(l) + (k % 2 ? 0.0f : unit(rng));
-            const detail::TrilinearLevels levels =
-                detail::trilinear_levels(lod, pyramid.max_level(), LodBlend::linear);
-            const MipPyramid::LevelView& fine = pyramid.level(levels.l0);
-            const MipPyramid::LevelView& coarse =
-                pyramid.level(levels.w > 0.0f ? levels.l0 + 1 : levels.l0);
-            const float s0 = coordinate(rng), t0 = coordinate(rng);
-            const float ds = 0.3f * (unit(rng) - 0.5f), dt = 0.3f * (unit(rng) - 0.5f);
-            const int count = 2 + k % 7;
-            auto position = [&](int i) {
-                const float u = static_cast<float>(i) / static_cast<float>(count - 1);
-                return std::pair{s0 + u * ds, t0 + u * dt};
-            };
-            const auto [s1, t1] = position(count - 1);
-            if (!detail::line_inside(fine, coarse, s0, t0, s1, t1)) {
-                ++refused;
-                continue;
-            }
-            ++admitted;
-            for (int i = 0; i < count; ++i) {
-                const auto [s, t] = position(i);
-                const detail::ProbeTaps want = detail::probe_taps(pyramid, s, t, levels);
-                const detail::ProbeTaps got = detail::probe_taps_inside(fine, coarse, s, t, levels);
-                const detail::BilinearPositionPair p =
-                    detail::bilinear_positions(fine, coarse, s, t);
-                ASSERT_TRUE(p.fine.inside && p.coarse.inside) << "probe " << i << " leaves";
-                const int tap_levels = levels.w > 0.0f ? 2 : 1;
-                for (int level = 0; level < tap_levels; ++level) {
-                    ASSERT_TRUE(test::same_taps(level ? got.coarse : got.fine,
-                                                level ? want.coarse : want.fine))
-                        << "probe " << i << ", level " << level;
+    for (const int border : {0, 1}) {
+        MipPyramidOptions options;
+        options.border = border;
+        const MipPyramid pyramid = MipPyramid::build(random_image(53, 29, 3, 11), options);
+        std::mt19937 rng(5);
+        std::uniform_real_distribution<float> coordinate(-0.1f, 1.1f), unit(0, 1);
+        int admitted = 0, refused = 0;
+        for (int l = 0; l + 1 < pyramid.max_level(); ++l) {
+            for (int k = 0; k < 600; ++k) {
+                const float lod = static_cast<float>(l) + (k % 2 ? 0.0f : unit(rng));
+                const detail::TrilinearLevels levels =
+                    detail::trilinear_levels(lod, pyramid.max_level(), LodBlend::linear);
+                const MipPyramid::LevelView& fine = pyramid.level(levels.l0);
+                const MipPyramid::LevelView& coarse =
+                    pyramid.level(levels.w > 0.0f ? levels.l0 + 1 : levels.l0);
+                const float s0 = coordinate(rng), t0 = coordinate(rng);
+                const float ds = 0.3f * (unit(rng) - 0.5f), dt = 0.3f * (unit(rng) - 0.5f);
+                const int count = 2 + k % 7;
+                auto position = [&](int i) {
+                    const float u = static_cast<float>(i) / static_cast<float>(count - 1);
+                    return std::pair{s0 + u * ds, t0 + u * dt};
+                };
+                const auto [s1, t1] = position(count - 1);
+                if (!detail::line_inside(fine, coarse, s0, t0, s1, t1)) {
+                    ++refused;
+                    continue;
+                }
+                ++admitted;
+                for (int i = 0; i < count; ++i) {
+                    const auto [s, t] = position(i);
+                    const detail::ProbeTaps want = detail::probe_taps(pyramid, s, t, levels);
+                    const detail::ProbeTaps got =
+                        detail::probe_taps_inside(fine, coarse, s, t, levels);
+                    const detail::BilinearPositionPair p =
+                        detail::bilinear_positions(fine, coarse, s, t);
+                    ASSERT_TRUE(p.fine.inside && p.coarse.inside) << "probe " << i << " leaves";
+                    if (border > 0) {
+                        ASSERT_TRUE(s >= 0 && s <= 1 && t >= 0 && t <= 1)
+                            << "probe " << i << " centred off the level at " << s << ", " << t;
+                    }
+                    const int tap_levels = levels.w > 0.0f ? 2 : 1;
+                    for (int level = 0; level < tap_levels; ++level) {
+                        ASSERT_TRUE(test::same_taps(level ? got.coarse : got.fine,
+                                                    level ? want.coarse : want.fine))
+                            << "probe " << i << ", level " << level;
+                    }
                 }
             }
         }
+        EXPECT_GT(admitted, 500);  // both answers exercised
+        EXPECT_GT(refused, 500);
     }
-    EXPECT_GT(admitted, 500);  // both answers exercised
-    EXPECT_GT(refused, 500);
 }
 
 // blend_probe_line_inside() reads a line inside its levels exactly as the general line does
