@@ -42,6 +42,25 @@ float gaussian_spacing_factor(int n) {
     return table[std::clamp(n, 2, kTableSize - 1)];
 }
 
+// The Gaussian fall-off a = 2κ_g/(N − 1) that plan_probes() gives a line of N probes, and the
+// ratio q = e^{−a²/8} that probe_weights() builds its weights from, for every count a plan may
+// hold: tabulated once, so that a line's weights take no exp (a tenth of a short line's own work).
+struct GaussianFalloff {
+    float falloff, ratio;
+};
+const GaussianFalloff& gaussian_falloff(int n) {
+    constexpr int kTableSize = kMaxProbeCount + 1;
+    static const std::array<GaussianFalloff, kTableSize> table = [] {
+        std::array<GaussianFalloff, kTableSize> t{};
+        for (int m = 2; m < kTableSize; ++m) {
+            const float a = 2 * kGaussianProbeExtent / static_cast<float>(m - 1);
+            t[m] = {a, std::exp(-0.125f * (a * a))};
+        }
+        return t;
+    }();
+    return table[std::clamp(n, 2, kTableSize - 1)];
+}
+
 int floor_power_of_two(int n) {
     int p = 1;
     while (p * 2 <= n) p *= 2;
@@ -52,15 +71,18 @@ int floor_power_of_two(int n) {
 
 void probe_weights(const ProbePlan& plan, float* weights) {
     // From the centre out by the recurrence w_{k+1} = w_k·r_k, r_{k+1} = r_k·e^{−a²}, mirrored, so
-    // that the weights are exactly symmetric (the kernel mean stays on the centre), with one exp
-    // per plan: q = e^{−a²/8}, e^{−a²/2} = q⁴, e^{−a²} = q⁸.
-    if (plan.count <= 2) {  // one probe, or two of equal weight: no exp
+    // that the weights are exactly symmetric (the kernel mean stays on the centre), from one
+    // ratio per plan: q = e^{−a²/8} (tabulated for plan_probes()' fall-offs, an exp for any other),
+    // e^{−a²/2} = q⁴, e^{−a²} = q⁸.
+    if (plan.count <= 2) {  // one probe, or two of equal weight: no ratio
         weights[0] = weights[plan.count - 1] = 1.0f;
         return;
     }
     const float a2 = plan.weight_falloff * plan.weight_falloff;
     const int half = plan.count / 2;  // probes on each side of the centre
-    const float q = std::exp(-0.125f * a2), q4 = (q * q) * (q * q), q8 = q4 * q4;
+    const GaussianFalloff& planned = gaussian_falloff(plan.count);  // the same q, without the exp
+    const float q = plan.weight_falloff == planned.falloff ? planned.ratio : std::exp(-0.125f * a2),
+                q4 = (q * q) * (q * q), q8 = q4 * q4;
     float wk = plan.count % 2 ? 1.0f : q;  // k = 0 or ½
     float rk = plan.count % 2 ? q4 : q8;   // w_{k+1}/w_k
     const float r_step = q8;
@@ -286,7 +308,7 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
             plan.count = n;
             plan.texel_size = tp;
             plan.step = (sigma * spacing_factor(n)) * r1;
-            plan.weight_falloff = 2 * kGaussianProbeExtent / static_cast<float>(n - 1);
+            plan.weight_falloff = gaussian_falloff(n).falloff;
             break;
         }
         case ProbeRule::ext:

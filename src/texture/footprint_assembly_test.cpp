@@ -104,6 +104,38 @@ Sym2 predicted_kernel(const FootprintEllipse& e, const ProbePlan& plan, LodBlend
            outer(e.minor_axis(), 0.25f * t_eff_sq);
 }
 
+TEST(FootprintAssembly, ProbeWeightsAreTheGaussianAtEachProbe) {
+    // probe_weights() builds exp(−½(a·k)²), k = i − (N−1)/2, by a recurrence from one ratio
+    // q = e^{−a²/8}: tabulated for the fall-offs plan_probes() gives (a = 2κ_g/(N − 1)), an exp for
+    // any other. Both: within float rounding of the Gaussian (a rounding per power of q), exactly
+    // symmetric, and the
+    // tabulated q is the exp bit for bit (it is the weight at k = ½ of an even line).
+    std::vector<float> w(kMaxProbeCount);
+    for (int n = 1; n <= 64; ++n)
+        for (const bool planned : {true, false}) {
+            ProbePlan plan;
+            plan.count = n;
+            plan.weight_falloff = planned && n > 1
+                                      ? 2 * kGaussianProbeExtent / static_cast<float>(n - 1)
+                                      : 0.37f + 0.01f * static_cast<float>(n);
+            probe_weights(plan, w.data());
+            const float a = plan.weight_falloff;
+            for (int i = 0; i < n; ++i) {
+                const double k = i - 0.5 * (n - 1);
+                const double want =
+                    n <= 2 ? 1.0 : std::exp(-0.5 * (double(a) * k) * (double(a) * k));
+                // The recurrence raises q to the power 4k²: so many roundings of its relative
+                // error. (Weights under 1e−37 may underflow to zero.)
+                ASSERT_NEAR(w[i], want, (4 * k * k + 4) * 1.2e-7 * want + 1e-37)
+                    << n << " probes, planned " << planned << ", i " << i;
+                ASSERT_EQ(w[i], w[n - 1 - i]) << n << " probes, planned " << planned;
+            }
+            if (n > 2 && n % 2 == 0) {
+                EXPECT_EQ(w[n / 2], std::exp(-0.125f * (a * a))) << n;
+            }
+        }
+}
+
 TEST(FootprintAssembly, GaussianPlansKeepRuleBsMomentsAndSpacing) {
     for (float l1 : {3.0f, 10.0f, 40.0f, 300.0f})
         for (int max_probes : {4, 16, 30, 128}) {
