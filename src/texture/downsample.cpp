@@ -91,10 +91,13 @@ double tap_variance(int src, int dst, DownsampleFilter filter) {
 // once per output row that needs it.
 template <class In, class T>
 void downsample(const In* src, int sw, int sh, T* dst, int dw, int dh, int stride,
-                const MipPyramidOptions& options) {
+                const MipPyramidOptions& options, std::ptrdiff_t src_pitch,
+                std::ptrdiff_t dst_pitch) {
     const AxisTaps xt = make_axis_taps(sw, dw, options.downsample, options.wrap_s);
     const AxisTaps yt = make_axis_taps(sh, dh, options.downsample, options.wrap_t);
     const std::size_t src_row = static_cast<std::size_t>(sw) * stride;
+    if (src_pitch == 0) src_pitch = static_cast<std::ptrdiff_t>(src_row);
+    if (dst_pitch == 0) dst_pitch = static_cast<std::ptrdiff_t>(dw) * stride;
     tbb::parallel_for(tbb::blocked_range<int>(0, dh, 8), [&](const tbb::blocked_range<int>& rows) {
         std::vector<T> column_sum(src_row);
         T acc[MipPyramid::kMaxChannels];
@@ -102,11 +105,11 @@ void downsample(const In* src, int sw, int sh, T* dst, int dw, int dh, int strid
             std::fill(column_sum.begin(), column_sum.end(), T(0));
             for (int k = yt.first[y]; k < yt.first[y + 1]; ++k) {
                 const T w = static_cast<T>(yt.taps[k].weight);
-                const In* in = src + static_cast<std::size_t>(yt.taps[k].index) * src_row;
+                const In* in = src + yt.taps[k].index * src_pitch;
                 for (std::size_t i = 0; i < src_row; ++i)
                     column_sum[i] += w * static_cast<T>(in[i]);
             }
-            T* out = dst + static_cast<std::size_t>(y) * dw * stride;
+            T* out = dst + y * dst_pitch;
             for (int x = 0; x < dw; ++x) {
                 std::fill(acc, acc + stride, T(0));
                 for (int k = xt.first[x]; k < xt.first[x + 1]; ++k) {
@@ -122,10 +125,10 @@ void downsample(const In* src, int sw, int sh, T* dst, int dw, int dh, int strid
 }
 
 template void downsample<float, float>(const float*, int, int, float*, int, int, int,
-                                       const MipPyramidOptions&);
+                                       const MipPyramidOptions&, std::ptrdiff_t, std::ptrdiff_t);
 template void downsample<float, double>(const float*, int, int, double*, int, int, int,
-                                        const MipPyramidOptions&);
+                                        const MipPyramidOptions&, std::ptrdiff_t, std::ptrdiff_t);
 template void downsample<double, double>(const double*, int, int, double*, int, int, int,
-                                         const MipPyramidOptions&);
+                                         const MipPyramidOptions&, std::ptrdiff_t, std::ptrdiff_t);
 
 }  // namespace footprint::detail

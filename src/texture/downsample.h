@@ -11,9 +11,12 @@
 namespace footprint::detail {
 
 // Reads In, accumulates and writes T (float → float, float → double, double → double).
+// src_pitch and dst_pitch: values from one row to the next (0: packed rows, sw·stride and
+// dw·stride), so that a level can be made in place among bordered ones.
 template <class In, class T>
 void downsample(const In* src, int sw, int sh, T* dst, int dw, int dh, int stride,
-                const MipPyramidOptions& options);
+                const MipPyramidOptions& options, std::ptrdiff_t src_pitch = 0,
+                std::ptrdiff_t dst_pitch = 0);
 
 // Variance of one destination texel's taps about its centre, in source texels² (what one
 // downsampling step adds: ¼ for the box with ratio 2, ¾ for the tent).

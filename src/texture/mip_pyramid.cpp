@@ -15,14 +15,22 @@ namespace footprint {
 
 namespace {
 
-// The image's texels row-major with each texel padded from `channels` to `stride` floats.
-void copy_padded(const Image& image, int stride, float* padded) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, image.pixel_count(), 1 << 14),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i < r.end(); ++i)
-                              std::copy_n(&image.pixels[i * image.channels], image.channels,
-                                          &padded[i * stride]);
-                      });
+// The image's texels row-major with each texel padded from `channels` to `stride` floats; rows
+// `pitch` floats apart (0: packed, width·stride).
+void copy_padded(const Image& image, int stride, float* padded, std::ptrdiff_t pitch = 0) {
+    if (pitch == 0) {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, image.pixel_count(), 1 << 14),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              for (std::size_t i = r.begin(); i < r.end(); ++i)
+                                  std::copy_n(&image.pixels[i * image.channels], image.channels,
+                                              &padded[i * stride]);
+                          });
+        return;
+    }
+    tbb::parallel_for(0, image.height, [&](int y) {
+        for (int x = 0; x < image.width; ++x)
+            std::copy_n(image.at(x, y), image.channels, &padded[y * pitch + x * stride]);
+    });
 }
 
 std::vector<float> padded_to_stride(const Image& image, int stride) {
@@ -76,13 +84,13 @@ MipPyramid MipPyramid::build(const Image& level0, const MipPyramidOptions& optio
     MipPyramid p;
     p.allocate(level0.width, level0.height, level0.channels, options);
 
-    // Row-major storage without a border is its own scratch: each level is downsampled straight
-    // from the previous one in place. Tiled and bordered layouts go through row-major buffers and
-    // are copied into their rows or scattered into tiles.
-    const bool in_place = p.tile_log2_ == 0 && options.border == 0;
+    // Row-major storage is its own scratch: each level is downsampled straight from the previous
+    // one in place (between their borders, if any). Tiled layouts go through row-major buffers and
+    // are scattered into tiles.
+    const bool in_place = p.tile_log2_ == 0;
     std::vector<float> current;
     if (in_place) {
-        copy_padded(level0, p.stride_, p.storage_.data());
+        copy_padded(level0, p.stride_, p.writable_texel(0, 0, 0), p.views_[0].row_floats);
     } else {
         current = padded_to_stride(level0, p.stride_);
         p.store_level(0, current);
@@ -91,9 +99,9 @@ MipPyramid MipPyramid::build(const Image& level0, const MipPyramidOptions& optio
     for (int l = 1; l < p.level_count(); ++l) {
         const int sw = p.width(l - 1), sh = p.height(l - 1), dw = p.width(l), dh = p.height(l);
         if (in_place) {
-            detail::downsample<float, float>(p.storage_.data() + p.levels_[l - 1].offset, sw, sh,
-                                             p.storage_.data() + p.levels_[l].offset, dw, dh,
-                                             p.stride_, options);
+            detail::downsample<float, float>(p.writable_texel(l - 1, 0, 0), sw, sh,
+                                             p.writable_texel(l, 0, 0), dw, dh, p.stride_, options,
+                                             p.views_[l - 1].row_floats, p.views_[l].row_floats);
         } else {
             std::vector<float> next(static_cast<std::size_t>(dw) * dh * p.stride_);
             detail::downsample<float, float>(current.data(), sw, sh, next.data(), dw, dh, p.stride_,
