@@ -15,18 +15,9 @@ namespace footprint {
 
 namespace {
 
-// The image's texels row-major with each texel padded from `channels` to `stride` floats; rows
-// `pitch` floats apart (0: packed, width·stride).
-void copy_padded(const Image& image, int stride, float* padded, std::ptrdiff_t pitch = 0) {
-    if (pitch == 0) {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, image.pixel_count(), 1 << 14),
-                          [&](const tbb::blocked_range<std::size_t>& r) {
-                              for (std::size_t i = r.begin(); i < r.end(); ++i)
-                                  std::copy_n(&image.pixels[i * image.channels], image.channels,
-                                              &padded[i * stride]);
-                          });
-        return;
-    }
+// The image's texels row-major with each texel padded from `channels` to `stride` floats, rows
+// `pitch` floats apart.
+void copy_padded(const Image& image, int stride, float* padded, std::ptrdiff_t pitch) {
     tbb::parallel_for(0, image.height, [&](int y) {
         for (int x = 0; x < image.width; ++x)
             std::copy_n(image.at(x, y), image.channels, &padded[y * pitch + x * stride]);
@@ -35,7 +26,7 @@ void copy_padded(const Image& image, int stride, float* padded, std::ptrdiff_t p
 
 std::vector<float> padded_to_stride(const Image& image, int stride) {
     std::vector<float> padded(image.pixel_count() * stride, 0.0f);
-    copy_padded(image, stride, padded.data());
+    copy_padded(image, stride, padded.data(), std::ptrdiff_t(image.width) * stride);
     return padded;
 }
 
