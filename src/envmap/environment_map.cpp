@@ -636,16 +636,7 @@ struct FourFootprints {
     // their texels are still cached when read. Every other lookup is done at once.
     constexpr std::size_t kGroup = 16;
     const int channels = map.channels();
-    struct DeferredProbe {
-        detail::RequestedProbe probe;
-        float* out;
-    };
-    struct DeferredLine {
-        DeferredCubeLine line;
-        float* out;
-    };
-    DeferredProbe probes[kGroup];
-    DeferredLine lines[kGroup];
+    detail::RequestedReads<kGroup> reads;
     const int stride = map.face(0).stride();  // the caps' too (the same channels)
     const FourFootprints::Setting setting(map, options);
     FourFootprints footprints[kGroup / 4];
@@ -662,7 +653,6 @@ struct FourFootprints {
                 }
                 footprints[lane / 4].compute(map, four, to_map, options, setting);
             }
-        std::size_t pending_probes = 0, pending_lines = 0;
         for (std::size_t i = 0; i < count; ++i) {
             const EnvRayDifferential& ray = rays[first + i];
             float* result = out + (first + i) * channels;
@@ -671,30 +661,20 @@ struct FourFootprints {
             if (setting.caps && f.cap_takes(lane)) {
                 // route_lookup()'s polar cap branch, from the lane.
                 const PolarCapFootprint cap = f.capped.footprint(map, lane);
-                switch (f.cap_plans.planned >> lane & 1
-                            ? detail::request_footprint_assembly(
-                                  *cap.cap, cap.coords.s, cap.coords.t, f.cap_plans.plan(lane),
-                                  options, result, probes[pending_probes].probe,
-                                  lines[pending_lines].line)
-                            : polar_cap_request(cap, f.capped.lod[lane], options, result,
-                                                probes[pending_probes].probe,
-                                                lines[pending_lines].line)) {
-                    case detail::Requested::done:
-                        break;
-                    case detail::Requested::probe:
-                        probes[pending_probes++].out = result;
-                        break;
-                    case detail::Requested::line:
-                        lines[pending_lines++].out = result;
-                        break;
-                }
+                reads.add(f.cap_plans.planned >> lane & 1
+                              ? detail::request_footprint_assembly(
+                                    *cap.cap, cap.coords.s, cap.coords.t, f.cap_plans.plan(lane),
+                                    options, result, reads.next_probe(), reads.next_line())
+                              : polar_cap_request(cap, f.capped.lod[lane], options, result,
+                                                  reads.next_probe(), reads.next_line()),
+                          result);
                 continue;
             }
             CentreProbe probe;
             Routed routed;
             if (setting.four_at_once && f.plain_takes(lane)) {
                 // route_lookup()'s plain branch, from the lane.
-                DeferredCubeLine* defer = &lines[pending_lines].line;
+                DeferredCubeLine* defer = &reads.next_line();
                 if (f.lod[lane] >= 0.0f) {
                     probe = centre_probe(map, f.plain.coords(lane), f.lod[lane], options);
                     routed = Routed::centre_probe;
@@ -711,30 +691,26 @@ struct FourFootprints {
                 }
             } else {
                 routed = route_lookup(map, ray.direction, ray.d_dx, ray.d_dy, options, to_map,
-                                      result, probe, &lines[pending_lines].line);
+                                      result, probe, &reads.next_line());
             }
             switch (routed) {
                 case Routed::done:
                     break;
                 case Routed::deferred_line:
-                    lines[pending_lines++].out = result;
+                    reads.add(detail::Requested::line, result);
                     break;
                 case Routed::centre_probe: {
                     const EnvCoords& c = probe.coords;
-                    DeferredProbe& d = probes[pending_probes++];
-                    d = {{detail::probe_taps(map, c.face, c.s, c.t, probe.levels), probe.levels},
-                         result};
-                    d.probe.request(stride);
+                    detail::RequestedProbe& requested = reads.next_probe();
+                    requested = {detail::probe_taps(map, c.face, c.s, c.t, probe.levels),
+                                 probe.levels};
+                    requested.request(stride);
+                    reads.add(detail::Requested::probe, result);
                     break;
                 }
             }
         }
-        detail::dispatch_stride(stride, [&]<int S>() {
-            for (std::size_t i = 0; i < pending_probes; ++i)
-                detail::store(probes[i].probe.template blend<S>(), channels, probes[i].out);
-            for (std::size_t i = 0; i < pending_lines; ++i)
-                detail::store(lines[i].line.template blend<S>(), channels, lines[i].out);
-        });
+        reads.read(stride, channels);
     }
 }
 

@@ -2,6 +2,8 @@
 // Inputs are already sanitised: (s, t) finite and reduced, the ellipse finite and bounded.
 #pragma once
 
+#include <cstddef>
+
 #include "math/footprint_ellipse.h"
 #include "texture/footprint_assembly.h"
 #include "texture/sampling.h"
@@ -31,6 +33,48 @@ Requested request_footprint_assembly(const MipPyramid& pyramid, float s, float t
                                      const ProbePlan& plan, const LookupOptions& options,
                                      float* out, RequestedProbe& probe,
                                      RequestedLine<kRequestedLineProbes>& line);
+
+// The lookups of a batch's group, requested now and read later: at most Capacity probes and
+// Capacity lines, each with where its result goes. A caller routes each lookup with next_probe()
+// and next_line() as the places to request into, add()s what the routing did, and read()s the
+// group once all are routed (then the requests are spent).
+template <std::size_t Capacity>
+class RequestedReads {
+  public:
+    RequestedProbe& next_probe() { return probes_[probe_count_].probe; }
+    RequestedLine<kRequestedLineProbes>& next_line() { return lines_[line_count_].line; }
+
+    // What the lookup whose result goes to `out` did: requested into next_probe() or
+    // next_line(), or done.
+    void add(Requested requested, float* out) {
+        if (requested == Requested::probe) probes_[probe_count_++].out = out;
+        if (requested == Requested::line) lines_[line_count_++].out = out;
+    }
+
+    // Reads every request into its result (`channels` floats of texels `stride` floats apart).
+    void read(int stride, int channels) {
+        dispatch_stride(stride, [&]<int S>() {
+            for (std::size_t i = 0; i < probe_count_; ++i)
+                store(probes_[i].probe.template blend<S>(), channels, probes_[i].out);
+            for (std::size_t i = 0; i < line_count_; ++i)
+                store(lines_[i].line.template blend<S>(), channels, lines_[i].out);
+        });
+        probe_count_ = line_count_ = 0;
+    }
+
+  private:
+    struct Probe {
+        RequestedProbe probe;
+        float* out;
+    };
+    struct Line {
+        RequestedLine<kRequestedLineProbes> line;
+        float* out;
+    };
+    Probe probes_[Capacity];
+    Line lines_[Capacity];
+    std::size_t probe_count_ = 0, line_count_ = 0;
+};
 
 // EWA (ewa.h).
 void filter_ewa(const MipPyramid& pyramid, float s, float t, const FootprintEllipse& footprint,

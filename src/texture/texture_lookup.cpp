@@ -155,11 +155,38 @@ void texture_lookup(const MipPyramid& pyramid, float s, float t, const Footprint
     }
 }
 
-void texture_lookup(const MipPyramid& pyramid, const TextureCoords& c, const LookupOptions& options,
-                    float* out) {
+namespace {
+
+// The lookups a batch requests now and reads later (texture_lookup_batch()).
+struct Requests {
+    detail::RequestedProbe& probe;
+    detail::RequestedLine<detail::kRequestedLineProbes>& line;
+};
+
+// texture_lookup(coords): the lookup done into out (Requested::done), or, given `requests` (the
+// batch), a lookup that is one bilinear or trilinear probe — magnification, the GL rule, a
+// near-isotropic footprint — requested into requests.probe, and a short footprint-assembly line
+// into requests.line, for the caller to read (bit for bit what is done into out without them).
+[[gnu::always_inline]] inline detail::Requested route_lookup(const MipPyramid& pyramid,
+                                                             const TextureCoords& c,
+                                                             const LookupOptions& options,
+                                                             float* out, const Requests* requests) {
+    using detail::Requested;
+    // One trilinear probe at reduced (s, t): lookup_trilinear(), or requested.
+    auto trilinear = [&](float s, float t, float lod, LodBlend blend) {
+        if (!requests) {
+            lookup_trilinear(pyramid, s, t, lod, blend, out);
+            return Requested::done;
+        }
+        const detail::TrilinearLevels levels =
+            detail::trilinear_levels(lod, pyramid.max_level(), blend);
+        requests->probe = {detail::probe_taps(pyramid, s, t, levels), levels};
+        requests->probe.request(pyramid.stride());
+        return Requested::probe;
+    };
     if (!std::isfinite(c.s) || !std::isfinite(c.t)) {  // the ellipse overload returns the mean
         texture_lookup(pyramid, c.s, c.t, FootprintEllipse{}, options, out);
-        return;
+        return Requested::done;
     }
     const float w0 = static_cast<float>(pyramid.width(0)),
                 h0 = static_cast<float>(pyramid.height(0));
@@ -175,38 +202,74 @@ void texture_lookup(const MipPyramid& pyramid, const TextureCoords& c, const Loo
         magnified) {
         const float s = reduce_coordinate(c.s, pyramid.wrap_s()),
                     t = reduce_coordinate(c.t, pyramid.wrap_t());
-        if (options.filter == TextureFilter::nearest)
+        if (options.filter == TextureFilter::nearest) {
             lookup_nearest(pyramid, s, t, out);
-        else
-            detail::lookup_level0_bilinear(pyramid, s, t, out);
-        return;
+            return Requested::done;
+        }
+        if (requests)  // level 0's bilinear sample is the trilinear probe at lod 0 (w = 0)
+            return trilinear(s, t, 0.0f, LodBlend::linear);
+        detail::lookup_level0_bilinear(pyramid, s, t, out);
+        return Requested::done;
     }
     if (!std::isfinite(len_x2 + len_y2) && std::isfinite(c.dsdx) && std::isfinite(c.dtdx) &&
         std::isfinite(c.dsdy) && std::isfinite(c.dtdy)) {
         // Finite derivatives whose footprint overflows float: larger than any texture.
         constexpr float kHuge = 1e30f;
         texture_lookup(pyramid, c.s, c.t, make_footprint_ellipse(kHuge, kHuge, 0.0f), options, out);
-        return;
+        return Requested::done;
     }
     if (options.filter == TextureFilter::trilinear && std::isfinite(len_x2 + len_y2)) {
         // GL rule (OpenGL 4.6 §8.14.1): ρ = max(|∂(X,Y)/∂x|, |∂(X,Y)/∂y|), lod = log2 ρ.
         const float rho_sq = std::max(len_x2, len_y2);
         const float lod = 0.5f * fast_log2(std::max(rho_sq, 1e-30f)) + options.lod_bias;
-        lookup_trilinear(pyramid, reduce_coordinate(c.s, pyramid.wrap_s()),
-                         reduce_coordinate(c.t, pyramid.wrap_t()),
-                         std::clamp(lod, 0.0f, static_cast<float>(pyramid.max_level())),
-                         LodBlend::linear, out);
-        return;
+        return trilinear(
+            reduce_coordinate(c.s, pyramid.wrap_s()), reduce_coordinate(c.t, pyramid.wrap_t()),
+            std::clamp(lod, 0.0f, static_cast<float>(pyramid.max_level())), LodBlend::linear);
     }
     // Near-isotropic footprints are one trilinear probe: skip the ellipse's axes.
     const float lod = single_probe_lod(footprint_matrix(d_dx, d_dy), options, pyramid.max_level());
-    if (lod >= 0.0f) {
-        lookup_trilinear(pyramid, reduce_coordinate(c.s, pyramid.wrap_s()),
+    if (lod >= 0.0f)
+        return trilinear(reduce_coordinate(c.s, pyramid.wrap_s()),
                          reduce_coordinate(c.t, pyramid.wrap_t()), lod,
-                         single_probe_blend(options.lod_blend), out);
-        return;
+                         single_probe_blend(options.lod_blend));
+    if (requests && options.filter == TextureFilter::footprint_assembly) {
+        // The ellipse overload's footprint assembly ((s, t) reduced, the footprint bounded),
+        // requested.
+        return detail::request_footprint_assembly(
+            pyramid, reduce_coordinate(c.s, pyramid.wrap_s()),
+            reduce_coordinate(c.t, pyramid.wrap_t()),
+            bounded(pyramid, make_footprint_ellipse(d_dx, d_dy)), options, out, requests->probe,
+            requests->line);
     }
     texture_lookup(pyramid, c.s, c.t, make_footprint_ellipse(d_dx, d_dy), options, out);
+    return Requested::done;
+}
+
+}  // namespace
+
+void texture_lookup(const MipPyramid& pyramid, const TextureCoords& c, const LookupOptions& options,
+                    float* out) {
+    route_lookup(pyramid, c, options, out, nullptr);
+}
+
+void texture_lookup_batch(const MipPyramid& pyramid, std::span<const TextureCoords> coords,
+                          const LookupOptions& options, float* out) {
+    // Lookups are taken kGroup at a time: those that are one probe or a short line have their
+    // texels requested, and are read once the whole group is routed, when the texels have arrived
+    // (enough lookups in flight to cover a miss to memory, few enough that their texels are still
+    // cached when read). Every other lookup is done at once.
+    constexpr std::size_t kGroup = 16;
+    const int channels = pyramid.channels();
+    detail::RequestedReads<kGroup> reads;
+    for (std::size_t first = 0; first < coords.size(); first += kGroup) {
+        const std::size_t count = std::min(kGroup, coords.size() - first);
+        for (std::size_t i = 0; i < count; ++i) {
+            float* result = out + (first + i) * channels;
+            const Requests requests{reads.next_probe(), reads.next_line()};
+            reads.add(route_lookup(pyramid, coords[first + i], options, result, &requests), result);
+        }
+        reads.read(pyramid.stride(), channels);
+    }
 }
 
 }  // namespace footprint

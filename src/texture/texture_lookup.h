@@ -35,6 +35,7 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <string_view>
 
 #include "math/footprint_ellipse.h"
@@ -92,6 +93,16 @@ struct TextureCoords {
 // Thread-safe: lookups only read the pyramid.
 void texture_lookup(const MipPyramid& pyramid, const TextureCoords& coords,
                     const LookupOptions& options, float* out);
+
+// texture_lookup() of every lookup of `coords`, lookup i's pyramid.channels() floats written from
+// out[i·channels]: bit for bit the single calls' results, faster where lookups are scattered. A
+// single call waits on memory for its texels before it returns; the batch requests the texels of
+// its lookups that are one probe (magnification, bilinear, trilinear, near-isotropic footprint
+// assembly) or a short line of probes, 16 lookups at a time, and reads them once all 16 are
+// routed, so that their misses to memory overlap. (OpenImageIO's batched texture() plays the same
+// role.)
+void texture_lookup_batch(const MipPyramid& pyramid, std::span<const TextureCoords> coords,
+                          const LookupOptions& options, float* out);
 
 // The same, with the footprint given directly as an ellipse in level-0 texels around (s, t).
 void texture_lookup(const MipPyramid& pyramid, float s, float t, const FootprintEllipse& footprint,
