@@ -41,6 +41,8 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"b", "gaussian", "ext", "texram"}));
     tex->add_option("--lod-blend", texture.lod_blend, "footprint assembly level blend")
         ->check(CLI::IsMember({"linear", "variance", "automatic"}));
+    tex->add_option("--rounds", texture.rounds, "timed passes per rate (the best counts)")
+        ->check(CLI::Range(1, 100));
     tex->add_flag("!--no-oiio", texture.with_oiio, "skip the OpenImageIO peer");
     tex->add_flag("--quiet", texture.quiet, "no progress output");
 

@@ -66,6 +66,35 @@ inline double measure_rate(std::size_t available, int threads,
     return double(batch) / best;
 }
 
+// Lookups/s of `lookup(first, count, out)` over `lookups`, called on `batch` ≤ 64 lookups at a
+// time (out: their results, lookup by lookup, at most 4 floats each), the best of `rounds`
+// measure_rate rounds (a rate disturbed by what ran just before is re-measured).
+template <class Lookup, class F>
+double batch_rate(const std::vector<Lookup>& lookups, int threads, int rounds, int batch,
+                  const F& lookup) {
+    double rate = 0;
+    for (int round = 0; round < rounds; ++round)
+        rate = std::max(
+            rate, measure_rate(lookups.size(), threads, [&](int, std::size_t b, std::size_t e) {
+                float out[64 * 4], sink = 0;
+                for (std::size_t i = b; i < e; i += std::size_t(batch)) {
+                    const int count = int(std::min<std::size_t>(std::size_t(batch), e - i));
+                    lookup(&lookups[i], count, out);
+                    sink += out[0];
+                }
+                volatile float keep = sink;
+                (void)keep;
+            }));
+    return rate;
+}
+
+// The same for a single-lookup call `lookup(q, out)`.
+template <class Lookup, class F>
+double lookup_rate(const std::vector<Lookup>& lookups, int threads, int rounds, const F& lookup) {
+    return batch_rate(lookups, threads, rounds, 1,
+                      [&](const Lookup* q, int, float* out) { lookup(*q, out); });
+}
+
 // One line of progress on stderr, redrawn in place; silent unless stderr is a terminal.
 class ProgressNote {
   public:

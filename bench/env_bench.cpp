@@ -79,14 +79,9 @@ class OiioEnvPeer {
         return b;
     }
     void lookup_batch(const Batch& b, int count, float* out) const {
-        OIIO::TextureOptBatch options;  // its per-lane arrays start uninitialised
-        for (int i = 0; i < OIIO::Tex::BatchWidth; ++i) {
-            options.sblur[i] = options.tblur[i] = options.rblur[i] = 0;
-            options.swidth[i] = options.twidth[i] = options.rwidth[i] = 1;
-        }
+        OIIO::TextureOptBatch options = default_batch_options();
         OIIO::TextureSystem& ts = file_.system();
-        const OIIO::Tex::RunMask mask =
-            count >= 32 ? ~OIIO::Tex::RunMask(0) : (OIIO::Tex::RunMask(1) << count) - 1;
+        const OIIO::Tex::RunMask mask = first_lanes(count);
         ts.environment(file_.handle(), ts.get_perthread_info(), options, mask, &b.r[0][0],
                        &b.dx[0][0], &b.dy[0][0], 3, out);
     }
@@ -137,36 +132,6 @@ ConventionCheck check_oiio_convention(const EnvironmentMap& latlong, const OiioE
 }
 
 using Case = PeerCase;
-
-// Lookups/s of `lookup(first, count, out)` over `lookups`, called on `batch` lookups at a time
-// (out: their results, ray by ray), the best of `rounds` measure_rate rounds (a rate disturbed by
-// what ran just before is re-measured).
-template <class F>
-double batch_rate(const std::vector<EnvLookup>& lookups, int threads, int rounds, int batch,
-                  const F& lookup) {
-    double rate = 0;
-    for (int round = 0; round < rounds; ++round)
-        rate = std::max(
-            rate, measure_rate(lookups.size(), threads, [&](int, std::size_t b, std::size_t e) {
-                float out[64 * 4], sink = 0;
-                for (std::size_t i = b; i < e; i += std::size_t(batch)) {
-                    const int count = int(std::min<std::size_t>(std::size_t(batch), e - i));
-                    lookup(&lookups[i], count, out);
-                    sink += out[0];
-                }
-                volatile float keep = sink;
-                (void)keep;
-            }));
-    return rate;
-}
-
-// The same for a single-lookup call `lookup(q, out)`.
-template <class F>
-double lookup_rate(const std::vector<EnvLookup>& lookups, int threads, int rounds,
-                   const F& lookup) {
-    return batch_rate(lookups, threads, rounds, 1,
-                      [&](const EnvLookup* q, int, float* out) { lookup(*q, out); });
-}
 
 // Lookups per call of the batched APIs: OpenImageIO's Tex::BatchWidth, and as many for ours.
 constexpr int kBatch = OIIO::Tex::BatchWidth;

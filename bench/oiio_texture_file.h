@@ -16,6 +16,21 @@
 
 namespace footprint::bench {
 
+// What the batched TextureSystem calls take besides the lookups: options whose per-lane arrays are
+// the single calls' defaults (TextureOptBatch leaves them uninitialised), and the mask of the first
+// `count` lanes.
+inline OIIO::TextureOptBatch default_batch_options() {
+    OIIO::TextureOptBatch options;
+    for (int i = 0; i < OIIO::Tex::BatchWidth; ++i) {
+        options.sblur[i] = options.tblur[i] = options.rblur[i] = 0;
+        options.swidth[i] = options.twidth[i] = options.rwidth[i] = 1;
+    }
+    return options;
+}
+inline OIIO::Tex::RunMask first_lanes(int count) {
+    return count >= 32 ? ~OIIO::Tex::RunMask(0) : (OIIO::Tex::RunMask(1) << count) - 1;
+}
+
 class OiioTextureFile {
   public:
     // `mode`: MakeTxTexture or MakeTxEnvLatl; `config` carries maketx's options (e.g. wrapmodes).

@@ -12,6 +12,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <span>
+#include <stdexcept>
 
 #include "bench_lookups.h"
 #include "bench_texture_content.h"
@@ -57,6 +59,28 @@ class OiioPeer {
         ts.texture(file_.handle(), ts.get_perthread_info(), options, c.s, c.t, c.dsdx, c.dtdx,
                    c.dsdy, c.dtdy, 3, out);
     }
+    // The batched texture(): `count` ≤ Tex::BatchWidth lookups, given and returned in
+    // OpenImageIO's structure-of-arrays layout (results out[channel][lane]).
+    struct Batch {
+        float s[OIIO::Tex::BatchWidth], t[OIIO::Tex::BatchWidth], dsdx[OIIO::Tex::BatchWidth],
+            dtdx[OIIO::Tex::BatchWidth], dsdy[OIIO::Tex::BatchWidth], dtdy[OIIO::Tex::BatchWidth];
+    };
+    static Batch to_batch(const TextureCoords* c, int count) {
+        Batch b{};
+        for (int i = 0; i < count; ++i) {
+            b.s[i] = c[i].s, b.t[i] = c[i].t;
+            b.dsdx[i] = c[i].dsdx, b.dtdx[i] = c[i].dtdx;
+            b.dsdy[i] = c[i].dsdy, b.dtdy[i] = c[i].dtdy;
+        }
+        return b;
+    }
+    void lookup_batch(const Batch& b, int count, float* out) const {
+        OIIO::TextureOptBatch options = default_batch_options();
+        OIIO::TextureSystem& ts = file_.system();
+        const OIIO::Tex::RunMask mask = first_lanes(count);
+        ts.texture(file_.handle(), ts.get_perthread_info(), options, mask, b.s, b.t, b.dsdx, b.dtdx,
+                   b.dsdy, b.dtdy, 3, out);
+    }
 
   private:
     static OIIO::ImageSpec periodic() {
@@ -68,6 +92,16 @@ class OiioPeer {
 };
 
 using Case = PeerCase;
+
+// Lookups per call of the batched APIs: OpenImageIO's Tex::BatchWidth, and as many for ours.
+constexpr int kBatch = OIIO::Tex::BatchWidth;
+static_assert(kBatch <= 64);
+
+// The filters texture_lookup_batch() requests ahead (the others it runs one lookup at a time).
+bool batched(TextureFilter filter) {
+    return filter == TextureFilter::bilinear || filter == TextureFilter::trilinear ||
+           filter == TextureFilter::footprint_assembly;
+}
 
 }  // namespace
 
@@ -92,6 +126,10 @@ int run_texture_bench(const TextureBenchOptions& opt) {
         oiio = std::make_unique<OiioPeer>(image, tx);
     }
 
+    bool any_batched = false;
+    for (const Filter& f : kFilters)
+        any_batched |= selected(opt.filters, f.name) && batched(f.filter);
+
     std::vector<Case> cases;
     for (const Regime& regime : kRegimes) {
         if (!selected(opt.regimes, regime.name)) continue;
@@ -108,9 +146,12 @@ int run_texture_bench(const TextureBenchOptions& opt) {
                              ro, &truth[i * 3]);
         });
 
-        // The peer, once per regime and thread count (the same figures go into every filter's row).
+        // The peer, once per regime and thread count (the same figures go into every filter's
+        // row); like ours the best of opt.rounds measure_rate rounds, so that noise favours
+        // neither side.
         double oiio_rmse = NAN;
-        std::vector<double> oiio_rate(opt.thread_counts.size(), NAN);
+        std::vector<double> oiio_rate(opt.thread_counts.size(), NAN),
+            oiio_batch_rate(opt.thread_counts.size(), NAN);
         if (oiio) {
             std::vector<float> got(subset * 3);
             for (std::size_t i = 0; i < subset; ++i)
@@ -118,16 +159,15 @@ int run_texture_bench(const TextureBenchOptions& opt) {
             oiio_rmse = rmse(got, truth);
             for (std::size_t k = 0; k < opt.thread_counts.size(); ++k) {
                 note(std::string("OpenImageIO, ") + regime.name);
-                oiio_rate[k] = measure_rate(lookups.size(), opt.thread_counts[k],
-                                            [&](int, std::size_t b, std::size_t e) {
-                                                float out[3], sink = 0;
-                                                for (std::size_t i = b; i < e; ++i) {
-                                                    oiio->lookup(lookups[i], out);
-                                                    sink += out[0];
-                                                }
-                                                volatile float keep = sink;
-                                                (void)keep;
-                                            });
+                oiio_rate[k] =
+                    lookup_rate(lookups, opt.thread_counts[k], opt.rounds,
+                                [&](const TextureCoords& c, float* out) { oiio->lookup(c, out); });
+                if (any_batched)
+                    oiio_batch_rate[k] = batch_rate(
+                        lookups, opt.thread_counts[k], opt.rounds, kBatch,
+                        [&](const TextureCoords* first, int count, float* out) {
+                            oiio->lookup_batch(OiioPeer::to_batch(first, count), count, out);
+                        });
             }
         }
 
@@ -149,29 +189,39 @@ int run_texture_bench(const TextureBenchOptions& opt) {
             const double ours_rmse = rmse(got, truth);
             for (std::size_t k = 0; k < opt.thread_counts.size(); ++k) {
                 note(std::string(f.name) + ", " + regime.name);
-                // Two rounds, best kept: a rate disturbed by what ran just before is re-measured.
-                double rate = 0;
-                for (int round = 0; round < 2; ++round)
-                    rate = std::max(rate, measure_rate(lookups.size(), opt.thread_counts[k],
-                                                       [&](int, std::size_t b, std::size_t e) {
-                                                           float out[4], sink = 0;
-                                                           for (std::size_t i = b; i < e; ++i) {
-                                                               texture_lookup(pyramid, lookups[i],
-                                                                              lo, out);
-                                                               sink += out[0];
-                                                           }
-                                                           volatile float keep = sink;
-                                                           (void)keep;
-                                                       }));
+                const double rate = lookup_rate(lookups, opt.thread_counts[k], opt.rounds,
+                                                [&](const TextureCoords& c, float* out) {
+                                                    texture_lookup(pyramid, c, lo, out);
+                                                });
                 cases.push_back({f.name, regime.name, opt.thread_counts[k], rate, oiio_rate[k],
                                  ours_rmse, oiio_rmse});
+            }
+            if (!batched(f.filter)) continue;
+            // The batched APIs, both given kBatch lookups per call. Ours must return exactly the
+            // single calls' results.
+            std::vector<float> batch_got(subset * 3);
+            texture_lookup_batch(pyramid, std::span(lookups.data(), subset), lo, batch_got.data());
+            if (batch_got != got)
+                throw std::runtime_error(std::string(f.name) +
+                                         ": texture_lookup_batch differs from single lookups");
+            const std::string batch_filter = std::string(f.name) + "-batch";
+            for (std::size_t k = 0; k < opt.thread_counts.size(); ++k) {
+                note(batch_filter + ", " + regime.name);
+                const double rate =
+                    batch_rate(lookups, opt.thread_counts[k], opt.rounds, kBatch,
+                               [&](const TextureCoords* first, int count, float* out) {
+                                   texture_lookup_batch(
+                                       pyramid, std::span(first, std::size_t(count)), lo, out);
+                               });
+                cases.push_back({batch_filter, regime.name, opt.thread_counts[k], rate,
+                                 oiio_batch_rate[k], ours_rmse, oiio_rmse});
             }
         }
     }
 
     std::printf("texture %d² float RGB; pyramid build %.3f s; RMSE on %zu lookups per regime\n",
                 opt.texture_size, build_seconds, opt.error_subset);
-    print_peer_cases(cases, 10);
+    print_peer_cases(cases, 15);
 
     if (!opt.json_path.empty()) {
         nlohmann::json j;
