@@ -132,6 +132,58 @@ struct PeerCase {
     }
 };
 
+// A speed target of a peer benchmark — ours at least `factor` × OpenImageIO's lookups/s on one
+// thread — for one filter and regime. Each side is timed through its single-lookup call and, where
+// the case "<filter>-batch" exists, through its batched call on the same lookups: the target
+// compares each side's faster API (OpenImageIO's batched calls are no faster than its single
+// ones), and the single calls' own ratio is kept beside it.
+struct SpeedTarget {
+    const PeerCase* single;
+    const PeerCase* batch;  // null: no batched case
+
+    double ours_rate() const {
+        return batch ? std::max(single->ours_rate, batch->ours_rate) : single->ours_rate;
+    }
+    double oiio_rate() const {
+        return batch ? std::max(single->oiio_rate, batch->oiio_rate) : single->oiio_rate;
+    }
+    double ratio() const { return ours_rate() / oiio_rate(); }
+    double single_call_ratio() const { return single->ours_rate / single->oiio_rate; }
+    // Which of our calls the ratio is of.
+    const char* ours_api() const {
+        return batch && batch->ours_rate > single->ours_rate ? "batched" : "single calls";
+    }
+
+    // Prints "  <filter> <regime> speed R× met|NOT met (ours <api>; single calls alone R×)", no
+    // newline, and returns its JSON: filter, regime, speed_ratio, speed_met, ours_api,
+    // single_call_speed_ratio.
+    nlohmann::json report(double factor, int filter_width) const {
+        const bool met = ratio() >= factor;
+        std::printf("  %-*s %-9s speed %6.2f× %-7s (ours %s; single calls alone %.2f×)",
+                    filter_width, single->filter.c_str(), single->regime.c_str(), ratio(),
+                    met ? "met" : "NOT met", ours_api(), single_call_ratio());
+        return {{"filter", single->filter}, {"regime", single->regime},
+                {"speed_ratio", ratio()},   {"speed_met", met},
+                {"ours_api", ours_api()},   {"single_call_speed_ratio", single_call_ratio()}};
+    }
+};
+
+// The speed targets of `filters` in every regime measured on one thread.
+inline std::vector<SpeedTarget> speed_targets(const std::vector<PeerCase>& cases,
+                                              const std::vector<std::string>& filters) {
+    std::vector<SpeedTarget> targets;
+    for (const PeerCase& c : cases) {
+        if (c.threads != 1 || std::find(filters.begin(), filters.end(), c.filter) == filters.end())
+            continue;
+        SpeedTarget t{&c, nullptr};
+        for (const PeerCase& b : cases)
+            if (b.threads == 1 && b.regime == c.regime && b.filter == c.filter + "-batch")
+                t.batch = &b;
+        targets.push_back(t);
+    }
+    return targets;
+}
+
 // The terminal table of a peer benchmark's cases (the filter column `filter_width` wide).
 inline void print_peer_cases(const std::vector<PeerCase>& cases, int filter_width) {
     std::printf("%-*s %-9s %7s %12s %12s %8s %11s %11s\n", filter_width, "filter", "regime",

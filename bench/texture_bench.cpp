@@ -223,6 +223,22 @@ int run_texture_bench(const TextureBenchOptions& opt) {
                 opt.texture_size, build_seconds, opt.error_subset);
     print_peer_cases(cases, 15);
 
+    // The targets of footprint assembly: ≥ 5× OpenImageIO's single-thread rate, RMSE no worse.
+    nlohmann::json targets = nlohmann::json::array();
+    if (oiio) {
+        std::printf(
+            "targets (1 thread: ours ≥ 5× OIIO, each side's faster API; RMSE no worse than "
+            "OIIO's):\n");
+        for (const SpeedTarget& t : speed_targets(cases, {"fa"})) {
+            nlohmann::json j = t.report(5, 2);
+            const bool error_met = t.single->ours_rmse <= t.single->oiio_rmse;
+            std::printf("  RMSE %.5f vs %.5f %s\n", t.single->ours_rmse, t.single->oiio_rmse,
+                        error_met ? "met" : "NOT met");
+            j["rmse_met"] = error_met;
+            targets.push_back(j);
+        }
+    }
+
     if (!opt.json_path.empty()) {
         nlohmann::json j;
         j["benchmark"] = "texture";
@@ -233,6 +249,7 @@ int run_texture_bench(const TextureBenchOptions& opt) {
         j["oiio_version"] = OIIO_VERSION_STRING;
         j["hardware_threads"] = std::thread::hardware_concurrency();
         for (const Case& c : cases) j["cases"].push_back(c.to_json());
+        j["targets"] = targets;
         write_json(opt.json_path, j);
     }
     return 0;
