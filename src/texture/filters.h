@@ -34,10 +34,10 @@ Requested request_footprint_assembly(const MipPyramid& pyramid, float s, float t
                                      float* out, RequestedProbe& probe,
                                      RequestedLine<kRequestedLineProbes>& line);
 
-// The lookups of a batch's group, requested now and read later: at most Capacity probes and
-// Capacity lines, each with where its result goes. A caller routes each lookup with next_probe()
-// and next_line() as the places to request into, add()s what the routing did, and read()s the
-// group once all are routed (then the requests are spent).
+// The lookups of a batch's group, requested now and read later, each with where its result goes:
+// at most Capacity lookups between two read()s. A caller routes each lookup with next_probe() and
+// next_line() as the places to request into, add()s what the routing did, and read()s the group
+// once all are routed (then the requests are spent).
 template <std::size_t Capacity>
 class RequestedReads {
   public:
@@ -51,7 +51,7 @@ class RequestedReads {
         if (requested == Requested::line) lines_[line_count_++].out = out;
     }
 
-    // Reads every request into its result (`channels` floats of texels `stride` floats apart).
+    // Reads every request into its result: `channels` floats of texels `stride` floats wide.
     void read(int stride, int channels) {
         dispatch_stride(stride, [&]<int S>() {
             for (std::size_t i = 0; i < probe_count_; ++i)
