@@ -90,6 +90,9 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 256));
     envc->add_option("--regimes", env.regimes, "regimes: tiny moderate aniso32 pole_band")
         ->check(CLI::IsMember({"tiny", "moderate", "aniso32", "pole_band"}));
+    envc->add_flag("--footprints", env.footprints,
+                   "also time lookups of precomputed footprints (form (b)'s entry points), "
+                   "single and batched");
     envc->add_flag("!--no-oiio", env.with_oiio, "skip the OpenImageIO peer");
     envc->add_flag("--quiet", env.quiet, "no progress output");
 

@@ -137,6 +137,40 @@ using Case = PeerCase;
 constexpr int kBatch = OIIO::Tex::BatchWidth;
 static_assert(kBatch <= 64);
 
+// The "<filter>-footprint" and "<filter>-footprint-batch" cases (EnvBenchOptions::footprints):
+// lookups of the footprints of `lookups` computed before the timing, one call per footprint and in
+// batches of kBatch footprints. Both must return `expected` (the form (a) lookups' results) on
+// its subset.
+void time_footprint_lookups(const EnvironmentMap& map, const std::string& filter,
+                            const std::string& regime, const std::vector<EnvLookup>& lookups,
+                            const std::vector<float>& expected, const EnvBenchOptions& opt,
+                            const LookupOptions& lo, double ours_rmse, std::vector<Case>& cases) {
+    std::vector<EnvFootprint> footprints(lookups.size());
+    for (std::size_t i = 0; i < lookups.size(); ++i)
+        footprints[i] = compute_env_footprint(map.layout(), map.texel_scale(), lookups[i].direction,
+                                              lookups[i].d_dx, lookups[i].d_dy);
+    const std::size_t subset = expected.size() / 3;
+    std::vector<float> single(subset * 3), batched(subset * 3);
+    for (std::size_t i = 0; i < subset; ++i)
+        environment_lookup(map, footprints[i], lo, &single[i * 3]);
+    environment_lookup_batch(map, std::span(footprints.data(), subset), lo, batched.data());
+    if (single != expected || batched != expected)
+        throw std::runtime_error(filter + ": lookups of computed footprints differ from form (a)");
+    for (int threads : opt.thread_counts) {
+        const double single_rate = lookup_rate(
+            footprints, threads, opt.rounds,
+            [&](const EnvFootprint& f, float* out) { environment_lookup(map, f, lo, out); });
+        const double batch_rate_ = batch_rate(
+            footprints, threads, opt.rounds, kBatch,
+            [&](const EnvFootprint* first, int count, float* out) {
+                environment_lookup_batch(map, std::span(first, std::size_t(count)), lo, out);
+            });
+        cases.push_back({filter + "-footprint", regime, threads, single_rate, NAN, ours_rmse, NAN});
+        cases.push_back(
+            {filter + "-footprint-batch", regime, threads, batch_rate_, NAN, ours_rmse, NAN});
+    }
+}
+
 }  // namespace
 
 int run_env_bench(const EnvBenchOptions& opt) {
@@ -274,6 +308,9 @@ int run_env_bench(const EnvBenchOptions& opt) {
                 cases.push_back({batch_filter, regime.name, opt.thread_counts[k], rate,
                                  oiio_batch_rate[k], ours_rmse, oiio_rmse});
             }
+            if (opt.footprints)
+                time_footprint_lookups(*layout.map, layout.filter, regime.name, lookups, got, opt,
+                                       lo, ours_rmse, cases);
         }
     }
 
@@ -289,7 +326,7 @@ int run_env_bench(const EnvBenchOptions& opt) {
             "OpenImageIO direction R = (-x, y, -z): point-lookup RMSE %.2g vs ours (unmapped R: "
             "%.2g)\n",
             convention.mapped_rmse, convention.unmapped_rmse);
-    print_peer_cases(cases, 17);
+    print_peer_cases(cases, opt.footprints ? 26 : 17);
 
     // The targets: ≥ 5× OpenImageIO's single-thread rate in every regime; in pole_band an RMSE of
     // at most ¼ of OpenImageIO's.

@@ -32,6 +32,10 @@ struct EnvBenchOptions {
     std::size_t error_subset = 1500;
     std::vector<int> thread_counts = {1, 2};
     std::vector<std::string> regimes;  // empty: all (tiny moderate aniso32 pole_band)
+    // Also time environment_lookup() and environment_lookup_batch() of footprints computed before
+    // the timing (compute_env_footprint() of the same rays): rows "<layout>-footprint" and
+    // "<layout>-footprint-batch", without a peer (OpenImageIO takes no footprint).
+    bool footprints = false;
     bool with_oiio = true;
     std::string json_path;                // empty: no JSON
     float isotropic_ratio = 1;            // LookupOptions::isotropic_ratio of our lookups

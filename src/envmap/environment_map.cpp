@@ -549,6 +549,29 @@ enum class Routed { done, centre_probe, deferred_line };
         options, out, probe, defer);
 }
 
+// What a batch does with a routed lookup whose result goes to `result`: a deferred line is added
+// to `reads`, a centre probe's taps are requested into it, a lookup done needs nothing.
+template <std::size_t Capacity>
+[[gnu::always_inline]] inline void add_routed(const EnvironmentMap& map, Routed routed,
+                                              const CentreProbe& probe, int stride, float* result,
+                                              detail::RequestedReads<Capacity>& reads) {
+    switch (routed) {
+        case Routed::done:
+            break;
+        case Routed::deferred_line:
+            reads.add(detail::Requested::line, result);
+            break;
+        case Routed::centre_probe: {
+            const EnvCoords& c = probe.coords;
+            detail::RequestedProbe& requested = reads.next_probe();
+            requested = {detail::probe_taps(map, c.face, c.s, c.t, probe.levels), probe.levels};
+            requested.request(stride);
+            reads.add(detail::Requested::probe, result);
+            break;
+        }
+    }
+}
+
 // A form (a) lookup (the single-call entry points).
 [[gnu::always_inline]] inline void single_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx,
                                                  Vec3 dr_dy, const LookupOptions& options,
@@ -693,22 +716,7 @@ struct FourFootprints {
                 routed = route_lookup(map, ray.direction, ray.d_dx, ray.d_dy, options, to_map,
                                       result, probe, &reads.next_line());
             }
-            switch (routed) {
-                case Routed::done:
-                    break;
-                case Routed::deferred_line:
-                    reads.add(detail::Requested::line, result);
-                    break;
-                case Routed::centre_probe: {
-                    const EnvCoords& c = probe.coords;
-                    detail::RequestedProbe& requested = reads.next_probe();
-                    requested = {detail::probe_taps(map, c.face, c.s, c.t, probe.levels),
-                                 probe.levels};
-                    requested.request(stride);
-                    reads.add(detail::Requested::probe, result);
-                    break;
-                }
-            }
+            add_routed(map, routed, probe, stride, result, reads);
         }
         reads.read(stride, channels);
     }
@@ -741,6 +749,43 @@ void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayD
 void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayDifferential> rays,
                               const LookupOptions& options, float* out, const Mat3& rotation) {
     batch_lookup(map, rays, options, IdentitySkippingRotation(rotation), out);
+}
+
+void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvFootprint> footprints,
+                              const LookupOptions& options, float* out) {
+    // Each footprint routed as the single call routes it, its centre probe, cube line or polar
+    // cap's probe or line read with its group's (as batch_lookup() reads them).
+    constexpr std::size_t kGroup = 16;
+    const int channels = map.channels();
+    const int stride = map.face(0).stride();
+    detail::RequestedReads<kGroup> reads;
+    for (std::size_t first = 0; first < footprints.size(); first += kGroup) {
+        const std::size_t count = std::min(kGroup, footprints.size() - first);
+        for (std::size_t i = 0; i < count; ++i) {
+            // route_lookup()'s steps, with a polar cap's probe or line requested as well.
+            const EnvFootprint& footprint = footprints[first + i];
+            float* result = out + (first + i) * channels;
+            CentreProbe probe;
+            if (const float lod = centre_probe_lod(map, footprint, options); lod >= 0.0f) {
+                probe = centre_probe(map, footprint.coords, lod, options);
+                add_routed(map, Routed::centre_probe, probe, stride, result, reads);
+                continue;
+            }
+            const PolarCapFootprint cap = cap_footprint(map, footprint);
+            if (cap.valid) {  // polar_cap_filter(), requested
+                reads.add(polar_cap_request(
+                              cap, single_probe_lod(cap.matrix, options, cap.cap->max_level()),
+                              options, result, reads.next_probe(), reads.next_line()),
+                          result);
+                continue;
+            }
+            const bool deferred =
+                general_lookup(map, footprint, cap, options, result, &reads.next_line());
+            add_routed(map, deferred ? Routed::deferred_line : Routed::done, probe, stride, result,
+                       reads);
+        }
+        reads.read(stride, channels);
+    }
 }
 
 void environment_bilinear(const EnvironmentMap& map, Vec3 r, int level, float* out) {

@@ -118,6 +118,14 @@ void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayD
 void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayDifferential> rays,
                               const LookupOptions& options, float* out, const Mat3& rotation);
 
+// environment_lookup() of many computed footprints (form (b), Schilling's, or any
+// compute_env_footprint() result) at once: bit-identical results, faster where the footprints are
+// scattered over the map. In each group of 16, the lookups that are one probe or a short line on
+// one cube face have their texels requested and are filtered after the group's last footprint is
+// routed. `out` receives footprints.size()·channels() floats, footprint by footprint.
+void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvFootprint> footprints,
+                              const LookupOptions& options, float* out);
+
 // A point sample: bilinear interpolation of level `level` at the direction r (any nonzero
 // length), seamless across cube-face edges and the lat-long seam. The building block of the
 // brute-force reference (env_reference.h).
