@@ -754,21 +754,32 @@ void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayD
 void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvFootprint> footprints,
                               const LookupOptions& options, float* out) {
     // Each footprint routed as the single call routes it, its centre probe, cube line or polar
-    // cap's probe or line read with its group's (as batch_lookup() reads them).
+    // cap's probe or line read with its group's (as batch_lookup() reads them). On a cube or
+    // lat-long map the lines off the polar caps are set aside and planned four at a time
+    // (short_plans4(), each lane plan_probes()' plan bit for bit), as batch_lookup() plans them.
     constexpr std::size_t kGroup = 16;
     const int channels = map.channels();
     const int stride = map.face(0).stride();
+    const FourFootprints::Setting setting(map, options);
+    const bool plan_four_at_once = setting.four_at_once && setting.rule_b;
     detail::RequestedReads<kGroup> reads;
+    std::size_t lines[kGroup];  // the group's footprints set aside to be planned four at a time
     for (std::size_t first = 0; first < footprints.size(); first += kGroup) {
         const std::size_t count = std::min(kGroup, footprints.size() - first);
-        for (std::size_t i = 0; i < count; ++i) {
+        std::size_t line_count = 0;
+        for (std::size_t i = first; i < first + count; ++i) {
             // route_lookup()'s steps, with a polar cap's probe or line requested as well.
-            const EnvFootprint& footprint = footprints[first + i];
-            float* result = out + (first + i) * channels;
+            const EnvFootprint& footprint = footprints[i];
+            float* result = out + i * channels;
             CentreProbe probe;
             if (const float lod = centre_probe_lod(map, footprint, options); lod >= 0.0f) {
                 probe = centre_probe(map, footprint.coords, lod, options);
                 add_routed(map, Routed::centre_probe, probe, stride, result, reads);
+                continue;
+            }
+            if (plan_four_at_once && footprint.matrix.is_finite() &&
+                !in_caps_region(map, footprint.map_direction)) {
+                lines[line_count++] = i;  // general_lookup() without a cap, below
                 continue;
             }
             const PolarCapFootprint cap = cap_footprint(map, footprint);
@@ -783,6 +794,31 @@ void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvFoot
                 general_lookup(map, footprint, cap, options, result, &reads.next_line());
             add_routed(map, deferred ? Routed::deferred_line : Routed::done, probe, stride, result,
                        reads);
+        }
+        // The lines set aside (cap_footprint() invalid off the caps): general_lookup()'s plan,
+        // four at a time where short_plans4() takes it.
+        for (std::size_t k = 0; k < line_count; k += 4) {
+            float xx[4], xy[4], yy[4];  // the last lanes padded with the last line
+            for (std::size_t j = 0; j < 4; ++j) {
+                const Sym2& m = footprints[lines[std::min(k + j, line_count - 1)]].matrix;
+                xx[j] = m.xx, xy[j] = m.xy, yy[j] = m.yy;
+            }
+            ShortPlans4 plans;
+            short_plans4(Float4::load(xx), Float4::load(xy), Float4::load(yy), options.probe_rule,
+                         options.max_probes, setting.max_level, options.lod_bias,
+                         options.isotropic_ratio, plans);
+            for (std::size_t j = 0; j < 4 && k + j < line_count; ++j) {
+                const std::size_t i = lines[k + j];
+                float* result = out + i * channels;
+                const bool deferred =
+                    plans.planned >> j & 1
+                        ? lookup_plan(map, footprints[i], plans.plan(static_cast<int>(j)), options,
+                                      result, &reads.next_line())
+                        : general_lookup(map, footprints[i], PolarCapFootprint{}, options, result,
+                                         &reads.next_line());
+                add_routed(map, deferred ? Routed::deferred_line : Routed::done, CentreProbe{},
+                           stride, result, reads);
+            }
         }
         reads.read(stride, channels);
     }
