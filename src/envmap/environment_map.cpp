@@ -771,10 +771,10 @@ void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvFoot
             // route_lookup()'s steps, with a polar cap's probe or line requested as well.
             const EnvFootprint& footprint = footprints[i];
             float* result = out + i * channels;
-            CentreProbe probe;
             if (const float lod = centre_probe_lod(map, footprint, options); lod >= 0.0f) {
-                probe = centre_probe(map, footprint.coords, lod, options);
-                add_routed(map, Routed::centre_probe, probe, stride, result, reads);
+                add_routed(map, Routed::centre_probe,
+                           centre_probe(map, footprint.coords, lod, options), stride, result,
+                           reads);
                 continue;
             }
             if (plan_four_at_once && footprint.matrix.is_finite() &&
@@ -790,10 +790,8 @@ void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvFoot
                           result);
                 continue;
             }
-            const bool deferred =
-                general_lookup(map, footprint, cap, options, result, &reads.next_line());
-            add_routed(map, deferred ? Routed::deferred_line : Routed::done, probe, stride, result,
-                       reads);
+            if (general_lookup(map, footprint, cap, options, result, &reads.next_line()))
+                reads.add(detail::Requested::line, result);
         }
         // The lines set aside (cap_footprint() invalid off the caps): general_lookup()'s plan,
         // four at a time where short_plans4() takes it.
@@ -816,8 +814,7 @@ void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvFoot
                                       result, &reads.next_line())
                         : general_lookup(map, footprints[i], PolarCapFootprint{}, options, result,
                                          &reads.next_line());
-                add_routed(map, deferred ? Routed::deferred_line : Routed::done, CentreProbe{},
-                           stride, result, reads);
+                if (deferred) reads.add(detail::Requested::line, result);
             }
         }
         reads.read(stride, channels);
