@@ -2,7 +2,8 @@
 // and their inverses (spec §3: cube §3.1, sphere §3.2, dual paraboloid §3.3, lat-long §3.4).
 //
 // Every layout maps a direction r (any nonzero length: P is homogeneous of degree 0) to a face and
-// normalised coordinates (s, t), t = 0 the top row of the face image (spec §1, README), and back.
+// normalised coordinates (s, t), t = 0 the top row of the face image (spec §1, docs/method.md),
+// and back.
 // The Jacobian (2×3, rows ∂s/∂r and ∂t/∂r) satisfies
 //     J_P(r) r = 0          (a lookup depends on the direction only, [P4])
 //     J_P(λr) = J_P(r)/λ    (λ > 0; P is homogeneous of degree 0, so J_P is of degree −1)

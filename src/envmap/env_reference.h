@@ -39,8 +39,8 @@
 // ½-texel step over the reconstruction's kinks at texel edges (it falls as step²).
 //
 // Cost: (nodes per axis)² bilinear taps — about (2·3.5·2σ_texels)² for a footprint of σ texels,
-// 10⁴ for σ = 4 texels, 10⁶ at the cap: milliseconds to ~100 ms per lookup. For tests, benchmark
-// error figures and reference renders; thread-safe (reads the map only).
+// 10⁴ for σ = 4 texels, 10⁶ at the cap: orders of magnitude more than a filtered lookup. For
+// tests, benchmark error figures and reference renders; thread-safe (reads the map only).
 #pragma once
 
 #include "envmap/environment_map.h"

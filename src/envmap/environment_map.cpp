@@ -330,9 +330,9 @@ struct FacePositions {
 // A cube line of probes whose ends' taps lie on the centre face's levels (detail::line_inside()):
 // all its probes' taps lie there too (a face is convex), at the positions place_probe() is given,
 // so they are read without placing each on its face. False, with nothing written, for any other
-// line. Out of line, so that general_lookup()'s other loops compile as they did without it, and
-// given the plan and centre by value, so that its loop keeps them in registers (4 % fewer
-// instructions on cube aniso32 than by reference).
+// line. Out of line, so that its body does not change how general_lookup()'s other loops compile,
+// and given the plan and centre by value, so that its loop keeps them in registers instead of
+// reloading them through references.
 [[gnu::noinline, gnu::flatten]] bool cube_line_on_face(const MipPyramid& face, const EnvCoords c,
                                                        const ProbePlan plan, const float* weights,
                                                        detail::TrilinearLevels levels, float* out) {
@@ -380,9 +380,8 @@ bool lookup_plan(const EnvironmentMap& map, const FootprintCentre& footprint, co
 // Every other lookup (a line of probes, another filter), given the footprint's cap_footprint(),
 // done into out; or, given `defer` (the batch), a cube line on its face requested into it for a
 // later read: then true. Flattened: everything it calls that can be inlined is, so that its probe
-// loop compiles the same however much else this file inlines (GCC's unit-growth limit had pushed
-// the probe taps out of line once the rotation-free entry points were added: 11 % more
-// instructions per aniso32 lookup).
+// loop compiles the same however much else this file inlines (otherwise GCC's unit-growth limit
+// can push the probe taps out of line as the file grows).
 [[gnu::flatten]] bool general_lookup(const EnvironmentMap& map, const FootprintCentre& footprint,
                                      const PolarCapFootprint& cap, const LookupOptions& options,
                                      float* out, DeferredCubeLine* defer) {
@@ -442,8 +441,7 @@ bool lookup_plan(const EnvironmentMap& map, const FootprintCentre& footprint, co
     const detail::TrilinearLevels levels =
         detail::trilinear_levels(plan.lod, centre.max_level(), blend);
     if (map.layout() == EnvLayout::cube) {
-        // (The count is tested here too, so that longer lines skip the call: aniso32 −83
-        // instructions batched.)
+        // (The count is tested here too, so that longer lines skip the call.)
         if (defer && plan.count <= kDeferredProbes &&
             request_cube_line_on_face(centre, c, plan, weights, levels, *defer))
             return true;

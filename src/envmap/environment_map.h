@@ -56,8 +56,9 @@ namespace footprint {
 struct LatLongOptions {
     bool polar_caps = true;  // false: the spec's §3.4 behaviour at the poles, no extra memory
     // Cap texels per radian at the pole, relative to the map's H/π: 1.5 keeps the caps' own box
-    // prefilter well below a lat-long texel (+90 % memory; 1.0: +40 %, measured 0.003–0.004 worse
-    // in RMSE on footprint-bench env's pole_band).
+    // prefilter well below a lat-long texel, so that it adds little blur to the footprint's. The
+    // two caps of (1.5·2H/π)² texels each add about 0.9 times the map's own 2H² texels (1.0: 0.4
+    // times); docs/performance.md has both resolutions' pole_band errors.
     float polar_cap_resolution = 1.5f;
 };
 
