@@ -21,8 +21,8 @@ float probe_lod(float texel_size, float lod_bias, int max_level) {
 
 // a/√v_N for N Gaussian-weighted probes (footprint_assembly.h): Δ = σ_g ·
 // gaussian_spacing_factor(N). v_N is the variance, in u units, of the weights exp(−½u²) on N even
-// nodes over [−κ, κ]. Tabulated on first use (about 6 ms: not paid by programs that never plan a
-// Gaussian line), since a plan may look several up.
+// nodes over [−κ, κ]. Tabulated on first use (so that programs that never plan a Gaussian line
+// do not pay for it), since a plan may look several up.
 float gaussian_spacing_factor(int n) {
     constexpr int kTableSize = kMaxProbeCount + 1;  // every count a plan may hold
     static const std::array<float, kTableSize> table = [] {
@@ -44,7 +44,7 @@ float gaussian_spacing_factor(int n) {
 
 // The Gaussian fall-off a = 2κ_g/(N − 1) that plan_probes() gives a line of N probes, and the
 // ratio q = e^{−a²/8} that probe_weights() builds its weights from, for every count a plan may
-// hold: tabulated once, so that a line's weights take no exp (a tenth of a short line's own work).
+// hold: tabulated once, so that a short line's weights cost no exp beside its few probes.
 struct GaussianFalloff {
     float falloff, ratio;
 };

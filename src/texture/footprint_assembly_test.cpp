@@ -108,8 +108,8 @@ TEST(FootprintAssembly, ProbeWeightsAreTheGaussianAtEachProbe) {
     // probe_weights() builds exp(−½(a·k)²), k = i − (N−1)/2, by a recurrence from one ratio
     // q = e^{−a²/8}: tabulated for the fall-offs plan_probes() gives (a = 2κ_g/(N − 1)), an exp for
     // any other. Both: within float rounding of the Gaussian (a rounding per power of q), exactly
-    // symmetric, and the
-    // tabulated q is the exp bit for bit (it is the weight at k = ½ of an even line).
+    // symmetric, and the tabulated q is the exp bit for bit (it is the weight at k = ½ of an even
+    // line).
     std::vector<float> w(kMaxProbeCount);
     for (int n = 1; n <= 64; ++n)
         for (const bool planned : {true, false}) {
@@ -176,7 +176,7 @@ double spacing_factor_by_definition(int n) {
 TEST(FootprintAssembly, GaussianPlansTakeTheFewestProbes) {
     // No count from 2 to N − 1 closes the gaps (σ_g·c(n) ≤ T_p). The factor is not monotonic,
     // c(3) = 2.17 > c(2) = 2: a search down from above that stopped at the first count too few
-    // took four probes where two do, for 1.36 < λ1/T_p ≤ √2.
+    // would take four probes where two do, for 1.36 < λ1/T_p ≤ √2.
     int lines = 0;
     for (float l1 = 2.01f; l1 < 80; l1 *= 1.01f) {
         const FootprintEllipse e = make_footprint_ellipse(l1, 2.0f, 0.4f);

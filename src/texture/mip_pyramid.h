@@ -23,7 +23,7 @@
 // row-major, texels row-major inside a tile, channels interleaved and padded to a stride of
 // 1, 2, 4 or 8 floats (RGB is stored as RGBA-aligned 16-byte texels). tile_log2 = 0 is the plain
 // row-major layout. All levels live in one allocation, level-major. The default was chosen by
-// `footprint-bench layout` (see README "Performance").
+// `footprint-bench pyramid`, which times lookups in each layout (docs/performance.md).
 #pragma once
 
 #include <cstddef>
@@ -67,7 +67,7 @@ class MipPyramid {
 
     // Builds every level from a level-0 image of any size ≥ 1×1 with 1..kMaxChannels channels
     // (asserts on an empty image or a bad channel count: validate user images before).
-    // Runs on oneTBB's task arena; a 4096² RGBA float pyramid takes well under a second on 2 cores.
+    // Runs on oneTBB's task arena (`footprint-bench pyramid` times it).
     static MipPyramid build(const Image& level0, const MipPyramidOptions& options = {});
 
     // A pyramid from ready-made levels (a MIP chain from a file, or a test's coloured levels).

@@ -39,8 +39,8 @@ inline void add_scaled(Texel<S>& acc, float w, const Texel<S>& t) {
 
 // Asks for the cache line holding p (no load; any address is fine). Not __builtin_prefetch alone:
 // GCC (12) counts a prefetch as free of side effects, so its IPA marks a function that only
-// prefetches as pure and deletes every call to it — footprint assembly's prefetch loop compiled to
-// nothing. An asm volatile cannot be deleted.
+// prefetches as pure and deletes every call to it, and a prefetch loop compiles to nothing. An asm
+// volatile cannot be deleted.
 inline void prefetch(const void* p) {
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
     asm volatile("prefetcht0 %0" : : "m"(*static_cast<const char*>(p)));

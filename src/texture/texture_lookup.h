@@ -58,11 +58,10 @@ enum class LodBlend {
     linear,  // GL: weight w = frac(lod); kernel variance 4^L(1+3w)/4, up to 12 % wide in σ
     variance_matched,  // w' = (4^w − 1)/3 makes the blended variance 4^{L+w}/4 exactly (spec §2.8)
     // footprint assembly's default: linear for a single probe, variance_matched for several.
-    // Measured by footprint-bench texture against the Gaussian ground truth: a lone trilinear probe
-    // is a box-prefiltered tent whose side lobes alias, and linear's extra blur hides that
-    // (moderate: RMSE 0.031 vs 0.036); a line of probes keeps the minor axis at T_p only with the
-    // remap (aniso32: RMSE 0.0077 vs 0.0082). Either way the kernel covariance stays within [FAT]'s
-    // 12 % of K/4.
+    // A lone trilinear probe is a box-prefiltered tent whose side lobes alias, and linear's extra
+    // blur hides that; a line of probes keeps the minor axis at T_p only with the remap (both seen
+    // in footprint-bench texture's errors against the Gaussian ground truth, docs/performance.md).
+    // Either way the kernel covariance stays within [FAT]'s 12 % of K/4.
     automatic,
 };
 
@@ -78,7 +77,7 @@ struct LookupOptions {
     // up to √ratio (11 % at 1.25, about the linear lod blend's own error), and the near-isotropic
     // footprints of cube faces and polar caps cost one probe instead of two or three. The default,
     // 1, is Rule B exactly (spec §2.8); what 1.25 gains and costs: footprint-bench env
-    // --isotropic-ratio 1.25 (README).
+    // --isotropic-ratio 1.25 (docs/performance.md).
     float isotropic_ratio = 1.0f;
 };
 
