@@ -92,7 +92,7 @@ TEST(BumpPyramid, EveryLevelHoldsTheCovarianceOfItsFinestTexels) {
 }
 
 // A map large enough that a sum of its slopes is far from their mean: the offset must be the
-// mean (an earlier version stored the sum, and K lost its digits to M2 − μμᵀ in float).
+// mean (with the sum as the offset, K would lose its digits to M2 − μμᵀ in float).
 TEST(BumpPyramid, TheOffsetIsTheMeanSlopeAndLargeMapsKeepTheirCovariance) {
     const int w = 512, h = 256;
     const Image slopes = random_slopes(w, h, 3);

@@ -3,11 +3,13 @@
 //
 // Every operation is, lane by lane, exactly the scalar operation it stands for, so that a lane's
 // result is the scalar code's bit for bit:
-//   +, −, ×, ÷, √          IEEE-754 single precision, correctly rounded in both (no FMA
-//   contraction) max_like_std(a, b)     std::max(a, b) = (a < b) ? b : a, NaN and signed-zero cases
-//   included min_like_std(a, b)     std::min(a, b) = (b < a) ? b : a clamp_like_std(v,l,h)
-//   std::clamp(v, l, h) for l ≤ h (a NaN v stays NaN) comparisons            ordered (false when
-//   either side is NaN), as in C++
+// clang-format off
+//   +, −, ×, ÷, √           IEEE-754 single precision, correctly rounded (no FMA contraction)
+//   max_like_std(a, b)      std::max(a, b) = (a < b) ? b : a, NaN and signed-zero cases included
+//   min_like_std(a, b)      std::min(a, b) = (b < a) ? b : a
+//   clamp_like_std(v, l, h) std::clamp(v, l, h) for l ≤ h (a NaN v stays NaN)
+//   comparisons             ordered (false when either side is NaN), as in C++
+// clang-format on
 // Int4 holds the 32-bit integers of the bit tricks (exponents from the IEEE bits). Without SSE2 the
 // same operations run on four scalars.
 #pragma once

@@ -37,8 +37,8 @@ struct Mat3 {
 };
 
 // A rotation applied to several vectors, the identity (no environment rotation: the common case)
-// tested once and then skipped: it saves 60–80 of the 900–1 200 instructions of a single-probe
-// environment lookup (make instructions).
+// tested once and then skipped: a lookup saves the three matrix products of its direction and
+// both differentials.
 class IdentitySkippingRotation {
   public:
     explicit IdentitySkippingRotation(const Mat3& a) : a_(a), identity_(a.is_identity()) {}
