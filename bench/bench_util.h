@@ -120,7 +120,7 @@ struct PeerCase {
     double ours_rate, oiio_rate;  // lookups/s (oiio: NaN when not measured)
     double ours_rmse, oiio_rmse;
 
-    // The JSON shape every peer benchmark writes (README, Performance).
+    // The JSON shape every peer benchmark writes (docs/performance.md).
     nlohmann::json to_json() const {
         return {{"filter", filter},
                 {"regime", regime},

@@ -1,8 +1,8 @@
 // footprint-env-instructions — one batch of environment lookups, for counting instructions.
 //
-// Wall-clock rates on a shared machine drift by ±15 % from run to run (footprint-bench env), too
-// much to see a change of a few per cent. Instructions per lookup, counted by callgrind, are exact
-// and repeatable: bench/env-instructions.sh runs this program under
+// Wall-clock rates on a shared machine (footprint-bench env) drift from run to run by more than
+// the change a small step makes. Instructions per lookup, counted by callgrind, are exact and
+// repeatable: bench/env-instructions.sh runs this program under
 //   valgrind --tool=callgrind --toggle-collect='footprint::bench::run_*'
 // so that only the lookups are counted (not building the map or the lookups), and divides by the
 // lookup count. It prints the mean of the results and a hash of their bits (FNV-1a, 64 bits), which
@@ -35,6 +35,8 @@
 
 namespace footprint::bench {
 
+// Out of line, both: callgrind counts only the calls of footprint::bench::run_* (see above), so
+// they must stay functions of their own, whatever the optimiser would inline.
 [[gnu::noinline]] void run_single(const EnvironmentMap& map, const std::vector<EnvLookup>& lookups,
                                   const LookupOptions& options, float* out) {
     for (std::size_t i = 0; i < lookups.size(); ++i)
