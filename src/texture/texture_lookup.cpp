@@ -257,8 +257,8 @@ void texture_lookup_batch(const MipPyramid& pyramid, std::span<const TextureCoor
     // Lookups are taken kGroup at a time: those that are one probe or a short line have their
     // texels requested, and are read once the whole group is routed, when the texels have arrived
     // (enough lookups in flight to cover a miss to memory, few enough that their texels are still
-    // cached when read: 16 ran 4–36 % faster than 8 or 32 in footprint-bench texture's tiny and
-    // moderate regimes). Every other lookup is done at once.
+    // cached when read; footprint-bench texture chose 16 over 8 and 32, docs/performance.md).
+    // Every other lookup is done at once.
     constexpr std::size_t kGroup = 16;
     const int channels = pyramid.channels();
     detail::RequestedReads<kGroup> reads;
