@@ -7,6 +7,11 @@
 #   make format clang-formats the sources
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
+# ccache, where installed, makes rebuilds in fresh clones and other build folders cheap.
+CCACHE := $(shell command -v ccache 2>/dev/null)
+ifneq ($(CCACHE),)
+    CMAKE_FLAGS += -DCMAKE_CXX_COMPILER_LAUNCHER=$(CCACHE)
+endif
 
 .PHONY: all deps build build-asan demo test test-release test-asan bench instructions format clean
 
