@@ -7,7 +7,9 @@
 #include <fstream>
 #include <random>
 #include <string>
+#include <utility>
 
+#include "cli_options.h"
 #include "image/image_io.h"
 #include "texture_demo.h"
 
@@ -34,8 +36,8 @@ class CommandTest : public ::testing::Test {
         fs::remove_all(dir_, ignored);
     }
     // Runs the plane command with stderr captured; returns the exit status.
-    int plane(PlaneCommandOptions options, std::string* err = nullptr) {
-        options.quiet = true;
+    int plane(PlaneCommandOptions options, std::string* err = nullptr, bool quiet = true) {
+        options.quiet = quiet;
         ::testing::internal::CaptureStderr();
         const int status = run_plane_command(options);
         const std::string text = ::testing::internal::GetCapturedStderr();
@@ -115,6 +117,64 @@ TEST_F(CommandTest, UnknownFilterListsTheValidOnes) {
     EXPECT_NE(err.find("anisotropic"), std::string::npos) << err;
     EXPECT_NE(err.find("nearest, bilinear, trilinear, fa, ewa, sat"), std::string::npos) << err;
     EXPECT_TRUE(only_texture_left());
+}
+
+TEST_F(CommandTest, UnknownFiltersAreAnsweredFromTheVocabulary) {
+    const std::string accepted =
+        "footprint plane accepts nearest, bilinear, trilinear, fa, ewa, sat\n";
+    const std::pair<const char*, std::string> cases[] = {
+        {"point",
+         "footprint: --filter: unknown filter 'point' (did you mean 'bilinear'?); " + accepted},
+        {"footprint_assembly",
+         "footprint: --filter: unknown filter 'footprint_assembly' (did you mean 'fa'?); " +
+             accepted},
+        {"trilnear",
+         "footprint: --filter: unknown filter 'trilnear' (did you mean 'trilinear'?); " + accepted},
+        {"fa-rough",
+         "footprint: --filter: footprint plane has no filter 'fa-rough'; it accepts "
+         "nearest, bilinear, trilinear, fa, ewa, sat\n"},
+        {"reference",
+         "footprint: --filter: footprint plane has no filter 'reference'; it accepts "
+         "nearest, bilinear, trilinear, fa, ewa, sat\n"},
+    };
+    for (const auto& [filter, message] : cases) {
+        PlaneCommandOptions options;
+        options.texture = texture_;
+        options.output = dir_ / "out.png";
+        options.filter = filter;
+        std::string err;
+        EXPECT_EQ(plane(options, &err), 1) << filter;
+        EXPECT_EQ(err, message);
+    }
+    EXPECT_TRUE(only_texture_left());
+}
+
+// The names the two kinds of command share mean the same filter: render's bilinear, trilinear and
+// fa are the texture filters of those names.
+TEST(FilterVocabulary, SharedNamesAreTheSameFilter) {
+    EXPECT_EQ(render_filter_names(", "), "bilinear, trilinear, fa, fa-rough, ewa-rough, reference");
+    EXPECT_EQ(plane_filter_names("|"), "nearest|bilinear|trilinear|fa|ewa|sat");
+    for (TextureFilter filter : plane_filters()) {
+        const Result<FilterMode> mode = parse_render_filter(to_string(filter));
+        if (!mode) continue;
+        EXPECT_STREQ(filter_mode_name(*mode), to_string(filter));
+    }
+    EXPECT_EQ(parse_render_filter("bilinear").value(), FilterMode::bilinear);
+    EXPECT_EQ(parse_plane_filter("bilinear").value(), TextureFilter::bilinear);
+}
+
+TEST_F(CommandTest, PlaneReportsWhatItWrote) {
+    PlaneCommandOptions options;
+    options.texture = texture_;
+    options.output = dir_ / "plane.png";
+    options.width = 32;
+    options.filter = "sat";
+    std::string err;
+    ASSERT_EQ(plane(options, &err, false), 0);
+    const std::string expected = "footprint: wrote " + options.output.string() + " (32x18, sat, ";
+    EXPECT_EQ(err.rfind(expected, 0), 0u) << err;
+    EXPECT_EQ(err.substr(err.size() - 4), " s)\n") << err;
+    EXPECT_TRUE(one_line(err)) << err;
 }
 
 TEST_F(CommandTest, BadOptionValuesFail) {

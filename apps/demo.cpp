@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_options.h"
 #include "command_util.h"
 #include "demo_scenes.h"
 #include "image/image_io.h"
@@ -22,7 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr FilterMode kDemoModes[] = {FilterMode::point, FilterMode::trilinear, FilterMode::fa,
+constexpr FilterMode kDemoModes[] = {FilterMode::bilinear, FilterMode::trilinear, FilterMode::fa,
                                      FilterMode::fa_rough, FilterMode::ewa_rough};
 
 struct Rendered {
@@ -47,6 +48,8 @@ int run_demo_command(const DemoCommandOptions& options) {
         return fail("--spp " + std::to_string(options.reference_spp) +
                     " is out of range (1 to 65536)");
     }
+    if (auto problem = range_problem("--threads", options.threads, 0, 1024, "0: all cores"))
+        return fail(*problem);
     const std::vector<std::string>& names =
         options.scenes.empty() ? demo_scene_names() : options.scenes;
     DemoSceneOptions scene_options;

@@ -2,7 +2,7 @@
 // filter mode and a ground-truth reference. What `make demo` runs.
 //
 // Writes into out_dir (created if missing), for each scene:
-//   <scene>/reference.png, <scene>/<mode>.png for point trilinear fa fa-rough ewa-rough
+//   <scene>/reference.png, <scene>/<mode>.png for bilinear trilinear fa fa-rough ewa-rough
 //   <scene>/contact_sheet.png   reference first, then the modes in that order, 3 columns
 // and demo.json: per scene its title and assets, per mode the RMSE against the reference (linear
 // light, all pixels), seconds and lookups. Prints a table to stdout; progress bars on stderr when

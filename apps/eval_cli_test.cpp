@@ -2,8 +2,10 @@
 // rows, the reference cache keyed by scene content, and the report shown in headless Chromium.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <random>
 #include <string>
 
@@ -11,6 +13,10 @@
 
 #include "eval_command.h"
 #include "eval_report.h"
+#include "image/image_io.h"
+#include "render/render_scene.h"
+#include "render/renderer.h"
+#include "scene/scene_file.h"
 
 namespace footprint {
 namespace {
@@ -119,6 +125,105 @@ TEST_F(EvalCommandTest, BadArgumentsNameTheProblem) {
     o.frames = 1;
     EXPECT_EQ(run(o, &err), 1);
     EXPECT_NE(err.find("--frames"), std::string::npos) << err;
+}
+
+// A textured floor to the horizon (fine checks alias) under a sphere: pixels whose samples vary.
+fs::path write_checker_scene(const fs::path& dir) {
+    Image checker(64, 64, 3);
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+            for (int c = 0; c < 3; ++c) checker.at(x, y, c) = ((x + y) % 2) ? 0.9f : 0.05f;
+    EXPECT_TRUE(save_image(checker, dir / "checker.png").ok());
+    const fs::path scene = dir / "floor.json";
+    std::ofstream(scene) << R"({"image": {"width": 32, "height": 24},
+        "camera": {"position": [0, 1, 4], "look_at": [0, 0.2, 0]},
+        "lights": [{"type": "directional", "direction": [0, -1, -1]}],
+        "objects": [
+          {"shape": "sphere", "center": [0, 0.5, 0], "radius": 0.5, "material": {"specular": 0.5}},
+          {"shape": "plane", "normal": [0, 1, 0], "size": "infinite", "uv_scale": 4,
+           "material": {"base_color": "checker.png"}}]})";
+    return scene;
+}
+
+double rmse(const Image& a, const Image& b) {
+    double sum = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        const double e = double(a.pixels[i]) - double(b.pixels[i]);
+        sum += e * e;
+    }
+    return std::sqrt(sum / static_cast<double>(a.pixels.size()));
+}
+
+// Defect: supersampling rendered with the reference's seed took a prefix of the reference's own
+// samples, so its error came out too small (exactly 0 at the reference's spp). Each render now
+// has its own seed: the error of 8 spp against 16 is that of independent estimates, about √3
+// times the error of the 8-sample prefix (variances σ²(1/8 + 1/16) against σ²(1/8 − 1/16)).
+TEST_F(EvalCommandTest, SupersamplingDoesNotReuseTheReferenceSamples) {
+    const fs::path scene_file = write_checker_scene(dir_);
+    EvalCommandOptions o = small({scene_file.string()});
+    o.frames = 0;
+    o.supersampling_spp = {8};
+    std::string err;
+    ASSERT_EQ(run(o, &err), 0) << err;
+    const nlohmann::json methods = results(o)["scenes"][0]["methods"];
+    const double measured = methods.back()["rmse"].get<double>();
+    ASSERT_EQ(methods.back()["method"], "supersampling 8 spp");
+
+    // The prefix's error, rendered here with one seed for both.
+    Result<SceneDesc> desc = load_scene_file(scene_file);
+    ASSERT_TRUE(desc.ok()) << desc.error().message;
+    Result<RenderScene> scene = prepare_render_scene(*desc);
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    RenderOptions options;
+    options.filter = FilterMode::reference;
+    options.spp = 16;
+    const Image reference = render(*scene, options);
+    options.spp = 8;
+    const double prefix = rmse(render(*scene, options), reference);
+    ASSERT_GT(prefix, 0);
+    constexpr double kIndependentOverPrefix = 1.3;  // expected √3 ≈ 1.73; 1 for a prefix
+    EXPECT_GT(measured, kIndependentOverPrefix * prefix) << measured << " vs prefix " << prefix;
+}
+
+TEST_F(EvalCommandTest, SupersamplingAtOrAboveTheReferenceSppIsRefused) {
+    EvalCommandOptions o = small({"water"});
+    for (int spp : {16, 64}) {
+        o.supersampling_spp = {4, spp};
+        std::string err;
+        EXPECT_EQ(run(o, &err), 1) << spp;
+        EXPECT_NE(
+            err.find("--spp-list: " + std::to_string(spp) + " is not below --reference-spp 16"),
+            std::string::npos)
+            << err;
+        EXPECT_FALSE(fs::exists(o.out_dir / "results.json"));
+    }
+}
+
+TEST_F(EvalCommandTest, NumbersOutOfRangeAreRefusedAlike) {
+    struct Case {
+        std::function<void(EvalCommandOptions&)> set;
+        std::string message;
+    };
+    const Case cases[] = {
+        {[](EvalCommandOptions& o) { o.reference_spp = 0; },
+         "--reference-spp 0 is out of range (1 to 1048576)"},
+        {[](EvalCommandOptions& o) { o.supersampling_spp = {-1}; },
+         "--spp-list -1 is out of range (1 to 65536)"},
+        {[](EvalCommandOptions& o) { o.frames = -1; },
+         "--frames -1 is out of range (2 to 1000; 0: no flicker)"},
+        {[](EvalCommandOptions& o) { o.flicker_reference_spp = 0; },
+         "--flicker-reference-spp 0 is out of range (1 to 1048576)"},
+        {[](EvalCommandOptions& o) { o.threads = -1; },
+         "--threads -1 is out of range (0 to 1024; 0: all cores)"},
+        {[](EvalCommandOptions& o) { o.width = 0; }, "--size 0 is out of range (16 to 4096)"},
+    };
+    for (const Case& c : cases) {
+        EvalCommandOptions o = small({"water"});
+        c.set(o);
+        std::string err;
+        EXPECT_EQ(run(o, &err), 1) << c.message;
+        EXPECT_EQ(err, "footprint: " + c.message + "\n");
+    }
 }
 
 }  // namespace

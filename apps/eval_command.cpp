@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_options.h"
 #include "command_util.h"
 #include "demo_scenes.h"
 #include "eval_report.h"
@@ -31,11 +32,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr FilterMode kFilterModes[] = {FilterMode::point, FilterMode::trilinear, FilterMode::fa,
+constexpr FilterMode kFilterModes[] = {FilterMode::bilinear, FilterMode::trilinear, FilterMode::fa,
                                        FilterMode::fa_rough, FilterMode::ewa_rough};
 // Bumped whenever the reference's rendering changes, so that no cached reference of an older
 // renderer is reused.
-constexpr int kReferenceVersion = 1;
+constexpr int kReferenceVersion = 2;
+// Every render of an evaluation has its own seed, so that no two share a sample: the reference,
+// the reference sequence, then each method (kFirstMethodSeed + its index; a sequence uses its
+// method's seed for every frame). Supersampling with the reference's seed would take a prefix of
+// the reference's own samples and measure an error that is too small.
+constexpr std::uint32_t kReferenceSeed = 1, kSequenceReferenceSeed = 2, kFirstMethodSeed = 3;
+constexpr int kMaxSpp = 1 << 16, kMaxReferenceSpp = 1 << 20, kMaxThreads = 1024;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 struct NamedScene {
@@ -74,11 +81,12 @@ class Renderer {
     Renderer(const RenderScene& scene, int threads, bool progress)
         : scene_(scene), threads_(threads), progress_(progress) {}
 
-    Timed render_one(FilterMode mode, int spp, const std::string& label, int frame = 0,
-                     int frame_count = 0) const {
+    Timed render_one(FilterMode mode, int spp, std::uint32_t seed, const std::string& label,
+                     int frame = 0, int frame_count = 0) const {
         RenderOptions options;
         options.filter = mode;
         options.spp = spp;
+        options.seed = seed;
         options.threads = threads_;
         options.frame = frame;
         options.frame_count = frame_count;
@@ -89,12 +97,12 @@ class Renderer {
         return t;
     }
 
-    std::vector<Image> sequence(FilterMode mode, int spp, int frames,
+    std::vector<Image> sequence(FilterMode mode, int spp, std::uint32_t seed, int frames,
                                 const std::string& label) const {
         std::vector<Image> images;
         for (int f = 0; f < frames; ++f) {
             images.push_back(
-                render_one(mode, spp,
+                render_one(mode, spp, seed,
                            label + " frame " + std::to_string(f + 1) + "/" + std::to_string(frames),
                            f, frames)
                     .image);
@@ -183,30 +191,37 @@ nlohmann::json json_number(double v) {
     return std::isfinite(v) ? nlohmann::json(v) : nullptr;
 }
 
+// The first problem with the command line's numbers, if any.
+std::optional<std::string> option_problem(const EvalCommandOptions& options) {
+    if (auto problem = range_problem("--size", options.width, 16, 4096)) return problem;
+    if (auto problem = range_problem("--reference-spp", options.reference_spp, 1, kMaxReferenceSpp))
+        return problem;
+    if (options.supersampling_spp.empty()) return "--spp-list: needs at least one value";
+    for (int spp : options.supersampling_spp) {
+        if (auto problem = range_problem("--spp-list", spp, 1, kMaxSpp)) return problem;
+        if (spp >= options.reference_spp) {
+            return "--spp-list: " + std::to_string(spp) + " is not below --reference-spp " +
+                   std::to_string(options.reference_spp) +
+                   " (supersampling is measured against the reference: it must take fewer "
+                   "samples)";
+        }
+    }
+    if (options.frames != 0) {
+        if (auto problem = range_problem("--frames", options.frames, 2, 1000, "0: no flicker"))
+            return problem;
+    }
+    if (auto problem = range_problem("--flicker-reference-spp", options.flicker_reference_spp, 1,
+                                     kMaxReferenceSpp))
+        return problem;
+    if (auto problem = range_problem("--threads", options.threads, 0, kMaxThreads, "0: all cores"))
+        return problem;
+    return std::nullopt;
+}
+
 }  // namespace
 
 int run_eval_command(const EvalCommandOptions& options) {
-    if (options.width < 16 || options.width > 4096) {
-        return fail("--size " + std::to_string(options.width) + " is out of range (16 to 4096)");
-    }
-    if (options.reference_spp < 1 || options.reference_spp > 1 << 20) {
-        return fail("--reference-spp " + std::to_string(options.reference_spp) +
-                    " is out of range (1 to 1048576)");
-    }
-    if (options.supersampling_spp.empty()) return fail("--spp-list: needs at least one value");
-    for (int spp : options.supersampling_spp) {
-        if (spp < 1 || spp > 1 << 16) {
-            return fail("--spp-list: " + std::to_string(spp) + " is out of range (1 to 65536)");
-        }
-    }
-    if (options.frames < 0 || options.frames == 1 || options.frames > 1000) {
-        return fail("--frames " + std::to_string(options.frames) +
-                    " is out of range (0 for none, or 2 to 1000)");
-    }
-    if (options.flicker_reference_spp < 1 || options.flicker_reference_spp > 1 << 20) {
-        return fail("--flicker-reference-spp " + std::to_string(options.flicker_reference_spp) +
-                    " is out of range (1 to 1048576)");
-    }
+    if (const auto problem = option_problem(options)) return fail(*problem);
     std::vector<std::string> names = options.scenes;
     if (names.empty()) names = demo_scene_names();
     std::vector<NamedScene> scenes;
@@ -254,7 +269,7 @@ int run_eval_command(const EvalCommandOptions& options) {
                        (key + "-ref" + std::to_string(options.reference_spp) + ".exr"),
                    reference_cached, [&] {
                        Timed t = renderer.render_one(FilterMode::reference, options.reference_spp,
-                                                     named.name + " reference");
+                                                     kReferenceSeed, named.name + " reference");
                        reference_seconds = t.seconds;
                        return std::move(t.image);
                    });
@@ -278,6 +293,7 @@ int run_eval_command(const EvalCommandOptions& options) {
                 was_cached, [&] {
                     return renderer
                         .render_one(FilterMode::reference, options.flicker_reference_spp,
+                                    kSequenceReferenceSeed,
                                     named.name + " reference frame " + std::to_string(f + 1) + "/" +
                                         std::to_string(options.frames),
                                     f, options.frames)
@@ -297,6 +313,7 @@ int run_eval_command(const EvalCommandOptions& options) {
             FilterMode mode;
             int spp;
             std::string name, family, file;
+            std::uint32_t seed = 0;
         };
         std::vector<Method> methods;
         for (FilterMode mode : kFilterModes) {
@@ -306,6 +323,9 @@ int run_eval_command(const EvalCommandOptions& options) {
             methods.push_back({FilterMode::reference, spp,
                                "supersampling " + std::to_string(spp) + " spp", "supersampling",
                                "supersampling_" + std::to_string(spp)});
+        }
+        for (std::size_t i = 0; i < methods.size(); ++i) {
+            methods[i].seed = kFirstMethodSeed + static_cast<std::uint32_t>(i);
         }
 
         EvalScene eval_scene;
@@ -318,7 +338,7 @@ int run_eval_command(const EvalCommandOptions& options) {
         eval_scene.reference_seconds = reference_seconds;
         std::vector<Image> images;
         for (const Method& m : methods) {
-            Timed t = renderer.render_one(m.mode, m.spp, named.name + " " + m.name);
+            Timed t = renderer.render_one(m.mode, m.spp, m.seed, named.name + " " + m.name);
             EvalMethod em;
             em.name = m.name;
             em.family = m.family;
@@ -341,8 +361,8 @@ int run_eval_command(const EvalCommandOptions& options) {
                 compare_images(display_encoded(t.image), reference_display);
             if (display) em.ssim = display->ssim;
             if (animated) {
-                const std::vector<Image> sequence =
-                    renderer.sequence(m.mode, m.spp, options.frames, named.name + " " + m.name);
+                const std::vector<Image> sequence = renderer.sequence(
+                    m.mode, m.spp, m.seed, options.frames, named.name + " " + m.name);
                 Result<double> f = flicker(sequence, reference_sequence);
                 em.flicker = f ? *f : kNaN;
             }

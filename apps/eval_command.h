@@ -7,10 +7,13 @@
 //
 // SCENE is a built-in demo name (apps/demo_scenes.h; default: all of them) or a scene file
 // (.json). For each scene it renders
-//   * every filter mode at 1 spp (point, trilinear, fa, fa-rough, ewa-rough),
+//   * every filter mode at 1 spp (bilinear, trilinear, fa, fa-rough, ewa-rough:
+//   apps/cli_options.h),
 //   * supersampling at each spp of --spp-list: the `reference` mode (finest-level bilinear
-//     lookups, micro-roughness sampled) with N samples per pixel,
-// and compares each with a high-spp reference (`reference` at --reference-spp, 1024 by default):
+//     lookups, micro-roughness sampled) with N samples per pixel, N below --reference-spp,
+// and compares each with a high-spp reference (`reference` at --reference-spp, 1024 by default).
+// Every render has its own seed (render/renderer.h's RenderOptions::seed), so that supersampling
+// never reuses the reference's samples and its error is measured, not underestimated. Measured:
 // RMSE in linear light over all pixels and over the *interior* mask (pixels whose whole pixel
 // filter, ±1.5 pixels, sees one object: no silhouettes, no horizon), SSIM on the display
 // encoding (sRGB of the clamped value, the images people look at), and the render time. Scenes

@@ -1,5 +1,6 @@
 // footprint — the command-line program: argument parsing only; the commands live in demo.cpp,
-// env_command.cpp and render_command.cpp.
+// env_command.cpp, eval_command.cpp, metrics_command.cpp, render_command.cpp and texture_demo.cpp.
+//   footprint --version
 //   footprint demo [--out DIR] [--scene NAME...] [--size N] [--spp N] [--threads N] [--quiet]
 //   footprint eval [SCENE...] [--out DIR] [--size W] [--reference-spp N] [--spp-list 1,4,16,64]
 //                  [--frames N] [--flicker-reference-spp N] [--threads N] [--no-browser-check]
@@ -8,8 +9,9 @@
 //   footprint plane TEXTURE -o OUT [--filter F] [--size N] [--uv-scale X] [--quiet]
 //   footprint env convert IN [IN...] --to LAYOUT -o OUT [-o OUT...] [--size N] [--from LAYOUT]
 //                         [--from-cube-layout A] [--cube-layout A] [--quiet]
-//   footprint render SCENE.json -o OUT [--filter MODE] [--spp N] [--threads N] [--exposure E]
-//                    [--frames N] [--json] [--quiet]
+//   footprint render SCENE.json -o OUT [--filter MODE] [--spp N] [--seed N] [--size WIDTH]
+//                    [--frames N] [--threads N] [--exposure E] [--json] [--quiet]
+// Filter names: one vocabulary across the commands (apps/cli_options.h, kFilterHelp below).
 // Exit status: 0 success, 1 bad input or failure (one line on stderr), 2 command-line usage error.
 #include <CLI/CLI.hpp>
 
@@ -18,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_options.h"
 #include "demo.h"
 #include "env_command.h"
 #include "eval_command.h"
@@ -27,9 +30,29 @@
 
 namespace {
 
+// The filter vocabulary (apps/cli_options.h), at the end of `footprint --help`.
+constexpr const char* kFilterHelp = R"(
+Filters (--filter; a name means the same filter in every command):
+  nearest    the nearest texel of the finest level               plane, texture-demo
+  bilinear   one bilinear lookup of the finest level, no         render, plane, texture-demo,
+             footprint (the aliased baseline)                    demo, eval
+  trilinear  isotropic MIP: two levels, bilinear in each         render, plane, texture-demo,
+                                                                 demo, eval
+  fa         footprint assembly                                  render, plane, texture-demo,
+                                                                 demo, eval
+  fa-rough   fa plus the roughness pyramid: a bump map's         render, demo, eval
+             slopes widen the reflection and the highlights
+  ewa        elliptical weighted average                         plane, texture-demo
+  ewa-rough  ewa plus the roughness pyramid                      render, demo, eval
+  sat        summed-area table                                   plane, texture-demo
+  reference  the ground truth: --spp samples per pixel, each     render (demo, eval and
+             a finest-level bilinear lookup                      texture-demo render one)
+)";
+
 int run(int argc, char** argv) {
     CLI::App app{"footprint — anisotropic texture filtering by footprint assembly"};
     app.require_subcommand(1);
+    app.set_version_flag("--version", "footprint " FOOTPRINT_VERSION);
 
     footprint::TextureDemoOptions demo;
     std::string demo_out = "out/texture";
@@ -54,9 +77,11 @@ int run(int argc, char** argv) {
         ->add_option("-o,--out", plane_output,
                      "Output image (.png/.jpg/.tif sRGB, .exr/.hdr linear)")
         ->required();
-    plane_cmd->add_option("--filter", plane.filter, "nearest|bilinear|trilinear|fa|ewa|sat")
+    plane_cmd->add_option("--filter", plane.filter, footprint::plane_filter_names("|"))
         ->capture_default_str();
-    plane_cmd->add_option("--size", plane.width, "Image width in pixels (height = width·9/16)")
+    plane_cmd
+        ->add_option("--size", plane.width,
+                     "Image width in pixels, 16 to 16384 (height = width·9/16)")
         ->capture_default_str();
     plane_cmd->add_option("--uv-scale", plane.uv_scale, "Texture repeats per world unit")
         ->capture_default_str();
@@ -108,9 +133,11 @@ int run(int argc, char** argv) {
                                "bump_plate secret_writing brushed_sphere");
     scene_demo_cmd->add_option("--size", scene_demo.width, "Image width (height = width·9/16)")
         ->capture_default_str();
-    scene_demo_cmd->add_option("--spp", scene_demo.reference_spp, "Reference samples per pixel")
+    scene_demo_cmd
+        ->add_option("--spp", scene_demo.reference_spp, "Reference samples per pixel, 1 to 65536")
         ->capture_default_str();
-    scene_demo_cmd->add_option("--threads", scene_demo.threads, "Worker threads (0: all cores)")
+    scene_demo_cmd
+        ->add_option("--threads", scene_demo.threads, "Worker threads, 0 to 1024 (0: all cores)")
         ->capture_default_str();
     scene_demo_cmd->add_flag("--quiet,-q", scene_demo.quiet, "No progress output");
 
@@ -137,16 +164,18 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     eval_cmd->add_option("--reference-spp", eval.reference_spp, "Reference samples per pixel")
         ->capture_default_str();
-    eval_cmd->add_option("--spp-list", eval.supersampling_spp, "Supersampling rates")
+    eval_cmd
+        ->add_option("--spp-list", eval.supersampling_spp,
+                     "Supersampling rates, each below --reference-spp")
         ->delimiter(',')
         ->capture_default_str();
-    eval_cmd->add_option("--frames", eval.frames, "Frames for flicker (0: none)")
+    eval_cmd->add_option("--frames", eval.frames, "Frames for flicker, 2 to 1000 (0: none)")
         ->capture_default_str();
     eval_cmd
         ->add_option("--flicker-reference-spp", eval.flicker_reference_spp,
                      "Samples per pixel of the reference sequence")
         ->capture_default_str();
-    eval_cmd->add_option("--threads", eval.threads, "Worker threads (0: all cores)")
+    eval_cmd->add_option("--threads", eval.threads, "Worker threads, 0 to 1024 (0: all cores)")
         ->capture_default_str();
     eval_cmd->add_flag("--no-browser-check", eval_no_browser,
                        "Do not open the report in headless Chromium");
@@ -161,25 +190,39 @@ int run(int argc, char** argv) {
         ->add_option("-o,--out", render_output,
                      "Output image (.png/.jpg/.tif sRGB, .exr/.hdr linear)")
         ->required();
-    render_cmd
-        ->add_option("--filter", render.filter, "point|trilinear|fa|fa-rough|ewa-rough|reference")
+    render_cmd->add_option("--filter", render.filter, footprint::render_filter_names("|"))
         ->capture_default_str();
-    render_cmd->add_option("--spp", render.spp, "Samples per pixel (default 1; reference: 64)");
-    render_cmd->add_option("--threads", render.threads, "Worker threads (0: all cores)")
+    render_cmd->add_option("--spp", render.spp,
+                           "Samples per pixel, 1 to 65536 (default 1; reference: 64)");
+    render_cmd
+        ->add_option("--seed", render.seed,
+                     "Seed of the sample sequences (different seeds: independent samples)")
+        ->capture_default_str();
+    render_cmd->add_option("--size", render.width,
+                           "Image width in pixels, 16 to 16384 (height from the scene's aspect "
+                           "ratio; default: the scene's size)");
+    render_cmd->add_option("--threads", render.threads, "Worker threads, 0 to 1024 (0: all cores)")
         ->capture_default_str();
     render_cmd
         ->add_option("--exposure", render.exposure, "Exposure in stops (PNG/JPEG/TIFF output)")
         ->capture_default_str();
     render_cmd->add_option("--frames", render.frames,
-                           "Render N frames along the scene's camera_path (OUT_0000.png, …)");
+                           "Render N ≥ 1 frames along the scene's camera_path (OUT_0000.png, …)");
     render_cmd->add_flag("--json", render.json, "Print a one-line JSON summary to stdout");
     render_cmd->add_flag("--quiet,-q", render.quiet, "No progress output");
+
+    // After the subcommands (which would inherit it): the commands with --filter get it too.
+    app.footer(kFilterHelp);
+    render_cmd->footer(kFilterHelp);
+    plane_cmd->footer(kFilterHelp);
 
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         std::fprintf(stderr, "footprint: %s (see footprint --help)\n", e.what());

@@ -4,8 +4,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -50,8 +52,8 @@ class RenderCommandTest : public ::testing::Test {
         std::ofstream(dir_ / name) << text;
     }
     int render_cmd(RenderCommandOptions options, std::string* err = nullptr,
-                   std::string* out = nullptr) {
-        options.quiet = true;
+                   std::string* out = nullptr, bool quiet = true) {
+        options.quiet = quiet;
         ::testing::internal::CaptureStderr();
         ::testing::internal::CaptureStdout();
         const int status = run_render_command(options);
@@ -130,6 +132,107 @@ TEST_F(RenderCommandTest, BadInputGivesOneLineErrorsAndNoOutput) {
     EXPECT_FALSE(fs::exists(dir_ / "a.png"));
 }
 
+TEST_F(RenderCommandTest, UnknownFiltersAreAnsweredFromTheVocabulary) {
+    const std::string accepted =
+        "footprint render accepts bilinear, trilinear, fa, fa-rough, "
+        "ewa-rough, reference\n";
+    const std::pair<const char*, std::string> cases[] = {
+        {"fa_rough",
+         "footprint: --filter: unknown filter 'fa_rough' (did you mean 'fa-rough'?); " + accepted},
+        {"point",
+         "footprint: --filter: unknown filter 'point' (did you mean 'bilinear'?); " + accepted},
+        {"sat",
+         "footprint: --filter: footprint render has no filter 'sat'; it accepts bilinear, "
+         "trilinear, fa, fa-rough, ewa-rough, reference\n"},
+        {"anisotropic", "footprint: --filter: unknown filter 'anisotropic'; " + accepted},
+    };
+    for (const auto& [filter, message] : cases) {
+        std::string err;
+        EXPECT_EQ(render_cmd(options("a.png", filter), &err), 1) << filter;
+        EXPECT_EQ(err, message);
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "a.png"));
+}
+
+// Zero counts as much as a negative number: --spp 0 and --frames 0 are refused, not read as
+// "the default".
+TEST_F(RenderCommandTest, NumbersOutOfRangeAreRefusedAlike) {
+    struct Case {
+        std::function<void(RenderCommandOptions&)> set;
+        std::string message;
+    };
+    const Case cases[] = {
+        {[](RenderCommandOptions& o) { o.spp = 0; }, "--spp 0 is out of range (1 to 65536)"},
+        {[](RenderCommandOptions& o) { o.spp = -1; }, "--spp -1 is out of range (1 to 65536)"},
+        {[](RenderCommandOptions& o) { o.spp = 65537; },
+         "--spp 65537 is out of range (1 to 65536)"},
+        {[](RenderCommandOptions& o) { o.frames = 0; }, "--frames 0 is out of range (1 to 100000)"},
+        {[](RenderCommandOptions& o) { o.frames = -1; },
+         "--frames -1 is out of range (1 to 100000)"},
+        {[](RenderCommandOptions& o) { o.width = 0; }, "--size 0 is out of range (16 to 16384)"},
+        {[](RenderCommandOptions& o) { o.width = -8; }, "--size -8 is out of range (16 to 16384)"},
+        {[](RenderCommandOptions& o) { o.threads = -1; },
+         "--threads -1 is out of range (0 to 1024; 0: all cores)"},
+    };
+    for (const Case& c : cases) {
+        RenderCommandOptions o = options("a.png", "fa");
+        c.set(o);
+        std::string err;
+        EXPECT_EQ(render_cmd(o, &err), 1) << c.message;
+        EXPECT_EQ(err, "footprint: " + c.message + "\n");
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "a.png"));
+}
+
+TEST_F(RenderCommandTest, SizeKeepsTheScenesAspectRatio) {
+    for (const auto& [width, height] : {std::pair{48, 32}, std::pair{30, 20}, std::pair{16, 11}}) {
+        RenderCommandOptions o = options("sized.png", "fa");
+        o.width = width;
+        std::string out;
+        o.json = true;
+        ASSERT_EQ(render_cmd(o, nullptr, &out), 0) << width;
+        Result<Image> image = load_image(dir_ / "sized.png");
+        ASSERT_TRUE(image.ok());
+        EXPECT_EQ(image->width, width);
+        EXPECT_EQ(image->height, height);  // the scene is 24 × 16
+        EXPECT_EQ(nlohmann::json::parse(out)["height"], height);
+    }
+}
+
+TEST_F(RenderCommandTest, SeedChoosesTheSamples) {
+    const auto render_seed = [&](std::uint32_t seed, const std::string& file) {
+        RenderCommandOptions o = options(file, "reference");
+        o.spp = 4;
+        o.seed = seed;
+        o.json = true;
+        std::string out;
+        EXPECT_EQ(render_cmd(o, nullptr, &out), 0);
+        EXPECT_EQ(nlohmann::json::parse(out)["seed"], seed);
+        Result<Image> image = load_image(dir_ / file);
+        EXPECT_TRUE(image.ok());
+        return image.ok() ? image->pixels : std::vector<float>{};
+    };
+    const std::vector<float> one = render_seed(1, "one.exr");
+    EXPECT_EQ(render_seed(1, "again.exr"), one);
+    EXPECT_NE(render_seed(2, "two.exr"), one);
+}
+
+TEST_F(RenderCommandTest, ReportsWhatItWroteAndTheNonFiniteSamples) {
+    std::string err, out;
+    ASSERT_EQ(render_cmd(options("fa.png", "fa"), &err, &out, false), 0);
+    const std::string expected =
+        "footprint: wrote " + (dir_ / "fa.png").string() + " (24x16, fa, 1 spp, ";
+    EXPECT_EQ(err.rfind(expected, 0), 0u) << err;
+    EXPECT_EQ(err.substr(err.size() - 4), " s)\n") << err;
+
+    RenderCommandOptions json = options("fa.png", "fa");
+    json.json = true;
+    ASSERT_EQ(render_cmd(json, &err, &out), 0);
+    const nlohmann::json summary = nlohmann::json::parse(out);
+    EXPECT_EQ(summary["non_finite_samples"], 0);
+    EXPECT_EQ(summary["non_finite_pixels"], 0);
+}
+
 TEST_F(RenderCommandTest, FramesFollowTheCameraPath) {
     write("path.json", R"({"image": {"width": 16, "height": 12},
           "camera": {"position": [0, 1, 3], "look_at": [0, 0, 0]},
@@ -172,8 +275,8 @@ TEST_F(RenderCommandTest, DemoWritesEveryModeAContactSheetAndAReport) {
     ::testing::internal::GetCapturedStdout();
     ASSERT_EQ(status, 0);
     for (const char* scene : {"parabolic_mirror", "secret_writing"}) {
-        for (const char* file :
-             {"reference", "point", "trilinear", "fa", "fa-rough", "ewa-rough", "contact_sheet"}) {
+        for (const char* file : {"reference", "bilinear", "trilinear", "fa", "fa-rough",
+                                 "ewa-rough", "contact_sheet"}) {
             EXPECT_TRUE(fs::exists(o.out_dir / scene / (std::string(file) + ".png")))
                 << scene << "/" << file;
         }

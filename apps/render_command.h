@@ -1,24 +1,33 @@
 // apps/render_command.h — `footprint render`: a scene file rendered with one filter mode.
 //
-//   footprint render SCENE.json --filter MODE [--spp N] [--threads N] [--exposure E] [--json]
-//                    [--frames N] [--quiet] -o OUT.png|OUT.exr
+//   footprint render SCENE.json -o OUT [--filter MODE] [--spp N] [--seed N] [--size WIDTH]
+//                    [--frames N] [--threads N] [--exposure E] [--json] [--quiet]
 //
-// --frames N renders N frames along the scene's camera_path (scene/scene.h; an error without
-// one) into OUT with the frame number before the extension: out.png → out_0000.png … (4 digits,
-// more if N needs them).
+// MODE is one of the filter vocabulary's render filters (apps/cli_options.h). --size WIDTH
+// renders WIDTH pixels wide, the height following the scene's aspect ratio (its image width and
+// height). --seed N chooses the sample sequences (render/renderer.h's RenderOptions::seed): the
+// same seed gives the same image, different seeds independent samples. --frames N renders N
+// frames along the scene's camera_path (scene/scene.h; an error without one) into OUT with the
+// frame number before the extension: out.png → out_0000.png … (4 digits, more if N needs them).
 //
 // Returns the process exit status: 0, or 1 after one line "footprint: <what is wrong>" on stderr
 // naming the file, key or value at fault (scene errors come from scene/scene_file.h and
 // render/render_scene.h). The output path is checked before any work, and the image is written
 // atomically (image/image_io.h's save_image). PNG/JPEG/TIFF outputs are sRGB-encoded after
 // multiplying by 2^exposure; EXR/HDR outputs hold the linear radiance as rendered (exposure is not
-// applied: HDR stays HDR). A progress bar on stderr when it is a terminal and not --quiet; --json
-// prints one summary line to stdout:
-//   {"scene": …, "output": …, "filter": …, "spp": …, "threads": …, "width": …, "height": …,
-//    "pixels": …, "seconds": …, "lookups": …, "frames": …}   (pixels, seconds, lookups: all frames)
+// applied: HDR stays HDR). A progress bar on stderr when it is a terminal and not --quiet. When
+// done, one line on stderr (not with --quiet or --json):
+//   footprint: wrote OUT (WxH, MODE, N spp, T s)
+// and a warning line when samples were not finite (dropped: a pixel is the mean of its finite
+// samples, 0 if it has none). --json prints one summary line to stdout instead:
+//   {"scene": …, "output": …, "filter": …, "spp": …, "seed": …, "threads": …, "width": …,
+//    "height": …, "pixels": …, "seconds": …, "lookups": …, "non_finite_samples": …,
+//    "non_finite_pixels": …, "frames": …}   (pixels, seconds, lookups, non-finite: all frames)
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 namespace footprint {
@@ -26,11 +35,13 @@ namespace footprint {
 struct RenderCommandOptions {
     std::filesystem::path scene;
     std::filesystem::path output;
-    std::string filter = "fa-rough";  // render/renderer.h's FilterMode names
-    int spp = 0;                      // 0: 1, or 64 for the reference
-    int threads = 0;                  // 0: all cores
-    float exposure = 0;               // stops, for integer outputs
-    int frames = 0;                   // 0: one image (the scene's camera); N ≥ 1: a sequence
+    std::string filter = "fa-rough";  // apps/cli_options.h's render filters
+    std::optional<int> spp;           // 1 … 65536; not given: 1, or 64 for the reference
+    std::optional<int> width;         // --size: 16 … 16384; not given: the scene's own size
+    std::uint32_t seed = 1;
+    int threads = 0;            // 0: all cores
+    float exposure = 0;         // stops, for integer outputs
+    std::optional<int> frames;  // 1 … 100000: a sequence; not given: one image (scene camera)
     bool json = false;
     bool quiet = false;
 };

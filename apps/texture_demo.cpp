@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "builtin_texture.h"
+#include "cli_options.h"
 #include "command_util.h"
 #include "image/image_io.h"
 #include "plane_view.h"
@@ -24,11 +25,6 @@
 namespace footprint {
 
 namespace {
-
-constexpr TextureFilter kAllFilters[] = {
-    TextureFilter::nearest,   TextureFilter::bilinear,
-    TextureFilter::trilinear, TextureFilter::footprint_assembly,
-    TextureFilter::ewa,       TextureFilter::summed_area};
 
 std::string number(double v, const char* format = "%.6g") {
     if (!std::isfinite(v)) return "null";
@@ -80,7 +76,7 @@ int demo(const TextureDemoOptions& options) {
         progress.finish();
         entries.push_back(std::move(e));
     }
-    for (TextureFilter filter : kAllFilters) {
+    for (TextureFilter filter : plane_filters()) {
         LookupOptions lookup;
         lookup.filter = filter;
         const std::string name = to_string(filter);
@@ -162,10 +158,8 @@ int demo(const TextureDemoOptions& options) {
 }
 
 int plane(const PlaneCommandOptions& options) {
-    const std::optional<TextureFilter> filter = parse_texture_filter(options.filter);
-    if (!filter)
-        return fail("--filter: unknown filter '" + options.filter +
-                    "' (valid: " + valid_filter_names() + ")");
+    const Result<TextureFilter> filter = parse_plane_filter(options.filter);
+    if (!filter) return fail(filter.error().message);
     if (options.width < 16 || options.width > 16384)
         return fail("--size " + std::to_string(options.width) + " is out of range (16 to 16384)");
     if (!std::isfinite(options.uv_scale) || !(options.uv_scale > 0) || options.uv_scale > 1e6)
@@ -187,21 +181,19 @@ int plane(const PlaneCommandOptions& options) {
     lookup.filter = *filter;
     Progress progress(to_string(*filter), static_cast<std::uint64_t>(view.height),
                       !options.quiet && Progress::stderr_is_terminal());
-    const Image image = render_plane_view(pyramid, view, lookup, nullptr, &progress);
+    PlaneRenderStats stats;
+    const Image image = render_plane_view(pyramid, view, lookup, &stats, &progress);
     progress.finish();
     if (const Status saved = save_image(image, options.output); !saved)
         return fail(saved.error().message);
+    if (!options.quiet) {
+        report_written(options.output.string(), view.width, view.height, to_string(*filter),
+                       std::nullopt, stats.seconds);
+    }
     return 0;
 }
 
 }  // namespace
-
-std::string valid_filter_names() {
-    std::string names;
-    for (TextureFilter f : kAllFilters)
-        names += std::string(names.empty() ? "" : ", ") + to_string(f);
-    return names;
-}
 
 int run_texture_demo_command(const TextureDemoOptions& options) {
     try {

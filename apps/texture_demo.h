@@ -31,18 +31,17 @@ struct TextureDemoOptions {
 int run_texture_demo_command(const TextureDemoOptions& options);
 
 // footprint plane: a texture file on the grazing plane with one filter, written to `output`
-// (.png/.jpg/.tif sRGB, .exr/.hdr linear, by extension).
+// (.png/.jpg/.tif sRGB, .exr/.hdr linear, by extension). Unless quiet, a progress bar on stderr
+// when it is a terminal and, when done, the line render prints (apps/cli_options.h):
+//   footprint: wrote OUT (WxH, FILTER, T s)
 struct PlaneCommandOptions {
     std::filesystem::path texture;
     std::filesystem::path output;
-    std::string filter = "fa";  // nearest | bilinear | trilinear | fa | ewa | sat
+    std::string filter = "fa";  // apps/cli_options.h's plane filters
     int width = 480;            // height = width · 9/16; 16 … 16384
     double uv_scale = 0.125;    // texture periods per world unit, > 0
     bool quiet = false;
 };
 int run_plane_command(const PlaneCommandOptions& options);
-
-// "nearest, bilinear, trilinear, fa, ewa, sat": the filter names the commands accept.
-std::string valid_filter_names();
 
 }  // namespace footprint

@@ -24,16 +24,9 @@ namespace {
 
 constexpr int kTileSize = 16;
 
-struct ModeInfo {
-    FilterMode mode;
-    const char* name;
-};
-constexpr ModeInfo kModes[] = {{FilterMode::point, "point"},
-                               {FilterMode::trilinear, "trilinear"},
-                               {FilterMode::fa, "fa"},
-                               {FilterMode::fa_rough, "fa-rough"},
-                               {FilterMode::ewa_rough, "ewa-rough"},
-                               {FilterMode::reference, "reference"}};
+constexpr FilterMode kAllModes[] = {FilterMode::bilinear,  FilterMode::trilinear,
+                                    FilterMode::fa,        FilterMode::fa_rough,
+                                    FilterMode::ewa_rough, FilterMode::reference};
 
 using Rgb = std::array<float, 3>;
 
@@ -55,7 +48,7 @@ struct ModePolicy {
 ModePolicy policy_of(FilterMode mode) {
     ModePolicy policy;
     switch (mode) {
-        case FilterMode::point:
+        case FilterMode::bilinear:
             policy.filtered = false;
             policy.lookup.filter = TextureFilter::bilinear;
             break;
@@ -116,7 +109,8 @@ class SampleShader {
         float texel[MipPyramid::kMaxChannels];
         if (policy_.filtered) {
             environment_lookup(env->map, to_float(ray.ray.direction), to_float(ray.dddx),
-                               to_float(ray.dddy), policy_.lookup, texel, env->rotation);
+                               to_float(ray.dddy), EnvLookupOptions{policy_.lookup, env->rotation},
+                               texel);
         } else {
             environment_bilinear(env->map, env->rotation * to_float(ray.ray.direction), 0, texel);
         }
@@ -287,14 +281,21 @@ CameraDesc view_camera(const SceneDesc& scene, const RenderOptions& options) {
     return camera_for_frame(scene, options.frame, options.frame_count);
 }
 
+// What a tile counts of its pixels' samples.
+struct SampleCounts {
+    std::uint64_t non_finite_samples = 0, non_finite_pixels = 0;
+};
+
+// The mean of the pixel's finite samples (0 if none is finite).
 Rgb render_pixel_with(SampleShader& shader, const PinholeCamera& camera,
-                      const RenderOptions& options, int x, int y, std::uint64_t& non_finite) {
+                      const RenderOptions& options, int x, int y, SampleCounts& counts) {
     const int n = std::max(1, options.spp);
     const bool centre_only = n == 1 && options.filter != FilterMode::reference;
     const std::uint32_t seed = pixel_seed(x, y, options.seed);
     const double rot_x = unit_float(hash32(seed)), rot_y = unit_float(hash32(seed + 1));
     const double differential_scale = 1.0 / std::sqrt(static_cast<double>(n));
     double sum[3] = {0, 0, 0};
+    int kept = 0;
     for (int k = 0; k < n; ++k) {
         double ox = 0, oy = 0;
         if (!centre_only) {
@@ -308,33 +309,49 @@ Rgb render_pixel_with(SampleShader& shader, const PinholeCamera& camera,
         const std::uint32_t h = hash32(seed + 2 + static_cast<std::uint32_t>(k));
         const Rgb c = shader.shade(ray, {unit_float(h), unit_float(hash32(h))});
         if (!(std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]))) {
-            ++non_finite;
+            ++counts.non_finite_samples;
             continue;
         }
         for (int i = 0; i < 3; ++i) sum[i] += c[i];
+        ++kept;
     }
-    return {static_cast<float>(sum[0] / n), static_cast<float>(sum[1] / n),
-            static_cast<float>(sum[2] / n)};
+    if (kept == 0) {
+        ++counts.non_finite_pixels;
+        return {0, 0, 0};
+    }
+    return {static_cast<float>(sum[0] / kept), static_cast<float>(sum[1] / kept),
+            static_cast<float>(sum[2] / kept)};
 }
 
 }  // namespace
 
 std::optional<FilterMode> parse_filter_mode(std::string_view name) {
-    for (const ModeInfo& m : kModes) {
-        if (name == m.name) return m.mode;
+    for (FilterMode mode : kAllModes) {
+        if (name == filter_mode_name(mode)) return mode;
     }
     return std::nullopt;
 }
 
 const char* filter_mode_name(FilterMode mode) {
-    for (const ModeInfo& m : kModes) {
-        if (m.mode == mode) return m.name;
+    switch (mode) {
+        case FilterMode::bilinear:
+            return "bilinear";
+        case FilterMode::trilinear:
+            return "trilinear";
+        case FilterMode::fa:
+            return "fa";
+        case FilterMode::fa_rough:
+            return "fa-rough";
+        case FilterMode::ewa_rough:
+            return "ewa-rough";
+        case FilterMode::reference:
+            return "reference";
     }
     return "?";
 }
 
-const char* filter_mode_names() {
-    return "point, trilinear, fa, fa-rough, ewa-rough, reference";
+std::span<const FilterMode> all_filter_modes() {
+    return kAllModes;
 }
 
 int render_tile_count(int width, int height) {
@@ -349,22 +366,23 @@ Image render(const RenderScene& scene, const RenderOptions& options, RenderStats
     Image image(width, height, 3);
     const int tiles_x = (width + kTileSize - 1) / kTileSize;
     const int tiles = render_tile_count(width, height);
-    std::atomic<std::uint64_t> lookups{0}, non_finite{0};
+    std::atomic<std::uint64_t> lookups{0}, non_finite_samples{0}, non_finite_pixels{0};
     auto render_tiles = [&] {
         tbb::parallel_for(
             tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
                 for (int tile = r.begin(); tile != r.end(); ++tile) {
                     SampleShader shader(scene, options);
-                    std::uint64_t bad = 0;
+                    SampleCounts counts;
                     const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
                     for (int y = y0; y < std::min(height, y0 + kTileSize); ++y) {
                         for (int x = x0; x < std::min(width, x0 + kTileSize); ++x) {
-                            const Rgb c = render_pixel_with(shader, camera, options, x, y, bad);
+                            const Rgb c = render_pixel_with(shader, camera, options, x, y, counts);
                             std::copy(c.begin(), c.end(), image.at(x, y));
                         }
                     }
                     lookups += shader.lookups;
-                    non_finite += bad;
+                    non_finite_samples += counts.non_finite_samples;
+                    non_finite_pixels += counts.non_finite_pixels;
                     if (tile_done) tile_done();
                 }
             });
@@ -381,7 +399,8 @@ Image render(const RenderScene& scene, const RenderOptions& options, RenderStats
         stats->pixels = static_cast<std::uint64_t>(width) * height;
         stats->samples = stats->pixels * static_cast<std::uint64_t>(std::max(1, options.spp));
         stats->lookups = lookups;
-        stats->non_finite_samples = non_finite;
+        stats->non_finite_samples = non_finite_samples;
+        stats->non_finite_pixels = non_finite_pixels;
     }
     return image;
 }

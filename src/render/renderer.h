@@ -12,8 +12,9 @@
 //       → reflection = filter(environment, v_r, K)               envmap/environment_map.h
 //   → Fresnel mirror + Lambert + (rough) Blinn-Phong lights      shading/
 //
-// Filter modes (FilterMode; the CLI's --filter names):
-//   point      bilinear lookups at the finest level with no footprint — the aliased baseline (and,
+// Filter modes (FilterMode; the CLI's --filter names, the same names as texture_lookup.h's
+// TextureFilter wherever both have the filter):
+//   bilinear   bilinear lookups at the finest level with no footprint — the aliased baseline (and,
 //              with --spp N, an unbiased estimate of the reference)
 //   trilinear  isotropic MIP for textures, bumps and the environment (the 1997 hardware baseline)
 //   fa         footprint assembly for textures, bumps and the environment; the bump map's mean
@@ -41,12 +42,14 @@
 //
 // Determinism: every sample position and random number is a hash of (pixel, sample, seed), and
 // every pixel is computed independently, so images are bit-identical for any thread count.
-// Non-finite values never reach a pixel (they are counted and written as 0).
+// Non-finite samples never reach a pixel: a pixel is the mean of its finite samples, and a pixel
+// without any is written as 0 (both counted in RenderStats).
 #pragma once
 
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string_view>
 
 #include "image/image.h"
@@ -54,18 +57,21 @@
 
 namespace footprint {
 
-enum class FilterMode { point, trilinear, fa, fa_rough, ewa_rough, reference };
+enum class FilterMode { bilinear, trilinear, fa, fa_rough, ewa_rough, reference };
 
 std::optional<FilterMode> parse_filter_mode(std::string_view name);
-const char* filter_mode_name(FilterMode mode);  // "point", …, "fa-rough", "ewa-rough", "reference"
-// Every mode's name, in the order above, comma-separated (for help and error messages).
-const char* filter_mode_names();
+// "bilinear", "trilinear", "fa", "fa-rough", "ewa-rough", "reference"
+const char* filter_mode_name(FilterMode mode);
+// Every mode, in the order above.
+std::span<const FilterMode> all_filter_modes();
 
 struct RenderOptions {
     FilterMode filter = FilterMode::fa_rough;
     int spp = 1;      // samples per pixel, ≥ 1 (the reference's default is set by the caller)
     int threads = 0;  // 0: all cores
     float kappa = 2;  // κ of the environment footprint (spec §2.6)
+    // The sample positions and random numbers of every pixel are a hash of (pixel, sample, seed):
+    // renders with different seeds have independent samples.
     std::uint32_t seed = 1;
     // Animation: frame_count ≥ 1 renders frame `frame` of `frame_count` along the scene's
     // camera_path (scene/scene.h's camera_for_frame); 0 (or no path): the scene's camera. Every
@@ -79,7 +85,8 @@ struct RenderStats {
     std::uint64_t pixels = 0;
     std::uint64_t samples = 0;
     std::uint64_t lookups = 0;             // texture + bump + environment lookups
-    std::uint64_t non_finite_samples = 0;  // samples whose colour was not finite (written as 0)
+    std::uint64_t non_finite_samples = 0;  // samples whose colour was not finite (dropped)
+    std::uint64_t non_finite_pixels = 0;   // pixels without a finite sample (written as 0)
 };
 
 // Renders desc().width × desc().height linear RGB in tiles of 16 × 16 pixels on oneTBB.

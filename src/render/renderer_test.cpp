@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "render/camera.h"
@@ -63,7 +64,7 @@ SceneDesc mirror_plane_scene(float f0) {
     return scene;
 }
 
-const FilterMode kAllModes[] = {FilterMode::point,    FilterMode::trilinear, FilterMode::fa,
+const FilterMode kAllModes[] = {FilterMode::bilinear, FilterMode::trilinear, FilterMode::fa,
                                 FilterMode::fa_rough, FilterMode::ewa_rough, FilterMode::reference};
 
 TEST(Renderer, MirrorPlaneInConstantEnvironmentIsEnvironmentTimesFresnel) {
@@ -159,6 +160,73 @@ TEST(Renderer, EveryPixelIsFinite) {
     }
 }
 
+// A sphere whose every lit sample is NaN (diffuse weight NaN, lit by a point light at the eye so
+// that every visible point is lit) in front of a constant background: a pixel on the silhouette
+// mixes NaN samples and background samples, a pixel inside the disc has only NaN samples.
+SceneDesc nan_sphere_scene() {
+    SceneDesc scene;
+    scene.width = 24, scene.height = 16;
+    scene.camera.position = {0, 0, 4};
+    scene.camera.look_at = {0, 0, 0};
+    scene.background = {0.2f, 0.4f, 0.6f};
+    scene.lights.push_back({LightType::point, {}, {0, 0, 4}, {1, 1, 1}});
+    MaterialDesc nan_material;
+    nan_material.diffuse = std::numeric_limits<float>::quiet_NaN();
+    scene.objects.push_back({"sphere", SphereShape{{0, 0, 0}, 1.0}, nan_material});
+    return scene;
+}
+
+// Non-finite samples are dropped and the pixel is the mean of the samples kept (not their sum over
+// every sample, which darkens it); a pixel without any finite sample is 0; both are counted.
+TEST(Renderer, NonFiniteSamplesAreDroppedFromTheMean) {
+    const SceneDesc desc = nan_sphere_scene();
+    Result<RenderScene> scene = prepare_render_scene(desc);
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    RenderOptions options;
+    options.filter = FilterMode::reference;
+    options.spp = 16;
+    RenderStats stats;
+    const Image image = render(*scene, options, &stats);
+    constexpr float kTolerance = 1e-6f;  // float rounding of a mean of equal values
+    std::uint64_t zero_pixels = 0;
+    for (int y = 0; y < desc.height; ++y) {
+        for (int x = 0; x < desc.width; ++x) {
+            const float* p = image.at(x, y);
+            if (p[0] == 0 && p[1] == 0 && p[2] == 0) {
+                ++zero_pixels;
+                continue;
+            }
+            EXPECT_NEAR(p[0], desc.background.x, kTolerance) << x << "," << y;
+            EXPECT_NEAR(p[1], desc.background.y, kTolerance) << x << "," << y;
+            EXPECT_NEAR(p[2], desc.background.z, kTolerance) << x << "," << y;
+        }
+    }
+    EXPECT_GT(zero_pixels, 0u);
+    EXPECT_EQ(stats.non_finite_pixels, zero_pixels);
+    // Some samples were dropped from pixels that kept others (the silhouette).
+    EXPECT_GT(stats.non_finite_samples, zero_pixels * options.spp);
+    EXPECT_EQ(stats.samples, stats.pixels * options.spp);
+}
+
+// The seed chooses the samples: the same seed gives the same image, another seed other samples
+// (the pixels that differ are those whose samples do not all see one constant colour).
+TEST(Renderer, TheSeedChoosesTheSamples) {
+    Result<RenderScene> scene = prepare_render_scene(busy_scene());
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    RenderOptions options;
+    options.filter = FilterMode::reference;
+    options.spp = 16;
+    const Image first = render(*scene, options);
+    EXPECT_EQ(render(*scene, options).pixels, first.pixels);
+    options.seed = 2;
+    const Image second = render(*scene, options);
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < first.pixels.size(); ++i)
+        differ += first.pixels[i] != second.pixels[i];
+    constexpr double kVaryingFraction = 0.5;  // of this scene's values; about 3/4 vary
+    EXPECT_GT(differ, kVaryingFraction * first.pixels.size()) << differ;
+}
+
 double rmse(const Image& a, const Image& b) {
     double sum = 0;
     for (std::size_t i = 0; i < a.pixels.size(); ++i) {
@@ -168,7 +236,8 @@ double rmse(const Image& a, const Image& b) {
 }
 
 // The point of the project: one filtered sample per pixel lands much closer to the ground truth
-// than one point sample, and roughness-aware filtering closer than filtering without it.
+// than one unfiltered (bilinear) sample, and roughness-aware filtering closer than filtering
+// without it.
 TEST(Renderer, FilteredModesApproachTheReference) {
     Result<RenderScene> scene = prepare_render_scene(busy_scene());
     ASSERT_TRUE(scene.ok()) << scene.error().message;
@@ -183,20 +252,22 @@ TEST(Renderer, FilteredModesApproachTheReference) {
         options.filter = mode;
         error[static_cast<int>(mode)] = rmse(render(*scene, options), reference);
     }
-    const double point = error[static_cast<int>(FilterMode::point)];
+    const double bilinear = error[static_cast<int>(FilterMode::bilinear)];
     const double fa = error[static_cast<int>(FilterMode::fa)];
     const double fa_rough = error[static_cast<int>(FilterMode::fa_rough)];
     const double ewa_rough = error[static_cast<int>(FilterMode::ewa_rough)];
-    EXPECT_LT(fa_rough, 0.5 * point) << fa_rough << " vs point " << point;
-    EXPECT_LT(ewa_rough, 0.5 * point) << ewa_rough << " vs point " << point;
+    EXPECT_LT(fa_rough, 0.5 * bilinear) << fa_rough << " vs bilinear " << bilinear;
+    EXPECT_LT(ewa_rough, 0.5 * bilinear) << ewa_rough << " vs bilinear " << bilinear;
     EXPECT_LT(fa_rough, fa) << fa_rough << " vs fa " << fa;
 }
 
 TEST(Renderer, FilterModeNamesRoundTrip) {
+    ASSERT_EQ(all_filter_modes().size(), std::size(kAllModes));
     for (FilterMode mode : kAllModes) {
         EXPECT_EQ(parse_filter_mode(filter_mode_name(mode)), mode);
     }
     EXPECT_FALSE(parse_filter_mode("fa_rough").has_value());
+    EXPECT_FALSE(parse_filter_mode("point").has_value());  // bilinear: the texture filters' name
 }
 
 TEST(RenderScene, MissingImageFileNamesTheKeyAndTheFile) {

@@ -36,8 +36,6 @@ std::optional<TextureFilter> parse_texture_filter(std::string_view name) {
          {TextureFilter::nearest, TextureFilter::bilinear, TextureFilter::trilinear,
           TextureFilter::footprint_assembly, TextureFilter::ewa, TextureFilter::summed_area})
         if (name == to_string(f)) return f;
-    if (name == "footprint_assembly") return TextureFilter::footprint_assembly;
-    if (name == "summed_area") return TextureFilter::summed_area;
     return std::nullopt;
 }
 

@@ -1,0 +1,120 @@
+#include "cli_options.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <vector>
+
+#include "core/suggest.h"
+
+namespace footprint {
+
+namespace {
+
+constexpr TextureFilter kPlaneFilters[] = {
+    TextureFilter::nearest,   TextureFilter::bilinear,
+    TextureFilter::trilinear, TextureFilter::footprint_assembly,
+    TextureFilter::ewa,       TextureFilter::summed_area};
+
+// Names that are no filter of the vocabulary but are what a user may reach for: each is answered
+// with "did you mean" the vocabulary's name for that filter.
+struct Hint {
+    std::string_view word, name;
+};
+constexpr Hint kHints[] = {{"point", "bilinear"},
+                           {"footprint_assembly", "fa"},
+                           {"footprint-assembly", "fa"},
+                           {"summed_area", "sat"},
+                           {"summed-area", "sat"}};
+
+std::vector<std::string_view> render_names() {
+    std::vector<std::string_view> names;
+    for (FilterMode mode : all_filter_modes()) names.emplace_back(filter_mode_name(mode));
+    return names;
+}
+
+std::vector<std::string_view> plane_names() {
+    std::vector<std::string_view> names;
+    for (TextureFilter filter : kPlaneFilters) names.emplace_back(to_string(filter));
+    return names;
+}
+
+std::string joined(const std::vector<std::string_view>& names, std::string_view separator) {
+    std::string out;
+    for (std::string_view name : names) {
+        if (!out.empty()) out += separator;
+        out += name;
+    }
+    return out;
+}
+
+bool contains(const std::vector<std::string_view>& names, std::string_view name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// Why `name` is not one of `accepted`, the filters of `command`.
+Error unknown_filter(std::string_view name, const std::vector<std::string_view>& accepted,
+                     std::string_view command) {
+    const std::string quoted_name = "'" + std::string(name) + "'";
+    const std::string list = joined(accepted, ", ");
+    std::vector<std::string_view> vocabulary = render_names();
+    for (std::string_view other : plane_names())
+        if (!contains(vocabulary, other)) vocabulary.push_back(other);
+    if (contains(vocabulary, name)) {
+        return Error{"--filter: footprint " + std::string(command) + " has no filter " +
+                     quoted_name + "; it accepts " + list};
+    }
+    std::optional<std::string_view> guess;
+    for (const Hint& hint : kHints)
+        if (hint.word == name && contains(accepted, hint.name)) guess = hint.name;
+    if (!guess) guess = closest_name(name, accepted);
+    const std::string did_you_mean =
+        guess ? " (did you mean '" + std::string(*guess) + "'?)" : std::string();
+    return Error{"--filter: unknown filter " + quoted_name + did_you_mean + "; footprint " +
+                 std::string(command) + " accepts " + list};
+}
+
+}  // namespace
+
+std::span<const TextureFilter> plane_filters() {
+    return kPlaneFilters;
+}
+
+std::string render_filter_names(std::string_view separator) {
+    return joined(render_names(), separator);
+}
+
+std::string plane_filter_names(std::string_view separator) {
+    return joined(plane_names(), separator);
+}
+
+Result<FilterMode> parse_render_filter(std::string_view name) {
+    if (const std::optional<FilterMode> mode = parse_filter_mode(name)) return *mode;
+    return unknown_filter(name, render_names(), "render");
+}
+
+Result<TextureFilter> parse_plane_filter(std::string_view name) {
+    const std::optional<TextureFilter> filter = parse_texture_filter(name);
+    if (filter && std::find(std::begin(kPlaneFilters), std::end(kPlaneFilters), *filter) !=
+                      std::end(kPlaneFilters)) {
+        return *filter;
+    }
+    return unknown_filter(name, plane_names(), "plane");
+}
+
+std::optional<std::string> range_problem(std::string_view option, long long value, long long low,
+                                         long long high, std::string_view note) {
+    if (value >= low && value <= high) return std::nullopt;
+    std::string message = std::string(option) + " " + std::to_string(value) + " is out of range (" +
+                          std::to_string(low) + " to " + std::to_string(high);
+    if (!note.empty()) message += "; " + std::string(note);
+    return message + ")";
+}
+
+void report_written(const std::string& what, int width, int height, std::string_view filter,
+                    std::optional<int> spp, double seconds) {
+    const std::string samples = spp ? ", " + std::to_string(*spp) + " spp" : std::string();
+    std::fprintf(stderr, "footprint: wrote %s (%dx%d, %.*s%s, %.2f s)\n", what.c_str(), width,
+                 height, static_cast<int>(filter.size()), filter.data(), samples.c_str(), seconds);
+}
+
+}  // namespace footprint

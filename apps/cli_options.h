@@ -1,0 +1,64 @@
+// apps/cli_options.h — what the `footprint` commands' options share: one filter vocabulary and one
+// way of refusing a number out of range.
+//
+// The filter vocabulary. A name means the same filter in every command; each command accepts the
+// filters it can do (render: render/renderer.h's FilterMode; plane and texture-demo:
+// texture/texture_lookup.h's TextureFilter; demo and eval render every FilterMode but reference
+// and name their files and rows by these names):
+//
+//   name       filter                                                  render plane texture-demo
+//   nearest    the nearest texel of the finest level                     -      x      x
+//   bilinear   one bilinear lookup of the finest level, no footprint     x      x      x
+//   trilinear  isotropic MIP: two levels, bilinear in each               x      x      x
+//   fa         footprint assembly (Schilling 1996)                       x      x      x
+//   fa-rough   fa plus the roughness pyramid (environment and            x      -      -
+//              highlights widened by the bumps' slopes)
+//   ewa        elliptical weighted average (Heckbert 1989)               -      x      x
+//   ewa-rough  ewa plus the roughness pyramid                            x      -      -
+//   sat        summed-area table (Crow 1984)                             -      x      x
+//   reference  the ground truth: N samples per pixel, each a bilinear    x     (texture-demo's
+//              lookup of the finest level                                       reference image)
+//
+// An unknown name is refused with one message naming the option, the value, the closest name
+// ("did you mean", core/suggest.h) and the names the command accepts.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "core/result.h"
+#include "render/renderer.h"
+#include "texture/texture_lookup.h"
+
+namespace footprint {
+
+// The filters of `footprint plane`, in the vocabulary's order: the filters texture-demo renders.
+std::span<const TextureFilter> plane_filters();
+
+// The filters of `footprint render`, separated by `separator` ("|" for --help, ", " for messages).
+std::string render_filter_names(std::string_view separator);
+// The filters of `footprint plane` (and the filters texture-demo renders).
+std::string plane_filter_names(std::string_view separator);
+
+// --filter NAME of `footprint render` / `footprint plane`; the error is the whole message:
+//   "--filter: unknown filter 'fa_rough' (did you mean 'fa-rough'?); footprint render accepts
+//    bilinear, trilinear, fa, fa-rough, ewa-rough, reference"
+//   "--filter: footprint render has no filter 'sat'; it accepts bilinear, …"
+Result<FilterMode> parse_render_filter(std::string_view name);
+Result<TextureFilter> parse_plane_filter(std::string_view name);
+
+// "--spp 0 is out of range (1 to 65536)" ("…(0 to 1024; 0: all cores)" with a `note`) when
+// `value` is outside [low, high]; nullopt when it is inside.
+std::optional<std::string> range_problem(std::string_view option, long long value, long long low,
+                                         long long high, std::string_view note = {});
+
+// What a command wrote, one line on stderr, as every command that writes an image says it:
+//   "footprint: wrote out.png (480x270, fa, 1 spp, 0.05 s)"
+// `what` is the file, or a sequence's "8 frames a_0000.png … a_0007.png"; `spp` is left out when
+// nullopt (a command without samples per pixel).
+void report_written(const std::string& what, int width, int height, std::string_view filter,
+                    std::optional<int> spp, double seconds);
+
+}  // namespace footprint
