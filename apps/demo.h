@@ -3,7 +3,9 @@
 //
 // Writes into out_dir (created if missing), for each scene:
 //   <scene>/reference.png, <scene>/<mode>.png for bilinear trilinear fa fa-rough ewa-rough
-//   <scene>/contact_sheet.png   reference first, then the modes in that order, 3 columns
+//   <scene>/contact_sheet.png   reference first, then the modes in that order, 3 columns, each
+//                               panel labelled under it: mode, spp, RMSE against the reference
+//                               (not for the reference itself), render time
 // and demo.json: per scene its title and assets, per mode the RMSE against the reference (linear
 // light, all pixels), seconds and lookups. Prints a table to stdout; progress bars on stderr when
 // it is a terminal and not quiet. Returns 0, or 1 after one line "footprint: …" on stderr naming

@@ -96,9 +96,17 @@ int demo(const TextureDemoOptions& options) {
     }
     constexpr int kColumns = 4, kGap = 4;
     std::vector<const Image*> images;
-    for (const Entry& e : entries) images.push_back(&e.image);
-    const Image sheet = contact_sheet(images, kColumns, kGap);
-    if (const Status saved = save_image(sheet, dir / "demo_contact_sheet.png"); !saved)
+    std::vector<std::string> labels;
+    for (const Entry& e : entries) {
+        images.push_back(&e.image);
+        const bool reference = e.name == "reference";
+        labels.push_back(panel_label(
+            e.name, reference ? options.samples_per_axis * options.samples_per_axis : 1,
+            reference ? NAN : e.rmse, e.stats.seconds));
+    }
+    const ContactSheet sheet = contact_sheet(images, labels, {kColumns, kGap});
+    if (!sheet.warning.empty()) warn(sheet.warning);
+    if (const Status saved = save_image(sheet.image, dir / "demo_contact_sheet.png"); !saved)
         return fail(saved.error().message);
 
     const PlaneView camera(view);

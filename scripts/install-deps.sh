@@ -11,6 +11,7 @@ packages=(
     nlohmann-json3-dev libcli11-dev
     libgtest-dev libgmock-dev libbenchmark-dev
     chromium                                                  # footprint eval's report check
+    fonts-dejavu-core                                         # contact sheets' labels
     valgrind                                                  # bench/env-instructions.sh
 )
 
