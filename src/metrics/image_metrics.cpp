@@ -65,6 +65,34 @@ Result<std::vector<std::size_t>> counted_pixels(const Image& shape, const Image*
     return counted;
 }
 
+bool pixel_is_finite(const Image& image, std::size_t p) {
+    for (int c = 0; c < image.channels; ++c)
+        if (!std::isfinite(image.pixels[p * image.channels + c])) return false;
+    return true;
+}
+
+// The non-finite values of a and b: an error unless ignored; ignored, the counted pixels where a
+// or b has one are removed from `counted` (and `valid`, one flag per pixel, is filled).
+std::optional<Error> handle_non_finite(const Image& a, const Image& b, bool ignore,
+                                       std::vector<std::size_t>& counted,
+                                       std::vector<unsigned char>& valid, ImageComparison& result) {
+    const NonFinitePixels in_a = find_non_finite(a), in_b = find_non_finite(b);
+    result.non_finite_a = in_a.count;
+    result.non_finite_b = in_b.count;
+    if (in_a.count == 0 && in_b.count == 0) return std::nullopt;
+    if (!ignore)
+        return Error{"A has " + non_finite_text(in_a) + "; B has " + non_finite_text(in_b)};
+    valid.assign(a.pixel_count(), 1);
+    for (std::size_t p = 0; p < valid.size(); ++p)
+        valid[p] = pixel_is_finite(a, p) && pixel_is_finite(b, p);
+    const std::size_t before = counted.size();
+    std::erase_if(counted, [&](std::size_t p) { return !valid[p]; });
+    result.excluded = before - counted.size();
+    if (counted.empty())
+        return Error{"no pixel left: every counted pixel has a non-finite value in A or B"};
+    return std::nullopt;
+}
+
 // Mean of |a − b| over the counted pixels and all channels (same shapes assumed).
 double mean_abs_over(const Image& a, const Image& b, const std::vector<std::size_t>& counted) {
     double sum = 0;
@@ -125,30 +153,39 @@ void filter_planes(std::vector<std::vector<double>>& planes, int width, int heig
     }
 }
 
-// The SSIM map averaged over channels, in double (width × height values).
-std::vector<double> ssim_values(const Image& a, const Image& b, double peak) {
+// The SSIM map averaged over channels, in double (width × height values). With `valid` (one
+// flag per pixel; empty: all valid) the windows skip invalid pixels: their values count as 0
+// and a sixth plane, the filtered flags, renormalises the rest — the per-pass normalisation of
+// filter_planes cancels in the ratio, leaving Σ w m v / Σ w m. Invalid pixels' values are
+// meaningless.
+std::vector<double> ssim_values(const Image& a, const Image& b, double peak,
+                                const std::vector<unsigned char>& valid = {}) {
     const std::size_t n = a.pixel_count();
     const double c1 = (kSsimK1 * peak) * (kSsimK1 * peak);
     const double c2 = (kSsimK2 * peak) * (kSsimK2 * peak);
     std::vector<double> result(n, 0.0);
-    // a, b, a², b², ab for one channel, filtered into μa, μb, E[a²], E[b²], E[ab].
-    std::vector<std::vector<double>> planes(5, std::vector<double>(n));
+    // a, b, a², b², ab for one channel, filtered into μa, μb, E[a²], E[b²], E[ab] (and the flags).
+    std::vector<std::vector<double>> planes(valid.empty() ? 5 : 6, std::vector<double>(n));
     for (int c = 0; c < a.channels; ++c) {
         for (std::size_t p = 0; p < n; ++p) {
-            const double va = a.pixels[p * a.channels + c];
-            const double vb = b.pixels[p * b.channels + c];
+            const bool use = valid.empty() || valid[p];
+            const double va = use ? a.pixels[p * a.channels + c] : 0.0;
+            const double vb = use ? b.pixels[p * b.channels + c] : 0.0;
             planes[0][p] = va;
             planes[1][p] = vb;
             planes[2][p] = va * va;
             planes[3][p] = vb * vb;
             planes[4][p] = va * vb;
+            if (!valid.empty()) planes[5][p] = use ? 1.0 : 0.0;
         }
         filter_planes(planes, a.width, a.height);
         for (std::size_t p = 0; p < n; ++p) {
-            const double mu_a = planes[0][p], mu_b = planes[1][p];
-            const double var_a = planes[2][p] - mu_a * mu_a;
-            const double var_b = planes[3][p] - mu_b * mu_b;
-            const double cov = planes[4][p] - mu_a * mu_b;
+            const double share = valid.empty() ? 1.0 : planes[5][p];
+            if (!(share > 0)) continue;
+            const double mu_a = planes[0][p] / share, mu_b = planes[1][p] / share;
+            const double var_a = planes[2][p] / share - mu_a * mu_a;
+            const double var_b = planes[3][p] / share - mu_b * mu_b;
+            const double cov = planes[4][p] / share - mu_a * mu_b;
             result[p] += (2 * mu_a * mu_b + c1) * (2 * cov + c2) /
                          ((mu_a * mu_a + mu_b * mu_b + c1) * (var_a + var_b + c2));
         }
@@ -186,6 +223,28 @@ Result<double> checked_temporal_variation(const std::vector<Image>& sequence, co
 
 }  // namespace
 
+NonFinitePixels find_non_finite(const Image& image) {
+    NonFinitePixels found;
+    for (std::size_t p = 0; p < image.pixel_count(); ++p) {
+        if (pixel_is_finite(image, p)) continue;
+        if (found.count++ > 0) continue;
+        found.x = static_cast<int>(p % image.width);
+        found.y = static_cast<int>(p / image.width);
+        for (found.channel = 0; std::isfinite(image.pixels[p * image.channels + found.channel]);)
+            ++found.channel;
+        found.value = image.pixels[p * image.channels + found.channel];
+    }
+    return found;
+}
+
+std::string non_finite_text(const NonFinitePixels& n) {
+    std::string text = std::to_string(n.count) + " non-finite pixel" + (n.count == 1 ? "" : "s");
+    if (n.count == 0) return text;
+    const char* value = std::isnan(n.value) ? "nan" : n.value > 0 ? "inf" : "-inf";
+    return text + ", the first at (" + std::to_string(n.x) + ", " + std::to_string(n.y) +
+           ") channel " + std::to_string(n.channel) + " = " + value;
+}
+
 Result<ImageComparison> compare_images(const Image& a, const Image& b,
                                        const MetricsOptions& options) {
     if (!(std::isfinite(options.peak) && options.peak > 0))
@@ -193,10 +252,10 @@ Result<ImageComparison> compare_images(const Image& a, const Image& b,
     if (auto e = check_same_shape(a, b, "A", "B")) return *e;
     Result<std::vector<std::size_t>> counted = counted_pixels(a, options.mask);
     if (!counted) return counted.error();
-    if (auto e = check_finite(a, "A")) return *e;
-    if (auto e = check_finite(b, "B")) return *e;
-
     ImageComparison result;
+    std::vector<unsigned char> valid;  // empty: every pixel is finite
+    if (auto e = handle_non_finite(a, b, options.ignore_non_finite, *counted, valid, result))
+        return *e;
     result.pixels = counted->size();
     double squared = 0;
     for (std::size_t p : *counted)
@@ -209,7 +268,7 @@ Result<ImageComparison> compare_images(const Image& a, const Image& b,
     result.psnr = result.rmse > 0 ? 20.0 * std::log10(options.peak / result.rmse)
                                   : std::numeric_limits<double>::infinity();
 
-    const std::vector<double> map = ssim_values(a, b, options.peak);
+    const std::vector<double> map = ssim_values(a, b, options.peak, valid);
     double ssim_sum = 0;
     for (std::size_t p : *counted) ssim_sum += map[p];
     result.ssim = ssim_sum / static_cast<double>(counted->size());
@@ -225,11 +284,29 @@ Image ssim_map(const Image& a, const Image& b, double peak) {
     return map;
 }
 
-Image error_heat_map(const Image& a, const Image& b, double scale) {
-    assert(same_shape(a, b));
-    if (!same_shape(a, b) || a.empty()) return {};
+double heat_map_position(double error, const HeatMapScale& scale) {
+    double t = scale.bottom > 0
+                   ? std::log(error / scale.bottom) / std::log(scale.top / scale.bottom)
+                   : error / scale.top;
+    if (!(t > 0)) t = 0;  // also NaN
+    return std::min(t, 1.0);
+}
+
+std::array<float, 3> heat_map_colour(double t) {
     // Black, blue, red, yellow, white at t = 0, 1/4, 1/2, 3/4, 1.
     static constexpr float kStops[5][3] = {{0, 0, 0}, {0, 0, 1}, {1, 0, 0}, {1, 1, 0}, {1, 1, 1}};
+    const double u = std::clamp(t, 0.0, 1.0) * 4;
+    const int k = std::min(3, static_cast<int>(u));
+    const double f = u - k;
+    std::array<float, 3> colour{};
+    for (int c = 0; c < 3; ++c)
+        colour[c] = static_cast<float>(kStops[k][c] + f * (kStops[k + 1][c] - kStops[k][c]));
+    return colour;
+}
+
+Image error_heat_map(const Image& a, const Image& b, const HeatMapScale& scale) {
+    assert(same_shape(a, b));
+    if (!same_shape(a, b) || a.empty()) return {};
     Image heat(a.width, a.height, 3);
     for (std::size_t p = 0; p < a.pixel_count(); ++p) {
         double diff = 0;
@@ -237,17 +314,16 @@ Image error_heat_map(const Image& a, const Image& b, double scale) {
             const std::size_t i = p * a.channels + c;
             diff += std::abs(static_cast<double>(a.pixels[i]) - static_cast<double>(b.pixels[i]));
         }
-        double t = diff / a.channels / scale;
-        if (!(t > 0)) t = 0;  // also NaN
-        if (t > 1) t = 1;
-        const double u = t * 4;
-        const int k = std::min(3, static_cast<int>(u));
-        const double f = u - k;
-        for (int c = 0; c < 3; ++c)
-            heat.pixels[p * 3 + c] =
-                static_cast<float>(kStops[k][c] + f * (kStops[k + 1][c] - kStops[k][c]));
+        const std::array<float, 3> colour =
+            heat_map_colour(heat_map_position(diff / a.channels, scale));
+        std::copy(colour.begin(), colour.end(),
+                  heat.pixels.begin() + static_cast<std::ptrdiff_t>(p * 3));
     }
     return heat;
+}
+
+Image error_heat_map(const Image& a, const Image& b, double scale) {
+    return error_heat_map(a, b, HeatMapScale{scale, 0});
 }
 
 double mean_absolute_difference(const Image& a, const Image& b) {

@@ -10,6 +10,10 @@
 //     must have the images' width and height and select at least one pixel. Without a mask every
 //     pixel counts.
 //   * `peak` is PSNR's peak value and SSIM's dynamic range L (1 for images in [0, 1]).
+//   * Non-finite values (NaN, ±infinity) in A or B are an error. With
+//     MetricsOptions::ignore_non_finite the pixels where A or B has one (in any channel) are left
+//     out of every metric like masked-out pixels, and SSIM's windows skip them as well (their
+//     weights are dropped and the rest renormalised, as at the border).
 //
 // The metrics (n = counted pixels, C = channels; sums over counted pixels p and channels c)
 //   RMSE = sqrt( Σ (a − b)² / (n C) )
@@ -24,20 +28,23 @@
 //          Border rule: near the border the window is cut to the pixels inside the image and its
 //          weights are renormalised to sum to 1 (so images smaller than 11×11 work and every
 //          pixel has a value). Where the full window fits this is exactly the paper's window.
-//          The mask does not cut windows: they see all pixels, counted or not; the mask selects
-//          which values of the SSIM map are averaged. The reported SSIM is the map averaged over
-//          the counted pixels, channels averaged with equal weight.
+//          The mask does not cut windows: they see all pixels, counted or not (except ignored
+//          non-finite ones); the mask selects which values of the SSIM map are averaged. The
+//          reported SSIM is the map averaged over the counted pixels, channels averaged with
+//          equal weight.
 //
 // Errors (core/result.h): nothing is printed or thrown. Messages say what is wrong, naming the
 // images "A" and "B" and the mask: "images differ in size: A is 4x4, B is 3x4", "images differ in
 // channels: A has 3, B has 1", "mask is 2x2 but the images are 4x4", "mask selects no pixel (no
-// value of channel 0 is > 0.5)", "A has a non-finite value at pixel (1, 2) channel 0", "peak must
-// be finite and > 0 (got 0)", "A is empty". Callers prefix the file names.
+// value of channel 0 is > 0.5)", "A has 3 non-finite pixels, the first at (1, 2) channel 0 = nan;
+// B has 0", "peak must be finite and > 0 (got 0)", "A is empty". Callers prefix the file names.
 //
 // All functions are thread-safe (they only read their arguments).
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "core/result.h"
@@ -51,18 +58,36 @@ struct MetricsOptions {
     const Image* mask = nullptr;
     // PSNR's peak value and SSIM's dynamic range L; finite and > 0.
     double peak = 1.0;
+    // false: a non-finite value in A or B is an error. true: the pixels where A or B has one are
+    // left out of every metric (ImageComparison::excluded counts them).
+    bool ignore_non_finite = false;
 };
 
 struct ImageComparison {
     double rmse = 0;
     double psnr = 0;  // dB; +infinity for identical images (rmse == 0)
     double ssim = 1;  // mean SSIM over the counted pixels, channels averaged; 1 for identical
-    std::size_t pixels = 0;  // counted pixels
+    std::size_t pixels = 0;        // counted pixels (without the excluded ones)
+    std::size_t non_finite_a = 0;  // pixels of A (whole image) with a non-finite channel value
+    std::size_t non_finite_b = 0;
+    std::size_t excluded = 0;  // pixels the mask selects that were left out as non-finite
 };
+
+// The pixels of an image with a non-finite channel value, and the first of them (row-major).
+struct NonFinitePixels {
+    std::size_t count = 0;
+    int x = -1, y = -1, channel = -1;  // the first one; −1 when count is 0
+    float value = 0;                   // its value (NaN or ±infinity)
+};
+NonFinitePixels find_non_finite(const Image& image);
+
+// "3 non-finite pixels, the first at (1, 2) channel 0 = nan"; "0 non-finite pixels".
+std::string non_finite_text(const NonFinitePixels& non_finite);
 
 // RMSE, PSNR and SSIM of `a` against `b` over the counted pixels (see the top of this file).
 // Fails on a size or channel mismatch, an empty image, a mask of the wrong size or that selects
-// nothing, a non-finite value in a, b or the mask, or a peak that is not finite and > 0.
+// nothing, a non-finite value in the mask, in a or b (unless ignored; then also when no counted
+// pixel is left), or a peak that is not finite and > 0.
 Result<ImageComparison> compare_images(const Image& a, const Image& b,
                                        const MetricsOptions& options = {});
 
@@ -71,10 +96,24 @@ Result<ImageComparison> compare_images(const Image& a, const Image& b,
 // channels and peak > 0 (checked by assert; compare_images validates). Symmetric in a and b.
 Image ssim_map(const Image& a, const Image& b, double peak);
 
-// An RGB error picture for reports: t = (mean over channels of |a − b|) / scale, clamped to
-// [0, 1] (a NaN t, as for 0 / 0, is 0), mapped through the ramp black → blue → red → yellow →
-// white (stops at t = 0, ¼, ½, ¾, 1; linear interpolation of linear-light values — saved as PNG
-// the stops come out as the pure sRGB colours). Requires a and b of the same size and channels.
+// How an error picture maps a pixel's error e (the mean over channels of |a − b|) to a position
+// t in [0, 1] on its colour ramp: linear from 0 to `top` (bottom = 0): t = e / top; or
+// logarithmic from bottom > 0 to top: t = log(e / bottom) / log(top / bottom). Clamped to
+// [0, 1]; a NaN t (0 / 0, a non-finite pixel) is 0.
+struct HeatMapScale {
+    double top = 1;
+    double bottom = 0;
+};
+double heat_map_position(double error, const HeatMapScale& scale);
+
+// The ramp black → blue → red → yellow → white (stops at t = 0, ¼, ½, ¾, 1), linear
+// interpolation of linear-light values: saved as PNG the stops come out as the pure sRGB colours.
+std::array<float, 3> heat_map_colour(double t);
+
+// An RGB error picture for reports: each pixel heat_map_colour(heat_map_position(e, scale)).
+// Requires a and b of the same size and channels. The `double` form is the linear scale with top
+// `scale`.
+Image error_heat_map(const Image& a, const Image& b, const HeatMapScale& scale);
 Image error_heat_map(const Image& a, const Image& b, double scale);
 
 // Mean of |a − b| over all pixels and channels (no mask); 0 for empty images. Requires a and b

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -247,13 +249,152 @@ TEST(ImageMetricsErrors, NameTheProblem) {
     Image bad = a;
     bad.at(1, 2, 2) = std::numeric_limits<float>::quiet_NaN();
     EXPECT_EQ(message(compare_images(a, bad)),
-              "B has a non-finite value at pixel (1, 2) channel 2");
+              "A has 0 non-finite pixels; B has 1 non-finite pixel, the first at (1, 2) channel 2 "
+              "= nan");
     bad.at(1, 2, 2) = std::numeric_limits<float>::infinity();
-    EXPECT_EQ(message(compare_images(bad, a)),
-              "A has a non-finite value at pixel (1, 2) channel 2");
+    bad.at(3, 3, 0) = -std::numeric_limits<float>::infinity();
+    EXPECT_EQ(message(compare_images(bad, bad)),
+              "A has 2 non-finite pixels, the first at (1, 2) channel 2 = inf; B has 2 non-finite "
+              "pixels, the first at (1, 2) channel 2 = inf");
     options.peak = 0;
     EXPECT_NE(message(compare_images(a, a, options)).find("peak must be finite and > 0"),
               std::string::npos);
+}
+
+// Non-finite values used to be compared as given (NaN against NaN: no error, RMSE 0 from the
+// loader's zeros); now they are an error, or left out of every metric when ignored.
+TEST(ImageMetricsNonFinite, FindCountsPixelsAndNamesTheFirst) {
+    Image image(5, 3, 3, 0.25f);
+    EXPECT_EQ(find_non_finite(image).count, 0u);
+    EXPECT_EQ(non_finite_text(find_non_finite(image)), "0 non-finite pixels");
+    image.at(4, 0, 1) = -std::numeric_limits<float>::infinity();
+    image.at(4, 0, 2) = std::numeric_limits<float>::quiet_NaN();  // same pixel: counted once
+    image.at(0, 2, 0) = std::numeric_limits<float>::quiet_NaN();
+    const NonFinitePixels found = find_non_finite(image);
+    EXPECT_EQ(found.count, 2u);
+    EXPECT_EQ(found.x, 4);
+    EXPECT_EQ(found.y, 0);
+    EXPECT_EQ(found.channel, 1);
+    EXPECT_EQ(non_finite_text(found), "2 non-finite pixels, the first at (4, 0) channel 1 = -inf");
+}
+
+TEST(ImageMetricsNonFinite, IgnoredPixelsAreLeftOutOfEveryMetric) {
+    constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    Image a = noise_image(13, 12, 3, 5), b = noise_image(13, 12, 3, 6);
+    a.at(2, 3, 0) = kNaN;  // NaN against NaN must not count as equal
+    b.at(2, 3, 0) = kNaN;
+    b.at(9, 7, 2) = kInf;
+    EXPECT_FALSE(compare_images(a, b).ok());
+    MetricsOptions ignore;
+    ignore.ignore_non_finite = true;
+    const Result<ImageComparison> r = compare_images(a, b, ignore);
+    ASSERT_TRUE(r.ok()) << r.error().message;
+    EXPECT_EQ(r->non_finite_a, 1u);
+    EXPECT_EQ(r->non_finite_b, 2u);
+    EXPECT_EQ(r->excluded, 2u);
+    EXPECT_EQ(r->pixels, 13u * 12u - 2u);
+
+    // RMSE: exactly the finite pixels' (by hand).
+    double squared = 0;
+    for (int y = 0; y < 12; ++y)
+        for (int x = 0; x < 13; ++x) {
+            if ((x == 2 && y == 3) || (x == 9 && y == 7)) continue;
+            for (int c = 0; c < 3; ++c) {
+                const double d = double(a.at(x, y, c)) - double(b.at(x, y, c));
+                squared += d * d;
+            }
+        }
+    constexpr double kRoundingTolerance = 1e-12;
+    EXPECT_NEAR(r->rmse, std::sqrt(squared / ((13 * 12 - 2) * 3)), kRoundingTolerance);
+    EXPECT_TRUE(std::isfinite(r->psnr));
+
+    // SSIM never reads the excluded pixels: other values there give the same result.
+    Image a2 = a, b2 = b;
+    a2.at(2, 3, 0) = kInf;
+    b2.at(2, 3, 0) = -kInf;
+    b2.at(9, 7, 2) = kNaN;
+    const Result<ImageComparison> r2 = compare_images(a2, b2, ignore);
+    ASSERT_TRUE(r2.ok());
+    EXPECT_EQ(r2->ssim, r->ssim);
+    EXPECT_GT(r->ssim, -1.0);
+    EXPECT_LT(r->ssim, 1.0);
+    // Ignoring with nothing to ignore changes nothing, bit for bit.
+    const Image fa = noise_image(13, 12, 3, 5), fb = noise_image(13, 12, 3, 6);
+    const Result<ImageComparison> plain = compare_images(fa, fb);
+    const Result<ImageComparison> ignored = compare_images(fa, fb, ignore);
+    ASSERT_TRUE(plain.ok() && ignored.ok());
+    EXPECT_EQ(plain->ssim, ignored->ssim);
+    EXPECT_EQ(plain->rmse, ignored->rmse);
+    EXPECT_EQ(ignored->excluded, 0u);
+}
+
+TEST(ImageMetricsNonFinite, IgnoredSsimMatchesWindowsThatSkipThePixels) {
+    // One channel, one bad pixel in the middle: the SSIM of every other pixel is the paper's
+    // formula over its window without the bad pixel (weights renormalised), computed directly.
+    Image a = noise_image(9, 8, 1, 11), b = noise_image(9, 8, 1, 12);
+    a.at(4, 4, 0) = std::numeric_limits<float>::quiet_NaN();
+    MetricsOptions ignore;
+    ignore.ignore_non_finite = true;
+    const Result<ImageComparison> r = compare_images(a, b, ignore);
+    ASSERT_TRUE(r.ok()) << r.error().message;
+    double sum = 0;
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 9; ++x) {
+            if (x == 4 && y == 4) continue;
+            double weight = 0, mu_a = 0, mu_b = 0, aa = 0, bb = 0, ab = 0;
+            for (int sy = std::max(0, y - 5); sy <= std::min(7, y + 5); ++sy)
+                for (int sx = std::max(0, x - 5); sx <= std::min(8, x + 5); ++sx) {
+                    if (sx == 4 && sy == 4) continue;
+                    const double w =
+                        std::exp(-((sx - x) * (sx - x) + (sy - y) * (sy - y)) / (2 * 1.5 * 1.5));
+                    const double va = a.at(sx, sy, 0), vb = b.at(sx, sy, 0);
+                    weight += w;
+                    mu_a += w * va;
+                    mu_b += w * vb;
+                    aa += w * va * va;
+                    bb += w * vb * vb;
+                    ab += w * va * vb;
+                }
+            mu_a /= weight;
+            mu_b /= weight;
+            const double var_a = aa / weight - mu_a * mu_a, var_b = bb / weight - mu_b * mu_b;
+            const double cov = ab / weight - mu_a * mu_b;
+            const double c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;
+            sum += (2 * mu_a * mu_b + c1) * (2 * cov + c2) /
+                   ((mu_a * mu_a + mu_b * mu_b + c1) * (var_a + var_b + c2));
+        }
+    constexpr double kTolerance = 1e-10;
+    EXPECT_NEAR(r->ssim, sum / (9 * 8 - 1), kTolerance);
+}
+
+TEST(ImageMetricsNonFinite, NothingLeftIsAnError) {
+    Image a(2, 1, 1, std::numeric_limits<float>::quiet_NaN());
+    MetricsOptions ignore;
+    ignore.ignore_non_finite = true;
+    const Result<ImageComparison> r = compare_images(a, Image(2, 1, 1, 0.0f), ignore);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().message,
+              "no pixel left: every counted pixel has a non-finite value in A or B");
+}
+
+TEST(ImageMetrics, HeatMapLogarithmicScaleAndRamp) {
+    const HeatMapScale log_scale{1.0, 0.001};
+    constexpr double kTolerance = 1e-12;
+    EXPECT_NEAR(heat_map_position(1.0, log_scale), 1.0, kTolerance);
+    EXPECT_NEAR(heat_map_position(0.01, log_scale), 1.0 / 3, kTolerance);
+    EXPECT_NEAR(heat_map_position(0.1, log_scale), 2.0 / 3, kTolerance);
+    EXPECT_EQ(heat_map_position(0.0001, log_scale), 0.0);
+    EXPECT_EQ(heat_map_position(0.0, log_scale), 0.0);
+    EXPECT_EQ(heat_map_position(5.0, log_scale), 1.0);
+    EXPECT_EQ(heat_map_position(std::nan(""), log_scale), 0.0);
+    EXPECT_NEAR(heat_map_position(0.25, HeatMapScale{0.5, 0}), 0.5, kTolerance);
+    EXPECT_EQ(heat_map_colour(0.5), (std::array<float, 3>{1, 0, 0}));
+    EXPECT_EQ(heat_map_colour(1.0), (std::array<float, 3>{1, 1, 1}));
+    // The image uses the same mapping: 0.01 of 3 decades is t = 1/3, between blue and red.
+    const Image heat = error_heat_map(grey(1, 1, {0.01f}), grey(1, 1, {0.0f}), log_scale);
+    const std::array<float, 3> expected = heat_map_colour(heat_map_position(0.01f, log_scale));
+    for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(heat.pixels[c], expected[c]) << c;
 }
 
 std::vector<Image> grey_sequence(const std::vector<std::vector<float>>& frames) {
