@@ -370,24 +370,20 @@ int run_eval_command(const EvalCommandOptions& options) {
             images.push_back(std::move(t.image));
         }
 
-        // Heat maps on one scale per scene — the 95th percentile of point's per-pixel error, so
-        // that a few HDR fireflies do not darken everything else —, crops where point errs most.
-        const Image point_error = absolute_error(images.front(), *reference);
-        std::vector<float> sorted = point_error.pixels;
-        const std::size_t rank = sorted.size() * 95 / 100;
-        std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(rank),
-                         sorted.end());
-        const double scale = std::max(1e-6, static_cast<double>(sorted[rank]));
+        // Heat maps on one scale per scene that no pixel saturates (eval_report.h), crops where
+        // bilinear errs most.
+        std::vector<Image> errors;
+        for (const Image& image : images) errors.push_back(absolute_error(image, *reference));
+        eval_scene.heat_map_scale = scene_heat_map_scale(errors);
         for (std::size_t i = 0; i < methods.size(); ++i) {
             EvalMethod& em = eval_scene.methods[i];
             em.heat_map_file = named.name + "/" + methods[i].file + "_error.png";
-            if (Status s = save_image(error_heat_map(images[i], *reference, scale),
-                                      options.out_dir / em.heat_map_file);
-                !s) {
+            const Image heat = error_heat_map(images[i], *reference, eval_scene.heat_map_scale);
+            if (Status s = save_image(heat, options.out_dir / em.heat_map_file); !s) {
                 return fail(s.error().message);
             }
         }
-        eval_scene.crops = hardest_regions(point_error, 3, std::max(12, desc.width / 10));
+        eval_scene.crops = hardest_regions(errors.front(), 3, std::max(12, desc.width / 10));
 
         // Rows of the CSV and JSON.
         const std::vector<EvalMethod> supersampling = supersampling_methods(eval_scene);

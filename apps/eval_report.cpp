@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "command_util.h"
+#include "image/color.h"
 
 namespace footprint {
 
@@ -240,6 +241,62 @@ std::pair<double, double> log_range(const std::vector<double>& values) {
 constexpr std::array<const char*, 8> palette = {"#d62728", "#2ca02c", "#9467bd", "#ff7f0e",
                                                 "#17becf", "#8c564b", "#e377c2", "#bcbd22"};
 
+// Places the plot's text labels so that none overlaps another, a marker or the legend: each
+// label takes the first of its candidate spots whose box (estimated from its length in
+// characters) stays inside the plot and overlaps nothing taken so far; the first spot when none
+// is free.
+class LabelPlacer {
+  public:
+    struct Spot {
+        double x, y;         // the baseline's anchor point
+        const char* anchor;  // SVG text-anchor: "start", "middle" or "end"
+    };
+    LabelPlacer(double x0, double y0, double x1, double y1) : bounds_{x0, y0, x1, y1} {}
+    void take(double x0, double y0, double x1, double y1) { taken_.push_back({x0, y0, x1, y1}); }
+    // `text` placed: its <text …> start tag without the closing '>' (attributes x, y, anchor).
+    std::string place(std::string_view text, const std::vector<Spot>& spots) {
+        const double width = kCharWidth * static_cast<double>(characters(text));
+        const Spot* chosen = &spots.front();
+        for (const Spot& spot : spots)
+            if (fits(box(spot, width))) {
+                chosen = &spot;
+                break;
+            }
+        taken_.push_back(box(*chosen, width));
+        return "<text x=\"" + coord(chosen->x) + "\" y=\"" + coord(chosen->y) +
+               "\" text-anchor=\"" + chosen->anchor + "\"";
+    }
+
+  private:
+    struct Box {
+        double x0, y0, x1, y1;
+    };
+    static constexpr double kCharWidth = 7.2, kAscent = 11, kDescent = 3;  // 12-pixel sans-serif
+
+    static std::size_t characters(std::string_view utf8) {
+        std::size_t n = 0;
+        for (char c : utf8) n += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+        return n;
+    }
+    static Box box(const Spot& s, double width) {
+        const std::string_view anchor = s.anchor;
+        const double x0 = anchor == "end"      ? s.x - width
+                          : anchor == "middle" ? s.x - width / 2
+                                               : s.x;
+        return {x0, s.y - kAscent, x0 + width, s.y + kDescent};
+    }
+    bool fits(const Box& b) const {
+        if (b.x0 < bounds_.x0 || b.y0 < bounds_.y0 || b.x1 > bounds_.x1 || b.y1 > bounds_.y1)
+            return false;
+        for (const Box& t : taken_)
+            if (b.x0 < t.x1 && t.x0 < b.x1 && b.y0 < t.y1 && t.y0 < b.y1) return false;
+        return true;
+    }
+
+    Box bounds_;
+    std::vector<Box> taken_;
+};
+
 }  // namespace
 
 std::string error_time_plot_svg(const EvalScene& scene) {
@@ -327,6 +384,19 @@ std::string error_time_plot_svg(const EvalScene& scene) {
         << ") rotate(-90)\" text-anchor=\"middle\">RMSE against the reference (log scale)</text>\n";
     svg << "</g>\n";
 
+    // What labels must not cover: the legend (top right) and every point.
+    const double lx = left + plot_w - 190, ly = top + 10;
+    LabelPlacer labels(left + 2, top + 2, left + plot_w - 2, top + plot_h - 2);
+    labels.take(lx, ly, lx + 182, ly + 40);
+    for (const EvalMethod& m : ss)
+        labels.take(px(m.seconds) - 5, py(m.rmse) - 5, px(m.seconds) + 5, py(m.rmse) + 5);
+    for (const Marker& k : markers) {
+        const double mx = px(k.method->seconds), my = py(k.method->rmse);
+        labels.take(mx - 8, my - 8, mx + 8, my + 8);
+        if (k.speedup.defined && positive_finite(k.speedup.seconds))
+            labels.take(px(k.speedup.seconds) - 4, my - 4, px(k.speedup.seconds) + 4, my + 4);
+    }
+
     // Supersampling: a connected line with points labelled by spp.
     if (!ss.empty()) {
         svg << "<polyline fill=\"none\" stroke=\"#1f77b4\" stroke-width=\"2\" points=\"";
@@ -334,23 +404,26 @@ std::string error_time_plot_svg(const EvalScene& scene) {
             svg << coord(px(m.seconds)) << "," << coord(py(m.rmse)) << " ";
         svg << "\"/>\n<g fill=\"#1f77b4\">\n";
         for (const EvalMethod& m : ss) {
-            svg << "<circle cx=\"" << coord(px(m.seconds)) << "\" cy=\"" << coord(py(m.rmse))
-                << "\" r=\"4\"><title>" << html_escape(m.name) << "</title></circle>";
-            svg << "<text x=\"" << coord(px(m.seconds) + 6) << "\" y=\"" << coord(py(m.rmse) - 7)
-                << "\">" << m.spp << " spp</text>\n";
+            const double x = px(m.seconds), y = py(m.rmse);
+            svg << "<circle cx=\"" << coord(x) << "\" cy=\"" << coord(y) << "\" r=\"4\"><title>"
+                << html_escape(m.name) << "</title></circle>";
+            const std::string text = std::to_string(m.spp) + " spp";
+            svg << labels.place(text, {{x + 6, y - 7, "start"},
+                                       {x + 6, y + 15, "start"},
+                                       {x - 6, y - 7, "end"},
+                                       {x - 6, y + 15, "end"}})
+                << ">" << text << "</text>\n";
         }
         svg << "</g>\n";
     }
 
-    // Every other method: a marker, its name and a dashed line to its equal-error time.
+    // Every other method: a marker and a dashed line to its equal-error time (labels below).
     for (std::size_t i = 0; i < markers.size(); ++i) {
         const Marker& k = markers[i];
         const char* colour = palette[i % palette.size()];
         const double mx = px(k.method->seconds), my = py(k.method->rmse);
-        bool line_right = true;
         if (k.speedup.defined && positive_finite(k.speedup.seconds)) {
             const double ex = px(k.speedup.seconds);
-            line_right = ex >= mx;
             if (k.speedup.extrapolated && !ss.empty())  // the extended supersampling curve
                 svg << "<line x1=\"" << coord(px(ss.back().seconds)) << "\" y1=\""
                     << coord(py(ss.back().rmse)) << "\" x2=\"" << coord(ex) << "\" y2=\""
@@ -360,32 +433,46 @@ std::string error_time_plot_svg(const EvalScene& scene) {
                 << "\" stroke-width=\"1.5\" stroke-dasharray=\"6 4\"/>\n";
             svg << "<circle cx=\"" << coord(ex) << "\" cy=\"" << coord(my)
                 << "\" r=\"3\" fill=\"white\" stroke=\"" << colour << "\"/>\n";
-            svg << "<text x=\"" << coord(0.5 * (mx + ex)) << "\" y=\"" << coord(my - 6)
-                << "\" text-anchor=\"middle\" fill=\"" << colour << "\" font-weight=\"bold\">"
-                << speedup_label(k.speedup, true) << "</text>\n";
         }
         svg << "<rect x=\"" << coord(mx - 5) << "\" y=\"" << coord(my - 5)
             << "\" width=\"10\" height=\"10\" fill=\"" << colour << "\" transform=\"rotate(45 "
             << coord(mx) << " " << coord(my) << ")\"><title>" << html_escape(k.method->name)
             << "</title></rect>\n";
-        // The name left of the marker, away from the line; below it when that leaves the plot.
-        const std::string name = html_escape(k.method->name);
-        const double name_width = 7.0 * static_cast<double>(k.method->name.size());
-        double nx = mx + 9, ny = my + 4;
-        const char* anchor = "start";
-        if (line_right && mx - 9 - name_width >= left) {
-            nx = mx - 9;
-            anchor = "end";
-        } else if (line_right) {
-            nx = mx - 4;
-            ny = my + 18;
-        }
-        svg << "<text x=\"" << coord(nx) << "\" y=\"" << coord(ny) << "\" text-anchor=\"" << anchor
-            << "\" fill=\"" << colour << "\">" << name << "</text>\n";
+    }
+    // The names beside their markers (away from the dashed line first), then the speedups along
+    // their lines: each where it overlaps nothing placed before it.
+    for (std::size_t i = 0; i < markers.size(); ++i) {
+        const Marker& k = markers[i];
+        const double mx = px(k.method->seconds), my = py(k.method->rmse);
+        const bool line_right = !(k.speedup.defined && positive_finite(k.speedup.seconds)) ||
+                                px(k.speedup.seconds) >= mx;
+        const LabelPlacer::Spot away{line_right ? mx - 10 : mx + 10, my + 4,
+                                     line_right ? "end" : "start"};
+        const LabelPlacer::Spot along{line_right ? mx + 10 : mx - 10, my + 16,
+                                      line_right ? "start" : "end"};
+        svg << labels.place(k.method->name, {away,
+                                             {mx, my + 20, "middle"},
+                                             {mx, my - 11, "middle"},
+                                             along,
+                                             {mx, my + 34, "middle"},
+                                             {mx, my - 25, "middle"}})
+            << " fill=\"" << palette[i % palette.size()] << "\">" << html_escape(k.method->name)
+            << "</text>\n";
+    }
+    for (std::size_t i = 0; i < markers.size(); ++i) {
+        const Marker& k = markers[i];
+        if (!k.speedup.defined || !positive_finite(k.speedup.seconds)) continue;
+        const double mx = px(k.method->seconds), my = py(k.method->rmse);
+        const double ex = px(k.speedup.seconds);
+        const std::string text = speedup_label(k.speedup, true);
+        std::vector<LabelPlacer::Spot> spots;
+        for (double f : {0.5, 0.3, 0.7, 0.15, 0.85})
+            for (double dy : {-6.0, 15.0}) spots.push_back({mx + f * (ex - mx), my + dy, "middle"});
+        svg << labels.place(text, spots) << " fill=\"" << palette[i % palette.size()]
+            << "\" font-weight=\"bold\">" << text << "</text>\n";
     }
 
     // Legend.
-    const double lx = left + plot_w - 190, ly = top + 10;
     svg << "<g font-size=\"11\"><rect x=\"" << lx << "\" y=\"" << ly
         << "\" width=\"182\" height=\"40\" fill=\"white\" fill-opacity=\"0.85\" stroke=\"#ccc\"/>"
         << "<line x1=\"" << lx + 8 << "\" y1=\"" << ly + 13 << "\" x2=\"" << lx + 30 << "\" y2=\""
@@ -395,6 +482,97 @@ std::string error_time_plot_svg(const EvalScene& scene) {
         << "\" stroke=\"#555\" stroke-dasharray=\"6 4\"/><text x=\"" << lx + 36 << "\" y=\""
         << ly + 33 << "\">equal RMSE: speedup</text></g>\n";
     svg << "</svg>\n";
+    return svg.str();
+}
+
+// ---------------------------------------------------------------------------------------------
+// The heat maps' colour scale and its legend
+
+HeatMapScale scene_heat_map_scale(const std::vector<Image>& errors) {
+    constexpr double kBottomPercentile = 0.05;
+    constexpr double kMinDecades = 1, kMaxDecades = 6;
+    std::vector<float> positive;
+    for (const Image& e : errors)
+        for (std::size_t p = 0; p < e.pixel_count(); ++p) {
+            const float v = e.pixels[p * e.channels];
+            if (std::isfinite(v) && v > 0) positive.push_back(v);
+        }
+    if (positive.empty()) return {1, 0};
+    const double top = *std::max_element(positive.begin(), positive.end());
+    const auto rank = static_cast<std::ptrdiff_t>(positive.size() * kBottomPercentile);
+    std::nth_element(positive.begin(), positive.begin() + rank, positive.end());
+    const double low = positive[static_cast<std::size_t>(rank)];
+    return {top, std::clamp(low, top * std::pow(10.0, -kMaxDecades),
+                            top * std::pow(10.0, -kMinDecades))};
+}
+
+namespace {
+
+// "#rrggbb" of a linear-light colour as the PNGs store it (sRGB).
+std::string srgb_hex(const std::array<float, 3>& linear) {
+    char buffer[8];
+    int code[3];
+    for (int c = 0; c < 3; ++c)
+        code[c] = static_cast<int>(
+            std::lround(255.0f * linear_to_srgb(std::clamp(linear[c], 0.0f, 1.0f))));
+    std::snprintf(buffer, sizeof buffer, "#%02x%02x%02x", code[0], code[1], code[2]);
+    return buffer;
+}
+
+// A legend value: "0.0012", "3.4", "6500", "1e-07".
+std::string legend_value(double v) {
+    if (v == 0) return "0";
+    if (v >= 1e-3 && v < 1e5) return format("%.2g", v);
+    return format("%.0e", v);
+}
+
+}  // namespace
+
+std::string heat_map_legend_svg(const HeatMapScale& scale, std::string_view id) {
+    constexpr double width = 420, bar_x = 10, bar_w = 400, bar_y = 4, bar_h = 14;
+    constexpr int kStops = 33;  // the ramp is interpolated in linear light: many sRGB stops
+    std::string gradient = "heat-legend-";
+    for (char c : id) gradient += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    std::ostringstream svg;
+    svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"legend\" width=\"" << width
+        << "\" height=\"40\" viewBox=\"0 0 " << width << " 40\" font-family=\"sans-serif\" "
+        << "font-size=\"11\" role=\"img\" aria-label=\"heat map colour scale\">\n<defs>"
+        << "<linearGradient id=\"" << gradient << "\">";
+    for (int i = 0; i < kStops; ++i) {
+        const double t = double(i) / (kStops - 1);
+        svg << "<stop offset=\"" << format("%.4f", t) << "\" stop-color=\""
+            << srgb_hex(heat_map_colour(t)) << "\"/>";
+    }
+    svg << "</linearGradient></defs>\n<rect x=\"" << bar_x << "\" y=\"" << bar_y << "\" width=\""
+        << bar_w << "\" height=\"" << bar_h << "\" fill=\"url(#" << gradient
+        << ")\" stroke=\"#888\"/>\n";
+    // Ticks: the ends, and each power of ten (log) or quarter (linear) not crowding an end.
+    struct Tick {
+        double t, value;
+    };
+    const bool log_scale = scale.bottom > 0;
+    std::vector<Tick> ticks = {{0, log_scale ? scale.bottom : 0}, {1, scale.top}};
+    if (log_scale) {
+        for (int k = static_cast<int>(std::ceil(std::log10(scale.bottom)));
+             std::pow(10.0, k) < scale.top; ++k)
+            ticks.push_back({heat_map_position(std::pow(10.0, k), scale), std::pow(10.0, k)});
+    } else {
+        for (int q = 1; q < 4; ++q) ticks.push_back({q / 4.0, scale.top * q / 4.0});
+    }
+    constexpr double kLabelRoom = 44;  // pixels a label needs beside the end labels
+    for (std::size_t i = 0; i < ticks.size(); ++i) {
+        const double x = bar_x + ticks[i].t * bar_w;
+        if (i >= 2 && (x - bar_x < kLabelRoom || bar_x + bar_w - x < kLabelRoom)) continue;
+        const char* anchor = i == 0 ? "start" : i == 1 ? "end" : "middle";
+        std::string label = legend_value(ticks[i].value);
+        if (i == 0 && log_scale) label = "\u2264 " + label;
+        const double text_x = i == 0 ? x - 2 : i == 1 ? x + 2 : x;
+        svg << "<line x1=\"" << coord(x) << "\" y1=\"" << bar_y + bar_h << "\" x2=\"" << coord(x)
+            << "\" y2=\"" << bar_y + bar_h + 4 << "\" stroke=\"#333\"/><text x=\"" << coord(text_x)
+            << "\" y=\"" << bar_y + bar_h + 16 << "\" text-anchor=\"" << anchor
+            << "\" fill=\"#333\">" << label << "</text>\n";
+    }
+    svg << "</svg>";
     return svg.str();
 }
 
@@ -449,6 +627,12 @@ figcaption { font-size: 13px; color: #444; max-width: 320px; }
             image-rendering: crisp-edges; }
 .crop-caption { font-size: 12px; color: #444; margin-top: 2px; }
 svg.plot { max-width: 100%; height: auto; border: 1px solid #ddd; }
+.legend { margin: 4px 0 12px; }
+.legend .note { margin: 2px 0; max-width: 760px; }
+section.methods dl { display: grid; grid-template-columns: max-content 1fr; gap: 2px 14px;
+                     margin: 8px 0; font-size: 14px; }
+section.methods dt { font-weight: bold; }
+section.methods dd { margin: 0; }
 .note { font-size: 13px; color: #555; }
 )css";
 
@@ -500,6 +684,7 @@ class HtmlWriter {
 
   private:
     void table(const EvalScene& scene, const std::vector<EvalMethod>& ss);
+    void legend(const EvalScene& scene);
     void figures(const EvalScene& scene);
     void crops(const EvalScene& scene);
 };
@@ -544,6 +729,7 @@ void HtmlWriter::scene(const EvalScene& scene) {
         out << "<p class=\"note\">scene <code>" << html_escape(scene.name) << "</code>, "
             << scene.width << " \u00d7 " << scene.height << " pixels</p>\n";
     table(scene, ss);
+    legend(scene);
     figures(scene);
     crops(scene);
     out << "<h3>Error against time</h3>\n" << error_time_plot_svg(scene);
@@ -576,13 +762,34 @@ void HtmlWriter::table(const EvalScene& scene, const std::vector<EvalMethod>& ss
     out << "</table>\n";
 }
 
+void HtmlWriter::legend(const EvalScene& scene) {
+    const HeatMapScale& scale = scene.heat_map_scale;
+    if (!positive_finite(scale.top)) return;
+    bool heat_maps = false;
+    for (const EvalMethod& m : scene.methods) heat_maps = heat_maps || !m.heat_map_file.empty();
+    if (!heat_maps) return;
+    out << "<div class=\"legend\">" << heat_map_legend_svg(scale, scene.name)
+        << "<p class=\"note\">Heat maps: each pixel's error, the mean over RGB of |method \u2212 "
+           "reference| in linear light, under each method's image, on one scale for the scene. ";
+    if (scale.bottom > 0)
+        out << "Logarithmic from " << legend_value(scale.bottom)
+            << " (black at or below it: the 5th percentile of all methods' errors) to "
+            << legend_value(scale.top)
+            << " (white: the largest error of any method, so no pixel saturates).";
+    else
+        out << "Linear from 0 (black) to " << legend_value(scale.top) << " (white).";
+    out << "</p></div>\n";
+}
+
 void HtmlWriter::figures(const EvalScene& scene) {
     const std::vector<CropRect> crops = visible_crops(scene);
     const int w = display_width(scene);
     const double scale = scene.width > 0 ? double(w) / scene.width : 1.0;
+    // Each figure as wide as its images, so that captions wrap under them, never beside.
+    const std::string figure = "<figure style=\"width:" + std::to_string(w) + "px\">";
     out << "<div class=\"figures\">\n";
     if (!scene.reference_file.empty()) {
-        out << "<figure><div class=\"outlined\">";
+        out << figure << "<div class=\"outlined\">";
         img(scene.reference_file, "reference", size_attributes(scene));
         for (std::size_t i = 0; i < crops.size(); ++i) {
             const CropRect& c = crops[i];
@@ -596,12 +803,12 @@ void HtmlWriter::figures(const EvalScene& scene) {
     }
     for (const EvalMethod& m : scene.methods) {
         if (m.image_file.empty() && m.heat_map_file.empty()) continue;
-        out << "<figure>";
+        out << figure;
         if (!m.image_file.empty()) img(m.image_file, m.name, size_attributes(scene));
         if (!m.heat_map_file.empty())
             img(m.heat_map_file, m.name + " error heat map", size_attributes(scene));
         out << "<figcaption>" << html_escape(m.name) << " \u00b7 RMSE " << number(m.rmse)
-            << (m.heat_map_file.empty() ? "" : " (heat map below)") << "</figcaption></figure>\n";
+            << "</figcaption></figure>\n";
     }
     out << "</div>\n";
 }
@@ -637,6 +844,60 @@ void HtmlWriter::crops(const EvalScene& scene) {
     }
 }
 
+// One line on what a filter mode is (README "Rendering"); "" for a name not known here.
+std::string filter_description(const std::string& name) {
+    static const std::pair<const char*, const char*> kFilters[] = {
+        {"bilinear",
+         "one bilinear lookup of the finest level per map and pixel, no footprint: the aliased "
+         "baseline"},
+        {"point",
+         "one bilinear lookup of the finest level per map and pixel, no footprint: the aliased "
+         "baseline"},
+        {"trilinear",
+         "isotropic MIP mapping (two levels, bilinear in each) sized by the footprint's major "
+         "axis: the 1997 hardware baseline, blurry where the footprint is long and thin"},
+        {"fa",
+         "footprint assembly (Schilling 1996): a line of probes along the footprint's major axis, "
+         "for the texture, the bumps' mean slope and the environment"},
+        {"fa-rough",
+         "fa plus the roughness pyramid (Schilling 1997): the bumps' slope covariance widens the "
+         "environment footprint and the highlights"},
+        {"ewa-rough",
+         "elliptical weighted average (Heckbert 1989) with the roughness pyramid: a costlier "
+         "filter of the same footprint, for comparison"},
+    };
+    for (const auto& [key, text] : kFilters)
+        if (name == key) return text;
+    return "";
+}
+
+void methods_header(std::ostringstream& out, const EvalReport& report) {
+    std::vector<std::string> filters;
+    bool supersampling = false;
+    for (const EvalScene& scene : report.scenes)
+        for (const EvalMethod& m : scene.methods) {
+            if (m.family == "supersampling")
+                supersampling = true;
+            else if (std::find(filters.begin(), filters.end(), m.name) == filters.end())
+                filters.push_back(m.name);
+        }
+    out << "<section class=\"methods\"><h2>The methods</h2>\n<dl>\n";
+    for (const std::string& name : filters) {
+        const std::string text = filter_description(name);
+        out << "<dt>" << html_escape(name) << "</dt><dd>"
+            << html_escape(text.empty() ? "a filter mode" : text) << ", at 1 spp</dd>\n";
+    }
+    if (supersampling)
+        out << "<dt>supersampling N spp</dt><dd>N jittered samples per pixel under the same "
+               "Gaussian pixel filter, each an unfiltered bilinear lookup of the finest level; its "
+               "own samples, independent of the reference's</dd>\n";
+    out << "<dt>reference</dt><dd>the ground truth: that supersampling with many more samples "
+           "per pixel (the spp in each scene's table)</dd>\n</dl>\n<p class=\"note\">RMSE in "
+           "linear light against the reference; SSIM on the displayed (sRGB) images; heat maps "
+           "show each pixel's error on the scene's colour scale (legend above the images).</p>\n"
+           "</section>\n";
+}
+
 // The page and the number of images in it.
 std::pair<std::string, int> build_html(const EvalReport& report) {
     HtmlWriter w;
@@ -654,6 +915,7 @@ std::pair<std::string, int> build_html(const EvalReport& report) {
                   << html_escape(s.title.empty() ? s.name : s.title) << "</a>";
         w.out << "</nav>\n";
     }
+    if (!report.scenes.empty()) methods_header(w.out, report);
     for (const EvalScene& s : report.scenes) w.scene(s);
     w.out << "<script>" << check_script << "</script>\n</body>\n</html>\n";
     return {w.out.str(), w.images};

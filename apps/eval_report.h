@@ -23,6 +23,7 @@
 
 #include "core/result.h"
 #include "image/image.h"
+#include "metrics/image_metrics.h"
 
 namespace footprint {
 
@@ -60,7 +61,24 @@ struct EvalScene {
     double reference_seconds = 0;
     std::vector<EvalMethod> methods;  // in the order shown (table rows, image columns)
     std::vector<CropRect> crops;      // the hardest regions (hardest_regions()), zoomed ×4
+    // The colour scale every heat map of the scene was drawn with (scene_heat_map_scale()),
+    // shown as a legend above the images; a top that is not positive and finite: no legend.
+    HeatMapScale heat_map_scale{std::numeric_limits<double>::quiet_NaN(), 0};
 };
+
+// The colour scale of a scene's heat maps, from its methods' per-pixel errors (`errors`: one
+// image per method, channel 0 the mean over channels of |method − reference|, as
+// error_heat_map() computes it). No pixel saturates: the top is the largest finite error of any
+// method. The scale is logarithmic, because the errors of one scene span decades (fireflies of
+// an HDR sun next to small filtering errors): its bottom is the 5th percentile of the positive
+// errors of all methods together, at least 1 and at most 6 decades below the top (pixels below
+// it are black). Without a positive finite error: linear with top 1 (every heat map black).
+HeatMapScale scene_heat_map_scale(const std::vector<Image>& errors);
+
+// The legend of `scale` as inline SVG, about 400 pixels wide: the colour ramp as the heat map
+// PNGs show it, a tick with its value at each power of ten (or at ¼ steps of a linear scale)
+// and the bottom and top values at the ends. `id` makes its gradient's id unique in the page.
+std::string heat_map_legend_svg(const HeatMapScale& scale, std::string_view id);
 
 struct EvalReport {
     std::string title;
@@ -118,16 +136,16 @@ std::string error_time_plot_svg(const EvalScene& scene);
 std::string html_escape(std::string_view text);
 
 // Writes the report as one self-contained HTML file (inline CSS and script, no external fonts or
-// scripts; the images are referenced by their relative paths, percent-encoded): the title, then
-// per scene a table (method, spp, RMSE, SSIM, flicker, seconds, equal-error speedup over
-// supersampling), the images side by side (reference first, then each method, heat maps below),
-// the crops zoomed ×4 (fewer for crops over 64 pixels: at most 256 pixels wide) for the reference
-// and every method, outlined on the reference, and the error–time plot. Crops need the scene's
-// width and height. A small script counts, when the page has loaded, the images that loaded
-// (naturalWidth > 0) and failed — every <img> and every distinct CSS background image — into
-// body's data-images-loaded, data-images-failed, data-images-total, data-images-failed-list
-// (the failed URLs, one a line), and appends " [images N/M]" to the title.
-// The file is written atomically (write_text_atomically).
+// scripts; the images are referenced by their relative paths, percent-encoded): the title, a
+// short list of what each method shown is, then per scene a table (method, spp, RMSE, SSIM,
+// flicker, seconds, equal-error speedup over supersampling), the heat maps' colour legend, the
+// images side by side (reference first, then each method, heat maps below), the crops zoomed ×4
+// (fewer for crops over 64 pixels: at most 256 pixels wide) for the reference and every method,
+// outlined on the reference, and the error–time plot. Crops need the scene's width and height. A
+// small script counts, when the page has loaded, the images that loaded (naturalWidth > 0) and
+// failed — every <img> and every distinct CSS background image — into body's data-images-loaded,
+// data-images-failed, data-images-total, data-images-failed-list (the failed URLs, one a line), and
+// appends " [images N/M]" to the title. The file is written atomically (write_text_atomically).
 Status write_eval_report(const EvalReport& report, const std::filesystem::path& html_file);
 
 // The number of images write_eval_report's page holds (what the browser check should see).

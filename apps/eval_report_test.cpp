@@ -287,6 +287,7 @@ EvalScene synthetic_scene(const std::string& name) {
     point.heat_map_file = name + "/heat/point.png";
     scene.methods.push_back(point);
     scene.crops = {{4, 3, 8, 8}, {30, 15, 8, 8}};
+    scene.heat_map_scale = {2.5, 0.0025};
     return scene;
 }
 
@@ -320,6 +321,54 @@ TEST(EvalReportPlot, SurvivesMissingData) {
     svg = error_time_plot_svg(scene);
     EXPECT_NE(svg.find("only"), std::string::npos);
     for (const char* bad : {"nan", "inf"}) EXPECT_EQ(svg.find(bad), std::string::npos) << bad;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The heat maps' scale and legend
+
+TEST(EvalReportHeatMaps, SceneScaleSaturatesNoPixel) {
+    // Two methods' errors: 1 … 100 (a firefly of 100 among small errors) and 0s.
+    Image small(10, 10, 1), zero(10, 10, 1, 0.0f);
+    for (std::size_t p = 0; p < 100; ++p) small.pixels[p] = 0.001f * static_cast<float>(p + 1);
+    small.pixels[57] = 100.0f;
+    const HeatMapScale scale = scene_heat_map_scale({small, zero});
+    EXPECT_EQ(scale.top, 100.0);
+    // The 5th percentile of the 100 positive errors (rank 5 of 0.001 … 0.1 without 0.058).
+    EXPECT_FLOAT_EQ(static_cast<float>(scale.bottom), 0.006f);
+    for (float v : small.pixels) EXPECT_LE(heat_map_position(v, scale), 1.0);
+    EXPECT_LT(heat_map_position(0.1, scale), 0.5);  // small errors stay distinguishable
+    EXPECT_GT(heat_map_position(0.1, scale), heat_map_position(0.01, scale));
+    // At most 6 decades, at least 1.
+    Image wide(2, 1, 1);
+    wide.pixels = {1e-12f, 1.0f};
+    EXPECT_NEAR(scene_heat_map_scale({wide}).bottom, 1e-6, 1e-12);
+    wide.pixels = {0.9f, 1.0f};
+    EXPECT_NEAR(scene_heat_map_scale({wide}).bottom, 0.1, 1e-9);
+    // Nothing differs (or only non-finite values): linear, every heat map black.
+    Image broken = zero;
+    broken.pixels[3] = std::numeric_limits<float>::quiet_NaN();
+    const HeatMapScale none = scene_heat_map_scale({zero, broken});
+    EXPECT_EQ(none.top, 1.0);
+    EXPECT_EQ(none.bottom, 0.0);
+}
+
+TEST(EvalReportHeatMaps, LegendShowsTheRampAndTheDecades) {
+    const std::string svg = heat_map_legend_svg({10.0, 0.001}, "my scene");
+    EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+    EXPECT_NE(svg.find("id=\"heat-legend-my_scene\""), std::string::npos);
+    // The ramp's stops as the PNGs store them: black, pure blue, red, yellow, white.
+    for (const char* stop :
+         {"offset=\"0.0000\" stop-color=\"#000000\"", "offset=\"0.2500\" stop-color=\"#0000ff\"",
+          "offset=\"0.5000\" stop-color=\"#ff0000\"", "offset=\"0.7500\" stop-color=\"#ffff00\"",
+          "offset=\"1.0000\" stop-color=\"#ffffff\""})
+        EXPECT_NE(svg.find(stop), std::string::npos) << stop;
+    for (const char* label : {">\u2264 0.001<", ">0.01<", ">0.1<", ">1<", ">10<"})
+        EXPECT_NE(svg.find(label), std::string::npos) << label;
+    EXPECT_EQ(count_of(svg, "<text"), count_of(svg, "</text>"));
+    for (const char* bad : {"nan", "inf"}) EXPECT_EQ(svg.find(bad), std::string::npos) << bad;
+    const std::string linear = heat_map_legend_svg({0.8, 0}, "x");
+    for (const char* label : {">0<", ">0.2<", ">0.4<", ">0.6<", ">0.8<"})
+        EXPECT_NE(linear.find(label), std::string::npos) << label;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -391,7 +440,7 @@ TEST_F(EvalReportFile, WritesSelfContainedEscapedHtml) {
     EXPECT_EQ(text.find("<link"), std::string::npos);
     EXPECT_EQ(text.find("<script src"), std::string::npos);
     EXPECT_EQ(text.find("http://", text.find("</style>")), text.find("http://www.w3.org/2000/svg"));
-    EXPECT_EQ(count_of(text, "<svg"), 2);
+    EXPECT_EQ(count_of(text, "<svg"), 4);  // per scene the legend and the plot
     EXPECT_NE(text.find("\u2248\u00d7256 (extrapolated)"), std::string::npos);
     EXPECT_NE(text.find("\u00d720<"), std::string::npos);
     EXPECT_NE(text.find("image-rendering: pixelated"), std::string::npos);
@@ -404,6 +453,38 @@ TEST_F(EvalReportFile, WritesSelfContainedEscapedHtml) {
     int entries = 0;
     for (const auto& e : fs::directory_iterator(dir_)) entries += e.is_regular_file();
     EXPECT_EQ(entries, 1);
+}
+
+TEST_F(EvalReportFile, SaysWhatTheMethodsAreAndShowsALegendPerScene) {
+    EvalReport report = synthetic_report();
+    report.scenes[1].heat_map_scale = {0.5, 0};  // linear
+    const fs::path html = dir_ / "report.html";
+    ASSERT_TRUE(write_eval_report(report, html).ok());
+    const std::string text = read(html);
+    // The methods header comes before the first scene, one entry per method shown.
+    const std::size_t header = text.find("<h2>The methods</h2>");
+    ASSERT_NE(header, std::string::npos);
+    EXPECT_LT(header, text.find("<section class=\"scene\""));
+    for (const char* entry : {"<dt>fa-rough</dt><dd>fa plus the roughness pyramid",
+                              "<dt>point</dt><dd>one bilinear lookup of the finest level",
+                              "<dt>ewa rough</dt><dd>a filter mode", "<dt>supersampling N spp</dt>",
+                              "<dt>reference</dt><dd>the ground truth"})
+        EXPECT_NE(text.find(entry), std::string::npos) << entry;
+    EXPECT_EQ(count_of(text, "<dt>fa-rough</dt>"), 1);  // once, though both scenes have it
+    // A legend per scene, before its images, with its own gradient and its scale's ends.
+    EXPECT_EQ(count_of(text, "<div class=\"legend\">"), 2);
+    EXPECT_NE(text.find("id=\"heat-legend-first\""), std::string::npos);
+    EXPECT_NE(text.find("url(#heat-legend-second)"), std::string::npos);
+    EXPECT_LT(text.find("<div class=\"legend\">"), text.find("<div class=\"figures\">"));
+    EXPECT_NE(text.find("Logarithmic from 0.0025"), std::string::npos);
+    EXPECT_NE(text.find(">\u2264 0.0025</text>"), std::string::npos);
+    EXPECT_NE(text.find(">2.5</text>"), std::string::npos);
+    EXPECT_NE(text.find("Linear from 0 (black) to 0.5 (white)"), std::string::npos);
+    // No legend without a scale.
+    report.scenes[0].heat_map_scale = {};
+    report.scenes[0].heat_map_scale.top = std::numeric_limits<double>::quiet_NaN();
+    ASSERT_TRUE(write_eval_report(report, html).ok());
+    EXPECT_EQ(count_of(read(html), "<div class=\"legend\">"), 1);
 }
 
 TEST_F(EvalReportFile, WriteFailsForAMissingDirectory) {
