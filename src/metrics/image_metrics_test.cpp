@@ -261,8 +261,8 @@ TEST(ImageMetricsErrors, NameTheProblem) {
               std::string::npos);
 }
 
-// Non-finite values used to be compared as given (NaN against NaN: no error, RMSE 0 from the
-// loader's zeros); now they are an error, or left out of every metric when ignored.
+// Non-finite values are an error, or left out of every metric when ignored: a NaN against a NaN
+// must never count as a perfect match.
 TEST(ImageMetricsNonFinite, FindCountsPixelsAndNamesTheFirst) {
     Image image(5, 3, 3, 0.25f);
     EXPECT_EQ(find_non_finite(image).count, 0u);
