@@ -1,10 +1,14 @@
 // image/image_io.cpp — image files through OpenImageIO (a private dependency of this module).
 #include "image/image_io.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -18,6 +22,7 @@
 #include <vector>
 
 #include "image/color.h"
+#include "image/image_io_detail.h"
 
 namespace footprint {
 namespace {
@@ -200,6 +205,72 @@ void decode_srgb(Image& image, const OIIO::TypeDesc& format, int alpha_channel) 
     }
 }
 
+std::string value_text(float v) {
+    return std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf";
+}
+
+// "texel (x, y) channel c" of the value at `index` of `image`'s pixels.
+std::string texel_text(const Image& image, std::size_t index) {
+    const std::size_t channels = static_cast<std::size_t>(image.channels);
+    const std::size_t pixel = index / channels;
+    const std::size_t width = static_cast<std::size_t>(image.width);
+    return "texel (" + std::to_string(pixel % width) + ", " + std::to_string(pixel / width) +
+           ") channel " + std::to_string(index % channels);
+}
+
+// The mean of the finite values of the same channel among the 8 neighbours of the value at
+// `index` (0 if none is finite).
+float finite_neighbour_mean(const Image& image, std::size_t index) {
+    const std::size_t channels = static_cast<std::size_t>(image.channels);
+    const int c = static_cast<int>(index % channels);
+    const std::size_t pixel = index / channels;
+    const int x = static_cast<int>(pixel % static_cast<std::size_t>(image.width));
+    const int y = static_cast<int>(pixel / static_cast<std::size_t>(image.width));
+    double sum = 0.0;
+    int count = 0;
+    for (int ny = std::max(0, y - 1); ny <= std::min(image.height - 1, y + 1); ++ny) {
+        for (int nx = std::max(0, x - 1); nx <= std::min(image.width - 1, x + 1); ++nx) {
+            const float v = image.at(nx, ny)[c];
+            if ((nx != x || ny != y) && std::isfinite(v)) {
+                sum += v;
+                ++count;
+            }
+        }
+    }
+    return count > 0 ? static_cast<float>(sum / count) : 0.0f;
+}
+
+// Applies options.non_finite to the NaN and ±Inf values of `image` (image_io.h); the error when
+// they are refused.
+std::optional<Error> handle_non_finite(Image& image, const fs::path& file,
+                                       const ImageLoadOptions& options) {
+    if (options.non_finite == NonFinitePolicy::keep) return std::nullopt;
+    std::vector<std::size_t> bad;
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        if (!std::isfinite(image.pixels[i])) bad.push_back(i);
+    }
+    if (bad.empty()) return std::nullopt;
+    const std::string first = ", the first at " + texel_text(image, bad[0]) + " (" +
+                              value_text(image.pixels[bad[0]]) + ")";
+    const std::string n = std::to_string(bad.size());
+    if (options.non_finite == NonFinitePolicy::refuse) {
+        return read_error(file, n + (bad.size() == 1 ? " value is" : " values are") +
+                                    " not finite (NaN or infinite)" + first);
+    }
+    // Repair from the file's values only, so the result does not depend on the order.
+    std::vector<float> repaired(bad.size());
+    for (std::size_t k = 0; k < bad.size(); ++k) {
+        repaired[k] = finite_neighbour_mean(image, bad[k]);
+    }
+    for (std::size_t k = 0; k < bad.size(); ++k) image.pixels[bad[k]] = repaired[k];
+    if (options.warn) {
+        options.warn(quoted(file) + ": replaced " + n + " non-finite value" +
+                     (bad.size() == 1 ? "" : "s") +
+                     " (NaN or infinite) by the mean of the finite neighbours" + first);
+    }
+    return std::nullopt;
+}
+
 const char* const kSupportedList = ".png .jpg .jpeg .exr .hdr .tif .tiff";
 
 enum class FileKind { png, jpeg, tiff, exr, hdr, unknown };
@@ -235,16 +306,34 @@ fs::path temporary_path(const fs::path& file) {
     return tmp;
 }
 
-// Writes `values` (already in the file's encoding, `channels` per pixel) to `tmp` with
-// OpenImageIO. Returns the cause on failure; "" on success.
-std::string write_with_oiio(const fs::path& tmp, int width, int height, int channels,
-                            OIIO::TypeDesc file_format, OIIO::TypeDesc data_format,
-                            const void* data, bool linear) {
-    auto out = OIIO::ImageOutput::create(tmp.string());
+// The pixels of a file to write: already in the file's channels, encoding and sample type.
+struct EncodedPixels {
+    int width = 0, height = 0, channels = 0;
+    OIIO::TypeDesc file_format = OIIO::TypeDesc::FLOAT;
+    OIIO::TypeDesc data_format = OIIO::TypeDesc::FLOAT;
+    const void* data = nullptr;
+    bool linear = false;
+};
+
+// Encodes `pixels` as the format of `file`'s extension into memory with OpenImageIO. The writers
+// see only memory, so a full disk cannot make them produce a short file unnoticed; the bytes are
+// written by write_temporary. Returns the cause on failure.
+Result<std::vector<unsigned char>> encode_with_oiio(const fs::path& file, FileKind kind,
+                                                    const EncodedPixels& pixels) {
+    auto out = OIIO::ImageOutput::create(file.string());
     if (!out) {
-        return with_oiio_message("OpenImageIO has no writer for this format", OIIO::geterror());
+        return Error{
+            with_oiio_message("OpenImageIO has no writer for this format", OIIO::geterror())};
     }
-    OIIO::ImageSpec spec(width, height, channels, file_format);
+    if (!out->supports("ioproxy")) {
+        return Error{std::string("OpenImageIO's ") + out->format_name() +
+                     " writer cannot encode into memory"};
+    }
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput memory(bytes);
+    out->set_ioproxy(&memory);
+    const int channels = pixels.channels;
+    OIIO::ImageSpec spec(pixels.width, pixels.height, channels, pixels.file_format);
     switch (channels) {
         case 1:
             spec.channelnames = {"Y"};
@@ -260,18 +349,67 @@ std::string write_with_oiio(const fs::path& tmp, int width, int height, int chan
             break;
     }
     spec.alpha_channel = (channels == 2 || channels == 4) ? channels - 1 : -1;
-    spec.attribute("oiio:ColorSpace", linear ? "Linear" : "sRGB");
+    // OpenImageIO 2.4 writes a TIFF's Exif block (which an sRGB colour space brings) over the
+    // main directory when the TIFF goes to memory: an sRGB TIFF is written without it.
+    if (kind != FileKind::tiff || pixels.linear) {
+        spec.attribute("oiio:ColorSpace", pixels.linear ? "Linear" : "sRGB");
+    }
     spec.attribute("oiio:UnassociatedAlpha", 1);  // write alpha as given, never divide by it
-    if (!out->open(tmp.string(), spec)) {
-        return with_oiio_message("cannot create the file", out->geterror());
+    // An empty DateTime keeps the writers from stamping the current time (EXR capDate, TIFF
+    // DateTime): the same pixels give the same bytes.
+    spec.attribute("DateTime", "");
+    if (!out->open(file.string(), spec)) {
+        return Error{with_oiio_message("cannot encode the image", out->geterror())};
     }
-    if (!out->write_image(data_format, data)) {
-        std::string cause = with_oiio_message("writing the pixels failed", out->geterror());
+    if (!out->write_image(pixels.data_format, pixels.data)) {
+        std::string cause = with_oiio_message("encoding the pixels failed", out->geterror());
         out->close();
-        return cause;
+        return Error{cause};
     }
-    if (!out->close()) return with_oiio_message("finishing the file failed", out->geterror());
-    return {};
+    if (!out->close()) {
+        return Error{with_oiio_message("finishing the encoding failed", out->geterror())};
+    }
+    if (bytes.empty()) return Error{"OpenImageIO encoded nothing"};
+    return bytes;
+}
+
+std::atomic<detail::WriteCall> write_call{nullptr};
+
+long system_write(int fd, const void* data, std::size_t size) {
+    return static_cast<long>(::write(fd, data, size));
+}
+
+std::string errno_text(int error) {
+    return std::generic_category().message(error);
+}
+
+// Writes `bytes` to a new temporary file beside `file`, every write, the fsync and the close
+// checked. Returns its path, or the cause (the temporary file then removed).
+Result<fs::path> write_temporary(const fs::path& file, std::string_view bytes) {
+    const fs::path tmp = temporary_path(file);
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0) return Error{"cannot create a temporary file beside it: " + errno_text(errno)};
+    const detail::WriteCall hook = write_call.load();
+    const detail::WriteCall write = hook != nullptr ? hook : system_write;
+    int error = 0;
+    std::size_t done = 0;
+    while (done < bytes.size() && error == 0) {
+        const long n = write(fd, bytes.data() + done, bytes.size() - done);
+        if (n > 0) {
+            done += static_cast<std::size_t>(n);
+        } else if (n < 0 && errno == EINTR) {
+            continue;
+        } else {
+            error = n < 0 ? errno : EIO;  // write() returning 0 for a non-empty buffer
+        }
+    }
+    if (error == 0 && ::fsync(fd) != 0) error = errno;
+    if (::close(fd) != 0 && error == 0) error = errno;
+    if (error != 0) {
+        ::unlink(tmp.c_str());
+        return Error{errno_text(error)};
+    }
+    return tmp;
 }
 
 }  // namespace
@@ -334,10 +472,7 @@ Result<Image> load_image(const fs::path& file, const ImageLoadOptions& options) 
         return read_error(file, cause);
     }
     in->close();
-
-    for (float& v : image.pixels) {
-        if (!std::isfinite(v)) v = 0.0f;
-    }
+    if (auto error = handle_non_finite(image, file, options)) return *error;
 
     bool decode = false;
     switch (options.encoding) {
@@ -362,73 +497,81 @@ Result<Image> load_image(const fs::path& file, const ImageLoadOptions& options) 
     return image;
 }
 
-Status save_image(const Image& image, const fs::path& file, const ImageSaveOptions& options) {
-    // Validate the image.
+namespace {
+
+// Why `image` cannot be written (the cause), or nullopt.
+std::optional<std::string> image_problem(const Image& image) {
     if (image.width <= 0 || image.height <= 0) {
-        return write_error(file, "the image is empty (" + std::to_string(image.width) + " x " +
-                                     std::to_string(image.height) + ")");
+        return "the image is empty (" + std::to_string(image.width) + " x " +
+               std::to_string(image.height) + ")";
     }
     if (image.channels < 1 || image.channels > 4) {
-        return write_error(file, "the image has " + std::to_string(image.channels) +
-                                     " channels; footprint writes 1 to 4");
+        return "the image has " + std::to_string(image.channels) +
+               " channels; footprint writes 1 to 4";
     }
     const std::uint64_t values = static_cast<std::uint64_t>(image.width) *
                                  static_cast<std::uint64_t>(image.height) *
                                  static_cast<std::uint64_t>(image.channels);
     if (values != image.pixels.size()) {
-        return write_error(
-            file, "the image holds " + std::to_string(image.pixels.size()) + " values but " +
-                      std::to_string(image.width) + " x " + std::to_string(image.height) + " x " +
-                      std::to_string(image.channels) + " needs " + std::to_string(values));
+        return "the image holds " + std::to_string(image.pixels.size()) + " values but " +
+               std::to_string(image.width) + " x " + std::to_string(image.height) + " x " +
+               std::to_string(image.channels) + " needs " + std::to_string(values);
     }
+    return std::nullopt;
+}
 
-    // Validate the target.
-    const FileKind kind = kind_of(file);
-    if (kind == FileKind::unknown) {
-        const std::string ext = file.extension().string();
-        return write_error(file, (ext.empty() ? std::string("no file extension")
-                                              : "unsupported extension '" + ext + "'") +
-                                     " (supported: " + kSupportedList + ")");
-    }
-    const bool integer_format =
-        kind == FileKind::png || kind == FileKind::jpeg || kind == FileKind::tiff;
-    if (integer_format && options.bits != 8 && options.bits != 16) {
-        return write_error(file, "bits must be 8 or 16, not " + std::to_string(options.bits));
-    }
-    if (kind == FileKind::jpeg && options.bits != 8) {
-        return write_error(
-            file, "JPEG files hold 8 bits per channel only, not " + std::to_string(options.bits));
-    }
+// Why nothing can be written at `file` (its directory is missing, or it is a directory), or
+// nullopt.
+std::optional<std::string> location_problem(const fs::path& file) {
     std::error_code ec;
     const fs::path dir = file.parent_path();
     if (!dir.empty()) {
         const fs::file_status st = fs::status(dir, ec);
         if (st.type() == fs::file_type::not_found) {
-            return write_error(file, "directory " + quoted(dir) + " does not exist");
+            return "directory " + quoted(dir) + " does not exist";
         }
-        if (st.type() != fs::file_type::directory) {
-            return write_error(file, quoted(dir) + " is not a directory");
-        }
+        if (st.type() != fs::file_type::directory) return quoted(dir) + " is not a directory";
     }
-    if (fs::is_directory(file, ec)) return write_error(file, "it is a directory");
+    if (fs::is_directory(file, ec)) return std::string("it is a directory");
+    return std::nullopt;
+}
 
-    // Convert to the file's channels and encoding.
-    const bool srgb = options.encoding == ColorEncoding::srgb ||
-                      (options.encoding == ColorEncoding::automatic && integer_format);
+bool is_integer_format(FileKind kind) {
+    return kind == FileKind::png || kind == FileKind::jpeg || kind == FileKind::tiff;
+}
+
+// Why `file` (of `kind`) cannot be written with `options`, or nullopt.
+std::optional<std::string> target_problem(const fs::path& file, FileKind kind,
+                                          const ImageSaveOptions& options) {
+    if (kind == FileKind::unknown) {
+        const std::string ext = file.extension().string();
+        return (ext.empty() ? std::string("no file extension")
+                            : "unsupported extension '" + ext + "'") +
+               " (supported: " + kSupportedList + ")";
+    }
+    if (is_integer_format(kind) && options.bits != 8 && options.bits != 16) {
+        return "bits must be 8 or 16, not " + std::to_string(options.bits);
+    }
+    if (kind == FileKind::jpeg && options.bits != 8) {
+        return "JPEG files hold 8 bits per channel only, not " + std::to_string(options.bits);
+    }
+    return location_problem(file);
+}
+
+// The channel count a file of `kind` gets for an image of `channels` (image_io.h, Format limits).
+int file_channels(FileKind kind, int channels) {
+    if (kind == FileKind::hdr) return 3;
+    if (kind == FileKind::jpeg && (channels == 2 || channels == 4)) return channels - 1;
+    return channels;
+}
+
+// `image` in the file's channels and encoding; integer formats clamped to [0, 1] (NaN → 0).
+std::vector<float> convert_for_file(const Image& image, int out_channels, bool srgb,
+                                    bool integer_format) {
     const int in_channels = image.channels;
-    const bool in_alpha = in_channels == 2 || in_channels == 4;
-    int out_channels = in_channels;
-    if (kind == FileKind::jpeg && in_alpha) out_channels = in_channels - 1;
-    if (kind == FileKind::hdr) out_channels = 3;
     const bool out_alpha = out_channels == 2 || out_channels == 4;
     const bool grey_in = in_channels <= 2;
-
-    std::vector<float> converted;
-    try {
-        converted.resize(image.pixel_count() * static_cast<std::size_t>(out_channels));
-    } catch (const std::bad_alloc&) {
-        return write_error(file, "not enough memory to convert the image");
-    }
+    std::vector<float> converted(image.pixel_count() * static_cast<std::size_t>(out_channels));
     const std::size_t pixels = image.pixel_count();
     for (std::size_t p = 0; p < pixels; ++p) {
         const float* src = image.pixels.data() + p * static_cast<std::size_t>(in_channels);
@@ -441,48 +584,127 @@ Status save_image(const Image& image, const fs::path& file, const ImageSaveOptio
             dst[c] = v;
         }
     }
+    return converted;
+}
 
-    OIIO::TypeDesc file_format = OIIO::TypeDesc::FLOAT;
-    OIIO::TypeDesc data_format = OIIO::TypeDesc::FLOAT;
+// Values in [0, 1] as integer codes 0 … max (round to nearest), rather than trusting the
+// library's conversion.
+template <class Code>
+std::vector<Code> quantise(const std::vector<float>& values, float max) {
+    std::vector<Code> codes(values.size());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        codes[i] = static_cast<Code>(std::lround(values[i] * max));
+    }
+    return codes;
+}
+
+// The bytes of `file` holding `image` (validated, converted, quantised and encoded), or the
+// error naming `file`.
+Result<std::vector<unsigned char>> encode_image(const Image& image, const fs::path& file,
+                                                const ImageSaveOptions& options) {
+    if (auto problem = image_problem(image)) return write_error(file, *problem);
+    const FileKind kind = kind_of(file);
+    if (auto problem = target_problem(file, kind, options)) return write_error(file, *problem);
+
+    const bool integer_format = is_integer_format(kind);
+    const bool srgb = options.encoding == ColorEncoding::srgb ||
+                      (options.encoding == ColorEncoding::automatic && integer_format);
+    EncodedPixels pixels{image.width, image.height, file_channels(kind, image.channels)};
+    pixels.linear = !srgb;
+    std::vector<float> converted;
     std::vector<std::uint8_t> codes8;
     std::vector<std::uint16_t> codes16;
-    const void* data = converted.data();
-    if (integer_format) {
-        // Quantise here (round to nearest) rather than trusting the library's conversion.
-        if (options.bits == 16) {
-            file_format = data_format = OIIO::TypeDesc::UINT16;
-            codes16.resize(converted.size());
-            for (std::size_t i = 0; i < converted.size(); ++i) {
-                codes16[i] = static_cast<std::uint16_t>(std::lround(converted[i] * 65535.0f));
-            }
-            data = codes16.data();
-        } else {
-            file_format = data_format = OIIO::TypeDesc::UINT8;
-            codes8.resize(converted.size());
-            for (std::size_t i = 0; i < converted.size(); ++i) {
-                codes8[i] = static_cast<std::uint8_t>(std::lround(converted[i] * 255.0f));
-            }
-            data = codes8.data();
+    try {
+        converted = convert_for_file(image, pixels.channels, srgb, integer_format);
+        pixels.data = converted.data();
+        if (integer_format && options.bits == 16) {
+            codes16 = quantise<std::uint16_t>(converted, 65535.0f);
+            pixels.file_format = pixels.data_format = OIIO::TypeDesc::UINT16;
+            pixels.data = codes16.data();
+        } else if (integer_format) {
+            codes8 = quantise<std::uint8_t>(converted, 255.0f);
+            pixels.file_format = pixels.data_format = OIIO::TypeDesc::UINT8;
+            pixels.data = codes8.data();
+        } else if (kind == FileKind::exr && options.exr_half) {
+            pixels.file_format = OIIO::TypeDesc::HALF;
         }
-    } else if (kind == FileKind::exr && options.exr_half) {
-        file_format = OIIO::TypeDesc::HALF;
+    } catch (const std::bad_alloc&) {
+        return write_error(file, "not enough memory to convert the image");
     }
+    Result<std::vector<unsigned char>> bytes = encode_with_oiio(file, kind, pixels);
+    if (!bytes) return write_error(file, bytes.error().message);
+    return bytes;
+}
 
-    // Write a temporary file beside the target, then rename it into place.
-    const fs::path tmp = temporary_path(file);
-    const std::string cause = write_with_oiio(tmp, image.width, image.height, out_channels,
-                                              file_format, data_format, data, !srgb);
-    if (!cause.empty()) {
-        fs::remove(tmp, ec);
-        return write_error(file, cause);
-    }
-    fs::rename(tmp, file, ec);
-    if (ec) {
-        std::error_code ignored;
-        fs::remove(tmp, ignored);
-        return write_error(file, "cannot move the finished file into place: " + ec.message());
+// Removes the temporary files of a save that failed.
+void remove_all(const std::vector<fs::path>& temporaries) {
+    std::error_code ignored;
+    for (const fs::path& tmp : temporaries) fs::remove(tmp, ignored);
+}
+
+// Renames each temporary file onto its target, in order. On failure the remaining temporary
+// files are removed and the message names the targets already replaced.
+Status rename_all(const std::vector<fs::path>& temporaries, const std::vector<fs::path>& targets) {
+    for (std::size_t i = 0; i < temporaries.size(); ++i) {
+        std::error_code ec;
+        fs::rename(temporaries[i], targets[i], ec);
+        if (!ec) continue;
+        remove_all({temporaries.begin() + static_cast<std::ptrdiff_t>(i), temporaries.end()});
+        std::string cause = "cannot move the finished file into place: " + ec.message();
+        if (i > 0) {
+            cause += " (already replaced:";
+            for (std::size_t k = 0; k < i; ++k) cause += " " + quoted(targets[k]);
+            cause += ")";
+        }
+        return write_error(targets[i], cause);
     }
     return {};
 }
+
+}  // namespace
+
+Status save_image(const Image& image, const fs::path& file, const ImageSaveOptions& options) {
+    return save_images({{&image, file}}, options);
+}
+
+Status save_images(const std::vector<ImageToSave>& images, const ImageSaveOptions& options) {
+    std::vector<fs::path> temporaries, targets;
+    for (const ImageToSave& item : images) {
+        if (item.image == nullptr) {
+            remove_all(temporaries);
+            return write_error(item.file, "no image given");
+        }
+        Result<std::vector<unsigned char>> bytes = encode_image(*item.image, item.file, options);
+        if (!bytes) {
+            remove_all(temporaries);
+            return bytes.error();
+        }
+        const std::string_view view(reinterpret_cast<const char*>(bytes->data()), bytes->size());
+        Result<fs::path> tmp = write_temporary(item.file, view);
+        if (!tmp) {
+            remove_all(temporaries);
+            return write_error(item.file, tmp.error().message);
+        }
+        temporaries.push_back(*tmp);
+        targets.push_back(item.file);
+    }
+    return rename_all(temporaries, targets);
+}
+
+Status write_file_atomically(const fs::path& file, std::string_view bytes) {
+    if (file.filename().empty()) return write_error(file, "not a file name");
+    if (auto problem = location_problem(file)) return write_error(file, *problem);
+    Result<fs::path> tmp = write_temporary(file, bytes);
+    if (!tmp) return write_error(file, tmp.error().message);
+    return rename_all({*tmp}, {file});
+}
+
+namespace detail {
+
+WriteCall replace_write_call_for_testing(WriteCall call) {
+    return write_call.exchange(call);
+}
+
+}  // namespace detail
 
 }  // namespace footprint

@@ -11,8 +11,13 @@
 //     with 0 or more than 4 channels is refused (pick the channels with another tool first).
 //   * Alpha is stored as the file holds it: straight (unassociated) in PNG, TIFF and JPEG files,
 //     premultiplied by convention in EXR. Nothing is premultiplied or divided on load or save.
-//   * Non-finite values in a file (NaN, +Inf, −Inf) are replaced by 0 on load, so they never
-//     reach a pixel. Images larger than 2^32 values (16 GiB of floats) are refused.
+//   * Non-finite values in a file (NaN, +Inf, −Inf) are refused by default: the error names the
+//     file, how many there are and the first in row-major order ("cannot read 'sky.exr': 3
+//     values are not finite (NaN or infinite), the first at texel (4, 7) channel 0 (nan)").
+//     ImageLoadOptions::non_finite can repair them instead (each replaced by the mean of
+//     the finite values of the same channel among its 8 neighbours in the file, 0 if it has none,
+//     reported through ImageLoadOptions::warn) or keep them (for tools that count them).
+//   * Images larger than 2^32 values (16 GiB of floats) are refused.
 //
 // Colour handling (image/color.h holds the exact sRGB curve)
 //   Load, ColorEncoding::automatic: integer-valued files (8/16-bit PNG, JPEG, 8/16-bit TIFF)
@@ -42,18 +47,31 @@
 // "… it is a directory", "… the file is empty", "… the file is truncated or corrupt
 // (OpenImageIO: …)", "… it has 5 channels; footprint reads 1 to 4", "… the image has zero size";
 // "cannot write 'b.exr': directory 'out' does not exist", "… unsupported extension '.bmp'
-// (supported: …)". A failed load never returns an image. PNG files are checked for truncation
+// (supported: …)", "… No space left on device" (the system's text for a failed write, fsync or
+// close). A failed load never returns an image. PNG files are checked for truncation
 // and chunk checksum errors before they are decoded.
 //
-// Atomic saves: save_image writes a hidden temporary file in the target's directory
-// (".<name>.tmp-<random>.<ext>") and renames it onto the target when it is complete. On any
-// failure the temporary file is removed: the target is either fully replaced or left untouched,
-// and no partial file is left behind.
+// Atomic, checked saves: OpenImageIO encodes the file into memory (its writers do not all report
+// a failed write, e.g. libpng on a full disk), then save_image writes the bytes to a hidden
+// temporary file in the target's directory (".<name>.tmp-<random>.<ext>"), checking every write,
+// the fsync and the close, and renames it onto the target. On any failure the temporary file is
+// removed and the error names the target and the cause ("cannot write 'out.png': No space left
+// on device"): the target is either fully replaced or left untouched, nothing else is left.
+//
+// Reproducible files: the same pixels and options give the same bytes, whenever and wherever they
+// are written. No time stamp is written (OpenImageIO's DateTime: EXR capDate, TIFF DateTime; PNG
+// gets no tIME chunk), nor a host or user name. TIFF files carry no Exif block (OpenImageIO 2.4
+// cannot write one to memory), so an sRGB TIFF says nothing about its encoding; sRGB is what
+// readers, and load_image's automatic, assume for 8- and 16-bit TIFF.
 //
 // All functions are thread-safe for distinct files.
 #pragma once
 
 #include <filesystem>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include "core/result.h"
 #include "image/image.h"
@@ -62,11 +80,21 @@ namespace footprint {
 
 enum class ColorEncoding { automatic, srgb, linear };
 
+// NaN and ±Inf in a loaded file: an error (refuse), replaced and reported (repair), or left in
+// the image (keep).
+enum class NonFinitePolicy { refuse, repair, keep };
+
 struct ImageLoadOptions {
     // automatic: integer-valued files are sRGB-encoded and decoded to linear unless their
     // metadata says linear; float files are linear. srgb / linear force the choice. Alpha is
     // never decoded.
     ColorEncoding encoding = ColorEncoding::automatic;
+    // What to do with NaN and ±Inf values (see Conventions above).
+    NonFinitePolicy non_finite = NonFinitePolicy::refuse;
+    // repair: called once if anything was repaired, with a message naming the file, the count
+    // and the first value ("'sky.exr': replaced 3 non-finite values (NaN or infinite) by the
+    // mean of the finite neighbours, the first at texel (4, 7) channel 0 (nan)"). May be empty.
+    std::function<void(const std::string&)> warn = {};
 };
 
 // Reads `file` (any format OpenImageIO reads) into a linear-light float Image with 1–4 channels.
@@ -84,6 +112,21 @@ struct ImageSaveOptions {
 // The target is replaced atomically; on failure nothing is left behind.
 Status save_image(const Image& image, const std::filesystem::path& file,
                   const ImageSaveOptions& options = {});
+
+struct ImageToSave {
+    const Image* image = nullptr;
+    std::filesystem::path file;
+};
+// Writes several images as one step: every file is encoded and written under its temporary name
+// first, and only when all of them are complete are they renamed onto their targets. On failure
+// nothing is left behind and no target is touched (unless a rename itself fails, which the
+// message then says).
+Status save_images(const std::vector<ImageToSave>& images, const ImageSaveOptions& options = {});
+
+// Writes `bytes` to `file` as save_image writes an encoded image: through a temporary file in the
+// same directory, every write, the fsync and the close checked, then a rename. For reports (JSON,
+// CSV, HTML) that must not be left half-written either.
+Status write_file_atomically(const std::filesystem::path& file, std::string_view bytes);
 
 // True if save_image can write `file`'s extension (case-insensitive): .png .jpg .jpeg .exr .hdr
 // .tif .tiff. load_image reads these and any other format OpenImageIO supports.

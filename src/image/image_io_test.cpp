@@ -2,18 +2,25 @@
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <sys/mount.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <limits>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "image/color.h"
+#include "image/image_io_detail.h"
 
 namespace footprint {
 namespace {
@@ -352,15 +359,95 @@ TEST_F(ImageIo, JpegRoundTripOnSmoothImage) {
     EXPECT_LE(sum_error / (32 * 32 * 3), kJpegMeanTolerance);
 }
 
-TEST_F(ImageIo, NonFiniteValuesInFilesBecomeZero) {
-    Image image(4, 1, 1);
+// A 3 x 2 grey EXR whose value at (1, 0) is `bad` and whose other values are 1 … 6, row-major.
+fs::path write_exr_with(const fs::path& file, float bad) {
+    Image image(3, 2, 1);
+    image.pixels = {1.0f, bad, 3.0f, 4.0f, 5.0f, 6.0f};
+    EXPECT_TRUE(save_image(image, file).ok());
+    return file;
+}
+
+TEST_F(ImageIo, NonFiniteValuesAreRefusedNamingTheFileAndTheTexel) {
     const float inf = std::numeric_limits<float>::infinity();
-    image.pixels = {std::numeric_limits<float>::quiet_NaN(), inf, -inf, 2.5f};
-    const fs::path file = path("nonfinite.exr");
+    struct Case {
+        float value;
+        const char* text;
+    };
+    for (const Case& c : {Case{std::numeric_limits<float>::quiet_NaN(), "(nan)"},
+                          Case{inf, "(inf)"}, Case{-inf, "(-inf)"}}) {
+        const fs::path file = write_exr_with(path("bad.exr"), c.value);
+        const Result<Image> loaded = load_image(file);
+        ASSERT_FALSE(loaded.ok()) << c.text;
+        EXPECT_EQ(loaded.error().message,
+                  "cannot read " + quoted(file) +
+                      ": 1 value is not finite (NaN or infinite), the first at texel (1, 0) "
+                      "channel 0 " +
+                      c.text);
+    }
+}
+
+TEST_F(ImageIo, NonFiniteValuesAreCountedAndTheFirstInRowOrderNamed) {
+    Image image(4, 3, 3, 0.5f);
+    image.at(2, 1)[1] = std::numeric_limits<float>::quiet_NaN();
+    image.at(3, 2)[2] = std::numeric_limits<float>::infinity();
+    image.at(0, 2)[0] = -std::numeric_limits<float>::infinity();
+    const fs::path file = path("three.exr");
     ASSERT_TRUE(save_image(image, file).ok());
     const Result<Image> loaded = load_image(file);
+    ASSERT_FALSE(loaded.ok());
+    EXPECT_NE(loaded.error().message.find(
+                  "3 values are not finite (NaN or infinite), the first at texel (2, 1) channel 1 "
+                  "(nan)"),
+              std::string::npos)
+        << loaded.error().message;
+}
+
+TEST_F(ImageIo, NonFiniteValuesRepairedByTheMeanOfFiniteNeighboursWithAWarning) {
+    const fs::path file =
+        write_exr_with(path("repair.exr"), std::numeric_limits<float>::quiet_NaN());
+    ImageLoadOptions options;
+    options.non_finite = NonFinitePolicy::repair;
+    std::vector<std::string> warnings;
+    options.warn = [&](const std::string& message) { warnings.push_back(message); };
+    const Result<Image> loaded = load_image(file, options);
     ASSERT_TRUE(loaded.ok()) << loaded.error().message;
-    EXPECT_EQ(loaded->pixels, (std::vector<float>{0.0f, 0.0f, 0.0f, 2.5f}));
+    // (1, 0)'s neighbours 1, 3, 4, 5, 6: mean 19/5, both sides the float nearest to 3.8.
+    constexpr float kMean = 19.0f / 5.0f;
+    EXPECT_EQ(loaded->pixels, (std::vector<float>{1.0f, kMean, 3.0f, 4.0f, 5.0f, 6.0f}));
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_EQ(warnings[0], quoted(file) +
+                               ": replaced 1 non-finite value (NaN or infinite) by the mean of the "
+                               "finite neighbours, the first at texel (1, 0) channel 0 (nan)");
+}
+
+TEST_F(ImageIo, RepairUsesTheFilesValuesAndZeroWithoutFiniteNeighbours) {
+    // Two neighbouring bad values: each is repaired from the finite ones only; a value with no
+    // finite neighbour (all of a 2 x 1 image) becomes 0.
+    Image image(3, 1, 1);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    image.pixels = {2.0f, nan, nan};
+    ASSERT_TRUE(save_image(image, path("pair.exr")).ok());
+    Image lonely(2, 1, 1);
+    lonely.pixels = {nan, std::numeric_limits<float>::infinity()};
+    ASSERT_TRUE(save_image(lonely, path("lonely.exr")).ok());
+    ImageLoadOptions options;
+    options.non_finite = NonFinitePolicy::repair;
+    const Result<Image> pair = load_image(path("pair.exr"), options);
+    ASSERT_TRUE(pair.ok()) << pair.error().message;
+    EXPECT_EQ(pair->pixels, (std::vector<float>{2.0f, 2.0f, 0.0f}));
+    const Result<Image> none = load_image(path("lonely.exr"), options);
+    ASSERT_TRUE(none.ok()) << none.error().message;
+    EXPECT_EQ(none->pixels, (std::vector<float>{0.0f, 0.0f}));
+}
+
+TEST_F(ImageIo, NonFiniteValuesKeptWhenAsked) {
+    const fs::path file = write_exr_with(path("keep.exr"), std::numeric_limits<float>::infinity());
+    ImageLoadOptions options;
+    options.non_finite = NonFinitePolicy::keep;
+    const Result<Image> loaded = load_image(file, options);
+    ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+    EXPECT_TRUE(std::isinf(loaded->pixels[1]));
+    EXPECT_EQ(loaded->pixels[0], 1.0f);
 }
 
 TEST_F(ImageIo, UppercaseExtensionsWork) {
@@ -558,6 +645,188 @@ TEST_F(ImageIo, SaveIntoCurrentDirectoryWithRelativePath) {
     ASSERT_TRUE(status.ok()) << status.error().message;
     ASSERT_TRUE(loaded.ok()) << loaded.error().message;
     EXPECT_EQ(entries(), std::vector<std::string>{"relative.exr"});
+}
+
+// ---- failed writes and reproducible bytes
+// ------------------------------------------------------------------------------------------
+
+const std::vector<std::string> kEveryFormat = {"png", "jpg", "exr", "tif", "hdr"};
+
+// A write() that writes half of what it is given once, then fails as a full disk does.
+long half_then_full_disk(int fd, const void* data, std::size_t size) {
+    static thread_local bool wrote_half = false;
+    if (!wrote_half && size > 1) {
+        wrote_half = true;
+        return static_cast<long>(::write(fd, data, size / 2));
+    }
+    wrote_half = false;
+    errno = ENOSPC;
+    return -1;
+}
+
+// Sets image_io's write call for the life of the object.
+class FailingWrites {
+  public:
+    explicit FailingWrites(detail::WriteCall call)
+        : previous_(detail::replace_write_call_for_testing(call)) {}
+    ~FailingWrites() { detail::replace_write_call_for_testing(previous_); }
+    FailingWrites(const FailingWrites&) = delete;
+    FailingWrites& operator=(const FailingWrites&) = delete;
+
+  private:
+    detail::WriteCall previous_;
+};
+
+void expect_full_disk_error(const Status& status, const fs::path& file) {
+    ASSERT_FALSE(status.ok()) << file;
+    EXPECT_EQ(status.error().message,
+              "cannot write " + quoted(file) + ": " + std::strerror(ENOSPC));
+}
+
+TEST_F(ImageIo, FailedWriteIsAnErrorAndLeavesNothingInEveryFormat) {
+    const Image image = make_image(64, 32, 3, 0.0f, 1.0f);
+    for (const std::string& ext : kEveryFormat) {
+        const fs::path file = path("out." + ext);
+        {
+            FailingWrites failing(half_then_full_disk);
+            expect_full_disk_error(save_image(image, file), file);
+        }
+        EXPECT_TRUE(entries().empty()) << ext;
+    }
+}
+
+TEST_F(ImageIo, FailedWriteLeavesTheExistingTargetUntouched) {
+    const fs::path file = path("keep.png");
+    ASSERT_TRUE(save_image(make_image(8, 8, 3, 0.0f, 1.0f, 1), file).ok());
+    const std::string before = read_bytes(file);
+    {
+        FailingWrites failing(half_then_full_disk);
+        expect_full_disk_error(save_image(make_image(64, 64, 3, 0.0f, 1.0f, 2), file), file);
+    }
+    EXPECT_EQ(read_bytes(file), before);
+    EXPECT_EQ(entries(), std::vector<std::string>{"keep.png"});
+}
+
+TEST_F(ImageIo, SaveImagesWritesAllOrNone) {
+    const Image a = make_image(16, 16, 3, 0.0f, 1.0f, 1), b = make_image(16, 16, 3, 0.0f, 1.0f, 2);
+    // The second target is refused after the first was written under its temporary name.
+    const Status refused = save_images({{&a, path("a.png")}, {&b, path("b.bmp")}});
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().message.find(quoted(path("b.bmp"))), std::string::npos);
+    EXPECT_TRUE(entries().empty());
+    ASSERT_TRUE(save_images({{&a, path("a.png")}, {&b, path("b.exr")}}).ok());
+    EXPECT_EQ(entries(), (std::vector<std::string>{"a.png", "b.exr"}));
+}
+
+TEST_F(ImageIo, WriteFileAtomicallyChecksTheWrite) {
+    const fs::path file = path("report.json");
+    ASSERT_TRUE(write_file_atomically(file, "{}\n").ok());
+    EXPECT_EQ(read_bytes(file), "{}\n");
+    {
+        FailingWrites failing(half_then_full_disk);
+        expect_full_disk_error(write_file_atomically(file, std::string(4096, 'x')), file);
+    }
+    EXPECT_EQ(read_bytes(file), "{}\n");
+    EXPECT_EQ(entries(), std::vector<std::string>{"report.json"});
+    const Status missing = write_file_atomically(path("nowhere") / "r.json", "{}");
+    ASSERT_FALSE(missing.ok());
+    EXPECT_NE(missing.error().message.find("does not exist"), std::string::npos);
+}
+
+// A 64 KiB tmpfs mounted on a fresh directory for the life of the object (root only).
+class TinyDisk {
+  public:
+    static constexpr const char* kSize = "size=64k";
+    explicit TinyDisk(const fs::path& dir) : dir_(dir) {
+        fs::create_directory(dir_);
+        if (::geteuid() != 0) {
+            why_not_ = "not running as root";
+        } else if (::mount("tmpfs", dir_.c_str(), "tmpfs", 0, kSize) != 0) {
+            why_not_ = std::string("mount -t tmpfs failed: ") + std::strerror(errno);
+        } else {
+            mounted_ = true;
+        }
+    }
+    ~TinyDisk() {
+        if (mounted_) ::umount2(dir_.c_str(), MNT_DETACH);
+    }
+    TinyDisk(const TinyDisk&) = delete;
+    TinyDisk& operator=(const TinyDisk&) = delete;
+    bool mounted() const { return mounted_; }
+    const std::string& why_not() const { return why_not_; }
+
+  private:
+    fs::path dir_;
+    bool mounted_ = false;
+    std::string why_not_;
+};
+
+std::vector<std::string> names_in(const fs::path& dir) {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+TEST_F(ImageIo, FullDiskIsAnErrorAndLeavesNothing) {
+    const fs::path disk = path("disk");
+    TinyDisk tiny(disk);
+    if (!tiny.mounted()) GTEST_SKIP() << "no tiny tmpfs to fill: " << tiny.why_not();
+    // Noise does not compress: 256 x 256 RGB is far more than 64 KiB in every format.
+    const Image noise = make_image(256, 256, 3, 0.0f, 1.0f, 3);
+    const Image small = make_image(4, 4, 3, 0.0f, 1.0f, 4);
+    ASSERT_TRUE(save_image(small, disk / "old.png").ok());
+    const std::string old_bytes = read_bytes(disk / "old.png");
+    for (const std::string& ext : kEveryFormat) {
+        const fs::path file = disk / ("full." + ext);
+        expect_full_disk_error(save_image(noise, file), file);
+        EXPECT_EQ(names_in(disk), std::vector<std::string>{"old.png"}) << ext;
+    }
+    expect_full_disk_error(save_image(noise, disk / "old.png"), disk / "old.png");
+    EXPECT_EQ(read_bytes(disk / "old.png"), old_bytes);
+    expect_full_disk_error(write_file_atomically(disk / "r.json", std::string(1 << 17, 'x')),
+                           disk / "r.json");
+    EXPECT_EQ(names_in(disk), std::vector<std::string>{"old.png"});
+}
+
+TEST_F(ImageIo, SamePixelsGiveTheSameBytesInEveryFormat) {
+    const Image image = make_image(32, 16, 4, 0.0f, 2.0f, 5);
+    ImageSaveOptions half;
+    half.exr_half = true;
+    ImageSaveOptions sixteen;
+    sixteen.bits = 16;
+    struct Case {
+        std::string name;
+        ImageSaveOptions options;
+    };
+    std::vector<Case> cases;
+    for (const std::string& ext : kEveryFormat) cases.push_back({"a." + ext, {}});
+    cases.push_back({"half.exr", half});
+    cases.push_back({"sixteen.png", sixteen});
+    cases.push_back({"sixteen.tif", sixteen});
+    std::vector<std::string> first;
+    for (const Case& c : cases) {
+        ASSERT_TRUE(save_image(image, path("1-" + c.name), c.options).ok()) << c.name;
+        first.push_back(read_bytes(path("1-" + c.name)));
+    }
+    // Time stamps have a resolution of one second: the second writes are in another second.
+    std::this_thread::sleep_for(std::chrono::milliseconds(1100));
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        ASSERT_TRUE(save_image(image, path("2-" + cases[i].name), cases[i].options).ok());
+        EXPECT_EQ(read_bytes(path("2-" + cases[i].name)), first[i]) << cases[i].name;
+    }
+}
+
+TEST_F(ImageIo, SavedFilesCarryNoTimeStamp) {
+    const Image image = make_image(8, 8, 3, 0.0f, 1.0f, 6);
+    for (const std::string& ext : kEveryFormat) {
+        const fs::path file = path("stamp." + ext);
+        ASSERT_TRUE(save_image(image, file).ok());
+        auto in = OIIO::ImageInput::open(file.string());
+        ASSERT_TRUE(in) << OIIO::geterror();
+        EXPECT_EQ(in->spec().find_attribute("DateTime"), nullptr) << ext;
+        in->close();
+    }
 }
 
 }  // namespace
