@@ -2,14 +2,19 @@
 // exit statuses, one-line error messages naming the file or value, and no output on failure.
 #include <gtest/gtest.h>
 
+#include <cerrno>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
 #include <random>
 #include <string>
 
 #include "env_command.h"
 #include "envmap/env_image_io.h"
 #include "image/image_io.h"
+#include "image/image_io_detail.h"
 
 namespace footprint {
 namespace {
@@ -210,6 +215,101 @@ TEST_F(EnvCommandTest, BadOutputsFailBeforeWork) {
     EXPECT_EQ(convert(three, &err), 1);
     EXPECT_NE(err.find("not 3"), std::string::npos) << err;
     EXPECT_TRUE(one_line(err)) << err;
+    EXPECT_EQ(entries(), 1);
+}
+
+std::string bytes_of(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+TEST_F(EnvCommandTest, AnInputAsTheOutputIsRefused) {
+    const std::string before = bytes_of(latlong_);
+    std::string err;
+    // The same path, another spelling of it, and one of six face outputs.
+    EnvConvertCommandOptions same = from_sky("latlong", "sky.exr");
+    EXPECT_EQ(convert(same, &err), 1);
+    EXPECT_TRUE(one_line(err)) << err;
+    EXPECT_EQ(err, "footprint: -o '" + latlong_.string() + "' is the input '" + latlong_.string() +
+                       "'; write the conversion to another file\n");
+    EnvConvertCommandOptions spelled = from_sky("latlong", "");
+    spelled.outputs = {dir_ / "." / ".." / dir_.filename() / "sky.exr"};
+    EXPECT_EQ(convert(spelled, &err), 1);
+    EXPECT_NE(err.find("is the input"), std::string::npos) << err;
+    EnvConvertCommandOptions faces = from_sky("cube", "");
+    faces.outputs.clear();
+    for (const char* n : {"px.exr", "nx.exr", "py.exr", "sky.exr", "pz.exr", "nz.exr"})
+        faces.outputs.push_back(dir_ / n);
+    EXPECT_EQ(convert(faces, &err), 1);
+    EXPECT_NE(err.find("is the input"), std::string::npos) << err;
+    EXPECT_EQ(bytes_of(latlong_), before);
+    EXPECT_EQ(entries(), 1);
+}
+
+TEST_F(EnvCommandTest, AnOutputGivenTwiceIsRefused) {
+    EnvConvertCommandOptions twice = from_sky("paraboloid", "front.exr");
+    twice.outputs.push_back(dir_ / "front.exr");
+    std::string err;
+    EXPECT_EQ(convert(twice, &err), 1);
+    EXPECT_NE(err.find("is given twice"), std::string::npos) << err;
+    EXPECT_EQ(entries(), 1);
+}
+
+TEST_F(EnvCommandTest, NonFiniteInputIsRefusedOrRepairedWithAWarning) {
+    Image sky(64, 32, 3, 0.25f);
+    sky.at(5, 9)[1] = std::numeric_limits<float>::quiet_NaN();
+    const fs::path bad = dir_ / "nan.exr";
+    ASSERT_TRUE(save_image(sky, bad).ok());
+    EnvConvertCommandOptions options = from_sky("cube", "cube.exr");
+    options.inputs = {bad};
+    std::string err;
+    EXPECT_EQ(convert(options, &err), 1);
+    EXPECT_EQ(err, "footprint: cannot read '" + bad.string() +
+                       "': 1 value is not finite (NaN or infinite), the first at texel (5, 9) "
+                       "channel 1 (nan)\n");
+    EXPECT_EQ(entries(), 2);
+    options.repair_non_finite = true;
+    EXPECT_EQ(convert(options, &err), 0) << err;
+    EXPECT_EQ(err, "footprint: warning: '" + bad.string() +
+                       "': replaced 1 non-finite value (NaN or infinite) by the mean of the finite "
+                       "neighbours, the first at texel (5, 9) channel 1 (nan)\n");
+    // Every neighbour is 0.25, so the repaired map is constant and so is its conversion.
+    constexpr float kConstantTolerance = 1e-5f;
+    Result<Image> cube = load_image(dir_ / "cube.exr");
+    ASSERT_TRUE(cube.ok()) << cube.error().message;
+    const int n = cube->height / 3;
+    for (int y = n; y < 2 * n; ++y)
+        for (int x = 0; x < cube->width; ++x)
+            for (int c = 0; c < 3; ++c) ASSERT_NEAR(cube->at(x, y)[c], 0.25f, kConstantTolerance);
+}
+
+TEST_F(EnvCommandTest, ImageOfNoLayoutIsRefusedUnlessFromIsGiven) {
+    const fs::path odd = dir_ / "odd.exr";
+    ASSERT_TRUE(save_image(Image(60, 25, 3, 0.5f), odd).ok());
+    EnvConvertCommandOptions options = from_sky("cube", "cube.exr");
+    options.inputs = {odd};
+    std::string err;
+    EXPECT_EQ(convert(options, &err), 1);
+    EXPECT_NE(err.find("cannot tell the layout of '" + odd.string() + "' from its size 60x25"),
+              std::string::npos)
+        << err;
+    options.from = "latlong";
+    EXPECT_EQ(convert(options, &err), 0) << err;
+}
+
+long full_disk(int, const void*, std::size_t) {
+    errno = ENOSPC;
+    return -1;
+}
+
+TEST_F(EnvCommandTest, FailedWriteFailsNamingTheFileAndLeavesNothing) {
+    const detail::WriteCall previous = detail::replace_write_call_for_testing(full_disk);
+    std::string err;
+    const int status = convert(from_sky("cube", "cube.png"), &err);
+    detail::replace_write_call_for_testing(previous);
+    EXPECT_EQ(status, 1);
+    EXPECT_EQ(err, "footprint: cannot write '" + (dir_ / "cube.png").string() +
+                       "': No space left on device\n");
     EXPECT_EQ(entries(), 1);
 }
 

@@ -21,6 +21,37 @@ namespace fs = std::filesystem;
 constexpr const char* kLayoutNames = "cube, latlong, sphere, paraboloid";
 constexpr const char* kArrangementNames = "hcross, vcross, 3x2, 2x3, column, row";
 
+// True if `a` and `b` name the same file: the same inode where both exist, else the same path
+// once resolved (symbolic links, "..", the current directory).
+bool same_file(const fs::path& a, const fs::path& b) {
+    std::error_code ec;
+    if (fs::exists(a, ec) && fs::exists(b, ec)) {
+        const bool same = fs::equivalent(a, b, ec);
+        if (!ec) return same;
+    }
+    const fs::path ca = fs::weakly_canonical(a, ec);
+    if (ec) return a.lexically_normal() == b.lexically_normal();
+    const fs::path cb = fs::weakly_canonical(b, ec);
+    return !ec && ca == cb;
+}
+
+// Why the outputs cannot be written as given: one of them is an input, or one file is given
+// twice as an output; nullopt if they are all distinct.
+std::optional<std::string> output_clash(const EnvConvertCommandOptions& options) {
+    for (std::size_t i = 0; i < options.outputs.size(); ++i) {
+        const fs::path& out = options.outputs[i];
+        for (const fs::path& in : options.inputs)
+            if (same_file(out, in))
+                return "-o " + quoted(out) + " is the input " + quoted(in) +
+                       "; write the conversion to another file";
+        for (std::size_t k = 0; k < i; ++k)
+            if (same_file(out, options.outputs[k]))
+                return "-o " + quoted(out) + " is given twice (as " + quoted(options.outputs[k]) +
+                       ")";
+    }
+    return std::nullopt;
+}
+
 std::string size_text(const EnvImages& images) {
     const Image& f = images.faces[0];
     std::string text = std::string(env_layout_name(images.layout)) + " ";
@@ -70,7 +101,14 @@ int env_convert(const EnvConvertCommandOptions& options) {
                     ", not " + std::to_string(outputs));
     for (const fs::path& file : options.outputs)
         if (const auto problem = output_file_problem(file)) return fail(*problem);
+    if (const auto clash = output_clash(options)) return fail(*clash);
 
+    if (options.repair_non_finite) {
+        load_options.image.non_finite = NonFinitePolicy::repair;
+        load_options.image.warn = [](const std::string& message) {
+            std::cerr << "footprint: warning: " << message << "\n";
+        };
+    }
     Result<EnvImages> source_images = load_environment_images(options.inputs, load_options);
     if (!source_images) return fail(source_images.error().message);
     Result<EnvironmentMap> source = make_environment_map(*source_images);

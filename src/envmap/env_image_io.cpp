@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <fstream>
 #include <system_error>
 
@@ -123,13 +124,18 @@ Image opaque_black(int width, int height, int channels) {
     return image;
 }
 
-// The layout a lone image of this size stands for, by aspect ratio.
-std::optional<EnvLayout> layout_from_size(int width, int height) {
-    if (width == 2 * height) return EnvLayout::latlong;
+}  // namespace
+
+std::optional<EnvLayout> env_layout_from_size(int width, int height) {
+    if (width <= 0 || height <= 0) return std::nullopt;
+    // Lat-long maps resized by hand are often a pixel or so off 2:1; no other layout is near it.
+    if (std::abs(width - 2 * height) <= std::max(1, height / 50)) return EnvLayout::latlong;
     if (width == height) return EnvLayout::sphere;
     if (cube_arrangement_from_size(width, height)) return EnvLayout::cube;
     return std::nullopt;
 }
+
+namespace {
 
 Status check_square(const Image& image, const std::string& what) {
     if (image.width != image.height)
@@ -382,11 +388,12 @@ Result<EnvImages> load_environment_images(const std::vector<fs::path>& files,
     const std::optional<EnvLayout> exr_envmap =
         options.honour_openexr_envmap ? read_openexr_envmap_attribute(file) : std::nullopt;
     std::optional<EnvLayout> layout = options.layout ? options.layout : exr_envmap;
-    if (!layout) layout = layout_from_size(image.width, image.height);
+    if (!layout) layout = env_layout_from_size(image.width, image.height);
     if (!layout)
         return Error{"cannot tell the layout of " + quoted(file) + " from its size " +
                      size_text(image) +
-                     " (2:1 lat-long, 1:1 sphere, 4:3 3:4 3:2 2:3 1:6 6:1 cube); give the layout"};
+                     " (lat-long 2:1 within 1 %, sphere 1:1, cube 4:3 3:4 3:2 2:3 1:6 6:1); give "
+                     "the layout"};
     const bool openexr = exr_envmap && exr_envmap == layout;
     result.layout = *layout;
     switch (*layout) {
@@ -476,9 +483,9 @@ Status save_environment_images(const EnvImages& images, const std::vector<fs::pa
         if (Status s = check_output_file(file); !s) return s;
 
     if (!one_file || count == 1) {
-        for (std::size_t i = 0; i < files.size(); ++i)
-            if (Status s = save_image(images.faces[i], files[i], options.image); !s) return s;
-        return {};
+        std::vector<ImageToSave> all;
+        for (std::size_t i = 0; i < files.size(); ++i) all.push_back({&images.faces[i], files[i]});
+        return save_images(all, options.image);
     }
     if (images.layout == EnvLayout::cube) {
         std::array<Image, 6> faces;

@@ -42,20 +42,27 @@
 //
 // ---- Layout detection (load_environment_images), unless EnvImageOptions::layout says otherwise:
 //   6 files  → cube faces (+X −X +Y −Y +Z −Z);   2 files → paraboloid (front, back);
-//   1 file   → the OpenEXR "envmap" attribute if present, else by aspect ratio: 2:1 lat-long,
-//              1:1 sphere, 4:3 / 3:4 / 3:2 / 2:3 / 1:6 / 6:1 cube (arrangement as above).
+//   1 file   → the OpenEXR "envmap" attribute if present, else by aspect ratio
+//              (env_layout_from_size): 2:1 lat-long (W within 1 % of 2H, at least ±1 pixel:
+//              |W − 2H| ≤ max(1, H/50), integer division), 1:1 sphere, exactly 4:3 / 3:4 / 3:2 /
+//              2:3 / 1:6 / 6:1 cube (arrangement as above). Any other size is refused unless the
+//              layout is given.
 //   A one-file paraboloid is the front and back side by side (2N × N, front left); since 2:1 means
 //   lat-long by default, it must be asked for explicitly. An explicit lat-long accepts any size.
+//   Texels that are NaN or ±Inf are refused, or repaired (EnvImageOptions::image.non_finite,
+//   image_io.h); the error names the file and the texel in that file.
 //
 // ---- Errors: nothing is printed or thrown. Every failure is an Error naming the file in quotes
 //   and the problem: "cannot read 'a.exr': no such file" (image_io.h), "cube map 'c.png' is
 //   512x512, but a horizontal cross needs 4N x 3N pixels (faces N x N)", "cube face -Y ('ny.png')
 //   is 64x64, but cube face +X ('px.png') is 128x128", "cannot tell the layout of 'x.png' from its
-//   size 300x201 (2:1 lat-long, ...); give the layout", "sphere map 's.png' is 64x32, not square".
+//   size 300x201 (lat-long 2:1 within 1 %, ...); give the layout", "sphere map 's.png' is 64x32,
+//   not square".
 //
-// ---- Saving (save_environment_images): every file through save_image (atomic: a file is either
-//   completely written or left untouched). All target paths are checked (extension, directory)
-//   before the first file is written.
+// ---- Saving (save_environment_images): all files through save_images (image_io.h): every file
+//   is written completely under a temporary name before any target is replaced, so a failed save
+//   leaves nothing behind and no target changed. All target paths are checked (extension,
+//   directory) before the first file is written.
 #pragma once
 
 #include <array>
@@ -127,6 +134,10 @@ Status save_environment_images(const EnvImages& images,
                                const EnvSaveOptions& options = {});
 
 // ---- Pure helpers (no files).
+
+// The layout a single image of this size stands for by its aspect ratio (the rule above), or
+// nullopt if it fits none.
+std::optional<EnvLayout> env_layout_from_size(int width, int height);
 
 // The arrangement of a width × height cube image from its aspect ratio (never openexr_column), or
 // nullopt if it is none of 4:3, 3:4, 3:2, 2:3, 1:6, 6:1.

@@ -4,16 +4,20 @@
 #include "envmap/env_image_io.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <random>
 
 #include "core/test_shared_data.h"
 #include "envmap/env_convert.h"
+#include "image/image_io_detail.h"
 
 namespace footprint {
 namespace {
@@ -567,6 +571,88 @@ TEST_F(EnvFilesTest, BadTargetsWriteNothing) {
     options.cube_arrangement = CubeArrangement::openexr_column;
     EXPECT_FALSE(save_environment_images(cube, {dir_.path() / "c.exr"}, options).ok());
     EXPECT_EQ(dir_.entries(), before);
+}
+
+TEST(EnvLayoutFromSize, LatLongIsTwoToOneWithinOnePercent) {
+    // |W − 2H| ≤ max(1, H/50): one pixel for small maps, 1 % of the width for large ones.
+    EXPECT_EQ(env_layout_from_size(64, 32), EnvLayout::latlong);
+    EXPECT_EQ(env_layout_from_size(65, 32), EnvLayout::latlong);
+    EXPECT_EQ(env_layout_from_size(63, 32), EnvLayout::latlong);
+    EXPECT_EQ(env_layout_from_size(66, 32), std::nullopt);
+    EXPECT_EQ(env_layout_from_size(2048 + 20, 1024), EnvLayout::latlong);
+    EXPECT_EQ(env_layout_from_size(2048 - 20, 1024), EnvLayout::latlong);
+    EXPECT_EQ(env_layout_from_size(2048 + 21, 1024), std::nullopt);
+    EXPECT_EQ(env_layout_from_size(32, 32), EnvLayout::sphere);
+    EXPECT_EQ(env_layout_from_size(33, 32), std::nullopt);
+    EXPECT_EQ(env_layout_from_size(64, 48), EnvLayout::cube);
+    EXPECT_EQ(env_layout_from_size(96, 64), EnvLayout::cube);
+    EXPECT_EQ(env_layout_from_size(300, 201), std::nullopt);
+    EXPECT_EQ(env_layout_from_size(0, 0), std::nullopt);
+}
+
+TEST_F(EnvFilesTest, SingleImageOfNoLayoutIsRefusedUnlessTheLayoutIsGiven) {
+    const fs::path wide = write(Image(30, 12, 3, 0.5f), "wide.exr");
+    Result<EnvImages> detected = load_environment_images({wide});
+    ASSERT_FALSE(detected.ok());
+    EXPECT_EQ(detected.error().message,
+              "cannot tell the layout of '" + wide.string() +
+                  "' from its size 30x12 (lat-long 2:1 within 1 %, sphere 1:1, cube 4:3 3:4 3:2 "
+                  "2:3 1:6 6:1); give the layout");
+    EnvImageOptions latlong;
+    latlong.layout = EnvLayout::latlong;
+    Result<EnvImages> given = load_environment_images({wide}, latlong);
+    ASSERT_TRUE(given.ok()) << given.error().message;
+    EXPECT_EQ(given->faces[0].width, 30);
+}
+
+TEST_F(EnvFilesTest, NonFiniteTexelsAreRefusedNamingTheFileAndTexel) {
+    // A horizontal cross with an infinite texel in its +X cell: the texel is named in the file.
+    Image cross(32, 24, 3, 0.5f);
+    cross.at(20, 10)[2] = std::numeric_limits<float>::infinity();
+    const fs::path file = write(cross, "cross.exr");
+    Result<EnvImages> refused = load_environment_images({file});
+    ASSERT_FALSE(refused.ok());
+    EXPECT_EQ(refused.error().message,
+              "cannot read '" + file.string() +
+                  "': 1 value is not finite (NaN or infinite), the first at texel (20, 10) "
+                  "channel 2 (inf)");
+    EXPECT_FALSE(load_environment({file}).ok());
+
+    EnvImageOptions repair;
+    repair.image.non_finite = NonFinitePolicy::repair;
+    int warnings = 0;
+    repair.image.warn = [&](const std::string&) { ++warnings; };
+    Result<EnvImages> repaired = load_environment_images({file}, repair);
+    ASSERT_TRUE(repaired.ok()) << repaired.error().message;
+    EXPECT_EQ(warnings, 1);
+    // +X is the cell at (2, 1) of faces 8 x 8: the texel (20, 10) is its (4, 2).
+    EXPECT_EQ(repaired->faces[0].at(4, 2)[2], 0.5f);
+}
+
+// A write() that fails as a full disk does from its fifth call on (each face of a small map
+// is written in one call).
+int write_calls = 0;
+long full_from_the_fifth_write(int fd, const void* data, std::size_t size) {
+    if (++write_calls < 5) return static_cast<long>(::write(fd, data, size));
+    errno = ENOSPC;
+    return -1;
+}
+
+TEST_F(EnvFilesTest, FailedWriteOfOneFaceLeavesNoFace) {
+    EnvImages cube;
+    cube.layout = EnvLayout::cube;
+    for (int f = 0; f < 6; ++f) cube.faces.push_back(Image(4, 4, 3, 0.5f));
+    std::vector<fs::path> six;
+    for (int f = 0; f < 6; ++f) six.push_back(dir_.path() / ("f" + std::to_string(f) + ".exr"));
+    write_calls = 0;
+    const detail::WriteCall previous =
+        detail::replace_write_call_for_testing(full_from_the_fifth_write);
+    const Status faces = save_environment_images(cube, six);
+    detail::replace_write_call_for_testing(previous);
+    ASSERT_FALSE(faces.ok());
+    EXPECT_NE(faces.error().message.find(six[4].string()), std::string::npos)
+        << faces.error().message;
+    EXPECT_EQ(dir_.entries(), 0);  // the four faces written under temporary names are gone
 }
 
 }  // namespace
