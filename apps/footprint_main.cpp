@@ -4,7 +4,7 @@
 //   footprint demo [--out DIR] [--scene NAME...] [--size N] [--spp N] [--threads N] [--quiet]
 //   footprint eval [SCENE...] [--out DIR] [--size W] [--reference-spp N] [--spp-list 1,4,16,64]
 //                  [--frames N] [--flicker-reference-spp N] [--threads N] [--no-browser-check]
-//   footprint metrics A B [--mask M] [--peak P] [--json]
+//   footprint metrics A B [--mask M] [--peak P] [--ignore-non-finite] [--json]
 //   footprint texture-demo [--out DIR] [--size N] [--samples N] [--quiet]
 //   footprint plane TEXTURE -o OUT [--filter F] [--size N] [--uv-scale X] [--quiet]
 //   footprint env convert IN [IN...] --to LAYOUT -o OUT [-o OUT...] [--size N] [--from LAYOUT]
@@ -151,6 +151,9 @@ int run(int argc, char** argv) {
     metrics_cmd->add_option("--peak", metrics.peak, "PSNR peak and SSIM dynamic range")
         ->capture_default_str();
     metrics_cmd->add_flag("--json", metrics.json, "Print one JSON line");
+    metrics_cmd->add_flag("--ignore-non-finite", metrics.ignore_non_finite,
+                          "Leave pixels with NaN or infinity in A or B out of every metric "
+                          "(default: an error)");
 
     footprint::EvalCommandOptions eval;
     std::string eval_out = eval.out_dir.string();

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -122,6 +123,77 @@ TEST_F(MetricsCommandTest, SrgbFilesAreComparedInLinearLight) {
     std::string out, err;
     ASSERT_EQ(metrics_cmd(o, &out, &err), 0) << err;
     EXPECT_LT(nlohmann::json::parse(out).at("rmse").get<double>(), 0.003);  // 8-bit rounding
+    // One encoded file against a linear one: a one-line warning naming both, still exit 0.
+    EXPECT_EQ(err.rfind("footprint: warning: ", 0), 0u) << err;
+    EXPECT_EQ(err.find('\n'), err.size() - 1) << err;
+    EXPECT_NE(err.find("'" + (dir_ / "grey.png").string() + "' is sRGB-encoded"), std::string::npos)
+        << err;
+    EXPECT_NE(err.find("'" + (dir_ / "grey.exr").string() + "' is linear"), std::string::npos)
+        << err;
+    EXPECT_NE(err.find("compared in linear light"), std::string::npos) << err;
+    // Two encoded files: no warning.
+    ASSERT_TRUE(save_image(grey, dir_ / "grey2.png").ok());
+    ASSERT_EQ(metrics_cmd(options("grey.png", "grey2.png"), &out, &err), 0) << err;
+    EXPECT_EQ(err, "");
+}
+
+// NaN and infinity are refused, not read as 0: NaN against NaN must not give RMSE 0 and exit 0.
+TEST_F(MetricsCommandTest, NonFinitePixelsFailNamingTheFileAndTheFirstPixel) {
+    Image nan_a = a_, nan_b = a_;
+    nan_a.at(3, 2, 1) = std::numeric_limits<float>::quiet_NaN();
+    nan_b.at(3, 2, 1) = std::numeric_limits<float>::quiet_NaN();
+    nan_b.at(5, 4, 0) = std::numeric_limits<float>::infinity();
+    ASSERT_TRUE(save_image(nan_a, dir_ / "nan_a.exr").ok());
+    ASSERT_TRUE(save_image(nan_b, dir_ / "nan_b.exr").ok());
+    std::string out, err;
+    MetricsCommandOptions o = options("nan_a.exr", "nan_b.exr");
+    EXPECT_EQ(metrics_cmd(o, &out, &err), 1);
+    EXPECT_EQ(out, "");
+    EXPECT_EQ(err, "footprint: '" + (dir_ / "nan_a.exr").string() +
+                       "' has 1 non-finite pixel, the first at (3, 2) channel 1 = nan, '" +
+                       (dir_ / "nan_b.exr").string() +
+                       "' has 2 non-finite pixels, the first at (3, 2) channel 1 = nan (NaN or "
+                       "infinite); --ignore-non-finite leaves those pixels out of every metric\n");
+    o = options("a.exr", "nan_b.exr");
+    EXPECT_EQ(metrics_cmd(o, &out, &err), 1);
+    EXPECT_NE(err.find("a.exr' has 0 non-finite pixels"), std::string::npos) << err;
+}
+
+TEST_F(MetricsCommandTest, IgnoreNonFiniteExcludesAndCountsThePixels) {
+    Image nan_a = a_, inf_b = b_;
+    nan_a.at(1, 1, 0) = std::numeric_limits<float>::quiet_NaN();
+    inf_b.at(1, 1, 2) = -std::numeric_limits<float>::infinity();
+    inf_b.at(4, 3, 1) = std::numeric_limits<float>::infinity();
+    ASSERT_TRUE(save_image(nan_a, dir_ / "nan_a.exr").ok());
+    ASSERT_TRUE(save_image(inf_b, dir_ / "inf_b.exr").ok());
+    MetricsCommandOptions o = options("nan_a.exr", "inf_b.exr");
+    o.ignore_non_finite = true;
+    o.json = true;
+    std::string out, err;
+    ASSERT_EQ(metrics_cmd(o, &out, &err), 0) << err;
+    EXPECT_EQ(err, "");
+    const nlohmann::json j = nlohmann::json::parse(out);
+    EXPECT_EQ(j.at("non_finite_a").get<std::size_t>(), 1u);
+    EXPECT_EQ(j.at("non_finite_b").get<std::size_t>(), 2u);
+    EXPECT_EQ(j.at("excluded").get<std::size_t>(), 2u);
+    EXPECT_EQ(j.at("pixels").get<std::size_t>(), 28u);
+    MetricsOptions m;
+    m.ignore_non_finite = true;
+    const Result<ImageComparison> expected = compare_images(nan_a, inf_b, m);
+    ASSERT_TRUE(expected.ok());
+    EXPECT_DOUBLE_EQ(j.at("rmse").get<double>(), expected->rmse);
+    EXPECT_DOUBLE_EQ(j.at("ssim").get<double>(), expected->ssim);
+    EXPECT_GT(j.at("rmse").get<double>(), 0.01);
+
+    o.json = false;
+    ASSERT_EQ(metrics_cmd(o, &out, &err), 0) << err;
+    EXPECT_NE(out.find("(pixels 28; non-finite pixels: A 1, B 2, 2 excluded)\n"), std::string::npos)
+        << out;
+    // Finite images: the JSON's counts are 0, the line unchanged.
+    o = options("a.exr", "b.exr");
+    o.json = true;
+    ASSERT_EQ(metrics_cmd(o, &out, &err), 0) << err;
+    EXPECT_EQ(nlohmann::json::parse(out).at("excluded").get<std::size_t>(), 0u);
 }
 
 TEST_F(MetricsCommandTest, ErrorsNameTheFile) {

@@ -1,6 +1,6 @@
 // apps/metrics_command.h — `footprint metrics`: how far one image is from another.
 //
-//   footprint metrics A B [--mask M] [--peak P] [--json]
+//   footprint metrics A B [--mask M] [--peak P] [--ignore-non-finite] [--json]
 //
 // Loads A and B with load_image (image/image_io.h): the metrics are computed in linear light as
 // loaded — sRGB-encoded files (8/16-bit PNG, JPEG, TIFF) are decoded to linear first, float
@@ -10,15 +10,26 @@
 // compare_images: RMSE, PSNR (dB) and SSIM (Wang et al. 2004, 11×11 Gaussian window σ = 1.5,
 // cut and renormalised at the border).
 //
+// Non-finite pixels (NaN or ±infinity in any channel) are an error naming both files, their
+// counts and each one's first bad pixel; with --ignore-non-finite the pixels where A or B has one
+// are left out of every metric (as if masked out; SSIM's windows skip them) and counted. When one
+// file is sRGB-encoded (8/16-bit PNG, JPEG, TIFF) and the other linear (EXR, HDR, float TIFF) a
+// warning on stderr says so; they are compared in linear light all the same.
+//
 // Prints one line to stdout:
 //   rmse 0.0123  psnr 38.2 dB  ssim 0.9876  (pixels 4096)
-// or with --json exactly one line
-//   {"rmse":0.0123,"psnr":38.2,"ssim":0.9876,"pixels":4096}
-// where psnr is null for identical images (PSNR = +infinity).
+// (with "; non-finite pixels: A 3, B 0, 3 excluded" before the ")" when there were any) or with
+// --json exactly one line
+//   {"rmse":0.0123,"psnr":38.2,"ssim":0.9876,"pixels":4096,"non_finite_a":0,"non_finite_b":0,
+//    "excluded":0}
+// where psnr is null for identical images (PSNR = +infinity), pixels the pixels measured,
+// non_finite_a/b the pixels of each whole image with a non-finite value and excluded those of
+// the mask's pixels left out for it.
 //
 // Returns the exit status: 0, or 1 after exactly one line "footprint: <what is wrong>" on stderr
-// naming the file at fault (unreadable file; images of different size or channels; a mask of the
-// wrong size or that selects nothing; --peak not finite and > 0).
+// naming the file at fault (unreadable file; non-finite pixels without --ignore-non-finite;
+// images of different size or channels; a mask of the wrong size or that selects nothing; no
+// pixel left; --peak not finite and > 0).
 #pragma once
 
 #include <filesystem>
@@ -31,6 +42,7 @@ struct MetricsCommandOptions {
     std::filesystem::path mask;  // empty: every pixel counts
     bool json = false;
     double peak = 1.0;
+    bool ignore_non_finite = false;  // leave non-finite pixels out instead of failing
 };
 int run_metrics_command(const MetricsCommandOptions& options);
 
