@@ -133,7 +133,7 @@ Result<std::unique_ptr<RenderEnvironment>> prepare_environment(const Environment
         std::vector<std::filesystem::path> files;
         for (const ImageSource& source : desc.images) files.push_back(source.file);
         EnvImageOptions options;
-        options.layout = desc.layout;
+        if (!desc.detect_layout) options.layout = desc.layout;
         Result<EnvImages> loaded = load_environment_images(files, options);
         if (!loaded) return loaded.error();
         images = std::move(*loaded);

@@ -50,6 +50,9 @@ struct EnvironmentDesc {
     // +X −X +Y −Y +Z −Z); in-memory images likewise (`images`, one per face).
     std::vector<ImageSource> images;
     EnvLayout layout = EnvLayout::latlong;
+    // One file and no layout given: the layout is the file's (its aspect ratio or OpenEXR envmap
+    // header, envmap/env_image_io.h), and a file that fits none is refused; `layout` is ignored.
+    bool detect_layout = false;
     Vec3d rotation_deg{0, 0,
                        0};  // world → map: rotation_xyz_degrees (math/mat3.h), x then y then z
     float intensity = 1;    // multiplies every texel (linear)

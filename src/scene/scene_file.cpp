@@ -402,6 +402,7 @@ class SceneParser {
         }
         const std::size_t n = env.images.size();
         env.layout = n == 1 ? EnvLayout::latlong : n == 2 ? EnvLayout::paraboloid : EnvLayout::cube;
+        env.detect_layout = n == 1 && !find(j, "layout");
         if (const json* layout = find(j, "layout")) {
             const std::string layout_path = member(path, "layout");
             const std::string name = string(*layout, layout_path);

@@ -11,6 +11,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "image/image_io.h"
+#include "render/render_scene.h"
+
 namespace footprint {
 namespace {
 
@@ -820,6 +823,57 @@ TEST(SceneFile, ShowcaseExampleParses) {
     const Result<SceneDesc> full = load_scene_file(file);
     ASSERT_TRUE(full.ok()) << full.error().message;
     EXPECT_TRUE(fs::exists(std::get<MeshShape>(full->objects[5].shape).file));
+}
+
+// ---- The layout of a single environment file (image_io helper).
+
+// The environment of a scene whose environment is `environment` (JSON), the images in `dir`.
+Result<RenderScene> scene_with_environment(const fs::path& dir, const std::string& environment) {
+    const Result<SceneDesc> desc = parse_scene(
+        R"({"camera": {}, "objects": [], "environment": )" + environment + "}", dir / "s.json");
+    if (!desc) return desc.error();
+    return prepare_render_scene(*desc);
+}
+
+TEST(SceneFile, SingleEnvironmentFileTakesTheLayoutOfItsAspectRatio) {
+    TempDir dir;
+    // A horizontal cross (4:3) and a 3x2 strip of faces 8 x 8, and a 2:1 lat-long.
+    ASSERT_TRUE(save_image(Image(32, 24, 3, 0.5f), dir.path() / "cross.exr").ok());
+    ASSERT_TRUE(save_image(Image(24, 16, 3, 0.5f), dir.path() / "strip.exr").ok());
+    ASSERT_TRUE(save_image(Image(32, 16, 3, 0.5f), dir.path() / "sky.exr").ok());
+    struct Case {
+        const char* environment;
+        EnvLayout layout;
+    };
+    for (const Case& c :
+         {Case{R"({"file": "cross.exr"})", EnvLayout::cube},
+          Case{R"({"file": "strip.exr"})", EnvLayout::cube},
+          Case{R"({"file": "sky.exr"})", EnvLayout::latlong},
+          Case{R"({"file": "cross.exr", "layout": "latlong"})", EnvLayout::latlong}}) {
+        SCOPED_TRACE(c.environment);
+        const Result<RenderScene> scene = scene_with_environment(dir.path(), c.environment);
+        ASSERT_TRUE(scene.ok()) << scene.error().message;
+        ASSERT_NE(scene->environment(), nullptr);
+        EXPECT_EQ(scene->environment()->map.layout(), c.layout);
+    }
+}
+
+TEST(SceneFile, SingleEnvironmentFileOfNoLayoutIsRefusedUnlessTheLayoutIsGiven) {
+    TempDir dir;
+    const fs::path odd = dir.path() / "odd.exr";
+    ASSERT_TRUE(save_image(Image(30, 12, 3, 0.5f), odd).ok());
+    const Result<RenderScene> refused =
+        scene_with_environment(dir.path(), R"({"file": "odd.exr"})");
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(
+        refused.error().message.find("environment: cannot tell the layout of '" +
+                                     odd.lexically_normal().string() + "' from its size 30x12"),
+        std::string::npos)
+        << refused.error().message;
+    const Result<RenderScene> given =
+        scene_with_environment(dir.path(), R"({"file": "odd.exr", "layout": "latlong"})");
+    ASSERT_TRUE(given.ok()) << given.error().message;
+    EXPECT_EQ(given->environment()->map.layout(), EnvLayout::latlong);
 }
 
 }  // namespace
