@@ -85,6 +85,9 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     plane_cmd->add_option("--uv-scale", plane.uv_scale, "Texture repeats per world unit")
         ->capture_default_str();
+    plane_cmd->add_flag("--repair-non-finite", plane.repair_non_finite,
+                        "Replace NaN/Inf texels by the mean of their finite neighbours (with a "
+                        "warning) instead of refusing the texture");
     plane_cmd->add_flag("--quiet,-q", plane.quiet, "No progress output");
 
     footprint::EnvConvertCommandOptions convert;
@@ -119,6 +122,9 @@ int run(int argc, char** argv) {
         ->add_option("--cube-layout", convert.cube_layout,
                      "Output cube image: hcross|vcross|3x2|2x3|column|row")
         ->capture_default_str();
+    convert_cmd->add_flag("--repair-non-finite", convert.repair_non_finite,
+                          "Replace NaN/Inf input texels by the mean of their finite neighbours "
+                          "(with a warning) instead of refusing the input");
     convert_cmd->add_flag("--quiet,-q", convert.quiet, "No progress or summary output");
 
     footprint::DemoCommandOptions scene_demo;

@@ -175,7 +175,12 @@ int plane(const PlaneCommandOptions& options) {
                     " is out of range (a positive number up to 1e6)");
     if (const auto problem = output_file_problem(options.output)) return fail(*problem);
 
-    Result<Image> texture = load_image(options.texture);
+    ImageLoadOptions load;
+    if (options.repair_non_finite) load.non_finite = NonFinitePolicy::repair;
+    load.warn = [](const std::string& message) {
+        std::cerr << "footprint: warning: " << message << "\n";
+    };
+    Result<Image> texture = load_image(options.texture, load);
     if (!texture) return fail(texture.error().message);
 
     PlaneViewOptions view;

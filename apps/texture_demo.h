@@ -40,6 +40,7 @@ struct PlaneCommandOptions {
     std::string filter = "fa";  // apps/cli_options.h's plane filters
     int width = 480;            // height = width · 9/16; 16 … 16384
     double uv_scale = 0.125;    // texture periods per world unit, > 0
+    bool repair_non_finite = false;  // NaN / ±Inf texels: repair with a warning, not refuse
     bool quiet = false;
 };
 int run_plane_command(const PlaneCommandOptions& options);
