@@ -1,4 +1,5 @@
-// Tests of the procedural demo assets (demo_assets.h).
+// Tests of the procedural demo assets (demo_assets.h) and of where the demo scenes find their
+// files (demo_scenes.h).
 #include "demo_assets.h"
 
 #include <gtest/gtest.h>
@@ -6,12 +7,19 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdlib>
+#include <filesystem>
 #include <functional>
 #include <iterator>
 #include <numbers>
+#include <optional>
+#include <random>
+#include <string>
 #include <vector>
 
+#include "demo_scenes.h"
 #include "envmap/env_layout.h"
+#include "render/render_scene.h"
 
 namespace footprint {
 namespace {
@@ -301,6 +309,130 @@ TEST(DemoAssetsSecretWriting, FineHighContrastLightText) {
     for (float v : tex.pixels) {
         ASSERT_GE(v, 0.0f);
         ASSERT_LE(v, 1.0f);
+    }
+}
+
+// ---- Where the demo scenes find their real files (demo_scenes.h).
+
+namespace fs = std::filesystem;
+
+// A fresh empty folder under the system temp directory, removed with everything in it.
+class TempFolder {
+  public:
+    TempFolder() {
+        std::random_device random;
+        path_ = fs::temp_directory_path() / ("footprint-demo-test-" + std::to_string(random()) +
+                                             "-" + std::to_string(random()));
+        fs::create_directories(path_);
+    }
+    ~TempFolder() {
+        std::error_code ignored;
+        fs::remove_all(path_, ignored);
+    }
+    TempFolder(const TempFolder&) = delete;
+    TempFolder& operator=(const TempFolder&) = delete;
+    const fs::path& path() const { return path_; }
+
+  private:
+    fs::path path_;
+};
+
+// Sets an environment variable for one scope and puts the old value back.
+class ScopedEnvironmentVariable {
+  public:
+    ScopedEnvironmentVariable(const char* name, const std::string& value) : name_(name) {
+        if (const char* old = std::getenv(name)) old_ = old;
+        ::setenv(name, value.c_str(), 1);
+    }
+    ~ScopedEnvironmentVariable() {
+        if (old_) {
+            ::setenv(name_, old_->c_str(), 1);
+        } else {
+            ::unsetenv(name_);
+        }
+    }
+    ScopedEnvironmentVariable(const ScopedEnvironmentVariable&) = delete;
+    ScopedEnvironmentVariable& operator=(const ScopedEnvironmentVariable&) = delete;
+
+  private:
+    const char* name_;
+    std::optional<std::string> old_;
+};
+
+// Every file a scene refers to: environment images, base-colour and bump maps.
+std::vector<fs::path> scene_files(const SceneDesc& scene) {
+    std::vector<fs::path> files;
+    if (scene.environment)
+        for (const ImageSource& image : scene.environment->images)
+            if (!image.file.empty()) files.push_back(image.file);
+    for (const ObjectDesc& object : scene.objects)
+        for (const ImageSource* image :
+             {&object.material.base_color_map, &object.material.bump.map})
+            if (!image->file.empty()) files.push_back(image->file);
+    return files;
+}
+
+const char* const kDemoEnvironment = "envmaps/venice_sunset_1k.hdr";
+const char* const kDemoNormalMap = "normals/ambientCG_Bricks102_1K_NormalGL.jpg";
+
+TEST(DemoScenes, WithAnEmptyDataFolderTheScenesUseTheRepositorysAssets) {
+    TempFolder empty;
+    const ScopedEnvironmentVariable data("FOOTPRINT_DATA", empty.path().string());
+    EXPECT_EQ(DemoSceneOptions::default_demo_data_dir(), empty.path());
+    const DemoSceneOptions options;  // as `footprint demo` makes them
+    ASSERT_EQ(options.data_dir, empty.path());
+    const fs::path assets = options.assets_dir;
+    ASSERT_TRUE(fs::is_regular_file(assets / "LICENSES")) << assets;
+
+    std::vector<std::string> used;
+    for (const std::string& name : demo_scene_names()) {
+        SCOPED_TRACE(name);
+        const Result<DemoScene> demo = make_demo_scene(name, options);
+        ASSERT_TRUE(demo.ok()) << demo.error().message;
+        for (const fs::path& file : scene_files(demo->scene)) {
+            EXPECT_EQ(file.parent_path().parent_path(), assets) << file;
+            EXPECT_TRUE(fs::is_regular_file(file)) << file;
+            EXPECT_NE(demo->assets.find(file.filename().string()), std::string::npos)
+                << demo->assets;
+            used.push_back(fs::relative(file, assets).generic_string());
+        }
+    }
+    // The HDR sky in the four daylight scenes, the brick normal map on the bump plate.
+    EXPECT_EQ(std::count(used.begin(), used.end(), kDemoEnvironment), 4) << used.size();
+    EXPECT_EQ(std::count(used.begin(), used.end(), kDemoNormalMap), 1) << used.size();
+
+    // The files load and pass the renderer's checks (no invalid normal map texels).
+    for (const char* name : {"cylinder", "bump_plate"}) {
+        SCOPED_TRACE(name);
+        const Result<DemoScene> demo = make_demo_scene(name, options);
+        ASSERT_TRUE(demo.ok());
+        const Result<RenderScene> scene = prepare_render_scene(demo->scene);
+        ASSERT_TRUE(scene.ok()) << scene.error().message;
+    }
+}
+
+TEST(DemoScenes, TheDataFolderComesFirstThenTheAssetsThenGeneratedAssets) {
+    TempFolder data, no_assets;
+    fs::create_directories(data.path() / "envmaps");
+    DemoSceneOptions options;
+    options.data_dir = data.path();
+    options.assets_dir = DemoSceneOptions::default_demo_assets_dir();
+    fs::copy_file(options.assets_dir / kDemoEnvironment, data.path() / kDemoEnvironment);
+    Result<DemoScene> demo = make_demo_scene("bump_plate", options);
+    ASSERT_TRUE(demo.ok());
+    EXPECT_EQ(scene_files(demo->scene), std::vector<fs::path>{options.assets_dir / kDemoNormalMap});
+    demo = make_demo_scene("cylinder", options);
+    ASSERT_TRUE(demo.ok());
+    EXPECT_EQ(scene_files(demo->scene), std::vector<fs::path>{data.path() / kDemoEnvironment});
+
+    options.assets_dir = no_assets.path();
+    options.data_dir = no_assets.path();
+    for (const std::string& name : demo_scene_names()) {
+        SCOPED_TRACE(name);
+        demo = make_demo_scene(name, options);
+        ASSERT_TRUE(demo.ok());
+        EXPECT_TRUE(scene_files(demo->scene).empty());
+        EXPECT_NE(demo->assets.find("generated"), std::string::npos) << demo->assets;
     }
 }
 

@@ -21,11 +21,14 @@ ImageSource generated(Image image, const std::string& name) {
     return ImageSource{{}, shared(std::move(image)), name};
 }
 
-// The shared data file if it exists, else nullopt.
+// The file `relative` of the data folder, else of the assets folder, else nullopt.
 std::optional<fs::path> data_file(const DemoSceneOptions& options, const std::string& relative) {
-    const fs::path file = options.data_dir / relative;
-    std::error_code ec;
-    if (fs::is_regular_file(file, ec)) return file;
+    for (const fs::path& dir : {options.data_dir, options.assets_dir}) {
+        if (dir.empty()) continue;
+        const fs::path file = dir / relative;
+        std::error_code ec;
+        if (fs::is_regular_file(file, ec)) return file;
+    }
     return std::nullopt;
 }
 
@@ -210,6 +213,10 @@ DemoScene brushed_sphere(const DemoSceneOptions& options) {
 fs::path DemoSceneOptions::default_demo_data_dir() {
     if (const char* env = std::getenv("FOOTPRINT_DATA"); env && *env) return env;
     return FOOTPRINT_DEFAULT_DATA_DIR;
+}
+
+fs::path DemoSceneOptions::default_demo_assets_dir() {
+    return FOOTPRINT_ASSETS_DIR;
 }
 
 const std::vector<std::string>& demo_scene_names() {

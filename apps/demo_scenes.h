@@ -15,9 +15,10 @@
 //   brushed_sphere    a brushed-metal sphere: anisotropic roughness stretches the highlights
 //                     and the reflections across the grooves
 // Each scene also has a short camera_path (a dolly, truck or pan over a fraction of a unit) for
-// temporal-stability measurements. Assets come from apps/demo_assets.h (generated in code) and,
-// where present, from the shared data folder (real HDR environments and normal maps; each scene
-// falls back to a generated asset when a file is absent, and says which in DemoScene::assets).
+// temporal-stability measurements. Assets come from apps/demo_assets.h (generated in code) and
+// from real files (an HDR environment, a normal map), looked up in the data folder and then in
+// the repository's assets/ folder, which holds the few the demos use (assets/LICENSES); a scene
+// falls back to a generated asset when a file is in neither, and says which in DemoScene::assets.
 #pragma once
 
 #include <filesystem>
@@ -31,11 +32,15 @@ namespace footprint {
 
 struct DemoSceneOptions {
     int width = 320, height = 180;
-    // ../shared/data by default (the FOOTPRINT_DATA environment variable overrides it); missing
-    // files are replaced by generated assets.
+    // Where a scene's real files are looked for, in this order: data_dir, ../shared/data by
+    // default (the full data set; the FOOTPRINT_DATA environment variable overrides it), then
+    // assets_dir, the repository's assets/ (the demos' files only, so that a fresh clone shows
+    // real data). A file in neither is replaced by a generated asset.
     std::filesystem::path data_dir = default_demo_data_dir();
+    std::filesystem::path assets_dir = default_demo_assets_dir();
 
     static std::filesystem::path default_demo_data_dir();
+    static std::filesystem::path default_demo_assets_dir();
 };
 
 struct DemoScene {
