@@ -201,8 +201,7 @@ Result<Image> slopes_from_normal_map(const Image& normals, const NormalMapOption
                 encoded += ")";
                 return Error{std::string("normal map texel ") + texel_name(x, y) + " = " + encoded +
                              " is invalid: n = (" + number(nx) + ", " + number(ny) + ", " +
-                             number(nz) + "): " + cause +
-                             " (invalid_normal_policy = clamp replaces such texels)"};
+                             number(nz) + "): " + cause};
             }
             const float s1 = static_cast<float>(options.strength * b1);
             const float s2 = static_cast<float>(options.strength * b2);
@@ -250,6 +249,9 @@ Result<Image> load_slope_map(const std::filesystem::path& file,
                              const SlopeMapLoadOptions& options) {
     ImageLoadOptions load_options;
     load_options.encoding = ColorEncoding::linear;  // data, not colour
+    // A normal map's NaN texels reach slopes_from_normal_map, whose policy decides.
+    if (options.source == SlopeMapSource::normal_map)
+        load_options.non_finite = NonFinitePolicy::keep;
     Result<Image> image = load_image(file, load_options);
     if (!image) return image.error();
     Result<Image> slopes = options.source == SlopeMapSource::height_map

@@ -137,7 +137,8 @@ struct SlopeMapLoadOptions {
 };
 
 // Loads `file` with load_image(…, ColorEncoding::linear) — file values are data, never sRGB — and
-// converts it with slopes_from_height_map or slopes_from_normal_map. Errors name the file:
+// converts it with slopes_from_height_map or slopes_from_normal_map (a normal map's NaN/Inf texels
+// are loaded as they are, so its invalid_normal_policy decides for them). Errors name the file:
 // "cannot read 'n.png': …" from the loader, or "cannot make a slope map from 'n.png': normal map
 // texel (3, 1) …".
 Result<Image> load_slope_map(const std::filesystem::path& file,

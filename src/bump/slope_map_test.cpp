@@ -253,7 +253,9 @@ TEST(SlopeMap, NormalMapRoundTripThroughAnEightBitPng) {
         }
     }
     // sRGB decoding would have bent the normals far beyond that bound: the loader must use linear.
-    const Result<Image> srgb = load_image(file, ImageLoadOptions{ColorEncoding::srgb});
+    ImageLoadOptions srgb_options;
+    srgb_options.encoding = ColorEncoding::srgb;
+    const Result<Image> srgb = load_image(file, srgb_options);
     ASSERT_TRUE(srgb.ok());
     const Result<Image> wrong = slopes_from_normal_map(*srgb, {});
     if (wrong.ok()) {
@@ -578,6 +580,27 @@ TEST(SlopeMap, LoadErrorsNameTheFile) {
     ASSERT_FALSE(d.ok());
     EXPECT_TRUE(contains(d.error().message, bad.string())) << d.error().message;
     EXPECT_TRUE(contains(d.error().message, "texel (1, 1)")) << d.error().message;
+}
+
+TEST(SlopeMap, LoadedNanNormalsAreLeftToThePolicy) {
+    const TempDir dir;
+    const fs::path file = dir.path() / "n.exr";
+    Image normals(3, 2, 3, 0.5f);
+    for (std::size_t i = 0; i < normals.pixel_count(); ++i) normals.pixels[3 * i + 2] = 1.0f;
+    normals.at(1, 0, 2) = std::numeric_limits<float>::quiet_NaN();
+    ASSERT_TRUE(save_image(normals, file).ok());
+    const Result<Image> refused = load_slope_map(file);
+    ASSERT_FALSE(refused.ok());
+    const std::string& message = refused.error().message;
+    EXPECT_TRUE(contains(message, "'" + file.string() + "'")) << message;
+    EXPECT_TRUE(contains(message, "normal map texel (1, 0)")) << message;
+    EXPECT_TRUE(contains(message, "nan")) << message;
+    SlopeMapLoadOptions options;
+    options.normal_map.invalid_normal_policy = InvalidNormalPolicy::clamp;
+    const Result<Image> flat = load_slope_map(file, options);
+    ASSERT_TRUE(flat.ok()) << flat.error().message;
+    EXPECT_EQ(flat->at(1, 0, 0), 0.0f);
+    EXPECT_EQ(flat->at(1, 0, 1), 0.0f);
 }
 
 }  // namespace

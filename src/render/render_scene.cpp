@@ -29,10 +29,12 @@ Error scene_error(const SceneDesc& desc, const std::string& key, const Error& er
     return Error{file + key + (error.message.empty() ? "" : ": " + error.message)};
 }
 
-Result<Image> load_source(const ImageSource& source, ColorEncoding encoding) {
+Result<Image> load_source(const ImageSource& source, ColorEncoding encoding,
+                          NonFinitePolicy non_finite = NonFinitePolicy::refuse) {
     if (source.image) return *source.image;
     ImageLoadOptions options;
     options.encoding = encoding;
+    options.non_finite = non_finite;
     return load_image(source.file, options);
 }
 
@@ -52,8 +54,9 @@ Result<std::shared_ptr<const MipPyramid>> color_pyramid(const Image& image) {
     return std::make_shared<const MipPyramid>(MipPyramid::build(to_rgb(image)));
 }
 
-// The slope map b of a bump description (see render_scene.h).
-Result<Image> bump_slopes(const BumpDesc& bump, const Image& map) {
+// The slope map b of a bump description (see render_scene.h); `invalid` is the material's
+// policy for invalid normal map texels.
+Result<Image> bump_slopes(const BumpDesc& bump, const Image& map, InvalidNormalPolicy invalid) {
     if (bump.source == BumpDesc::Source::height_map) {
         HeightMapOptions options;
         options.height_scale = bump.strength;
@@ -63,8 +66,14 @@ Result<Image> bump_slopes(const BumpDesc& bump, const Image& map) {
     }
     NormalMapOptions options;
     options.strength = bump.strength;
+    options.invalid_normal_policy = invalid;
+    Result<Image> slopes = slopes_from_normal_map(map, options);
+    if (slopes || invalid == InvalidNormalPolicy::clamp) return slopes;
+    // Point at the scene key only where clamping would have helped (not for a bad channel count).
     options.invalid_normal_policy = InvalidNormalPolicy::clamp;
-    return slopes_from_normal_map(map, options);
+    if (!slopes_from_normal_map(map, options)) return slopes;
+    return Error{slopes.error().message +
+                 " (the material key \"invalid_normals\": \"clamp\" replaces such texels)"};
 }
 
 Result<RenderMaterial> prepare_material(const MaterialDesc& desc) {
@@ -84,9 +93,13 @@ Result<RenderMaterial> prepare_material(const MaterialDesc& desc) {
     if (desc.bump.source != BumpDesc::Source::none) {
         const char* key = desc.bump.source == BumpDesc::Source::height_map ? "bump.height_map"
                                                                            : "bump.normal_map";
-        Result<Image> map = load_source(desc.bump.map, ColorEncoding::linear);
+        // A normal map's NaN texels are kept: the material's invalid_normals policy decides.
+        const NonFinitePolicy non_finite = desc.bump.source == BumpDesc::Source::normal_map
+                                               ? NonFinitePolicy::keep
+                                               : NonFinitePolicy::refuse;
+        Result<Image> map = load_source(desc.bump.map, ColorEncoding::linear, non_finite);
         if (!map) return Error{std::string(key) + ": " + map.error().message};
-        Result<Image> slopes = bump_slopes(desc.bump, *map);
+        Result<Image> slopes = bump_slopes(desc.bump, *map, desc.invalid_normals);
         if (!slopes) {
             return Error{std::string(key) + ": '" + desc.bump.map.label() +
                          "': " + slopes.error().message};
@@ -100,19 +113,21 @@ Result<RenderMaterial> prepare_material(const MaterialDesc& desc) {
     return material;
 }
 
-// The material of one part of a mesh file: the scene's material combined with the file's own
+// The material of one part of mesh file `file`: the scene's material combined with the file's own
 // colours and normal map (render_scene.h).
-Result<RenderMaterial> mesh_part_material(const TriangleMesh& part, const MaterialDesc& scene) {
+Result<RenderMaterial> mesh_part_material(const TriangleMesh& part, const MaterialDesc& scene,
+                                          const std::filesystem::path& file) {
+    const std::string in_file = " of '" + part.name + "' in '" + file.string() + "'";
     MaterialDesc desc = scene;
     const MeshMaterial& own = part.material;
     desc.base_color = {desc.base_color.x * own.base_color.x, desc.base_color.y * own.base_color.y,
                        desc.base_color.z * own.base_color.z};
     if (desc.base_color_map.empty() && own.has_base_color_texture()) {
-        desc.base_color_map = ImageSource{{}, own.base_color_texture, part.name + " base colour"};
+        desc.base_color_map = ImageSource{{}, own.base_color_texture, "base colour" + in_file};
     }
     if (desc.bump.source == BumpDesc::Source::none && own.has_normal_texture()) {
         desc.bump.source = BumpDesc::Source::normal_map;
-        desc.bump.map = ImageSource{{}, own.normal_texture, part.name + " normal texture"};
+        desc.bump.map = ImageSource{{}, own.normal_texture, "normal texture" + in_file};
         desc.bump.strength = own.normal_scale;
         desc.bump.frame = BumpFrame::main_direction;
         desc.bump.main_direction = {};
@@ -195,7 +210,7 @@ Result<RenderScene> prepare_render_scene(const SceneDesc& desc) {
         if (!asset) return scene_error(desc, object_key(i) + ".file", asset.error());
         scene.meshes_[i] = std::move(asset->meshes);
         for (const TriangleMesh& part : scene.meshes_[i]) {
-            Result<RenderMaterial> own = mesh_part_material(part, object.material);
+            Result<RenderMaterial> own = mesh_part_material(part, object.material, mesh->file);
             if (!own) return scene_error(desc, object_key(i) + ".file", own.error());
             scene.mesh_part_material_[i].push_back(static_cast<int>(scene.materials_.size()));
             scene.materials_.push_back(std::move(*own));

@@ -14,6 +14,7 @@
 #include <variant>
 #include <vector>
 
+#include "bump/slope_map.h"
 #include "envmap/env_layout.h"
 #include "image/image.h"
 #include "math/vec.h"
@@ -93,6 +94,11 @@ struct MaterialDesc {
     float fresnel_f0 = 1;               // Schlick's F0; 1 = a perfect mirror
     BumpDesc bump;
     float micro_roughness = 0;  // slope standard deviation below the bump map's resolution
+    // What an invalid texel (NaN/Inf, n_z ≤ 0: an all-black map) of the material's normal maps
+    // does: bump.normal_map and, on a mesh, the file's own normal textures. The default error
+    // names the file and the texel; clamp (bump/slope_map.h) is for maps known to hold a few such
+    // texels.
+    InvalidNormalPolicy invalid_normals = InvalidNormalPolicy::error;
 };
 
 struct PlaneShape {

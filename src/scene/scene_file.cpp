@@ -468,7 +468,7 @@ class SceneParser {
             fail(shape_path, "unknown shape " + quoted(shape) + suggest(shape, shapes));
         check_object_keys(j, path, shape);
         if (const json* material = find(j, "material"))
-            object.material = parse_material(*material, member(path, "material"));
+            object.material = parse_material(*material, member(path, "material"), shape == "mesh");
 
         auto get = [&](std::string_view key) { return find(j, key); };
         auto at = [&](std::string_view key) { return member(path, key); };
@@ -594,10 +594,11 @@ class SceneParser {
         return t;
     }
 
-    MaterialDesc parse_material(const json& j, const std::string& path) const {
+    // `mesh`: the material of a mesh object, whose file may bring its own normal textures.
+    MaterialDesc parse_material(const json& j, const std::string& path, bool mesh) const {
         check_keys(j, path,
                    {"base_color", "diffuse", "specular", "shininess", "mirror", "fresnel_f0",
-                    "bump", "micro_roughness"});
+                    "bump", "micro_roughness", "invalid_normals"});
         MaterialDesc m;
         auto at = [&](std::string_view key) { return member(path, key); };
         if (const json* v = find(j, "base_color")) {
@@ -623,7 +624,29 @@ class SceneParser {
         if (const json* v = find(j, "micro_roughness"))
             m.micro_roughness = non_negative(*v, at("micro_roughness"));
         if (const json* v = find(j, "bump")) m.bump = parse_bump(*v, at("bump"));
+        if (const json* v = find(j, "invalid_normals"))
+            m.invalid_normals = parse_invalid_normals(*v, at("invalid_normals"), m.bump, mesh);
         return m;
+    }
+
+    // "error" (the default: an invalid normal map texel stops the render, named) or "clamp"
+    // (bump/slope_map.h's InvalidNormalPolicy); only where the material has a normal map.
+    InvalidNormalPolicy parse_invalid_normals(const json& j, const std::string& path,
+                                              const BumpDesc& bump, bool mesh) const {
+        const std::string name = string(j, path);
+        InvalidNormalPolicy policy = InvalidNormalPolicy::error;
+        if (name == "clamp") {
+            policy = InvalidNormalPolicy::clamp;
+        } else if (name != "error") {
+            fail(path, "unknown policy " + quoted(name) + suggest(name, {"error", "clamp"}));
+        }
+        if (bump.source == BumpDesc::Source::height_map)
+            fail(path, "applies to normal maps, not to bump.height_map");
+        if (bump.source == BumpDesc::Source::none && !mesh)
+            fail(path,
+                 "applies to normal maps: give bump.normal_map (or use a mesh whose file "
+                 "has normal textures)");
+        return policy;
     }
 
     BumpDesc parse_bump(const json& j, const std::string& path) const {

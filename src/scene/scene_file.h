@@ -21,8 +21,10 @@
 // (.obj .gltf .glb), transform {translate, rotate_deg, scale (number or [x,y,z])}}. A material is
 // {base_color ([r,g,b] or a texture file), diffuse, specular, shininess, mirror, fresnel_f0,
 // micro_roughness, bump {height_map | normal_map (exactly one), strength, frame (natural |
-// normalized | main_direction), main_direction}}. "camera" and "objects" are required (objects
-// may be an empty array), and "shape" in every object; every other key defaults to scene.h.
+// normalized | main_direction), main_direction}, invalid_normals ("error" | "clamp": what an
+// invalid texel of the material's normal maps does, scene.h)}. "camera" and "objects" are
+// required (objects may be an empty array), and "shape" in every object; every other key
+// defaults to scene.h.
 //
 // Validation is strict and stops at the first problem: unknown keys (with a did-you-mean),
 // duplicate keys, wrong types, out-of-range or non-finite values, geometry that cannot be set up

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <random>
@@ -13,6 +15,7 @@
 
 #include "image/image_io.h"
 #include "render/render_scene.h"
+#include "render/renderer.h"
 
 namespace footprint {
 namespace {
@@ -825,6 +828,127 @@ TEST(SceneFile, ShowcaseExampleParses) {
     EXPECT_TRUE(fs::exists(std::get<MeshShape>(full->objects[5].shape).file));
 }
 
+// ---- Invalid normal maps (material key "invalid_normals").
+
+// A 4×3 normal map of flat normals (0.5, 0.5, 1) with `texel` set to `value`; all texels if the
+// texel is (−1, −1).
+Image normal_map_with(int x, int y, std::array<float, 3> value) {
+    Image map(4, 3, 3);
+    for (int ty = 0; ty < map.height; ++ty)
+        for (int tx = 0; tx < map.width; ++tx) {
+            const bool bad = (x < 0) || (tx == x && ty == y);
+            const std::array<float, 3> c = bad ? value : std::array<float, 3>{0.5f, 0.5f, 1.0f};
+            for (int k = 0; k < 3; ++k) map.at(tx, ty, k) = c[k];
+        }
+    return map;
+}
+
+// A scene of one plane bump-mapped with `normal_file`, the material's extra keys in `extra`.
+std::string normal_map_scene(const std::string& normal_file, const std::string& extra) {
+    return R"({"camera": {"position": [0, 1, 5], "look_at": [0, 0, 0]},
+               "objects": [{"shape": "plane", "material": {"bump": {"normal_map": ")" +
+           normal_file + "\"}" + extra + "}}]}";
+}
+
+struct BadNormalMap {
+    const char* name;
+    const char* file;
+    int x, y;  // the first invalid texel, row-major from the top (x, y ≥ 0)
+    bool whole_map;
+    std::array<float, 3> value;
+    const char* value_text;  // how the message prints the texel's value
+};
+
+const BadNormalMap kBadNormalMaps[] = {
+    {"AllBlack", "black.png", 0, 0, true, {0, 0, 0}, "(0, 0, 0)"},
+    {"ZBelowThePlane", "below.png", 2, 1, false, {0.8f, 0.5f, 0.2f}, "n_z ≤ 0"},
+    {"OneTexelRgbZero", "hole.png", 3, 2, false, {0, 0, 0}, "(0, 0, 0)"},
+    {"NanTexel", "nan.exr", 1, 2, false, {0.5f, std::nanf(""), 1}, "nan"},
+};
+
+TEST(SceneFileNormalMaps, InvalidTexelsAreErrorsNamingTheFileAndTheTexelUnlessClamped) {
+    for (const BadNormalMap& bad : kBadNormalMaps) {
+        SCOPED_TRACE(bad.name);
+        TempDir dir;
+        const Image map =
+            normal_map_with(bad.whole_map ? -1 : bad.x, bad.whole_map ? -1 : bad.y, bad.value);
+        ImageSaveOptions save;
+        save.encoding = ColorEncoding::linear;  // the codes as they are: data, not colour
+        ASSERT_TRUE(save_image(map, dir.path() / bad.file, save).ok());
+
+        const fs::path file = dir.path() / "scene.json";
+        write_file(file, normal_map_scene(bad.file, ""));
+        const Result<SceneDesc> desc = load_scene_file(file);
+        ASSERT_TRUE(desc.ok()) << desc.error().message;
+        const Result<RenderScene> refused = prepare_render_scene(*desc);
+        ASSERT_FALSE(refused.ok());
+        const std::string& message = refused.error().message;
+        const std::string texel =
+            "texel (" + std::to_string(bad.x) + ", " + std::to_string(bad.y) + ")";
+        EXPECT_EQ(message.rfind(file.string() + ": objects[0].material.bump.normal_map: ", 0), 0u)
+            << message;
+        EXPECT_NE(message.find(bad.file), std::string::npos) << message;
+        EXPECT_NE(message.find(texel), std::string::npos) << message;
+        EXPECT_NE(message.find(bad.value_text), std::string::npos) << message;
+        EXPECT_NE(message.find("\"invalid_normals\": \"clamp\""), std::string::npos) << message;
+
+        write_file(file, normal_map_scene(bad.file, R"(, "invalid_normals": "clamp")"));
+        Result<SceneDesc> clamped = load_scene_file(file);
+        ASSERT_TRUE(clamped.ok()) << clamped.error().message;
+        EXPECT_EQ(clamped->objects[0].material.invalid_normals, InvalidNormalPolicy::clamp);
+        clamped->width = 8;
+        clamped->height = 6;
+        const Result<RenderScene> scene = prepare_render_scene(*clamped);
+        ASSERT_TRUE(scene.ok()) << scene.error().message;
+        const Image image = render(*scene, RenderOptions{});
+        ASSERT_EQ(image.pixel_count(), 48u);
+        for (float v : image.pixels) ASSERT_TRUE(std::isfinite(v));
+    }
+}
+
+TEST(SceneFileNormalMaps, TheInvalidNormalsKeyIsChecked) {
+    TempDir dir;
+    create_assets(dir.path());
+    struct Case {
+        const char* material;
+        const char* message;
+    };
+    const Case cases[] = {
+        {R"({"bump": {"normal_map": "normal.png"}, "invalid_normals": "clmap"})",
+         "unknown policy 'clmap' (did you mean 'clamp'?)"},
+        {R"({"bump": {"normal_map": "normal.png"}, "invalid_normals": "skip"})",
+         "unknown policy 'skip' (expected one of: error, clamp)"},
+        {R"({"bump": {"normal_map": "normal.png"}, "invalid_normals": true})",
+         "expected a string, got a boolean"},
+        {R"({"bump": {"height_map": "height.png"}, "invalid_normals": "clamp"})",
+         "applies to normal maps, not to bump.height_map"},
+        {R"({"invalid_normals": "clamp"})", "applies to normal maps: give bump.normal_map"},
+        {R"({"invalid_normal": "clamp"})", "unknown key (did you mean 'invalid_normals'?)"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.material);
+        const std::string text = R"({"camera": {}, "objects": [{"shape": "sphere", "material": )" +
+                                 std::string(c.material) + "}]}";
+        const Result<SceneDesc> result = parse_scene(text, dir.path() / "s.json");
+        ASSERT_FALSE(result.ok());
+        const std::string& message = result.error().message;
+        EXPECT_EQ(message.rfind((dir.path() / "s.json").string() + ": objects[0].material.", 0), 0u)
+            << message;
+        EXPECT_NE(message.find(c.message), std::string::npos) << message;
+    }
+    // A mesh's file may bring its own normal textures: the key needs no bump there; "error" is
+    // the default.
+    const Result<SceneDesc> mesh = parse_scene(
+        R"({"camera": {}, "objects": [{"shape": "mesh", "file": "cow.obj",
+            "material": {"invalid_normals": "clamp"}},
+            {"shape": "sphere", "material": {"bump": {"normal_map": "normal.png"},
+             "invalid_normals": "error"}}]})",
+        dir.path() / "s.json");
+    ASSERT_TRUE(mesh.ok()) << mesh.error().message;
+    EXPECT_EQ(mesh->objects[0].material.invalid_normals, InvalidNormalPolicy::clamp);
+    EXPECT_EQ(mesh->objects[1].material.invalid_normals, InvalidNormalPolicy::error);
+}
+
 // ---- The layout of a single environment file (image_io helper).
 
 // The environment of a scene whose environment is `environment` (JSON), the images in `dir`.
@@ -874,6 +998,23 @@ TEST(SceneFile, SingleEnvironmentFileOfNoLayoutIsRefusedUnlessTheLayoutIsGiven) 
         scene_with_environment(dir.path(), R"({"file": "odd.exr", "layout": "latlong"})");
     ASSERT_TRUE(given.ok()) << given.error().message;
     EXPECT_EQ(given->environment()->map.layout(), EnvLayout::latlong);
+}
+
+TEST(SceneFile, QuickstartExampleRendersFromTheRepositorysAssets) {
+    const fs::path file = (examples_dir() / "quickstart.json").lexically_normal();
+    if (!fs::exists(file))
+        GTEST_SKIP() << file << " not found (run from the repository root or set "
+                     << "FOOTPRINT_EXAMPLES_DIR)";
+    // Its files are in assets/: it loads on a fresh clone, and its normal maps are valid.
+    Result<SceneDesc> desc = load_scene_file(file);
+    ASSERT_TRUE(desc.ok()) << desc.error().message;
+    ASSERT_TRUE(desc->environment.has_value());
+    EXPECT_EQ(desc->environment->images.at(0).file.parent_path().parent_path().filename(),
+              "assets");
+    desc->width = 16;
+    desc->height = 9;
+    const Result<RenderScene> scene = prepare_render_scene(*desc);
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
 }
 
 }  // namespace
