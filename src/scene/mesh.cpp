@@ -6,9 +6,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <map>
+#include <string_view>
 #include <system_error>
 #include <unordered_map>
 #include <utility>
@@ -143,10 +146,51 @@ Status check_transform(const MeshTransform& t, const fs::path& file) {
 Result<std::shared_ptr<const Image>> load_texture(const fs::path& mesh_file,
                                                   const std::string& name, ColorEncoding enc) {
     const fs::path path = mesh_file.parent_path() / name;
-    Result<Image> img = load_image(path, {enc});
+    ImageLoadOptions options;
+    options.encoding = enc;
+    Result<Image> img = load_image(path, options);
     if (!img)
         return file_error(mesh_file, "cannot load texture '" + name + "': " + img.error().message);
     return std::shared_ptr<const Image>(std::make_shared<Image>(std::move(img).value()));
+}
+
+// Whether `field` is a finite number as OBJ writes one (an optional sign, decimal or exponent).
+bool finite_number(std::string_view field) {
+    if (field.starts_with('+')) field.remove_prefix(1);
+    double value = 0;
+    const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), value);
+    return error == std::errc{} && end == field.data() + field.size() && std::isfinite(value);
+}
+
+// tinyobjloader reads a value it cannot parse ("nan", "inf", "1e999", a typo) as 0, which would
+// silently move a vertex to the origin: every value of the v, vn and vt lines must be a finite
+// number.
+Status check_obj_values(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) return file_error(file, "cannot open it");
+    std::string line;
+    for (std::size_t number = 1; std::getline(in, line); ++number) {
+        std::string_view rest = line;
+        std::string_view keyword;
+        for (int field = 0;; ++field) {
+            const std::size_t begin = rest.find_first_not_of(" \t\r");
+            if (begin == std::string_view::npos || rest[begin] == '#') break;
+            rest.remove_prefix(begin);
+            const std::string_view value = rest.substr(0, rest.find_first_of(" \t\r"));
+            rest.remove_prefix(value.size());
+            if (field == 0) {
+                keyword = value;
+                if (keyword != "v" && keyword != "vn" && keyword != "vt") break;
+            } else if (!finite_number(value)) {
+                return file_error(file, "line " + std::to_string(number) + ": '" +
+                                            std::string(keyword) + "' value " +
+                                            std::to_string(field) + " is '" + std::string(value) +
+                                            "', not a finite number");
+            }
+        }
+    }
+    if (in.bad()) return file_error(file, "read error");
+    return {};
 }
 
 Result<MeshAsset> load_obj(const fs::path& file, const Affine& xf) {
@@ -156,6 +200,7 @@ Result<MeshAsset> load_obj(const fs::path& file, const Affine& xf) {
     tinyobj::ObjReader reader;
     if (!reader.ParseFromFile(file.string(), config))
         return file_error(file, "parse error: " + tidy(reader.Error()));
+    if (Status s = check_obj_values(file); !s) return s.error();
     const tinyobj::attrib_t& attrib = reader.GetAttrib();
     const auto& materials = reader.GetMaterials();
     const std::size_t nv = attrib.vertices.size() / 3;
@@ -273,13 +318,15 @@ struct GltfReader {
     }
 
     // Calls fn(element index, const double* components) for each element of an accessor, with
-    // normalised integers mapped to [0, 1] / [−1, 1] and others converted as they are.
+    // normalised integers mapped to [0, 1] / [−1, 1] and others converted as they are. A NaN or
+    // infinite float is an error: no attribute has a meaning for it. `role` names the accessor's
+    // use in messages ("NORMAL of mesh 'hull'").
     template <class Fn>
-    bool read_accessor(int index, int components, Fn&& fn) {
+    bool read_accessor(int index, int components, const std::string& role, Fn&& fn) {
         if (index < 0 || static_cast<std::size_t>(index) >= model.accessors.size())
             return fail("accessor " + std::to_string(index) + " does not exist");
         const tinygltf::Accessor& acc = model.accessors[index];
-        const std::string what = "accessor " + std::to_string(index);
+        const std::string what = "accessor " + std::to_string(index) + " (" + role + ")";
         if (acc.sparse.isSparse) return fail(what + ": sparse accessors are not supported");
         const int ncomp = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(acc.type));
         if (ncomp != components)
@@ -305,7 +352,15 @@ struct GltfReader {
         double values[4];
         for (std::size_t i = 0; i < acc.count; ++i) {
             const unsigned char* p = data.data() + begin + i * stride;
-            for (int c = 0; c < ncomp; ++c) values[c] = component(p + c * csize, acc);
+            for (int c = 0; c < ncomp; ++c) {
+                values[c] = component(p + c * csize, acc);
+                if (!std::isfinite(values[c]))
+                    return fail(what + ": element " + std::to_string(i) + " holds the non-finite " +
+                                "value " +
+                                (std::isnan(values[c]) ? "nan"
+                                 : values[c] > 0       ? "inf"
+                                                       : "-inf"));
+            }
             fn(i, values);
         }
         return true;
@@ -347,29 +402,54 @@ struct GltfReader {
         }
     }
 
-    // The decoded image behind texture `texture`, as linear colour (srgb) or raw data.
-    bool texture(int texture, bool srgb, std::shared_ptr<const Image>& out) {
+    // The file an external image URI names: its %XX escapes decoded, relative to the glTF's folder.
+    fs::path image_file(const std::string& uri) const {
+        std::string path;
+        for (std::size_t i = 0; i < uri.size(); ++i) {
+            if (uri[i] == '%' && i + 2 < uri.size() &&
+                std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+                std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+                path += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+                i += 2;
+            } else {
+                path += uri[i];
+            }
+        }
+        return (file.parent_path() / path).lexically_normal();
+    }
+
+    // The decoded image behind texture `texture`, as linear colour (srgb) or raw data. `use` names
+    // the material slot in messages ("normalTexture of material 'visor'").
+    bool texture(int texture, bool srgb, const std::string& use,
+                 std::shared_ptr<const Image>& out) {
         if (texture < 0) return true;
+        const std::string what = use + " (texture " + std::to_string(texture) + ")";
         if (static_cast<std::size_t>(texture) >= model.textures.size())
-            return fail("texture " + std::to_string(texture) + " does not exist");
+            return fail(what + " does not exist");
         const int source = model.textures[texture].source;
         if (source < 0 || static_cast<std::size_t>(source) >= model.images.size())
-            return fail("texture " + std::to_string(texture) + " has no image");
+            return fail(what + " has no image");
         auto& cache = srgb ? color_images : data_images;
         if (auto it = cache.find(source); it != cache.end()) {
             out = it->second;
             return true;
         }
         const tinygltf::Image& src = model.images[source];
-        const std::string label =
-            "image " + std::to_string(source) +
-            (src.uri.empty() || src.uri.size() > 100 ? "" : " '" + src.uri + "'");
+        const bool external = !src.uri.empty() && src.uri.rfind("data:", 0) != 0;
+        const std::string label = what + ": image " + std::to_string(source) +
+                                  (external && src.uri.size() <= 200 ? " '" + src.uri + "'" : "");
         const int w = src.width, h = src.height, c = src.component;
         const int bytes = src.bits == 16 ? 2 : 1;
-        if (w <= 0 || h <= 0 || c < 1 || c > 4 || (src.bits != 8 && src.bits != 16))
+        if (w <= 0 || h <= 0 || c < 1 || c > 4 || (src.bits != 8 && src.bits != 16)) {
+            // tinygltf only warns about an image file it cannot find and leaves it empty.
+            std::error_code ec;
+            if (external && !fs::is_regular_file(image_file(src.uri), ec))
+                return fail(label + ": file not found (resolved to '" +
+                            image_file(src.uri).string() + "')");
             return fail(label + " was not decoded (" + std::to_string(w) + "×" + std::to_string(h) +
                         ", " + std::to_string(c) + " channels, " + std::to_string(src.bits) +
                         " bits)");
+        }
         auto img = std::make_shared<Image>(w, h, c);
         if (src.image.size() < img->pixels.size() * bytes)
             return fail(label + " holds fewer bytes than its size needs");
@@ -399,9 +479,12 @@ struct GltfReader {
             out.base_color = {static_cast<float>(f[0]), static_cast<float>(f[1]),
                               static_cast<float>(f[2])};
         out.normal_scale = static_cast<float>(m.normalTexture.scale);
+        const std::string of_material =
+            " of material " + (m.name.empty() ? std::to_string(index) : "'" + m.name + "'");
         return texture(m.pbrMetallicRoughness.baseColorTexture.index, true,
-                       out.base_color_texture) &&
-               texture(m.normalTexture.index, false, out.normal_texture);
+                       "baseColorTexture" + of_material, out.base_color_texture) &&
+               texture(m.normalTexture.index, false, "normalTexture" + of_material,
+                       out.normal_texture);
     }
 
     bool primitive(const tinygltf::Mesh& gmesh, const tinygltf::Primitive& prim, const Affine& xf,
@@ -413,9 +496,10 @@ struct GltfReader {
             auto it = prim.attributes.find(name);
             return it == prim.attributes.end() ? -1 : it->second;
         };
+        const std::string of_mesh = " of mesh '" + gmesh.name + "'";
         const int pos = attr("POSITION");
         if (pos < 0) return true;  // nothing to draw
-        if (!read_accessor(pos, 3, [&](std::size_t, const double* v) {
+        if (!read_accessor(pos, 3, "POSITION" + of_mesh, [&](std::size_t, const double* v) {
                 mesh.positions.push_back({v[0], v[1], v[2]});
             }))
             return false;
@@ -425,7 +509,7 @@ struct GltfReader {
                                     gmesh.name + "'");
         };
         if (const int a = attr("NORMAL"); a >= 0) {
-            if (!read_accessor(a, 3,
+            if (!read_accessor(a, 3, "NORMAL" + of_mesh,
                                [&](std::size_t, const double* v) {
                                    mesh.normals.push_back(normalize(Vec3d{v[0], v[1], v[2]}));
                                }) ||
@@ -434,7 +518,7 @@ struct GltfReader {
         }
         if (const int a = attr("TEXCOORD_0"); a >= 0) {
             if (!read_accessor(
-                    a, 2,
+                    a, 2, "TEXCOORD_0" + of_mesh,
                     [&](std::size_t, const double* v) {
                         mesh.uvs.push_back({v[0], 1.0 - v[1]});  // glTF t grows down; v grows up
                     }) ||
@@ -443,7 +527,7 @@ struct GltfReader {
         }
         if (const int a = attr("TANGENT"); a >= 0) {
             if (!read_accessor(
-                    a, 4,
+                    a, 4, "TANGENT" + of_mesh,
                     [&](std::size_t, const double* v) {
                         mesh.tangents.push_back({normalize(Vec3d{v[0], v[1], v[2]}), v[3]});
                     }) ||
@@ -453,10 +537,11 @@ struct GltfReader {
         std::vector<std::uint32_t> index;
         if (prim.indices >= 0) {
             bool integral = true;
-            if (!read_accessor(prim.indices, 1, [&](std::size_t, const double* v) {
-                    if (!(v[0] >= 0 && v[0] <= 4294967295.0)) integral = false;
-                    index.push_back(integral ? static_cast<std::uint32_t>(v[0]) : 0);
-                }))
+            if (!read_accessor(prim.indices, 1, "indices" + of_mesh,
+                               [&](std::size_t, const double* v) {
+                                   if (!(v[0] >= 0 && v[0] <= 4294967295.0)) integral = false;
+                                   index.push_back(integral ? static_cast<std::uint32_t>(v[0]) : 0);
+                               }))
                 return false;
             if (!integral) return fail("invalid index in mesh '" + gmesh.name + "'");
         } else {

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <string>
@@ -475,6 +476,86 @@ TEST(MeshErrors, MissingTextureNamesTheFiles) {
     ASSERT_FALSE(r.ok());
     EXPECT_TRUE(contains(r.error().message, "quad.obj")) << r.error().message;
     EXPECT_TRUE(contains(r.error().message, "tex.png")) << r.error().message;
+}
+
+TEST(MeshErrors, NonFiniteObjValuesNameTheFileTheLineAndTheValue) {
+    struct Case {
+        const char* line;
+        const char* value;
+        const char* keyword;
+    };
+    const Case cases[] = {
+        {"v nan 0 0", "'nan'", "'v' value 1"},
+        {"v inf 0 0", "'inf'", "'v' value 1"},
+        {"v 0 -inf 0", "'-inf'", "'v' value 2"},
+        {"v 0 0 1e999", "'1e999'", "'v' value 3"},  // overflows a double
+        {"v 0 0 zero", "'zero'", "'v' value 3"},
+        {"vn 0 NaN 1", "'NaN'", "'vn' value 2"},
+        {"vt Infinity 0", "'Infinity'", "'vt' value 1"},
+    };
+    TempDir dir;
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.line);
+        // Line 4 holds the bad value; the face uses it (v) or not (vn, vt): either way it is read.
+        write_file(dir / "bad.obj", std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\n") + c.line +
+                                        "\nvt 0 0\nvn 0 0 1\nf 1 2 3\n");
+        const Result<MeshAsset> r = load_mesh(dir / "bad.obj");
+        ASSERT_FALSE(r.ok());
+        const std::string& message = r.error().message;
+        EXPECT_TRUE(contains(message, "cannot read '" + (dir / "bad.obj").string() + "'"))
+            << message;
+        EXPECT_TRUE(contains(message, "line 4")) << message;
+        EXPECT_TRUE(contains(message, c.keyword)) << message;
+        EXPECT_TRUE(contains(message, std::string("is ") + c.value + ", not a finite number"))
+            << message;
+    }
+    // Signs, exponents, comments, tabs, CRLF and vertex colours are fine.
+    write_file(dir / "good.obj",
+               "v +0 0 0 # origin\r\nv\t1e0 0 0 0.5 0.5 0.5\nv 0 1.0E+0 -0\nvt .5 1.\nf 1 2 3\n");
+    const Result<MeshAsset> good = load_mesh(dir / "good.obj");
+    ASSERT_TRUE(good.ok()) << good.error().message;
+    expect_near(good->meshes.at(0).positions[1], {1, 0, 0}, 0);
+}
+
+TEST(MeshErrors, NonFiniteGltfValuesNameTheAttributeAndTheElement) {
+    TempDir dir;
+    QuadGltf q(kU16, {0, 1, 2, 0, 2, 3}, std::numeric_limits<float>::infinity());
+    write_file(dir / "inf.gltf", q.b.json(q.body + q.images(dir), true));
+    const Result<MeshAsset> r = load_mesh(dir / "inf.gltf");
+    ASSERT_FALSE(r.ok());
+    const std::string& message = r.error().message;
+    EXPECT_TRUE(contains(message, "inf.gltf")) << message;
+    EXPECT_TRUE(contains(message,
+                         "(POSITION of mesh 'quad'): element 0 holds the non-finite "
+                         "value inf"))
+        << message;
+}
+
+TEST(MeshErrors, MissingGltfTextureNamesTheFileAndItsMaterial) {
+    TempDir dir;
+    QuadGltf q(kU16);
+    std::string images = q.images(dir);
+    fs::remove(dir / "base.png");
+    write_file(dir / "quad.gltf", q.b.json(q.body + images, true));
+    Result<MeshAsset> r = load_mesh(dir / "quad.gltf");
+    ASSERT_FALSE(r.ok());
+    std::string message = r.error().message;
+    EXPECT_TRUE(contains(message, "cannot read '" + (dir / "quad.gltf").string() + "'")) << message;
+    EXPECT_TRUE(contains(message, "baseColorTexture of material 'mat' (texture 0)")) << message;
+    EXPECT_TRUE(contains(message, "image 0 'base.png': file not found (resolved to '" +
+                                      (dir / "base.png").string() + "')"))
+        << message;
+    EXPECT_FALSE(contains(message, "was not decoded")) << message;  // not "(-1×-1, -1 channels"
+
+    // A URI's %20 is a space in the file name.
+    const std::size_t at = images.find("base.png");
+    images.replace(at, 8, "my%20base.png");
+    write_file(dir / "quad.gltf", q.b.json(q.body + images, true));
+    r = load_mesh(dir / "quad.gltf");
+    ASSERT_FALSE(r.ok());
+    message = r.error().message;
+    EXPECT_TRUE(contains(message, "(resolved to '" + (dir / "my base.png").string() + "')"))
+        << message;
 }
 
 // ---------------------------------------------------------------------------------------------
