@@ -36,13 +36,17 @@
 //     the direction of ∂p/∂v (v up): the frame of an OpenGL-convention normal map (+Y up the
 //     image), which glTF's normalTexture is.
 //   * Normals, uvs and tangents are each either empty (absent) or one per position. Stored
-//     normals and tangent directions are unit vectors, or zero where the file's were zero or
-//     non-finite. Non-finite texture coordinates become 0.
+//     normals and tangent directions are unit vectors, or zero where the file's were zero.
+//   * Every value must be a finite number: a NaN, an infinity or (OBJ) a word where a number
+//     belongs is refused, since a loader would otherwise read it as 0 and move the vertex.
 //
 // Errors (core/result.h) name the file: "cannot read 'a.obj': no such file", "… unsupported
 // extension '.ply' (supported: .obj .gltf .glb)", "… parse error: …" (the loader's message),
-// "… index 9 out of range (3 vertices) in …", "… non-finite vertex position in …", "… it has no
-// triangles", "… cannot load texture 'wood.png': …", a transform with a zero or non-finite scale.
+// "… index 9 out of range (3 vertices) in …", "… line 4: 'v' value 1 is 'nan', not a finite
+// number", "… accessor 2 (NORMAL of mesh 'hull'): element 5 holds the non-finite value nan",
+// "… it has no triangles", "… cannot load texture 'wood.png': …", "… normalTexture of material
+// 'visor' (texture 3): image 2 'visor_n.png': file not found (resolved to '…')", a transform with
+// a zero or non-finite scale.
 // Nothing is printed; warnings of the loaders are dropped.
 //
 // Thread-safe for distinct calls.
