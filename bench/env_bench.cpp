@@ -34,7 +34,7 @@ Vec3d to_double(const Vec3& v) {
 // ---- Ours: form (a), the footprint computed from the ray differentials inside the call (as
 // OpenImageIO's environment() does).
 
-void ours_lookup(const EnvironmentMap& map, const EnvLookup& q, const LookupOptions& options,
+void ours_lookup(const EnvironmentMap& map, const EnvLookup& q, const EnvLookupOptions& options,
                  float* out) {
     environment_lookup(map, q.direction, q.d_dx, q.d_dy, options, out);
 }
@@ -220,7 +220,7 @@ int run_env_bench(const EnvBenchOptions& opt) {
                 " (unmapped: " + std::to_string(convention.unmapped_rmse) + ")");
     }
 
-    LookupOptions lo;  // footprint assembly, the library defaults
+    EnvLookupOptions lo;  // footprint assembly, the library defaults, no rotation
     lo.isotropic_ratio = opt.isotropic_ratio;
     lo.probe_rule = opt.probe_rule == "b" ? ProbeRule::moment_matched : ProbeRule::gaussian;
     lo.lod_blend = opt.lod_blend == "linear"     ? LodBlend::linear

@@ -38,14 +38,14 @@ namespace footprint::bench {
 // Out of line, both: callgrind counts only the calls of footprint::bench::run_* (see above), so
 // they must stay functions of their own, whatever the optimiser would inline.
 [[gnu::noinline]] void run_single(const EnvironmentMap& map, const std::vector<EnvLookup>& lookups,
-                                  const LookupOptions& options, float* out) {
+                                  const EnvLookupOptions& options, float* out) {
     for (std::size_t i = 0; i < lookups.size(); ++i)
         environment_lookup(map, lookups[i].direction, lookups[i].d_dx, lookups[i].d_dy, options,
                            out + 3 * i);
 }
 
 [[gnu::noinline]] void run_batch(const EnvironmentMap& map, const std::vector<EnvLookup>& lookups,
-                                 const LookupOptions& options, float* out) {
+                                 const EnvLookupOptions& options, float* out) {
     environment_lookup_batch(map, lookups, options, out);
 }
 
@@ -127,7 +127,7 @@ int run(int argc, char** argv) {
     }
     const std::vector<EnvLookup> lookups =
         make_env_lookups(*regime, static_cast<std::size_t>(count), kWidth, kHeight, 7);
-    const LookupOptions options;
+    const EnvLookupOptions options;
     if (form == "probes") {
         print_probe_counts(*map, lookups, options);
         return 0;

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "envmap/env_lookup_route.h"
 #include "envmap/env_sampling.h"
 #include "envmap/latlong_path.h"
 #include "envmap/polar_caps.h"
@@ -244,11 +245,8 @@ Result<EnvironmentMap> EnvironmentMap::from_paraboloid(const Image& front, const
     return map;
 }
 
-namespace {
+namespace env_route {
 
-// The level of the one trilinear probe at the footprint's centre that a near-isotropic footprint
-// takes (without the ellipse's axes), or −1 where the lookup takes another path: a polar cap, a
-// line of probes, another filter, or the sphere map's rim.
 float centre_probe_lod(const EnvironmentMap& map, const EnvFootprint& footprint,
                        const LookupOptions& options) {
     if (!footprint.matrix.is_finite()) return -1;
@@ -261,19 +259,7 @@ float centre_probe_lod(const EnvironmentMap& map, const EnvFootprint& footprint,
     return single_probe_lod(footprint.matrix, options, map.face(footprint.coords.face).max_level());
 }
 
-// The one trilinear probe at the footprint's centre, c at lod (centre_probe_lod()): where it is and
-// which levels it reads. A single lookup reads it at once (filter_centre_probe); the batch
-// requests its taps first and reads them later (batch_lookup()).
-struct CentreProbe {
-    EnvCoords coords;
-    detail::TrilinearLevels levels;
-};
-[[gnu::always_inline]] inline CentreProbe centre_probe(const EnvironmentMap& map,
-                                                       const EnvCoords& c, float lod,
-                                                       const LookupOptions& options) {
-    return {c, detail::trilinear_levels(lod, map.face(c.face).max_level(),
-                                        single_probe_blend(options.lod_blend))};
-}
+namespace {
 
 void filter_probe_taps(const EnvironmentMap& map, const detail::ProbeTaps& taps,
                        detail::TrilinearLevels levels, float* out) {
@@ -287,28 +273,6 @@ void filter_centre_probe(const EnvironmentMap& map, const CentreProbe& probe, fl
     filter_probe_taps(map, detail::probe_taps_on_face(map, c.face, c.s, c.t, probe.levels),
                       probe.levels, out);
 }
-
-// A lat-long footprint near a pole, carried onto its polar cap; invalid elsewhere.
-PolarCapFootprint cap_footprint(const EnvironmentMap& map, const EnvFootprint& footprint) {
-    return map.layout() == EnvLayout::latlong && map.polar_cap(0)
-               ? polar_cap_footprint(map, footprint)
-               : PolarCapFootprint{};
-}
-
-// What general_lookup() reads of a footprint: taken from an EnvFootprint or, without building one,
-// from a PlainEnvFootprint (implicitly: either is passed as is).
-struct FootprintCentre {
-    EnvCoords coords;
-    Sym2 matrix;
-    Vec3 map_direction;
-
-    FootprintCentre(const EnvFootprint& f)
-        : coords(f.coords), matrix(f.matrix), map_direction(f.map_direction) {}
-    FootprintCentre(const PlainEnvFootprint& f)
-        : coords(f.coords), matrix(f.matrix), map_direction(f.map_direction) {}
-    FootprintCentre(const PlainEnvFootprints4& f, int lane)
-        : coords(f.coords(lane)), matrix(f.matrix(lane)), map_direction(f.map_direction(lane)) {}
-};
 
 // The position on face c.face of each probe of a cube line centred at c: c + the probe's offset, in
 // (s, t).
@@ -340,11 +304,6 @@ struct FacePositions {
                                            FacePositions{face, c, plan}, out);
 }
 
-// The cube lines on their face (cube_line_on_face()) of at most kDeferredProbes probes: the batch
-// requests them and reads them once its group's footprints are computed.
-constexpr int kDeferredProbes = detail::kRequestedLineProbes;
-using DeferredCubeLine = detail::RequestedLine<kDeferredProbes>;
-
 // cube_line_on_face()'s line, requested into `line` for a later read (DeferredCubeLine::blend());
 // false, with nothing requested, for any other line or one of more than kDeferredProbes probes.
 [[gnu::noinline, gnu::flatten]] bool request_cube_line_on_face(
@@ -374,14 +333,11 @@ using DeferredCubeLine = detail::RequestedLine<kDeferredProbes>;
         out);
 }
 
-bool lookup_plan(const EnvironmentMap& map, const FootprintCentre& footprint, const ProbePlan& plan,
-                 const LookupOptions& options, float* out, DeferredCubeLine* defer);
+}  // namespace
 
-// Every other lookup (a line of probes, another filter), given the footprint's cap_footprint(),
-// done into out; or, given `defer` (the batch), a cube line on its face requested into it for a
-// later read: then true. Flattened: everything it calls that can be inlined is, so that its probe
-// loop compiles the same however much else this file inlines (otherwise GCC's unit-growth limit
-// can push the probe taps out of line as the file grows).
+// Flattened: everything it calls that can be inlined is, so that its probe loop compiles the same
+// however much else this file inlines (otherwise GCC's unit-growth limit can push the probe taps
+// out of line as the file grows).
 [[gnu::flatten]] bool general_lookup(const EnvironmentMap& map, const FootprintCentre& footprint,
                                      const PolarCapFootprint& cap, const LookupOptions& options,
                                      float* out, DeferredCubeLine* defer) {
@@ -471,17 +427,6 @@ bool lookup_plan(const EnvironmentMap& map, const FootprintCentre& footprint, co
     return false;
 }
 
-// Whether the polar caps of a lat-long map take a direction (map space) rather than the map.
-bool in_caps_region(const EnvironmentMap& map, Vec3 map_direction) {
-    return map.layout() == EnvLayout::latlong && map.polar_cap(0) &&
-           in_polar_cap_region(map_direction);
-}
-
-// Form (a) on a lat-long map, for a direction within a polar cap's region (in_caps_region()): the
-// cap's footprint needs only the map-space direction and its differentials (as
-// compute_env_footprint() sets them), so the lat-long footprint (two atan2 and its Jacobian) is
-// skipped. False, with nothing written, where the cap cannot take it (then the lat-long footprint
-// decides).
 bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 map_direction, Vec3 dr_dx, Vec3 dr_dy,
                       const IdentitySkippingRotation& to_map, const LookupOptions& options,
                       float* out) {
@@ -494,81 +439,7 @@ bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 map_direction, Vec
     return true;
 }
 
-// What route_lookup() did with a lookup: done it into out, left its centre probe to the
-// caller, or (given a DeferredCubeLine) requested its cube line there for the caller to read.
-enum class Routed { done, centre_probe, deferred_line };
-
-// A lookup of a computed footprint: one probe at its centre, returned in `probe` for the caller to
-// filter, a cube line on its face requested into `defer` where given, or any other lookup, done
-// here into out.
-[[gnu::always_inline]] inline Routed route_lookup(const EnvironmentMap& map,
-                                                  const EnvFootprint& footprint,
-                                                  const LookupOptions& options, float* out,
-                                                  CentreProbe& probe, DeferredCubeLine* defer) {
-    const float lod = centre_probe_lod(map, footprint, options);
-    if (lod >= 0.0f) {
-        probe = centre_probe(map, footprint.coords, lod, options);
-        return Routed::centre_probe;
-    }
-    return general_lookup(map, footprint, cap_footprint(map, footprint), options, out, defer)
-               ? Routed::deferred_line
-               : Routed::done;
-}
-
-// A form (a) lookup, routed: a polar cap's (in its region), the common case in one pass
-// (plain_env_footprint()), or the careful path (compute_env_footprint()). A lookup that is one
-// probe at the footprint's centre (most are) is returned in `probe`, for the caller to filter (the
-// batch defers it until its texels have arrived); given `defer` (the batch), a cube line on its
-// face is requested there; every other lookup is done here, into out.
-[[gnu::always_inline]] inline Routed route_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx,
-                                                  Vec3 dr_dy, const LookupOptions& options,
-                                                  const IdentitySkippingRotation& to_map,
-                                                  float* out, CentreProbe& probe,
-                                                  DeferredCubeLine* defer) {
-    const Vec3 map_direction = to_map(r);
-    if (in_caps_region(map, map_direction)) {
-        if (polar_cap_lookup(map, r, map_direction, dr_dx, dr_dy, to_map, options, out))
-            return Routed::done;
-    } else if (PlainEnvFootprint plain; plain_env_footprint(map.layout(), map.texel_scale(), r,
-                                                            dr_dx, dr_dy, to_map, plain)) {
-        const float lod =
-            single_probe_lod(plain.matrix, options, map.face(plain.coords.face).max_level());
-        if (lod >= 0.0f) {
-            probe = centre_probe(map, plain.coords, lod, options);
-            return Routed::centre_probe;
-        }
-        return general_lookup(map, plain, PolarCapFootprint{}, options, out, defer)  // no caps
-                   ? Routed::deferred_line
-                   : Routed::done;
-    }
-    return route_lookup(
-        map,
-        compute_env_footprint(map.layout(), map.texel_scale(), r, dr_dx, dr_dy, to_map.matrix()),
-        options, out, probe, defer);
-}
-
-// What a batch does with a routed lookup whose result goes to `result`: a deferred line is added
-// to `reads`, a centre probe's taps are requested into it, a lookup done needs nothing.
-template <std::size_t Capacity>
-[[gnu::always_inline]] inline void add_routed(const EnvironmentMap& map, Routed routed,
-                                              const CentreProbe& probe, int stride, float* result,
-                                              detail::RequestedReads<Capacity>& reads) {
-    switch (routed) {
-        case Routed::done:
-            break;
-        case Routed::deferred_line:
-            reads.add(detail::Requested::line, result);
-            break;
-        case Routed::centre_probe: {
-            const EnvCoords& c = probe.coords;
-            detail::RequestedProbe& requested = reads.next_probe();
-            requested = {detail::probe_taps(map, c.face, c.s, c.t, probe.levels), probe.levels};
-            requested.request(stride);
-            reads.add(detail::Requested::probe, result);
-            break;
-        }
-    }
-}
+namespace {
 
 // A form (a) lookup (the single-call entry points).
 [[gnu::always_inline]] inline void single_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx,
@@ -581,242 +452,25 @@ template <std::size_t Capacity>
         filter_centre_probe(map, probe, out);
 }
 
-// The footprints of four rays of a batch, computed at once (math/float4.h), each lane exactly what
-// route_lookup() computes for its ray: the polar-cap footprint where a lat-long map's caps take it,
-// the plain footprint (plain_env_footprint()) of a cube or lat-long map elsewhere, the
-// single-probe lods, and the plans of the short lines among them. A lane that none of them takes
-// goes the scalar way (route_lookup()).
-struct FourFootprints {
-    // What every group computes the same way: the map's and the options' constants.
-    struct Setting {
-        bool four_at_once;  // a cube or lat-long map
-        bool caps;          // a lat-long map with polar caps
-        bool rule_b;        // has_single_probe_rule(): else every lod is −1 and no plan is made
-        int max_level, cap_max_level;  // every face's, both caps'
-
-        Setting(const EnvironmentMap& map, const LookupOptions& options)
-            : four_at_once(map.layout() == EnvLayout::cube || map.layout() == EnvLayout::latlong),
-              caps(map.layout() == EnvLayout::latlong && map.polar_cap(0)),
-              rule_b(has_single_probe_rule(options)),
-              max_level(map.face(0).max_level()),
-              cap_max_level(caps ? map.polar_cap(0)->max_level() : 0) {}
-    };
-
-    PolarCapFootprints4 capped;  // region: the caps' lanes; valid: the lanes they take
-    PlainEnvFootprints4 plain;   // outside the caps' region
-    float lod[4];                // the plain footprints' single-probe lods (< 0: a line)
-    ShortPlans4 plans, cap_plans;
-
-    [[gnu::always_inline]] void compute(const EnvironmentMap& map, const EnvRayDifferential* rays,
-                                        const IdentitySkippingRotation& to_map,
-                                        const LookupOptions& options, const Setting& setting) {
-        plain.plain = plans.planned = 0;
-        if (setting.caps) {
-            polar_cap_footprints4(map, rays, to_map, options, capped);
-            cap_plans.planned = 0;
-            if (setting.rule_b &&
-                (capped.valid & (Float4::load(capped.lod) < Float4(0.0f)).bits()) != 0)
-                short_plans4(Float4::load(capped.xx), Float4::load(capped.xy),
-                             Float4::load(capped.yy), options.probe_rule, options.max_probes,
-                             setting.cap_max_level, options.lod_bias, options.isotropic_ratio,
-                             cap_plans);
-            if (capped.region == 0xf) return;  // no lane for plain_env_footprint()
-        }
-        plain_env_footprints4(map.layout(), map.texel_scale(), rays, to_map, plain);
-        if (!setting.rule_b) {
-            Float4(-1.0f).store(lod);
-            return;
-        }
-        const Float4 xx = Float4::load(plain.xx), xy = Float4::load(plain.xy),
-                     yy = Float4::load(plain.yy);
-        const Float4 lods = single_probe_lod(xx, xy, yy, options.lod_bias, setting.max_level,
-                                             options.isotropic_ratio);
-        lods.store(lod);
-        if (((lods < Float4(0.0f)).bits() & plain.plain) != 0)
-            short_plans4(xx, xy, yy, options.probe_rule, options.max_probes, setting.max_level,
-                         options.lod_bias, options.isotropic_ratio, plans);
-    }
-
-    bool cap_takes(int lane) const { return capped.valid >> lane & 1; }
-    bool plain_takes(int lane) const {
-        return (plain.plain >> lane & 1) && !(capped.region >> lane & 1);
-    }
-};
-
-// Form (a) lookups of many rays (the batch entry points).
-[[gnu::always_inline]] inline void batch_lookup(const EnvironmentMap& map,
-                                                std::span<const EnvRayDifferential> rays,
-                                                const LookupOptions& options,
-                                                const IdentitySkippingRotation& to_map,
-                                                float* out) {
-    // The footprints are computed four at a time (FourFootprints). The lookups that are one probe
-    // (most of them: at the footprint's centre, or on a polar cap), the cube lines on their face
-    // (DeferredCubeLine) and the short lines on a polar cap are deferred: their texels are
-    // requested, and they are filtered once the group's footprints are all computed, when the
-    // texels have arrived. Enough lookups in flight to cover a miss to memory, few enough that
-    // their texels are still cached when read. Every other lookup is done at once.
-    constexpr std::size_t kGroup = 16;
-    const int channels = map.channels();
-    detail::RequestedReads<kGroup> reads;
-    const int stride = map.face(0).stride();  // the caps' too (the same channels)
-    const FourFootprints::Setting setting(map, options);
-    FourFootprints footprints[kGroup / 4];
-    for (std::size_t first = 0; first < rays.size(); first += kGroup) {
-        const std::size_t count = std::min(kGroup, rays.size() - first);
-        if (setting.four_at_once)
-            for (std::size_t lane = 0; lane < count; lane += 4) {
-                EnvRayDifferential tail[4];  // the last lanes, padded with the last ray
-                const EnvRayDifferential* four = &rays[first + lane];
-                if (count - lane < 4) {
-                    for (std::size_t i = 0; i < 4; ++i)
-                        tail[i] = rays[first + std::min(lane + i, count - 1)];
-                    four = tail;
-                }
-                footprints[lane / 4].compute(map, four, to_map, options, setting);
-            }
-        for (std::size_t i = 0; i < count; ++i) {
-            const EnvRayDifferential& ray = rays[first + i];
-            float* result = out + (first + i) * channels;
-            const FourFootprints& f = footprints[i / 4];
-            const int lane = static_cast<int>(i % 4);
-            if (setting.caps && f.cap_takes(lane)) {
-                // route_lookup()'s polar cap branch, from the lane.
-                const PolarCapFootprint cap = f.capped.footprint(map, lane);
-                reads.add(f.cap_plans.planned >> lane & 1
-                              ? detail::request_footprint_assembly(
-                                    *cap.cap, cap.coords.s, cap.coords.t, f.cap_plans.plan(lane),
-                                    options, result, reads.next_probe(), reads.next_line())
-                              : polar_cap_request(cap, f.capped.lod[lane], options, result,
-                                                  reads.next_probe(), reads.next_line()),
-                          result);
-                continue;
-            }
-            CentreProbe probe;
-            Routed routed;
-            if (setting.four_at_once && f.plain_takes(lane)) {
-                // route_lookup()'s plain branch, from the lane.
-                DeferredCubeLine* defer = &reads.next_line();
-                if (f.lod[lane] >= 0.0f) {
-                    probe = centre_probe(map, f.plain.coords(lane), f.lod[lane], options);
-                    routed = Routed::centre_probe;
-                } else if (f.plans.planned >> lane & 1) {
-                    routed = lookup_plan(map, FootprintCentre(f.plain, lane), f.plans.plan(lane),
-                                         options, result, defer)
-                                 ? Routed::deferred_line
-                                 : Routed::done;
-                } else {
-                    routed = general_lookup(map, FootprintCentre(f.plain, lane),
-                                            PolarCapFootprint{}, options, result, defer)
-                                 ? Routed::deferred_line
-                                 : Routed::done;
-                }
-            } else {
-                routed = route_lookup(map, ray.direction, ray.d_dx, ray.d_dy, options, to_map,
-                                      result, probe, &reads.next_line());
-            }
-            add_routed(map, routed, probe, stride, result, reads);
-        }
-        reads.read(stride, channels);
-    }
-}
-
 }  // namespace
+}  // namespace env_route
 
 void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
                         const LookupOptions& options, float* out) {
-    CentreProbe probe;
-    if (route_lookup(map, footprint, options, out, probe, nullptr) == Routed::centre_probe)
-        filter_centre_probe(map, probe, out);
+    env_route::CentreProbe probe;
+    if (env_route::route_lookup(map, footprint, options, out, probe, nullptr) ==
+        env_route::Routed::centre_probe)
+        env_route::filter_centre_probe(map, probe, out);
 }
 
 void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
-                        const LookupOptions& options, float* out) {
-    single_lookup(map, r, dr_dx, dr_dy, options, IdentitySkippingRotation::none(), out);
-}
-
-void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
-                        const LookupOptions& options, float* out, const Mat3& rotation) {
-    single_lookup(map, r, dr_dx, dr_dy, options, IdentitySkippingRotation(rotation), out);
-}
-
-void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayDifferential> rays,
-                              const LookupOptions& options, float* out) {
-    batch_lookup(map, rays, options, IdentitySkippingRotation::none(), out);
-}
-
-void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayDifferential> rays,
-                              const LookupOptions& options, float* out, const Mat3& rotation) {
-    batch_lookup(map, rays, options, IdentitySkippingRotation(rotation), out);
-}
-
-void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvFootprint> footprints,
-                              const LookupOptions& options, float* out) {
-    // Each footprint routed as the single call routes it, its centre probe, cube line or polar
-    // cap's probe or line read with its group's (as batch_lookup() reads them). On a cube or
-    // lat-long map the lines off the polar caps are set aside and planned four at a time
-    // (short_plans4(), each lane plan_probes()' plan bit for bit), as batch_lookup() plans them.
-    constexpr std::size_t kGroup = 16;
-    const int channels = map.channels();
-    const int stride = map.face(0).stride();
-    const FourFootprints::Setting setting(map, options);
-    const bool plan_four_at_once = setting.four_at_once && setting.rule_b;
-    detail::RequestedReads<kGroup> reads;
-    std::size_t lines[kGroup];  // the group's footprints set aside to be planned four at a time
-    for (std::size_t first = 0; first < footprints.size(); first += kGroup) {
-        const std::size_t count = std::min(kGroup, footprints.size() - first);
-        std::size_t line_count = 0;
-        for (std::size_t i = first; i < first + count; ++i) {
-            // route_lookup()'s steps, with a polar cap's probe or line requested as well.
-            const EnvFootprint& footprint = footprints[i];
-            float* result = out + i * channels;
-            if (const float lod = centre_probe_lod(map, footprint, options); lod >= 0.0f) {
-                add_routed(map, Routed::centre_probe,
-                           centre_probe(map, footprint.coords, lod, options), stride, result,
-                           reads);
-                continue;
-            }
-            if (plan_four_at_once && footprint.matrix.is_finite() &&
-                !in_caps_region(map, footprint.map_direction)) {
-                lines[line_count++] = i;  // general_lookup() without a cap, below
-                continue;
-            }
-            const PolarCapFootprint cap = cap_footprint(map, footprint);
-            if (cap.valid) {  // polar_cap_filter(), requested
-                reads.add(polar_cap_request(
-                              cap, single_probe_lod(cap.matrix, options, cap.cap->max_level()),
-                              options, result, reads.next_probe(), reads.next_line()),
-                          result);
-                continue;
-            }
-            if (general_lookup(map, footprint, cap, options, result, &reads.next_line()))
-                reads.add(detail::Requested::line, result);
-        }
-        // The lines set aside (cap_footprint() invalid off the caps): general_lookup()'s plan,
-        // four at a time where short_plans4() takes it.
-        for (std::size_t k = 0; k < line_count; k += 4) {
-            float xx[4], xy[4], yy[4];  // the last lanes padded with the last line
-            for (std::size_t j = 0; j < 4; ++j) {
-                const Sym2& m = footprints[lines[std::min(k + j, line_count - 1)]].matrix;
-                xx[j] = m.xx, xy[j] = m.xy, yy[j] = m.yy;
-            }
-            ShortPlans4 plans;
-            short_plans4(Float4::load(xx), Float4::load(xy), Float4::load(yy), options.probe_rule,
-                         options.max_probes, setting.max_level, options.lod_bias,
-                         options.isotropic_ratio, plans);
-            for (std::size_t j = 0; j < 4 && k + j < line_count; ++j) {
-                const std::size_t i = lines[k + j];
-                float* result = out + i * channels;
-                const bool deferred =
-                    plans.planned >> j & 1
-                        ? lookup_plan(map, footprints[i], plans.plan(static_cast<int>(j)), options,
-                                      result, &reads.next_line())
-                        : general_lookup(map, footprints[i], PolarCapFootprint{}, options, result,
-                                         &reads.next_line());
-                if (deferred) reads.add(detail::Requested::line, result);
-            }
-        }
-        reads.read(stride, channels);
-    }
+                        const EnvLookupOptions& options, float* out) {
+    if (options.rotation)
+        env_route::single_lookup(map, r, dr_dx, dr_dy, options,
+                                 IdentitySkippingRotation(*options.rotation), out);
+    else
+        env_route::single_lookup(map, r, dr_dx, dr_dy, options, IdentitySkippingRotation::none(),
+                                 out);
 }
 
 void environment_bilinear(const EnvironmentMap& map, Vec3 r, int level, float* out) {

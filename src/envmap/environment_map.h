@@ -41,6 +41,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <span>
 
 #include "core/result.h"
@@ -91,33 +92,37 @@ class EnvironmentMap {
     std::vector<MipPyramid> polar_caps_;  // lat-long only: +Y, −Y
 };
 
+// The options of a form-(a) lookup: LookupOptions and the environment's rotation.
+struct EnvLookupOptions : LookupOptions {
+    // A: world (ray) space → map space. None: the rays are in map space, and nothing is spent on
+    // a rotation (an identity matrix given here is detected and skipped as well).
+    std::optional<Mat3> rotation;
+
+    EnvLookupOptions() = default;
+    EnvLookupOptions(const LookupOptions& lookup, std::optional<Mat3> rotation = std::nullopt)
+        : LookupOptions(lookup), rotation(rotation) {}
+};
+
 // The map filtered over `footprint` (from compute_env_footprint with this map's layout and
-// texel_scale()): channels() floats to out.
+// texel_scale(), which applied any rotation): channels() floats to out.
 void environment_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
                         const LookupOptions& options, float* out);
 
 // Form (a), like OpenImageIO's environment(): the map filtered over the footprint of direction r
-// with ray differentials ∂r/∂x, ∂r/∂y (compute_env_footprint form (a)), `rotation` = A (without
-// it: no rotation, and nothing spent on one).
+// with ray differentials ∂r/∂x, ∂r/∂y (compute_env_footprint form (a)), rotated into map space by
+// options.rotation where it is set.
 void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
-                        const LookupOptions& options, float* out);
-void environment_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
-                        const LookupOptions& options, float* out, const Mat3& rotation);
+                        const EnvLookupOptions& options, float* out);
 
-// One form-(a) lookup of a batch: EnvRayDifferential (env_footprint.h), a direction r and its ray
-// differentials ∂r/∂x, ∂r/∂y.
-
-// environment_lookup() form (a) for many rays at once: bit-identical results, faster. In each
-// group of 16 rays the footprints, single-probe lods and short-line plans are computed four rays
-// at a time (math/float4.h), and the lookups that are one probe or a short line on one face (most)
-// have their texels requested then and are filtered after the group's last footprint, when the
-// texels have arrived, instead of each waiting on memory in turn. `out` receives
-// rays.size()·channels() floats, ray by ray (the role of OpenImageIO's batched environment(),
-// without its 16-lane limit and structure-of-arrays layout).
+// environment_lookup() form (a) for many rays at once (EnvRayDifferential, env_footprint.h): the
+// same results bit for bit, faster. In each group of 16 rays the footprints, single-probe lods
+// and short-line plans are computed four rays at a time (math/float4.h), and the lookups that are
+// one probe or a short line on one face (most) have their texels requested then and are filtered
+// after the group's last footprint, when the texels have arrived, instead of each waiting on
+// memory in turn. `out` receives rays.size()·channels() floats, ray by ray (the role of
+// OpenImageIO's batched environment(), without its 16-lane limit and structure-of-arrays layout).
 void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayDifferential> rays,
-                              const LookupOptions& options, float* out);
-void environment_lookup_batch(const EnvironmentMap& map, std::span<const EnvRayDifferential> rays,
-                              const LookupOptions& options, float* out, const Mat3& rotation);
+                              const EnvLookupOptions& options, float* out);
 
 // environment_lookup() of many computed footprints (form (b), Schilling's, or any
 // compute_env_footprint() result) at once: bit-identical results, faster where the footprints are

@@ -395,7 +395,7 @@ TEST(EnvironmentMap, PolarCapLookupsSkipOnlyTheUnusedLatLongFootprint) {
         if (i % 5 == 1) options.filter = TextureFilter::ewa;
         if (i % 5 == 3) options.filter = TextureFilter::trilinear;
         float direct, via_footprint;
-        environment_lookup(map, r, dx, dy, options, &direct, a);
+        environment_lookup(map, r, dx, dy, EnvLookupOptions{options, a}, &direct);
         environment_lookup(map,
                            compute_env_footprint(map.layout(), map.texel_scale(), r, dx, dy, a),
                            options, &via_footprint);
@@ -505,16 +505,16 @@ TEST(EnvironmentMap, BatchedLookupsEqualSingleLookups) {
             for (const Mat3& a : {Mat3{}, rotation}) {
                 std::vector<float> single(rays.size()), batched(rays.size());
                 for (std::size_t i = 0; i < rays.size(); ++i)
-                    environment_lookup(map, rays[i].direction, rays[i].d_dx, rays[i].d_dy, options,
-                                       &single[i], a);
-                environment_lookup_batch(map, rays, options, batched.data(), a);
+                    environment_lookup(map, rays[i].direction, rays[i].d_dx, rays[i].d_dy,
+                                       EnvLookupOptions{options, a}, &single[i]);
+                environment_lookup_batch(map, rays, EnvLookupOptions{options, a}, batched.data());
                 for (std::size_t i = 0; i < rays.size(); ++i)
                     EXPECT_EQ(single[i], batched[i]) << test::layout_name(layout) << " ray " << i;
             }
         std::vector<float> identity(rays.size()), unrotated(rays.size()), batched(rays.size());
         for (std::size_t i = 0; i < rays.size(); ++i) {
-            environment_lookup(map, rays[i].direction, rays[i].d_dx, rays[i].d_dy, LookupOptions{},
-                               &identity[i], Mat3{});
+            environment_lookup(map, rays[i].direction, rays[i].d_dx, rays[i].d_dy,
+                               EnvLookupOptions{LookupOptions{}, Mat3{}}, &identity[i]);
             environment_lookup(map, rays[i].direction, rays[i].d_dx, rays[i].d_dy, LookupOptions{},
                                &unrotated[i]);
         }
