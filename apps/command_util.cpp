@@ -3,9 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
-#include <random>
 #include <system_error>
 
 #include <OpenImageIO/imagebuf.h>
@@ -39,35 +37,6 @@ std::optional<std::string> output_file_problem(const fs::path& file) {
         return "cannot write " + quoted(file) + ": directory " + quoted(dir) + " does not exist";
     if (fs::is_directory(file, ec)) return "cannot write " + quoted(file) + ": it is a directory";
     return std::nullopt;
-}
-
-// Writes `text` to `file` through a temporary file in the same directory and a rename.
-Status write_text_atomically(const std::filesystem::path& file, const std::string& text) {
-    std::random_device random;
-    const std::filesystem::path dir = file.parent_path();
-    std::string temp_name = file.filename().string();
-    temp_name.insert(temp_name.begin(), '.');
-    temp_name += ".tmp-";
-    temp_name += std::to_string(random());
-    const std::filesystem::path temp = dir / temp_name;
-    {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        out << text;
-        out.flush();
-        if (!out) {
-            std::error_code ignored;
-            std::filesystem::remove(temp, ignored);
-            return Error{"cannot write " + quoted(file) + ": write failed"};
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(temp, file, ec);
-    if (ec) {
-        std::error_code ignored;
-        std::filesystem::remove(temp, ignored);
-        return Error{"cannot write " + quoted(file) + ": " + ec.message()};
-    }
-    return {};
 }
 
 void warn(const std::string& message) {

@@ -22,10 +22,6 @@ std::string quoted(const std::filesystem::path& path);
 // directory, a directory), or nullopt if it can.
 std::optional<std::string> output_file_problem(const std::filesystem::path& file);
 
-// Writes `text` to `file` through a temporary file in the same directory and a rename: the file is
-// either completely written or left untouched.
-Status write_text_atomically(const std::filesystem::path& file, const std::string& text);
-
 // Prints "footprint: warning: <message>" to stderr (the command goes on).
 void warn(const std::string& message);
 

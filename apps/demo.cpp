@@ -136,7 +136,7 @@ int run_demo_command(const DemoCommandOptions& options) {
         }
         report["scenes"].push_back(entry);
     }
-    if (Status s = write_text_atomically(options.out_dir / "demo.json", report.dump(2) + "\n");
+    if (Status s = write_file_atomically(options.out_dir / "demo.json", report.dump(2) + "\n");
         !s) {
         return fail(s.error().message);
     }

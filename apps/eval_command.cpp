@@ -425,10 +425,10 @@ int run_eval_command(const EvalCommandOptions& options) {
         }
     }
 
-    if (Status s = write_text_atomically(options.out_dir / "results.csv", csv); !s) {
+    if (Status s = write_file_atomically(options.out_dir / "results.csv", csv); !s) {
         return fail(s.error().message);
     }
-    if (Status s = write_text_atomically(options.out_dir / "results.json", results.dump(2) + "\n");
+    if (Status s = write_file_atomically(options.out_dir / "results.json", results.dump(2) + "\n");
         !s) {
         return fail(s.error().message);
     }

@@ -15,6 +15,7 @@
 
 #include "command_util.h"
 #include "image/color.h"
+#include "image/image_io.h"
 
 namespace footprint {
 
@@ -924,7 +925,7 @@ std::pair<std::string, int> build_html(const EvalReport& report) {
 }  // namespace
 
 Status write_eval_report(const EvalReport& report, const fs::path& html_file) {
-    return write_text_atomically(html_file, build_html(report).first);
+    return write_file_atomically(html_file, build_html(report).first);
 }
 
 int report_image_count(const EvalReport& report) {

@@ -145,7 +145,7 @@ std::string html_escape(std::string_view text);
 // small script counts, when the page has loaded, the images that loaded (naturalWidth > 0) and
 // failed — every <img> and every distinct CSS background image — into body's data-images-loaded,
 // data-images-failed, data-images-total, data-images-failed-list (the failed URLs, one a line), and
-// appends " [images N/M]" to the title. The file is written atomically (write_text_atomically).
+// appends " [images N/M]" to the title. The file is written atomically (write_file_atomically).
 Status write_eval_report(const EvalReport& report, const std::filesystem::path& html_file);
 
 // The number of images write_eval_report's page holds (what the browser check should see).

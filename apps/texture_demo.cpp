@@ -148,7 +148,7 @@ int demo(const TextureDemoOptions& options) {
     for (std::size_t i = 0; i < entries.size(); ++i)
         json << (i ? ", " : "") << "\"" << entries[i].name << "\"";
     json << "]}\n}\n";
-    if (const Status saved = write_text_atomically(dir / "demo.json", json.str()); !saved)
+    if (const Status saved = write_file_atomically(dir / "demo.json", json.str()); !saved)
         return fail(saved.error().message);
 
     std::printf("%-10s %10s %10s %12s\n", "filter", "RMSE", "ms", "lookups");
