@@ -255,6 +255,21 @@ TEST_F(EnvCommandTest, AnOutputGivenTwiceIsRefused) {
     EXPECT_EQ(entries(), 1);
 }
 
+TEST_F(EnvCommandTest, AnOutputGivenTwiceInTwoSpellingsIsRefused) {
+    // Relative to the working directory, "front.exr" and "./front.exr" (neither exists yet) are
+    // one file.
+    const fs::path cwd = fs::current_path();
+    fs::current_path(dir_);
+    EnvConvertCommandOptions twice = from_sky("paraboloid", "front.exr");
+    twice.outputs = {"front.exr", "./front.exr"};
+    std::string err;
+    const int status = convert(twice, &err);
+    fs::current_path(cwd);
+    EXPECT_EQ(status, 1);
+    EXPECT_NE(err.find("is given twice"), std::string::npos) << err;
+    EXPECT_EQ(entries(), 1);
+}
+
 TEST_F(EnvCommandTest, NonFiniteInputIsRefusedOrRepairedWithAWarning) {
     Image sky(64, 32, 3, 0.25f);
     sky.at(5, 9)[1] = std::numeric_limits<float>::quiet_NaN();

@@ -29,9 +29,11 @@ bool same_file(const fs::path& a, const fs::path& b) {
         const bool same = fs::equivalent(a, b, ec);
         if (!ec) return same;
     }
-    const fs::path ca = fs::weakly_canonical(a, ec);
+    // Absolute first: weakly_canonical() leaves a path none of whose parts exist relative, so that
+    // "x.exr" and "./x.exr" would differ.
+    const fs::path ca = fs::weakly_canonical(fs::absolute(a, ec), ec);
     if (ec) return a.lexically_normal() == b.lexically_normal();
-    const fs::path cb = fs::weakly_canonical(b, ec);
+    const fs::path cb = fs::weakly_canonical(fs::absolute(b, ec), ec);
     return !ec && ca == cb;
 }
 
