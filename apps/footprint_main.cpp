@@ -6,9 +6,10 @@
 //                  [--frames N] [--flicker-reference-spp N] [--threads N] [--no-browser-check]
 //   footprint metrics A B [--mask M] [--peak P] [--ignore-non-finite] [--json]
 //   footprint texture-demo [--out DIR] [--size N] [--samples N] [--quiet]
-//   footprint plane TEXTURE -o OUT [--filter F] [--size N] [--uv-scale X] [--quiet]
+//   footprint plane TEXTURE -o OUT [--filter F] [--size N] [--uv-scale X] [--repair-non-finite]
+//                   [--quiet]
 //   footprint env convert IN [IN...] --to LAYOUT -o OUT [-o OUT...] [--size N] [--from LAYOUT]
-//                         [--from-cube-layout A] [--cube-layout A] [--quiet]
+//                         [--from-cube-layout A] [--cube-layout A] [--repair-non-finite] [--quiet]
 //   footprint render SCENE.json -o OUT [--filter MODE] [--spp N] [--seed N] [--size WIDTH]
 //                    [--frames N] [--threads N] [--exposure E] [--json] [--quiet]
 // Filter names: one vocabulary across the commands (apps/cli_options.h, kFilterHelp below).

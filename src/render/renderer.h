@@ -35,7 +35,7 @@
 //     + diffuse·c·Ē  (ambient: the environment's mean colour Ē)
 //     + mirror·F(n̂_m·v̂)·env(v_r)
 // E_i = colour (directional) or colour/d² (point), no shadows; S = shading/blinn_phong.h's
-// specular() (plain for point/trilinear/fa, gaussian with the filtered K_b for the rough modes);
+// specular() (plain for bilinear/trilinear/fa, gaussian with the filtered K_b for the rough modes);
 // F = Schlick's Fresnel with fresnel_f0. Reflections show the environment only (no
 // inter-reflections), as in the papers. Rays that miss show the environment (filtered over the
 // camera ray's own differentials) or the background colour.
