@@ -10,8 +10,10 @@
 
 namespace footprint {
 
-void texture_lookup_batch(const MipPyramid& pyramid, std::span<const TextureCoords> coords,
-                          const LookupOptions& options, float* out) {
+// Flattened: alone in its file, GCC would otherwise leave the probe taps out of line.
+[[gnu::flatten]] void texture_lookup_batch(const MipPyramid& pyramid,
+                                           std::span<const TextureCoords> coords,
+                                           const LookupOptions& options, float* out) {
     // Lookups are taken kGroup at a time: those that are one probe or a short line have their
     // texels requested, and are read once the whole group is routed, when the texels have arrived
     // (enough lookups in flight to cover a miss to memory, few enough that their texels are still
