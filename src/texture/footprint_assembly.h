@@ -2,10 +2,12 @@
 //
 // Footprint assembly [S97a §5; the lecture notes] approximates the anisotropic footprint ellipse
 // (semi-axes λ1 ≥ λ2, major direction r1, in level-0 texels) by N isotropic trilinear probes on a
-// line through the centre along r1, each weighted 1/N. All rules place the probes evenly and
-// symmetrically: o_i = (i − (N−1)/2)·step, i = 0..N−1.
+// line through the centre along r1. All rules place the probes evenly and symmetrically:
+// o_i = (i − (N−1)/2)·step, i = 0..N−1. The default rule, ProbeRule::gaussian, keeps Rule B's
+// construction (below) but weights the probes by a Gaussian cut at ±kGaussianProbeExtent σ, its
+// spacing solved so that the kernel keeps the covariance K/4; the other rules weight each 1/N.
 //
-// Rule B (ProbeRule::moment_matched, the default; spec §2.8). T_min = 1 level-0 texel:
+// Rule B (ProbeRule::moment_matched; spec §2.8). T_min = 1 level-0 texel:
 //     T_p = max(λ2, T_min)
 //     λ1 ≤ T_p:  N = 1
 //     else:      N = ⌈√(3(λ1/T_p)² − 2)⌉                 smallest N with spacing ≤ T_p (no gaps)
