@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 
+#include "envmap/env_footprint_plain.h"
 #include "envmap/env_layout_detail.h"
 #include "envmap/env_layout_detail4.h"
 #include "math/fast_atan2.h"

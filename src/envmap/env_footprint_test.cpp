@@ -1,4 +1,5 @@
 #include "envmap/env_footprint.h"
+#include "envmap/env_footprint_plain.h"
 
 #include <gtest/gtest.h>
 

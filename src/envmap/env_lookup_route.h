@@ -6,6 +6,7 @@
 #pragma once
 
 #include "envmap/env_footprint.h"
+#include "envmap/env_footprint_plain.h"
 #include "envmap/environment_map.h"
 #include "envmap/polar_caps.h"
 #include "math/mat3.h"
