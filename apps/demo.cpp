@@ -140,8 +140,10 @@ int run_demo_command(const DemoCommandOptions& options) {
         !s) {
         return fail(s.error().message);
     }
-    std::printf("wrote %zu scenes (reference, %zu modes, contact sheet each) and demo.json to %s\n",
-                scenes.size(), std::size(kDemoModes), options.out_dir.string().c_str());
+    std::printf(
+        "wrote %zu scene%s (reference, %zu modes, contact sheet each) and demo.json to %s\n",
+        scenes.size(), scenes.size() == 1 ? "" : "s", std::size(kDemoModes),
+        options.out_dir.string().c_str());
     return 0;
 }
 
