@@ -101,13 +101,26 @@ Result<TextureFilter> parse_plane_filter(std::string_view name) {
     return unknown_filter(name, plane_names(), "plane");
 }
 
+std::string range_text(IntRange range) {
+    return std::to_string(range.low) + " to " + std::to_string(range.high);
+}
+
+std::string width_help(std::string_view what, IntRange widths) {
+    return std::string(what) + ", " + range_text(widths) + " (height = width·9/16)";
+}
+
 std::optional<std::string> range_problem(std::string_view option, long long value, long long low,
                                          long long high, std::string_view note) {
     if (value >= low && value <= high) return std::nullopt;
     std::string message = std::string(option) + " " + std::to_string(value) + " is out of range (" +
-                          std::to_string(low) + " to " + std::to_string(high);
+                          range_text({low, high});
     if (!note.empty()) message += "; " + std::string(note);
     return message + ")";
+}
+
+std::optional<std::string> range_problem(std::string_view option, long long value, IntRange range,
+                                         std::string_view note) {
+    return range_problem(option, value, range.low, range.high, note);
 }
 
 void report_written(const std::string& what, int width, int height, std::string_view filter,

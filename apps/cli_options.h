@@ -49,10 +49,26 @@ std::string plane_filter_names(std::string_view separator);
 Result<FilterMode> parse_render_filter(std::string_view name);
 Result<TextureFilter> parse_plane_filter(std::string_view name);
 
+// The integers an option accepts, low … high: what range_problem checks and --help says.
+struct IntRange {
+    long long low = 0, high = 0;
+};
+// --size of demo, eval and texture-demo (each renders many images of that width) and of plane and
+// render (one image).
+inline constexpr IntRange kDemoWidths{16, 4096}, kImageWidths{16, 16384};
+
+// "16 to 4096": a range as range_problem's message and --help write it.
+std::string range_text(IntRange range);
+
+// --size's help for images `width` × width·9/16: "<what>, 16 to 4096 (height = width·9/16)".
+std::string width_help(std::string_view what, IntRange widths);
+
 // "--spp 0 is out of range (1 to 65536)" ("…(0 to 1024; 0: all cores)" with a `note`) when
 // `value` is outside [low, high]; nullopt when it is inside.
 std::optional<std::string> range_problem(std::string_view option, long long value, long long low,
                                          long long high, std::string_view note = {});
+std::optional<std::string> range_problem(std::string_view option, long long value, IntRange range,
+                                         std::string_view note = {});
 
 // What a command wrote, one line on stderr, as every command that writes an image says it:
 //   "footprint: wrote out.png (480x270, fa, 1 spp, 0.05 s)"

@@ -5,11 +5,14 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <random>
 #include <string>
 #include <utility>
 
 #include "cli_options.h"
+#include "demo.h"
+#include "eval_command.h"
 #include "image/image_io.h"
 #include "texture_demo.h"
 
@@ -161,6 +164,59 @@ TEST(FilterVocabulary, SharedNamesAreTheSameFilter) {
     }
     EXPECT_EQ(parse_render_filter("bilinear").value(), FilterMode::bilinear);
     EXPECT_EQ(parse_plane_filter("bilinear").value(), TextureFilter::bilinear);
+}
+
+// --help states the widths each command's --size accepts: the range in the command's own refusal.
+TEST(CommandHelp, SizeHelpShowsTheRangeTheCommandChecks) {
+    const auto refusal = [](const std::function<int(int)>& run, int width) {
+        ::testing::internal::CaptureStderr();
+        ::testing::internal::CaptureStdout();
+        EXPECT_EQ(run(width), 1) << width;
+        ::testing::internal::GetCapturedStdout();
+        return ::testing::internal::GetCapturedStderr();
+    };
+    struct Command {
+        const char* name;
+        IntRange widths;
+        std::function<int(int)> run;
+    };
+    const Command commands[] = {
+        {"texture-demo", kDemoWidths,
+         [](int width) {
+             TextureDemoOptions o;
+             o.width = width;
+             return run_texture_demo_command(o);
+         }},
+        {"demo", kDemoWidths,
+         [](int width) {
+             DemoCommandOptions o;
+             o.width = width;
+             return run_demo_command(o);
+         }},
+        {"eval", kDemoWidths,
+         [](int width) {
+             EvalCommandOptions o;
+             o.width = width;
+             return run_eval_command(o);
+         }},
+        {"plane", kImageWidths,
+         [](int width) {
+             PlaneCommandOptions o;
+             o.width = width;
+             return run_plane_command(o);
+         }},
+    };
+    for (const Command& c : commands) {
+        const std::string help = width_help("Image width in pixels", c.widths);
+        EXPECT_EQ(help, "Image width in pixels, " + std::to_string(c.widths.low) + " to " +
+                            std::to_string(c.widths.high) + " (height = width·9/16)");
+        for (long long width : {c.widths.low - 1, c.widths.high + 1}) {
+            const std::string err = refusal(c.run, static_cast<int>(width));
+            EXPECT_EQ(err, "footprint: --size " + std::to_string(width) + " is out of range (" +
+                               range_text(c.widths) + ")\n")
+                << c.name;
+        }
+    }
 }
 
 TEST_F(CommandTest, PlaneReportsWhatItWrote) {

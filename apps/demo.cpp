@@ -41,9 +41,7 @@ Rendered render_timed(const RenderScene& scene, const RenderOptions& options,
 }  // namespace
 
 int run_demo_command(const DemoCommandOptions& options) {
-    if (options.width < 16 || options.width > 4096) {
-        return fail("--size " + std::to_string(options.width) + " is out of range (16 to 4096)");
-    }
+    if (auto problem = range_problem("--size", options.width, kDemoWidths)) return fail(*problem);
     if (options.reference_spp < 1 || options.reference_spp > 65536) {
         return fail("--spp " + std::to_string(options.reference_spp) +
                     " is out of range (1 to 65536)");

@@ -193,7 +193,7 @@ nlohmann::json json_number(double v) {
 
 // The first problem with the command line's numbers, if any.
 std::optional<std::string> option_problem(const EvalCommandOptions& options) {
-    if (auto problem = range_problem("--size", options.width, 16, 4096)) return problem;
+    if (auto problem = range_problem("--size", options.width, kDemoWidths)) return problem;
     if (auto problem = range_problem("--reference-spp", options.reference_spp, 1, kMaxReferenceSpp))
         return problem;
     if (options.supersampling_spp.empty()) return "--spp-list: needs at least one value";

@@ -62,7 +62,9 @@ int run(int argc, char** argv) {
         "Render the built-in texture on a grazing plane with every texture filter and a reference");
     demo_cmd->add_option("--out", demo_out, "Output directory (created if missing)")
         ->capture_default_str();
-    demo_cmd->add_option("--size", demo.width, "Image width in pixels (height = width·9/16)")
+    demo_cmd
+        ->add_option("--size", demo.width,
+                     footprint::width_help("Image width in pixels", footprint::kDemoWidths))
         ->capture_default_str();
     demo_cmd->add_option("--samples", demo.samples_per_axis, "Reference: N×N samples per pixel")
         ->capture_default_str();
@@ -82,7 +84,7 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     plane_cmd
         ->add_option("--size", plane.width,
-                     "Image width in pixels, 16 to 16384 (height = width·9/16)")
+                     footprint::width_help("Image width in pixels", footprint::kImageWidths))
         ->capture_default_str();
     plane_cmd->add_option("--uv-scale", plane.uv_scale, "Texture repeats per world unit")
         ->capture_default_str();
@@ -138,7 +140,9 @@ int run(int argc, char** argv) {
     scene_demo_cmd->add_option("--scene", scene_demo.scenes,
                                "Scenes to render (default: all): cylinder parabolic_mirror water "
                                "bump_plate secret_writing brushed_sphere");
-    scene_demo_cmd->add_option("--size", scene_demo.width, "Image width (height = width·9/16)")
+    scene_demo_cmd
+        ->add_option("--size", scene_demo.width,
+                     footprint::width_help("Image width in pixels", footprint::kDemoWidths))
         ->capture_default_str();
     scene_demo_cmd
         ->add_option("--spp", scene_demo.reference_spp, "Reference samples per pixel, 1 to 65536")
@@ -170,7 +174,11 @@ int run(int argc, char** argv) {
     eval_cmd->add_option("scenes", eval.scenes,
                          "Built-in demo names or .json scene files (default: every demo)");
     eval_cmd->add_option("--out", eval_out, "Output directory")->capture_default_str();
-    eval_cmd->add_option("--size", eval.width, "Demo image width (height = width·9/16)")
+    eval_cmd
+        ->add_option(
+            "--size", eval.width,
+            footprint::width_help("Image width of the built-in demos", footprint::kDemoWidths) +
+                "; scene files keep their own size")
         ->capture_default_str();
     eval_cmd->add_option("--reference-spp", eval.reference_spp, "Reference samples per pixel")
         ->capture_default_str();
@@ -208,9 +216,10 @@ int run(int argc, char** argv) {
         ->add_option("--seed", render.seed,
                      "Seed of the sample sequences (different seeds: independent samples)")
         ->capture_default_str();
-    render_cmd->add_option("--size", render.width,
-                           "Image width in pixels, 16 to 16384 (height from the scene's aspect "
-                           "ratio; default: the scene's size)");
+    render_cmd->add_option(
+        "--size", render.width,
+        "Image width in pixels, " + footprint::range_text(footprint::kImageWidths) +
+            " (height from the scene's aspect ratio; default: the scene's size)");
     render_cmd->add_option("--threads", render.threads, "Worker threads, 0 to 1024 (0: all cores)")
         ->capture_default_str();
     render_cmd

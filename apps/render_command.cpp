@@ -21,7 +21,6 @@ namespace {
 
 constexpr int kDefaultReferenceSpp = 64;
 constexpr int kMaxSpp = 1 << 16;
-constexpr int kMaxWidth = 16384;
 constexpr int kMaxFrames = 100000;
 constexpr int kMaxThreads = 1024;
 
@@ -51,7 +50,7 @@ std::optional<std::string> option_problem(const RenderCommandOptions& options) {
         if (auto problem = range_problem("--spp", *options.spp, 1, kMaxSpp)) return problem;
     }
     if (options.width) {
-        if (auto problem = range_problem("--size", *options.width, 16, kMaxWidth)) return problem;
+        if (auto problem = range_problem("--size", *options.width, kImageWidths)) return problem;
     }
     if (options.frames) {
         if (auto problem = range_problem("--frames", *options.frames, 1, kMaxFrames))

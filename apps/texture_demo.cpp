@@ -34,8 +34,7 @@ std::string number(double v, const char* format = "%.6g") {
 }
 
 int demo(const TextureDemoOptions& options) {
-    if (options.width < 16 || options.width > 4096)
-        return fail("--size " + std::to_string(options.width) + " is out of range (16 to 4096)");
+    if (auto problem = range_problem("--size", options.width, kDemoWidths)) return fail(*problem);
     if (options.samples_per_axis < 1 || options.samples_per_axis > 64)
         return fail("--samples " + std::to_string(options.samples_per_axis) +
                     " is out of range (1 to 64)");
@@ -100,9 +99,9 @@ int demo(const TextureDemoOptions& options) {
     for (const Entry& e : entries) {
         images.push_back(&e.image);
         const bool reference = e.name == "reference";
-        labels.push_back(panel_label(
-            e.name, reference ? options.samples_per_axis * options.samples_per_axis : 1,
-            reference ? NAN : e.rmse, e.stats.seconds));
+        labels.push_back(
+            panel_label(e.name, reference ? options.samples_per_axis * options.samples_per_axis : 1,
+                        reference ? NAN : e.rmse, e.stats.seconds));
     }
     const ContactSheet sheet = contact_sheet(images, labels, {kColumns, kGap});
     if (!sheet.warning.empty()) warn(sheet.warning);
@@ -168,8 +167,7 @@ int demo(const TextureDemoOptions& options) {
 int plane(const PlaneCommandOptions& options) {
     const Result<TextureFilter> filter = parse_plane_filter(options.filter);
     if (!filter) return fail(filter.error().message);
-    if (options.width < 16 || options.width > 16384)
-        return fail("--size " + std::to_string(options.width) + " is out of range (16 to 16384)");
+    if (auto problem = range_problem("--size", options.width, kImageWidths)) return fail(*problem);
     if (!std::isfinite(options.uv_scale) || !(options.uv_scale > 0) || options.uv_scale > 1e6)
         return fail("--uv-scale " + number(options.uv_scale) +
                     " is out of range (a positive number up to 1e6)");
