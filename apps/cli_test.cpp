@@ -10,6 +10,8 @@
 #include <string>
 #include <utility>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_options.h"
 #include "demo.h"
 #include "eval_command.h"
@@ -293,6 +295,13 @@ TEST_F(CommandTest, DemoWritesEveryFile) {
                            std::istreambuf_iterator<char>());
     EXPECT_NE(json.find("\"rmse\""), std::string::npos);
     EXPECT_NE(json.find("\"order\": [\"reference\", \"nearest\""), std::string::npos) << json;
+    // The contact sheet as demo.json describes it: cells with their label strips, gaps between.
+    const nlohmann::json described = nlohmann::json::parse(json)["contact_sheet"];
+    const int gap = described["gap"], rows = described["rows"], columns = described["columns"];
+    EXPECT_EQ(rows * described["cell_height"].get<int>() + (rows + 1) * gap, sheet->height);
+    EXPECT_EQ(columns * described["cell_width"].get<int>() + (columns + 1) * gap, sheet->width);
+    EXPECT_EQ(described["cell_height"].get<int>() - described["label_height"].get<int>(), 18);
+    EXPECT_GT(described["label_height"].get<int>(), 0);
     for (const auto& e : fs::directory_iterator(options.out_dir))
         EXPECT_NE(e.path().filename().string().front(), '.') << "temporary file left: " << e.path();
 }

@@ -140,10 +140,14 @@ int demo(const TextureDemoOptions& options) {
              << "\n";
     }
     json << "  ],\n";
+    // A cell is a panel (the image, unchanged) and the label strip under it; cell i's top left
+    // corner is (gap + column·(cell_width + gap), gap + row·(cell_height + gap)).
+    const int label_height = sheet.strips.empty() ? 0 : sheet.strips.front().height;
     json << "  \"contact_sheet\": {\"file\": \"demo_contact_sheet.png\", \"columns\": " << kColumns
          << ", \"rows\": " << (entries.size() + kColumns - 1) / kColumns << ", \"gap\": " << kGap
-         << ", \"cell_width\": " << view.width << ", \"cell_height\": " << view.height
-         << ", \"order\": [";
+         << ", \"cell_width\": " << view.width
+         << ", \"cell_height\": " << view.height + label_height
+         << ", \"label_height\": " << label_height << ", \"order\": [";
     for (std::size_t i = 0; i < entries.size(); ++i)
         json << (i ? ", " : "") << "\"" << entries[i].name << "\"";
     json << "]}\n}\n";

@@ -18,7 +18,9 @@ namespace footprint {
 //   demo_contact_sheet.png   all images in a grid, 4 columns, reference first, then the filters in
 //                            the order above (listed in demo.json), 4-pixel grey gaps;
 //   demo.json                sizes, camera, per filter RMSE (linear light, against the reference,
-//                            over the plane rows away from the horizon), seconds and lookups.
+//                            over the plane rows away from the horizon), seconds and lookups, and
+//                            the contact sheet's cells (cell_height includes the label strip,
+//                            label_height; docs/cli.md).
 // Prints a table (filter, RMSE, ms) to stdout; progress bars on stderr if it is a terminal and
 // not quiet.
 struct TextureDemoOptions {
@@ -37,9 +39,9 @@ int run_texture_demo_command(const TextureDemoOptions& options);
 struct PlaneCommandOptions {
     std::filesystem::path texture;
     std::filesystem::path output;
-    std::string filter = "fa";  // apps/cli_options.h's plane filters
-    int width = 480;            // height = width · 9/16; 16 … 16384
-    double uv_scale = 0.125;    // texture periods per world unit, > 0
+    std::string filter = "fa";       // apps/cli_options.h's plane filters
+    int width = 480;                 // height = width · 9/16; 16 … 16384
+    double uv_scale = 0.125;         // texture periods per world unit, > 0
     bool repair_non_finite = false;  // NaN / ±Inf texels: repair with a warning, not refuse
     bool quiet = false;
 };
