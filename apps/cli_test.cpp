@@ -306,6 +306,28 @@ TEST_F(CommandTest, DemoWritesEveryFile) {
         EXPECT_NE(e.path().filename().string().front(), '.') << "temporary file left: " << e.path();
 }
 
+// The last file of the run cannot be written (demo.json is a directory): the command fails naming
+// it and leaves none of the run's images behind.
+TEST_F(CommandTest, DemoThatFailsLeavesNothingOfItsRun) {
+    TextureDemoOptions options;
+    options.out_dir = dir_ / "demo";
+    options.width = 32;
+    options.samples_per_axis = 1;
+    options.texture_size = 64;
+    options.quiet = true;
+    fs::create_directories(options.out_dir / "demo.json" / "inside");
+    ::testing::internal::CaptureStdout();
+    ::testing::internal::CaptureStderr();
+    const int status = run_texture_demo_command(options);
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    ::testing::internal::GetCapturedStdout();
+    EXPECT_EQ(status, 1);
+    EXPECT_NE(err.find("demo.json"), std::string::npos) << err;
+    EXPECT_TRUE(one_line(err)) << err;
+    for (const auto& e : fs::directory_iterator(options.out_dir))
+        EXPECT_EQ(e.path().filename(), "demo.json") << "left behind: " << e.path();
+}
+
 TEST_F(CommandTest, DemoIntoAFileFails) {
     TextureDemoOptions options;
     options.out_dir = texture_;  // exists, not a directory

@@ -43,6 +43,45 @@ void warn(const std::string& message) {
     std::cerr << "footprint: warning: " << message << "\n";
 }
 
+RunOutputs::~RunOutputs() {
+    if (kept_) return;
+    std::error_code ignored;
+    for (auto file = files_.rbegin(); file != files_.rend(); ++file) fs::remove(*file, ignored);
+    // Deepest first; fs::remove leaves a directory that is not empty (another run's files).
+    for (auto dir = directories_.rbegin(); dir != directories_.rend(); ++dir)
+        fs::remove(*dir, ignored);
+}
+
+Status RunOutputs::create_directories(const fs::path& dir) {
+    std::vector<fs::path> missing;  // dir and its missing parents, deepest first
+    std::error_code ec;
+    for (fs::path p = dir; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+        missing.push_back(p);
+        if (p == p.parent_path()) break;
+    }
+    fs::create_directories(dir, ec);
+    if (!ec && !fs::is_directory(dir, ec)) ec = std::make_error_code(std::errc::not_a_directory);
+    if (ec) return Error{"cannot create " + quoted(dir) + ": " + ec.message()};
+    directories_.insert(directories_.end(), missing.rbegin(), missing.rend());
+    return {};
+}
+
+Status RunOutputs::save(const std::vector<ImageToSave>& images) {
+    if (Status saved = save_images(images); !saved) return saved;
+    for (const ImageToSave& item : images) files_.push_back(item.file);
+    return {};
+}
+
+Status RunOutputs::save(const Image& image, const fs::path& file) {
+    return save({{&image, file}});
+}
+
+Status RunOutputs::write(const fs::path& file, std::string_view bytes) {
+    if (Status written = write_file_atomically(file, bytes); !written) return written;
+    files_.push_back(file);
+    return {};
+}
+
 namespace {
 
 constexpr float kBackground = 0.18f;  // linear grey between the panels

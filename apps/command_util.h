@@ -5,10 +5,12 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/result.h"
 #include "image/image.h"
+#include "image/image_io.h"
 
 namespace footprint {
 
@@ -24,6 +26,32 @@ std::optional<std::string> output_file_problem(const std::filesystem::path& file
 
 // Prints "footprint: warning: <message>" to stderr (the command goes on).
 void warn(const std::string& message);
+
+// The files and directories one run of a command writes, removed again unless the run completes:
+// a command that fails part way (a full disk, an unwritable file) leaves nothing of its own run
+// behind (a file of an earlier run that it had already replaced goes too). Each file is written
+// completely or not at all (save_images, write_file_atomically); the directories the run created
+// are removed with its files when nothing else is in them.
+class RunOutputs {
+  public:
+    RunOutputs() = default;
+    RunOutputs(const RunOutputs&) = delete;
+    RunOutputs& operator=(const RunOutputs&) = delete;
+    ~RunOutputs();  // unless keep() was called: removes the files, then the directories created
+
+    // Creates `dir` and its missing parents: "cannot create 'out/a': Not a directory".
+    Status create_directories(const std::filesystem::path& dir);
+    // save_images (image_io.h): all the images or none; the message names the file at fault.
+    Status save(const std::vector<ImageToSave>& images);
+    Status save(const Image& image, const std::filesystem::path& file);
+    Status write(const std::filesystem::path& file, std::string_view bytes);
+    // The run completed: what it wrote stays.
+    void keep() { kept_ = true; }
+
+  private:
+    std::vector<std::filesystem::path> files_, directories_;  // in the order they were made
+    bool kept_ = false;
+};
 
 // The font of contact-sheet labels (Debian package fonts-dejavu-core).
 inline constexpr const char* kLabelFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";

@@ -59,9 +59,9 @@ int run_demo_command(const DemoCommandOptions& options) {
         if (!scene) return fail(scene.error().message);
         scenes.push_back(std::move(*scene));
     }
-    std::error_code ec;
-    fs::create_directories(options.out_dir, ec);
-    if (ec) return fail("cannot create " + quoted(options.out_dir) + ": " + ec.message());
+    RunOutputs outputs;  // a failed run leaves none of its files behind
+    if (Status made = outputs.create_directories(options.out_dir); !made)
+        return fail(made.error().message);
 
     const bool show_progress = !options.quiet && Progress::stderr_is_terminal();
     nlohmann::json report = {{"width", scene_options.width},
@@ -74,8 +74,7 @@ int run_demo_command(const DemoCommandOptions& options) {
         Result<RenderScene> scene = prepare_render_scene(demo.scene);
         if (!scene) return fail("demo scene " + demo.name + ": " + scene.error().message);
         const fs::path dir = options.out_dir / demo.name;
-        fs::create_directories(dir, ec);
-        if (ec) return fail("cannot create " + quoted(dir) + ": " + ec.message());
+        if (Status made = outputs.create_directories(dir); !made) return fail(made.error().message);
 
         RenderOptions render_options;
         render_options.threads = options.threads;
@@ -83,7 +82,7 @@ int run_demo_command(const DemoCommandOptions& options) {
         render_options.spp = options.reference_spp;
         const Rendered reference =
             render_timed(*scene, render_options, demo.name + " reference", show_progress);
-        if (Status s = save_image(reference.image, dir / "reference.png"); !s) {
+        if (Status s = outputs.save(reference.image, dir / "reference.png"); !s) {
             return fail(s.error().message);
         }
         nlohmann::json entry = {
@@ -102,7 +101,7 @@ int run_demo_command(const DemoCommandOptions& options) {
             Rendered r = render_timed(*scene, render_options,
                                       demo.name + " " + filter_mode_name(mode), show_progress);
             const std::string file = std::string(filter_mode_name(mode)) + ".png";
-            if (Status s = save_image(r.image, dir / file); !s) return fail(s.error().message);
+            if (Status s = outputs.save(r.image, dir / file); !s) return fail(s.error().message);
             const Result<ImageComparison> comparison = compare_images(r.image, reference.image);
             if (!comparison)
                 return fail(demo.name + " " + filter_mode_name(mode) + ": " +
@@ -129,15 +128,15 @@ int run_demo_command(const DemoCommandOptions& options) {
         const ContactSheet sheet = contact_sheet(sheet_images, labels);
         if (!sheet.warning.empty() && !warned) warn(sheet.warning);
         warned = warned || !sheet.warning.empty();
-        if (Status s = save_image(sheet.image, dir / "contact_sheet.png"); !s) {
+        if (Status s = outputs.save(sheet.image, dir / "contact_sheet.png"); !s) {
             return fail(s.error().message);
         }
         report["scenes"].push_back(entry);
     }
-    if (Status s = write_file_atomically(options.out_dir / "demo.json", report.dump(2) + "\n");
-        !s) {
+    if (Status s = outputs.write(options.out_dir / "demo.json", report.dump(2) + "\n"); !s) {
         return fail(s.error().message);
     }
+    outputs.keep();
     std::printf(
         "wrote %zu scene%s (reference, %zu modes, contact sheet each) and demo.json to %s\n",
         scenes.size(), scenes.size() == 1 ? "" : "s", std::size(kDemoModes),

@@ -9,7 +9,8 @@
 // and demo.json: per scene its title and assets, per mode the RMSE against the reference (linear
 // light, all pixels), seconds and lookups. Prints a table to stdout; progress bars on stderr when
 // it is a terminal and not quiet. Returns 0, or 1 after one line "footprint: …" on stderr naming
-// what failed; files are written atomically.
+// what failed; files are written atomically, and a run that fails removes the files and folders
+// it had written (command_util.h's RunOutputs).
 #pragma once
 
 #include <filesystem>

@@ -113,6 +113,28 @@ TEST_F(EvalCommandTest, ReferencesAreCachedByContent) {
     EXPECT_FALSE(results(o)["scenes"][0]["reference_cached"].get<bool>());
 }
 
+// index.html, written last, cannot be written (a directory of that name): the command fails
+// naming it and leaves none of the run's images or rows; only the cached references stay.
+TEST_F(EvalCommandTest, ARunThatFailsLeavesNothingButTheCache) {
+    EvalCommandOptions o = small({"secret_writing", "water"});
+    o.frames = 0;
+    fs::create_directories(o.out_dir / "index.html" / "inside");
+    std::string err;
+    EXPECT_EQ(run(o, &err), 1);
+    EXPECT_NE(err.find("index.html"), std::string::npos) << err;
+    int cached = 0;
+    for (const auto& e : fs::recursive_directory_iterator(o.out_dir)) {
+        const fs::path relative = fs::relative(e.path(), o.out_dir);
+        const std::string top = relative.begin()->string();
+        if (top == "cache") {
+            cached += e.is_regular_file() ? 1 : 0;
+        } else {
+            EXPECT_EQ(top, "index.html") << "left behind: " << relative;
+        }
+    }
+    EXPECT_EQ(cached, 2);  // one reference per scene, reused by the next run
+}
+
 TEST_F(EvalCommandTest, BadArgumentsNameTheProblem) {
     std::string err;
     EXPECT_EQ(run(small({"teapot"}), &err), 1);

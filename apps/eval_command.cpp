@@ -230,9 +230,11 @@ int run_eval_command(const EvalCommandOptions& options) {
         if (!scene) return fail(scene.error().message);
         scenes.push_back(std::move(*scene));
     }
-    std::error_code ec;
-    fs::create_directories(options.out_dir / "cache", ec);
-    if (ec) return fail("cannot create " + quoted(options.out_dir) + ": " + ec.message());
+    // A failed run leaves none of its files behind, except the cache: references of the scenes'
+    // content, valid whatever failed, so that the run after the fix need not render them again.
+    RunOutputs outputs;
+    if (Status made = outputs.create_directories(options.out_dir / "cache"); !made)
+        return fail(made.error().message);
 
     const bool show_progress = !options.quiet && Progress::stderr_is_terminal();
     EvalReport report;
@@ -254,8 +256,7 @@ int run_eval_command(const EvalCommandOptions& options) {
         const RenderScene& scene = *prepared;
         const SceneDesc& desc = scene.desc();
         const fs::path dir = options.out_dir / named.name;
-        fs::create_directories(dir, ec);
-        if (ec) return fail("cannot create " + quoted(dir) + ": " + ec.message());
+        if (Status made = outputs.create_directories(dir); !made) return fail(made.error().message);
         const Renderer renderer(scene, options.threads, show_progress);
         const std::string key = hash_hex(scene_content_hash(desc)) + "-v" +
                                 std::to_string(kReferenceVersion) + "-" +
@@ -275,7 +276,7 @@ int run_eval_command(const EvalCommandOptions& options) {
                    });
         if (!reference) return fail(reference.error().message);
         const Image reference_display = display_encoded(*reference);
-        if (Status s = save_image(*reference, dir / "reference.png"); !s) {
+        if (Status s = outputs.save(*reference, dir / "reference.png"); !s) {
             return fail(s.error().message);
         }
 
@@ -345,7 +346,7 @@ int run_eval_command(const EvalCommandOptions& options) {
             em.spp = m.spp;
             em.seconds = t.seconds;
             em.image_file = named.name + "/" + m.file + ".png";
-            if (Status s = save_image(t.image, options.out_dir / em.image_file); !s) {
+            if (Status s = outputs.save(t.image, options.out_dir / em.image_file); !s) {
                 return fail(s.error().message);
             }
             Result<ImageComparison> all = compare_images(t.image, *reference);
@@ -379,7 +380,7 @@ int run_eval_command(const EvalCommandOptions& options) {
             EvalMethod& em = eval_scene.methods[i];
             em.heat_map_file = named.name + "/" + methods[i].file + "_error.png";
             const Image heat = error_heat_map(images[i], *reference, eval_scene.heat_map_scale);
-            if (Status s = save_image(heat, options.out_dir / em.heat_map_file); !s) {
+            if (Status s = outputs.save(heat, options.out_dir / em.heat_map_file); !s) {
                 return fail(s.error().message);
             }
         }
@@ -425,15 +426,16 @@ int run_eval_command(const EvalCommandOptions& options) {
         }
     }
 
-    if (Status s = write_file_atomically(options.out_dir / "results.csv", csv); !s) {
+    if (Status s = outputs.write(options.out_dir / "results.csv", csv); !s) {
         return fail(s.error().message);
     }
-    if (Status s = write_file_atomically(options.out_dir / "results.json", results.dump(2) + "\n");
-        !s) {
+    if (Status s = outputs.write(options.out_dir / "results.json", results.dump(2) + "\n"); !s) {
         return fail(s.error().message);
     }
     const fs::path html = options.out_dir / "index.html";
     if (Status s = write_eval_report(report, html); !s) return fail(s.error().message);
+    // The report is complete: one the browser check faults stays, for the user to look at.
+    outputs.keep();
     if (options.browser_check) {
         const BrowserCheck check = check_report_in_browser(html, report_image_count(report));
         if (check.chromium_found && !check.passed()) {

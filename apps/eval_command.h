@@ -31,7 +31,10 @@
 // scene never reuses a stale reference. Unless --no-browser-check, the report is then opened in
 // headless Chromium (when installed) and must show every image.
 //
-// Returns 0, or 1 after one line "footprint: …" naming the scene, file or value at fault.
+// Returns 0, or 1 after one line "footprint: …" naming the scene, file or value at fault. A run
+// that fails removes the files and folders it had written, except the cache (valid references,
+// kept for the run after the fix) and a complete report that the browser check finds faulty
+// (kept to be looked at).
 #pragma once
 
 #include <filesystem>

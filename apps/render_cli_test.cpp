@@ -2,6 +2,7 @@
 // demo.h): outputs, exit statuses, one-line errors naming the file or value, no partial output.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -261,6 +262,52 @@ TEST_F(RenderCommandTest, FramesFollowTheCameraPath) {
     still.frames = 2;
     EXPECT_EQ(render_cmd(still, &err), 1);
     EXPECT_NE(err.find("camera_path"), std::string::npos) << err;
+}
+
+// Everything under `dir`, as paths relative to it.
+std::vector<std::string> tree(const fs::path& dir) {
+    std::vector<std::string> paths;
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+        paths.push_back(fs::relative(e.path(), dir).string());
+    std::sort(paths.begin(), paths.end());
+    return paths;
+}
+
+// A sequence whose second frame cannot be written (a directory of that name): the command fails
+// naming the frame and removes the first.
+TEST_F(RenderCommandTest, FramesThatFailPartWayLeaveNoFrameBehind) {
+    write("path.json", R"({"image": {"width": 16, "height": 12},
+          "camera": {"position": [0, 1, 3], "look_at": [0, 0, 0]},
+          "camera_path": [{"position": [0, 1, 3]}, {"position": [1, 1, 3], "look_at": [1, 0, 0]}],
+          "objects": [{"shape": "sphere", "radius": 0.7}]})");
+    fs::create_directories(dir_ / "seq" / "seq_0001.png");
+    RenderCommandOptions o = options("seq/seq.png", "fa");
+    o.scene = dir_ / "path.json";
+    o.frames = 3;
+    std::string err;
+    EXPECT_EQ(render_cmd(o, &err), 1);
+    EXPECT_NE(err.find("seq_0001.png"), std::string::npos) << err;
+    EXPECT_EQ(tree(dir_ / "seq"), std::vector<std::string>{"seq_0001.png"});
+}
+
+// demo.json, written last, cannot be written (a directory of that name): the command fails naming
+// it, and no scene's images or folders remain.
+TEST_F(RenderCommandTest, DemoThatFailsLeavesNothingOfItsRun) {
+    DemoCommandOptions o;
+    o.out_dir = dir_ / "demo";
+    o.scenes = {"parabolic_mirror", "secret_writing"};
+    o.width = 16;
+    o.reference_spp = 1;
+    o.quiet = true;
+    fs::create_directories(o.out_dir / "demo.json" / "inside");
+    ::testing::internal::CaptureStdout();
+    ::testing::internal::CaptureStderr();
+    const int status = run_demo_command(o);
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    ::testing::internal::GetCapturedStdout();
+    EXPECT_EQ(status, 1);
+    EXPECT_NE(err.find("demo.json"), std::string::npos) << err;
+    EXPECT_EQ(tree(o.out_dir), (std::vector<std::string>{"demo.json", "demo.json/inside"}));
 }
 
 TEST_F(RenderCommandTest, DemoWritesEveryModeAContactSheetAndAReport) {

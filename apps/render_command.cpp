@@ -139,6 +139,7 @@ int run_render_command(const RenderCommandOptions& options) {
         static_cast<std::uint64_t>(render_tile_count(desc->width, desc->height)) * frame_count,
         show_progress);
     RenderStats stats;
+    RunOutputs outputs;  // a sequence that fails part way leaves none of its frames behind
     for (int frame = 0; frame < frame_count; ++frame) {
         render_options.frame = frame;
         RenderStats frame_stats;
@@ -155,8 +156,9 @@ int run_render_command(const RenderCommandOptions& options) {
         }
         const std::filesystem::path file =
             options.frames ? frame_file(options.output, frame, frame_count) : options.output;
-        if (Status saved = save_image(image, file); !saved) return fail(saved.error().message);
+        if (Status saved = outputs.save(image, file); !saved) return fail(saved.error().message);
     }
+    outputs.keep();
     progress.finish();
     report(options, *desc, render_options, stats, frame_count);
     return 0;

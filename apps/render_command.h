@@ -13,7 +13,8 @@
 // Returns the process exit status: 0, or 1 after one line "footprint: <what is wrong>" on stderr
 // naming the file, key or value at fault (scene errors come from scene/scene_file.h and
 // render/render_scene.h). The output path is checked before any work, and the image is written
-// atomically (image/image_io.h's save_image). PNG/JPEG/TIFF outputs are sRGB-encoded after
+// atomically (image/image_io.h's save_image); a sequence that fails part way removes the frames
+// it had written. PNG/JPEG/TIFF outputs are sRGB-encoded after
 // multiplying by 2^exposure; EXR/HDR outputs hold the linear radiance as rendered (exposure is not
 // applied: HDR stays HDR). A progress bar on stderr when it is a terminal and not --quiet. When
 // done, one line on stderr (not with --quiet or --json):

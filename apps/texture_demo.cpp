@@ -46,8 +46,9 @@ int demo(const TextureDemoOptions& options) {
     std::error_code ec;
     if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
         return fail("cannot write into " + quoted(dir) + ": it exists and is not a directory");
-    std::filesystem::create_directories(dir, ec);
-    if (ec) return fail("cannot create output directory " + quoted(dir) + ": " + ec.message());
+    RunOutputs outputs;
+    if (const Status made = outputs.create_directories(dir); !made)
+        return fail(made.error().message);
 
     const bool show_progress = !options.quiet && Progress::stderr_is_terminal();
     PlaneViewOptions view;
@@ -88,11 +89,6 @@ int demo(const TextureDemoOptions& options) {
     std::size_t measured_pixels = 0;
     for (Entry& e : entries) e.rmse = plane_rmse(e.image, entries[0].image, view, &measured_pixels);
 
-    // Images first, the JSON (which lists them) last.
-    for (const Entry& e : entries) {
-        const Status saved = save_image(e.image, dir / e.file);
-        if (!saved) return fail(saved.error().message);
-    }
     constexpr int kColumns = 4, kGap = 4;
     std::vector<const Image*> images;
     std::vector<std::string> labels;
@@ -105,8 +101,11 @@ int demo(const TextureDemoOptions& options) {
     }
     const ContactSheet sheet = contact_sheet(images, labels, {kColumns, kGap});
     if (!sheet.warning.empty()) warn(sheet.warning);
-    if (const Status saved = save_image(sheet.image, dir / "demo_contact_sheet.png"); !saved)
-        return fail(saved.error().message);
+    // The images first, all or none, then the JSON that lists them.
+    std::vector<ImageToSave> files;
+    for (const Entry& e : entries) files.push_back({&e.image, dir / e.file});
+    files.push_back({&sheet.image, dir / "demo_contact_sheet.png"});
+    if (const Status saved = outputs.save(files); !saved) return fail(saved.error().message);
 
     const PlaneView camera(view);
     std::ostringstream json;
@@ -151,8 +150,9 @@ int demo(const TextureDemoOptions& options) {
     for (std::size_t i = 0; i < entries.size(); ++i)
         json << (i ? ", " : "") << "\"" << entries[i].name << "\"";
     json << "]}\n}\n";
-    if (const Status saved = write_file_atomically(dir / "demo.json", json.str()); !saved)
+    if (const Status saved = outputs.write(dir / "demo.json", json.str()); !saved)
         return fail(saved.error().message);
+    outputs.keep();
 
     std::printf("%-10s %10s %10s %12s\n", "filter", "RMSE", "ms", "lookups");
     for (const Entry& e : entries) {

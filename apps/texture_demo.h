@@ -4,7 +4,8 @@
 // Both return the process exit status: 0 on success, 1 on any error, after printing exactly one
 // line "footprint: <what is wrong>" to stderr that names the file or option at fault. They never
 // throw and never leave a partial output file behind (images are written by save_image, which
-// replaces its target atomically; demo.json likewise through a temporary file and a rename).
+// replaces its target atomically; demo.json likewise through a temporary file and a rename), and
+// a texture-demo that fails removes the images it had written (command_util.h's RunOutputs).
 #pragma once
 
 #include <filesystem>
