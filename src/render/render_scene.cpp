@@ -29,13 +29,23 @@ Error scene_error(const SceneDesc& desc, const std::string& key, const Error& er
     return Error{file + key + (error.message.empty() ? "" : ": " + error.message)};
 }
 
+// The hint added where a NaN or infinite texel was refused: the scene key that repairs them.
+std::string repair_hint(const char* where) {
+    return std::string(" (the ") + where + " key \"non_finite\": \"repair\" replaces them)";
+}
+
 Result<Image> load_source(const ImageSource& source, ColorEncoding encoding,
                           NonFinitePolicy non_finite = NonFinitePolicy::refuse) {
     if (source.image) return *source.image;
     ImageLoadOptions options;
     options.encoding = encoding;
     options.non_finite = non_finite;
-    return load_image(source.file, options);
+    Result<Image> image = load_image(source.file, options);
+    if (image || non_finite != NonFinitePolicy::refuse) return image;
+    // Point at the material key only where repairing would have helped.
+    options.non_finite = NonFinitePolicy::repair;
+    if (!load_image(source.file, options)) return image;
+    return Error{image.error().message + repair_hint("material")};
 }
 
 // RGB of any 1–4 channel image (grey replicated, alpha dropped).
@@ -82,7 +92,8 @@ Result<RenderMaterial> prepare_material(const MaterialDesc& desc) {
     const float sigma2 = desc.micro_roughness * desc.micro_roughness;
     material.micro_roughness = Sym2{sigma2, 0, sigma2};
     if (!desc.base_color_map.empty()) {
-        Result<Image> image = load_source(desc.base_color_map, ColorEncoding::automatic);
+        Result<Image> image =
+            load_source(desc.base_color_map, ColorEncoding::automatic, desc.non_finite);
         if (!image) return Error{"base_color: " + image.error().message};
         Result<std::shared_ptr<const MipPyramid>> pyramid = color_pyramid(*image);
         if (!pyramid)
@@ -96,7 +107,7 @@ Result<RenderMaterial> prepare_material(const MaterialDesc& desc) {
         // A normal map's NaN texels are kept: the material's invalid_normals policy decides.
         const NonFinitePolicy non_finite = desc.bump.source == BumpDesc::Source::normal_map
                                                ? NonFinitePolicy::keep
-                                               : NonFinitePolicy::refuse;
+                                               : desc.non_finite;
         Result<Image> map = load_source(desc.bump.map, ColorEncoding::linear, non_finite);
         if (!map) return Error{std::string(key) + ": " + map.error().message};
         Result<Image> slopes = bump_slopes(desc.bump, *map, desc.invalid_normals);
@@ -149,7 +160,13 @@ Result<std::unique_ptr<RenderEnvironment>> prepare_environment(const Environment
         for (const ImageSource& source : desc.images) files.push_back(source.file);
         EnvImageOptions options;
         if (!desc.detect_layout) options.layout = desc.layout;
+        options.image.non_finite = desc.non_finite;
         Result<EnvImages> loaded = load_environment_images(files, options);
+        if (!loaded && desc.non_finite == NonFinitePolicy::refuse) {
+            options.image.non_finite = NonFinitePolicy::repair;
+            if (load_environment_images(files, options))
+                return Error{loaded.error().message + repair_hint("environment")};
+        }
         if (!loaded) return loaded.error();
         images = std::move(*loaded);
     }

@@ -17,6 +17,7 @@
 #include "bump/slope_map.h"
 #include "envmap/env_layout.h"
 #include "image/image.h"
+#include "image/image_io.h"
 #include "math/vec.h"
 #include "math/vec3.h"
 
@@ -57,6 +58,9 @@ struct EnvironmentDesc {
     Vec3d rotation_deg{0, 0,
                        0};  // world → map: rotation_xyz_degrees (math/mat3.h), x then y then z
     float intensity = 1;    // multiplies every texel (linear)
+    // A NaN or ±Inf texel in the files: refuse (the error names the file and the texel) or repair
+    // (image/image_io.h: the mean of its finite neighbours), for maps known to hold a few.
+    NonFinitePolicy non_finite = NonFinitePolicy::refuse;
 };
 
 enum class LightType { directional, point };
@@ -99,6 +103,9 @@ struct MaterialDesc {
     // names the file and the texel; clamp (bump/slope_map.h) is for maps known to hold a few such
     // texels.
     InvalidNormalPolicy invalid_normals = InvalidNormalPolicy::error;
+    // A NaN or ±Inf texel in base_color_map's or a height map's file: refuse or repair, as
+    // EnvironmentDesc::non_finite. (A normal map's are invalid normals.)
+    NonFinitePolicy non_finite = NonFinitePolicy::refuse;
 };
 
 struct PlaneShape {

@@ -385,7 +385,7 @@ class SceneParser {
     }
 
     EnvironmentDesc parse_environment(const json& j, const std::string& path) const {
-        check_keys(j, path, {"file", "layout", "rotation_deg", "intensity"});
+        check_keys(j, path, {"file", "layout", "rotation_deg", "intensity", "non_finite"});
         EnvironmentDesc env;
         const std::string file_path = member(path, "file");
         const json& files = require(j, path, "file");
@@ -422,6 +422,8 @@ class SceneParser {
             env.rotation_deg = vec3(*v, member(path, "rotation_deg"));
         if (const json* v = find(j, "intensity"))
             env.intensity = non_negative(*v, member(path, "intensity"));
+        if (const json* v = find(j, "non_finite"))
+            env.non_finite = parse_non_finite(*v, member(path, "non_finite"));
         return env;
     }
 
@@ -598,7 +600,7 @@ class SceneParser {
     MaterialDesc parse_material(const json& j, const std::string& path, bool mesh) const {
         check_keys(j, path,
                    {"base_color", "diffuse", "specular", "shininess", "mirror", "fresnel_f0",
-                    "bump", "micro_roughness", "invalid_normals"});
+                    "bump", "micro_roughness", "invalid_normals", "non_finite"});
         MaterialDesc m;
         auto at = [&](std::string_view key) { return member(path, key); };
         if (const json* v = find(j, "base_color")) {
@@ -626,7 +628,24 @@ class SceneParser {
         if (const json* v = find(j, "bump")) m.bump = parse_bump(*v, at("bump"));
         if (const json* v = find(j, "invalid_normals"))
             m.invalid_normals = parse_invalid_normals(*v, at("invalid_normals"), m.bump, mesh);
+        if (const json* v = find(j, "non_finite")) {
+            m.non_finite = parse_non_finite(*v, at("non_finite"));
+            if (m.base_color_map.empty() && m.bump.source != BumpDesc::Source::height_map)
+                fail(at("non_finite"),
+                     "applies to the material's texture files: give base_color as a file or "
+                     "bump.height_map (for a normal map's NaN texels: invalid_normals)");
+        }
         return m;
+    }
+
+    // "error" (the default: a NaN or infinite texel stops the render, named) or "repair"
+    // (image/image_io.h's NonFinitePolicy::repair).
+    NonFinitePolicy parse_non_finite(const json& j, const std::string& path) const {
+        const std::string name = string(j, path);
+        if (name == "repair") return NonFinitePolicy::repair;
+        if (name != "error")
+            fail(path, "unknown policy " + quoted(name) + suggest(name, {"error", "repair"}));
+        return NonFinitePolicy::refuse;
     }
 
     // "error" (the default: an invalid normal map texel stops the render, named) or "clamp"

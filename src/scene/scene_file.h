@@ -8,7 +8,8 @@
 //     "camera":      {"position": [x,y,z], "look_at": [x,y,z], "up": [x,y,z], "fov_y_deg": 40},
 //     "environment": {"file": "sky.hdr" | ["front", "back"] | ["+x","-x","+y","-y","+z","-z"],
 //                     "layout": "latlong" | "cube" | "sphere" | "paraboloid",
-//                     "rotation_deg": [x,y,z], "intensity": 1},                // optional
+//                     "rotation_deg": [x,y,z], "intensity": 1,
+//                     "non_finite": "error" | "repair"},                       // optional
 //     "background":  [r,g,b],                                              // optional
 //     "lights":      [{"type": "directional", "direction": [x,y,z], "color": [r,g,b]},
 //                     {"type": "point", "position": [x,y,z], "color": [r,g,b]}],
@@ -22,7 +23,8 @@
 // {base_color ([r,g,b] or a texture file), diffuse, specular, shininess, mirror, fresnel_f0,
 // micro_roughness, bump {height_map | normal_map (exactly one), strength, frame (natural |
 // normalized | main_direction), main_direction}, invalid_normals ("error" | "clamp": what an
-// invalid texel of the material's normal maps does, scene.h)}. "camera" and "objects" are
+// invalid texel of the material's normal maps does, scene.h), non_finite ("error" | "repair": what
+// a NaN or infinite texel of its base_color file or height map does)}. "camera" and "objects" are
 // required (objects may be an empty array), and "shape" in every object; every other key
 // defaults to scene.h.
 //

@@ -949,6 +949,127 @@ TEST(SceneFileNormalMaps, TheInvalidNormalsKeyIsChecked) {
     EXPECT_EQ(mesh->objects[1].material.invalid_normals, InvalidNormalPolicy::error);
 }
 
+// ---- NaN and infinite texels (environment and material key "non_finite").
+
+// A scene (JSON) whose environment, base colour texture or height map is an image holding one NaN
+// texel; `key` is the "non_finite" entry ("" or `, "non_finite": "repair"`) where it applies.
+struct NonFiniteCase {
+    const char* name;
+    const char* scene;          // with %KEY% where the key goes
+    const char* error_key;      // the key path the refusal starts with
+    const char* hint_location;  // "environment" or "material"
+};
+
+const NonFiniteCase kNonFiniteCases[] = {
+    {"Environment", R"({"camera": {}, "objects": [], "environment": {"file": "bad.exr"%KEY%}})",
+     "environment", "environment"},
+    {"BaseColor",
+     R"({"camera": {"position": [0, 1, 2], "look_at": [0, 0, 0]},
+         "lights": [{"direction": [0, -1, 0]}],
+         "objects": [{"shape": "plane", "size": "infinite",
+                      "material": {"base_color": "bad.exr"%KEY%}}]})",
+     "objects[0].material.base_color", "material"},
+    {"HeightMap",
+     R"({"camera": {"position": [0, 1, 2], "look_at": [0, 0, 0]},
+         "lights": [{"direction": [0, -1, 0]}],
+         "objects": [{"shape": "plane", "size": "infinite",
+                      "material": {"bump": {"height_map": "bad.exr"}%KEY%}}]})",
+     "objects[0].material.bump.height_map", "material"},
+};
+
+std::string with_key(std::string scene, const std::string& key) {
+    return scene.replace(scene.find("%KEY%"), 5, key);
+}
+
+TEST(SceneFileNonFinite, NanTexelsAreRefusedNamingTheFileUnlessRepaired) {
+    for (const NonFiniteCase& c : kNonFiniteCases) {
+        SCOPED_TRACE(c.name);
+        TempDir dir;
+        Image bad(32, 16, 3, 0.5f);
+        bad.at(5, 3, 1) = std::nanf("");
+        ASSERT_TRUE(save_image(bad, dir.path() / "bad.exr").ok());
+        const fs::path file = dir.path() / "scene.json";
+
+        write_file(file, with_key(c.scene, ""));
+        const Result<SceneDesc> desc = load_scene_file(file);
+        ASSERT_TRUE(desc.ok()) << desc.error().message;
+        const Result<RenderScene> refused = prepare_render_scene(*desc);
+        ASSERT_FALSE(refused.ok());
+        const std::string& message = refused.error().message;
+        EXPECT_EQ(message.rfind(file.string() + ": " + c.error_key + ": ", 0), 0u) << message;
+        EXPECT_NE(message.find("bad.exr"), std::string::npos) << message;
+        EXPECT_NE(message.find("texel (5, 3) channel 1"), std::string::npos) << message;
+        EXPECT_NE(
+            message.find(std::string("the ") + c.hint_location + " key \"non_finite\": \"repair\""),
+            std::string::npos)
+            << message;
+
+        write_file(file, with_key(c.scene, R"(, "non_finite": "repair")"));
+        Result<SceneDesc> repaired = load_scene_file(file);
+        ASSERT_TRUE(repaired.ok()) << repaired.error().message;
+        repaired->width = 8;
+        repaired->height = 6;
+        const Result<RenderScene> scene = prepare_render_scene(*repaired);
+        ASSERT_TRUE(scene.ok()) << scene.error().message;
+        RenderStats stats;
+        const Image image = render(*scene, RenderOptions{}, &stats);
+        ASSERT_EQ(image.pixel_count(), 48u);
+        for (float v : image.pixels) ASSERT_TRUE(std::isfinite(v));
+        EXPECT_EQ(stats.non_finite_samples, 0u);
+    }
+}
+
+TEST(SceneFileNonFinite, TheNonFiniteKeyIsChecked) {
+    TempDir dir;
+    create_assets(dir.path());
+    struct Case {
+        const char* scene;  // the environment and the first object's material
+        const char* key;    // where the message points
+        const char* message;
+    };
+    const Case cases[] = {
+        {R"("environment": {"file": "sky.hdr", "non_finite": "repiar"})", "environment.non_finite",
+         "unknown policy 'repiar' (did you mean 'repair'?)"},
+        {R"("environment": {"file": "sky.hdr", "non_finite": "ignore"})", "environment.non_finite",
+         "unknown policy 'ignore' (expected one of: error, repair)"},
+        {R"("environment": {"file": "sky.hdr", "non_finite": false})", "environment.non_finite",
+         "expected a string, got a boolean"},
+        {R"("environment": {"file": "sky.hdr", "nonfinite": "repair"})", "environment.nonfinite",
+         "unknown key (did you mean 'non_finite'?)"},
+        {R"("material": {"base_color": "bricks.png", "non_finite": "clamp"})",
+         "objects[0].material.non_finite", "unknown policy 'clamp'"},
+        {R"("material": {"non_finite": "repair"})", "objects[0].material.non_finite",
+         "applies to the material's texture files: give base_color as a file or bump.height_map"},
+        {R"("material": {"bump": {"normal_map": "normal.png"}, "non_finite": "repair"})",
+         "objects[0].material.non_finite", "(for a normal map's NaN texels: invalid_normals)"},
+    };
+    const auto scene = [](const std::string& parts) {
+        const bool material = parts.rfind(R"("material")", 0) == 0;
+        return R"({"camera": {}, "objects": [{"shape": "sphere")" +
+               (material ? ", " + parts + "}]" : std::string("}], ") + parts) + "}";
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.scene);
+        const Result<SceneDesc> result = parse_scene(scene(c.scene), dir.path() / "s.json");
+        ASSERT_FALSE(result.ok());
+        const std::string& message = result.error().message;
+        EXPECT_EQ(message.rfind((dir.path() / "s.json").string() + ": " + c.key + ": ", 0), 0u)
+            << message;
+        EXPECT_NE(message.find(c.message), std::string::npos) << message;
+    }
+    const Result<SceneDesc> valid =
+        parse_scene(scene(R"("environment": {"file": "sky.hdr", "non_finite": "repair"})"),
+                    dir.path() / "s.json");
+    ASSERT_TRUE(valid.ok()) << valid.error().message;
+    EXPECT_EQ(valid->environment->non_finite, NonFinitePolicy::repair);
+    EXPECT_EQ(valid->objects[0].material.non_finite, NonFinitePolicy::refuse);
+    const Result<SceneDesc> material = parse_scene(
+        scene(R"("material": {"bump": {"height_map": "height.png"}, "non_finite": "error"})"),
+        dir.path() / "s.json");
+    ASSERT_TRUE(material.ok()) << material.error().message;
+    EXPECT_EQ(material->objects[0].material.non_finite, NonFinitePolicy::refuse);
+}
+
 // ---- The layout of a single environment file (image_io helper).
 
 // The environment of a scene whose environment is `environment` (JSON), the images in `dir`.
