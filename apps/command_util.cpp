@@ -39,6 +39,17 @@ std::optional<std::string> output_file_problem(const fs::path& file) {
     return std::nullopt;
 }
 
+std::string with_shared_data_hint(const std::string& message) {
+    // scene/scene_file.h: "…: file 'F' not found (resolved to 'P')"
+    const std::size_t resolved = message.find(" not found (resolved to '");
+    if (resolved == std::string::npos ||
+        message.find("/shared/data/", resolved) == std::string::npos)
+        return message;
+    return message +
+           "; the file belongs to the shared data set, which this scene needs in ../shared/data "
+           "beside the repository (examples/README.md)";
+}
+
 void warn(const std::string& message) {
     std::cerr << "footprint: warning: " << message << "\n";
 }

@@ -24,6 +24,10 @@ std::string quoted(const std::filesystem::path& path);
 // directory, a directory), or nullopt if it can.
 std::optional<std::string> output_file_problem(const std::filesystem::path& file);
 
+// `message` of a scene file that did not load; where the missing file is one of the optional shared
+// data set (../shared/data beside the repository, which a clone lacks), it says so.
+std::string with_shared_data_hint(const std::string& message);
+
 // Prints "footprint: warning: <message>" to stderr (the command goes on).
 void warn(const std::string& message);
 

@@ -62,7 +62,7 @@ Result<NamedScene> resolve_scene(const std::string& name, const EvalCommandOptio
     }
     if (fs::path(name).extension() == ".json") {
         Result<SceneDesc> desc = load_scene_file(name);
-        if (!desc) return desc.error();
+        if (!desc) return Error{with_shared_data_hint(desc.error().message)};
         return NamedScene{fs::path(name).stem().string(), name, std::move(*desc)};
     }
     std::string valid;

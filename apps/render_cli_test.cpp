@@ -133,6 +133,34 @@ TEST_F(RenderCommandTest, BadInputGivesOneLineErrorsAndNoOutput) {
     EXPECT_FALSE(fs::exists(dir_ / "a.png"));
 }
 
+// A scene that reads the shared data set (examples/scenes/showcase.json), on a clone without it:
+// the message says where the file was to come from.
+TEST_F(RenderCommandTest, AMissingSharedDataFileSaysWhereItComesFrom) {
+    const fs::path scenes = dir_ / "repo" / "examples" / "scenes";
+    fs::create_directories(scenes);
+    std::ofstream(scenes / "showcase.json") << R"({"camera": {}, "objects": [],
+        "environment": {"file": "../../../shared/data/envmaps/venice_sunset_1k.hdr"}})";
+    RenderCommandOptions o = options("x.png", "fa");
+    o.scene = scenes / "showcase.json";
+    std::string err;
+    EXPECT_EQ(render_cmd(o, &err), 1);
+    EXPECT_NE(err.find("environment.file: file '../../../shared/data/envmaps/venice_sunset_1k.hdr' "
+                       "not found"),
+              std::string::npos)
+        << err;
+    EXPECT_NE(err.find("the shared data set, which this scene needs in ../shared/data beside the "
+                       "repository (examples/README.md)"),
+              std::string::npos)
+        << err;
+    // Another missing file is only that.
+    std::ofstream(dir_ / "other.json")
+        << R"({"camera": {}, "objects": [], "environment": {"file": "data/sky.hdr"}})";
+    o.scene = dir_ / "other.json";
+    EXPECT_EQ(render_cmd(o, &err), 1);
+    EXPECT_NE(err.find("data/sky.hdr' not found"), std::string::npos) << err;
+    EXPECT_EQ(err.find("shared data"), std::string::npos) << err;
+}
+
 TEST_F(RenderCommandTest, UnknownFiltersAreAnsweredFromTheVocabulary) {
     const std::string accepted =
         "footprint render accepts bilinear, trilinear, fa, fa-rough, "

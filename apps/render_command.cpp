@@ -116,7 +116,7 @@ int run_render_command(const RenderCommandOptions& options) {
     if (const auto problem = output_file_problem(options.output)) return fail(*problem);
 
     Result<SceneDesc> desc = load_scene_file(options.scene);
-    if (!desc) return fail(desc.error().message);
+    if (!desc) return fail(with_shared_data_hint(desc.error().message));
     const bool show_progress = !options.quiet && Progress::stderr_is_terminal();
     if (show_progress) std::fprintf(stderr, "  loading %s\n", options.scene.string().c_str());
     if (options.frames && desc->camera_path.empty()) {
