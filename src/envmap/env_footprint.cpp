@@ -7,8 +7,8 @@
 
 #include "envmap/env_footprint_plain.h"
 #include "envmap/env_layout_detail.h"
-#include "envmap/env_layout_detail4.h"
-#include "math/fast_atan2.h"
+#include "math/float4.h"
+#include "math/lanes.h"
 
 namespace footprint {
 
@@ -126,151 +126,105 @@ EnvFootprint PlainEnvFootprint::full() const {
     return f;
 }
 
-bool plain_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
-                         const IdentitySkippingRotation& to_map, PlainEnvFootprint& out) {
-    using namespace env_detail;
-    if (layout != EnvLayout::latlong && layout != EnvLayout::cube) return false;
-    out.reflected = r;
-    out.map_direction = to_map(r);
-    // prepare()'s common case (finite, max |component| within 2^±100), and |r| > 0 as
-    // compute_env_footprint() requires (A r finite implies r finite).
-    const Prepared<float> p = prepare(out.map_direction);
-    if (!p.usable || p.infinite || p.exponent < -100 || p.exponent > 100 || !(dot(r, r) > 0))
-        return false;
-    EnvCoordsJacobian position;
-    if (layout == EnvLayout::latlong) {
-        const float rho = latlong_rho(p.r);
-        if (rho == 0) return false;  // J undefined: the pole
-        const Vec2 st = latlong_coords_at(p.r, rho);
-        position = {{0, st.x, st.y}, latlong_jacobian_at(p, rho)};
-        // Clear of the poles: isotropic_footprint_radius()'s first test, the same way.
-        const Vec3 m = out.map_direction;
-        const float rho2 = m.x * m.x + m.z * m.z;
-        if (!(std::isfinite(rho2) && rho2 > 0x1p-100f) ||
-            std::sqrt(rho2) < std::sqrt(dot(dr_dx, dr_dx) + dot(dr_dy, dr_dy)))
-            return false;
-    } else {
-        position = cube_coords_and_jacobian_at(p);
-    }
-    out.coords = position.coords;
-    out.map_dr_dx = to_map(dr_dx);
-    out.map_dr_dy = to_map(dr_dy);
-    const MapJacobian G{texel_scale, position.jacobian};
-    out.d_dx = G(out.map_dr_dx);
-    out.d_dy = G(out.map_dr_dy);
-    out.matrix = footprint_matrix(out.d_dx, out.d_dy);
-    // A non-finite differential makes D, and so K, non-finite (0·∞ is NaN): one test for all.
-    return std::isfinite(out.matrix.xx + out.matrix.xy + out.matrix.yy);
-}
-
 namespace {
 
-// latlong_coords_at() and latlong_jacobian_at() of prepared directions, four at once, for the
-// lanes with ρ > 0.
-struct LatLongCoordsJacobian4 {
-    Float4 s, t;
-    env_detail::Vec3x4 ds, dt;
-};
-LatLongCoordsJacobian4 latlong_coords_and_jacobian4(const env_detail::Prepared4& prepared,
-                                                    Float4 rho) {
-    using namespace env_detail;
-    const Vec3x4& r = prepared.p;
-    const Float4 zero(0.0f), one(1.0f), pi(kPi<float>), two_pi(2 * kPi<float>);
-    const Float4 t = fast_atan2(rho, r.y) / pi;
-    const Float4 s = Float4(0.5f) + fast_atan2(r.x, -r.z) / two_pi;
-    const Float4 cx = r.x / rho, cz = r.z / rho;
-    const Float4 inv_rho = min_like_std(one / rho, Float4(std::numeric_limits<float>::max()));
-    const Float4 p2 = dot(r, r);
-    const Float4 a = inv_rho / two_pi, b = one / (pi * p2);
-    const Float4 scale = prepared.scale;
-    return {clamp_like_std(s, zero, one),
-            clamp_like_std(t, zero, one),
-            {a * -cz * scale, a * zero * scale, a * cx * scale},
-            {b * (r.y * cx) * scale, b * -rho * scale, b * (r.y * cz) * scale}};
-}
-
-// Where four prepared directions land and their Jacobians.
-struct Position4 {
-    Int4 face;
-    Float4 s, t;
-    env_detail::Vec3x4 ds, dt;
+// Form (a)'s plain footprint (env_footprint_plain.h) for any lane type (math/lanes.h): one ray or
+// four. Where `plain`, the fields compute_env_footprint() sets, bit for bit: its common case in one
+// pass, the layout's pieces (env_layout_detail.h) on the prepared direction and D = G [∂r/∂x,
+// ∂r/∂y] (MapJacobian), with no branch for the rare cases, which are left to it.
+template <class F>
+struct PlainFootprintLanes {
+    MaskOf<F> plain;
+    Vec3T<F> map_direction, map_dr_dx, map_dr_dy;  // A r, A ∂r/∂x, A ∂r/∂y
+    IntOf<F> face = IntOf<F>(0);
+    F s, t;
+    Vec2T<F> d_dx, d_dy;
+    Sym2Lanes<F> matrix;  // K = D Dᵀ
 };
 
-// plain_env_footprint() for four lanes at once (env_layout_detail4.h), the layout's part given by
-// locate(prepared, A r, rays, plain): the position, with the lanes it refuses cleared from plain.
-// (Each result is stored once computed, and each differential gathered where it is used: fewer
-// registers live, fewer spilled.)
-template <class Locate>
-[[gnu::always_inline]] inline void plain_footprints4(Vec2 texel_scale,
-                                                     const EnvRayDifferential* rays,
-                                                     const IdentitySkippingRotation& to_map,
-                                                     Locate&& locate, PlainEnvFootprints4& out) {
+template <class F>
+[[gnu::always_inline]] inline PlainFootprintLanes<F> plain_footprint(
+    EnvLayout layout, Vec2 texel_scale, const Vec3T<F>& r, const Vec3T<F>& dr_dx,
+    const Vec3T<F>& dr_dy, const IdentitySkippingRotation& to_map) {
     using namespace env_detail;
-    const Vec3x4 r = gather(rays, &EnvRayDifferential::direction);
-    const Vec3x4 m = rotate(to_map, r);
-    m.x.store(out.map_x);
-    m.y.store(out.map_y);
-    m.z.store(out.map_z);
-    const Prepared4 prepared = prepare4(m);
-    // |r| > 0, as compute_env_footprint() requires.
-    Mask4 plain = prepared.common & (dot(r, r) > Float4(0.0f));
-    const Position4 position = locate(prepared, m, rays, plain);
-    position.face.store(out.face);
-    position.s.store(out.s);
-    position.t.store(out.t);
-    // MapJacobian: D's columns; K = D Dᵀ.
-    const Float4 width(texel_scale.x), height(texel_scale.y);
-    auto column = [&](Vec3 EnvRayDifferential::*member, Float4& ds, Float4& dt) {
-        const Vec3x4 d = rotate(to_map, gather(rays, member));
-        ds = width * dot(position.ds, d);
-        dt = height * dot(position.dt, d);
-    };
-    Float4 dxs, dxt, dys, dyt;
-    column(&EnvRayDifferential::d_dx, dxs, dxt);
-    column(&EnvRayDifferential::d_dy, dys, dyt);
-    const Sym2x4 k = footprint_matrix4(dxs, dxt, dys, dyt);
-    k.xx.store(out.xx);
-    k.xy.store(out.xy);
-    k.yy.store(out.yy);
-    out.plain = (plain & k.finite()).bits();
+    using std::sqrt;
+    PlainFootprintLanes<F> f;
+    f.map_direction = rotate(to_map, r);
+    // prepare()'s common case (A r finite implies r finite), and |r| > 0 as
+    // compute_env_footprint() requires.
+    const PreparedLanes<F> p = prepare_lanes(f.map_direction);
+    f.plain = p.common & (dot(r, r) > F(0));
+    if (none(f.plain)) return f;
+    Jacobian23T<F> j;
+    if (layout == EnvLayout::cube) {
+        const CubeCoordsJacobianLanes<F> c = cube_coords_and_jacobian_lanes(p.r, cube_axes(p.r));
+        f.face = c.face;
+        f.s = c.s;
+        f.t = c.t;
+        j = c.j;
+    } else {
+        const F rho = latlong_rho(p.r);
+        const Vec2T<F> st = latlong_coords_at(p.r, rho);
+        f.s = st.x;
+        f.t = st.y;
+        // Not the pole (ρ = 0: J undefined), and clear of it: isotropic_footprint_radius()'s first
+        // test, ρ of A r at least the differentials' spread.
+        const Vec3T<F>& m = f.map_direction;
+        const F rho2 = m.x * m.x + m.z * m.z;
+        f.plain = f.plain & !(rho == F(0)) & is_finite(rho2) & (rho2 > F(0x1p-100)) &
+                  !(sqrt(rho2) < sqrt(dot(dr_dx, dr_dx) + dot(dr_dy, dr_dy)));
+        if (none(f.plain)) return f;
+        j = latlong_jacobian_lanes(p.r, rho);
+    }
+    j = scaled(j, p.scale);
+    f.map_dr_dx = rotate(to_map, dr_dx);
+    f.map_dr_dy = rotate(to_map, dr_dy);
+    const F width(texel_scale.x), height(texel_scale.y);
+    f.d_dx = {width * dot(j.ds, f.map_dr_dx), height * dot(j.dt, f.map_dr_dx)};
+    f.d_dy = {width * dot(j.ds, f.map_dr_dy), height * dot(j.dt, f.map_dr_dy)};
+    f.matrix = footprint_matrix_lanes(f.d_dx, f.d_dy);
+    // A non-finite differential makes D, and so K, non-finite (0·∞ is NaN): one test for all.
+    f.plain = f.plain & is_finite(f.matrix.xx + f.matrix.xy + f.matrix.yy);
+    return f;
 }
 
 }  // namespace
 
+bool plain_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
+                         const IdentitySkippingRotation& to_map, PlainEnvFootprint& out) {
+    if (layout != EnvLayout::latlong && layout != EnvLayout::cube) return false;
+    const PlainFootprintLanes<float> f =
+        plain_footprint(layout, texel_scale, r, dr_dx, dr_dy, to_map);
+    if (!f.plain) return false;
+    out.reflected = r;
+    out.map_direction = f.map_direction;
+    out.coords = {f.face, f.s, f.t};
+    out.map_dr_dx = f.map_dr_dx;
+    out.map_dr_dy = f.map_dr_dy;
+    out.d_dx = f.d_dx;
+    out.d_dy = f.d_dy;
+    out.matrix = {f.matrix.xx, f.matrix.xy, f.matrix.yy};
+    return true;
+}
+
 void plain_env_footprints4(EnvLayout layout, Vec2 texel_scale, const EnvRayDifferential* rays,
                            const IdentitySkippingRotation& to_map, PlainEnvFootprints4& out) {
-    using namespace env_detail;
-    if (layout == EnvLayout::cube) {
-        plain_footprints4(
-            texel_scale, rays, to_map,
-            [](const Prepared4& prepared, const Vec3x4&, const EnvRayDifferential*, Mask4&) {
-                const CubeCoordsJacobian4 c =
-                    cube_coords_and_jacobian4(prepared, cube_axes4(prepared.p));
-                return Position4{c.face, c.s, c.t, c.ds, c.dt};
-            },
-            out);
-        return;
-    }
-    if (layout != EnvLayout::latlong) {
-        out.plain = 0;
-        return;
-    }
-    plain_footprints4(
-        texel_scale, rays, to_map,
-        [](const Prepared4& prepared, const Vec3x4& m, const EnvRayDifferential* rays,
-           Mask4& plain) {
-            const Vec3x4 dx = gather(rays, &EnvRayDifferential::d_dx);
-            const Vec3x4 dy = gather(rays, &EnvRayDifferential::d_dy);
-            const Vec3x4& p = prepared.p;
-            const Float4 rho = sqrt(p.x * p.x + p.z * p.z);
-            const LatLongCoordsJacobian4 c = latlong_coords_and_jacobian4(prepared, rho);
-            // Not the pole (ρ = 0), and clear of it: ρ of A r at least the differentials' spread.
-            const Float4 rho2 = m.x * m.x + m.z * m.z;
-            plain = plain & !(rho == Float4(0.0f)) & is_finite(rho2) & (rho2 > Float4(0x1p-100f)) &
-                    !(sqrt(rho2) < sqrt(dot(dx, dx) + dot(dy, dy)));
-            return Position4{Int4(0), c.s, c.t, c.ds, c.dt};
-        },
-        out);
+    out.plain = 0;
+    if (layout != EnvLayout::latlong && layout != EnvLayout::cube) return;
+    const PlainFootprintLanes<Float4> f = plain_footprint(
+        layout, texel_scale, gather(rays, &EnvRayDifferential::direction),
+        gather(rays, &EnvRayDifferential::d_dx), gather(rays, &EnvRayDifferential::d_dy), to_map);
+    out.plain = f.plain.bits();
+    if (out.plain == 0) return;
+    f.face.store(out.face);
+    f.s.store(out.s);
+    f.t.store(out.t);
+    f.matrix.xx.store(out.xx);
+    f.matrix.xy.store(out.xy);
+    f.matrix.yy.store(out.yy);
+    f.map_direction.x.store(out.map_x);
+    f.map_direction.y.store(out.map_y);
+    f.map_direction.z.store(out.map_z);
 }
 
 EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, const ReflectionGeometry& g,

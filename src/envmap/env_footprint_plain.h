@@ -27,9 +27,8 @@ bool plain_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, Vec3 dr_dx,
 // plain_env_footprint() on a cube or lat-long map for four rays at once, in structure-of-arrays
 // form (math/float4.h), for the batch: where bit i of `plain` is set, lane i holds exactly (bit
 // for bit) the coords, K and map direction that plain_env_footprint(layout, …) sets for rays[i].
-// A clear bit leaves the ray to the scalar functions: every ray that plain_env_footprint()
-// refuses, and those with max |A r| in (2^100, 2^101), which it takes through prepare()'s rare
-// path.
+// A clear bit leaves the ray to the scalar functions: exactly the rays that plain_env_footprint()
+// refuses (both are one template over the lane type).
 struct PlainEnvFootprints4 {
     int plain = 0;
     int face[4];

@@ -71,7 +71,9 @@ std::optional<EnvLayout> parse_env_layout(std::string_view name) {
 
 template <class T>
 CubeCoordsT<T> cube_coords(Vec3T<T> r_in) {
-    return CubePoint<T>(prepare(r_in).r).coords();
+    const Vec3T<T> r = prepare(r_in).r;
+    const CubeCoordsJacobianLanes<T> c = cube_coords_and_jacobian_lanes(r, cube_axes(r));
+    return {c.face, c.s, c.t};
 }
 
 template <class T>

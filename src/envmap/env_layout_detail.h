@@ -1,8 +1,9 @@
 // envmap/env_layout_detail.h — (private to envmap) the inline pieces of the lat-long and cube
 // mappings of env_layout.h: a direction prepared for evaluation (an exact power-of-two rescaling),
-// the cube's face table, and (s, t) with the Jacobian for both layouts. env_layout.cpp builds its
-// public functions from them; the common case of a form (a) footprint (env_footprint.h) inlines
-// them, so that its results are the public functions' bit for bit.
+// the cube's face table, and (s, t) with the Jacobian for both layouts. Each piece is written once
+// over a lane type (math/lanes.h): env_layout.cpp builds its public float and double functions from
+// them, and form (a)'s plain footprint (env_footprint_plain.h) and the polar caps use them for one
+// ray or four at once, so that every result is the public functions' bit for bit.
 #pragma once
 
 #include <algorithm>
@@ -14,18 +15,55 @@
 
 #include "envmap/env_layout.h"
 #include "math/fast_atan2.h"
+#include "math/float4.h"
+#include "math/lanes.h"
 
 namespace footprint::env_detail {
 
 template <class T>
 inline constexpr T kPi = T(3.14159265358979323846);
 
-// A direction made safe to evaluate: `r` has its largest |component| in [1, 2) (an exact
-// power-of-two rescaling of the input by 2^-exponent), so nothing below under- or overflows.
+// The common case of prepare(), for any lane type (math/lanes.h): where `common` (max |component|
+// within 2^±100, no component NaN), r = (input)·scale has its largest |component| in [1, 2), and
+// scale = 2^-⌊log2 max⌋ is exact, so nothing below under- or overflows. Elsewhere the lane is the
+// scalar prepare()'s to handle (prepare_rare()).
+template <class F>
+struct PreparedLanes {
+    Vec3T<F> r;
+    F scale;
+    MaskOf<F> common;
+};
+
+// 2^-⌊log2 m⌋ for a positive normal m, from the IEEE-754 bits: m's biased exponent e gives the
+// bits of 2^(bias − e) as ((2·bias − e) << mantissa bits).
+inline float inverse_binary_power(float m) {
+    return std::bit_cast<float>((254u - (std::bit_cast<std::uint32_t>(m) >> 23)) << 23);
+}
+inline double inverse_binary_power(double m) {
+    return std::bit_cast<double>((std::uint64_t{2046} - (std::bit_cast<std::uint64_t>(m) >> 52))
+                                 << 52);
+}
+inline Float4 inverse_binary_power(Float4 m) {
+    return float_from_bits(shift_left<23>(Int4(254) - shift_right<23>(bits_of(m))));
+}
+
+template <class F>
+[[gnu::always_inline]] inline PreparedLanes<F> prepare_lanes(const Vec3T<F>& r) {
+    using std::abs;
+    const F m = max_like_std(max_like_std(abs(r.x), abs(r.y)), abs(r.z));
+    // The sum is NaN only for a NaN component (the others are finite where m is in range).
+    const MaskOf<F> common = (m >= F(0x1p-100)) & (m <= F(0x1p100)) & is_not_nan(r.x + r.y + r.z);
+    const F scale = inverse_binary_power(m);  // exact multiplications: ldexp's result, no libm
+    return {{r.x * scale, r.y * scale, r.z * scale}, scale, common};
+}
+
+// A direction made safe to evaluate (one lane): prepare_lanes()'s r and scale in its common case;
+// otherwise the exact rescaling of the input by 2^-exponent with ldexp, or a flag.
 template <class T>
 struct Prepared {
     Vec3T<T> r;
     int exponent = 0;       // input = 2^exponent · r
+    T scale = 1;            // 2^-exponent where |exponent| ≤ 100 (finish() scales J by it)
     bool usable = true;     // false: r = 0 or NaN → the fallback direction, J = 0
     bool infinite = false;  // an infinite component: r = its signs, J = 0
 };
@@ -67,6 +105,7 @@ template <class T>
         return p;
     }
     p.exponent = std::ilogb(m);
+    if (p.exponent >= -100 && p.exponent <= 100) p.scale = power_of_two<T>(-p.exponent);
     p.r = {std::ldexp(r.x, -p.exponent), std::ldexp(r.y, -p.exponent),
            std::ldexp(r.z, -p.exponent)};
     return p;
@@ -74,27 +113,23 @@ template <class T>
 
 template <class T>
 [[gnu::always_inline]] inline Prepared<T> prepare(Vec3T<T> r) {
+    const PreparedLanes<T> common = prepare_lanes(r);
+    if (!common.common) return prepare_rare(r);
     Prepared<T> p;
-    const T m = max_abs_component(r);
-    if (m >= T(0x1p-100) && m <= T(0x1p100) && !std::isnan(r.x + r.y + r.z)) {
-        // The common case (finite and in range: the sum is NaN only for a NaN component), without
-        // libm: the exponent from the bits, and an exact multiplication by the power of two (the
-        // same result as ldexp, a fraction of the cost).
-        p.exponent = binary_exponent(m);
-        const T scale = power_of_two<T>(-p.exponent);
-        p.r = {r.x * scale, r.y * scale, r.z * scale};
-        return p;
-    }
-    return prepare_rare(r);
+    p.r = common.r;
+    p.scale = common.scale;
+    p.exponent = -binary_exponent(common.scale);
+    return p;
 }
 
-// atan2: inline and libm-free in float (math/fast_atan2.h, float rounding), std::atan2 in double.
-template <class T>
-T any_atan2(T y, T x) {
-    if constexpr (std::is_same_v<T, float>)
-        return fast_atan2(y, x);
-    else
+// atan2: inline and libm-free in float (math/fast_atan2.h, float rounding, one lane or four),
+// std::atan2 in double.
+template <class F>
+F any_atan2(F y, F x) {
+    if constexpr (std::is_same_v<F, double>)
         return std::atan2(y, x);
+    else
+        return fast_atan2(y, x);
 }
 
 template <class T>
@@ -115,13 +150,16 @@ template <class T>
     return {scale(j.ds), scale(j.dt)};
 }
 
+// J scaled by a lane's exact power of two (prepare_lanes()' scale).
+template <class F>
+Jacobian23T<F> scaled(const Jacobian23T<F>& j, F scale) {
+    return {j.ds * scale, j.dt * scale};
+}
+
 template <class T>
 [[gnu::always_inline]] inline Jacobian23T<T> finish(const Prepared<T>& p, Jacobian23T<T> j) {
-    if (p.usable && !p.infinite && p.exponent >= -100 && p.exponent <= 100) {
-        // exact, and J ~ 1/|r| stays finite
-        const T scale = power_of_two<T>(-p.exponent);
-        return {j.ds * scale, j.dt * scale};
-    }
+    if (p.usable && !p.infinite && p.exponent >= -100 && p.exponent <= 100)
+        return scaled(j, p.scale);  // exact, and J ~ 1/|r| stays finite
     return finish_rare(p, j);
 }
 
@@ -148,95 +186,127 @@ inline constexpr CubeFace kCubeFaces[6] = {
     {2, 0, -1, 1, -1},  // −Z: sc = −r_x, tc = −r_y
 };
 
-template <class T>
-inline int cube_face_of(Vec3T<T> r) {
-    const T c[3] = {r.x, r.y, r.z};
-    int a = 0;
-    if (std::abs(r.y) > std::abs(r.x)) a = 1;
-    if (std::abs(r.z) > std::abs(c[a])) a = 2;
-    return 2 * a + (c[a] < 0 ? 1 : 0);
-}
-
-// Where a prepared r meets the cube: its face, |ma| and s' = sc/|ma|, t' = tc/|ma| (§3.1).
-template <class T>
-struct CubePoint {
-    int face;
-    T ma, sp, tp;
-
-    explicit CubePoint(Vec3T<T> r) : CubePoint(r, cube_face_of(r)) {}
-    // On a face known to be r's (cube_face_of(r)): a constant face folds the table away.
-    [[gnu::always_inline]] CubePoint(Vec3T<T> r, int face_of_r) : face(face_of_r) {
-        const CubeFace& f = kCubeFaces[face];
-        const T c[3] = {r.x, r.y, r.z};  // indexed: cheaper than selecting component by component
-        ma = std::abs(c[f.axis]);        // in [1, 2) after prepare()
-        sp = T(f.s_sign) * c[f.s_axis] / ma;
-        tp = T(f.t_sign) * c[f.t_axis] / ma;
-    }
-    CubeCoordsT<T> coords() const { return {face, T(0.5) * (sp + 1), T(0.5) * (tp + 1)}; }
+// A face as its major axis a (one of x, y, z set) and the sign of r_a, for any lane type.
+template <class F>
+struct CubeAxes {
+    MaskOf<F> x, y, z, negative;
 };
 
-// (face, s, t) and J at a prepared direction.
-template <class T>
-[[gnu::always_inline]] inline EnvCoordsJacobianT<T> cube_coords_and_jacobian_at(
-    const Prepared<T>& p, const CubePoint<T>& q) {
-    const CubeFace& f = kCubeFaces[q.face];
-    const T sigma = q.face % 2 == 0 ? T(1) : T(-1);
-    // ∂s/∂r = k(g_s − s'σ e_a), ∂t/∂r = k(g_t − t'σ e_a), k = 1/(2|ma|): g_s, g_t and e_a are
-    // distinct axes, so each row has two non-zero entries.
-    const T k = 1 / (2 * q.ma);
-    T ds[3] = {}, dt[3] = {};
-    ds[f.s_axis] = k * T(f.s_sign);
-    ds[f.axis] = k * (T(0) - q.sp * sigma);
-    dt[f.t_axis] = k * T(f.t_sign);
-    dt[f.axis] = k * (T(0) - q.tp * sigma);
-    return {q.coords(), finish(p, {{ds[0], ds[1], ds[2]}, {dt[0], dt[1], dt[2]}})};
+// r's face: the axis x, unless |r_y| > |r_x|; then z if |r_z| exceeds that (ties to the earlier
+// axis, as the OpenGL selection rule).
+template <class F>
+CubeAxes<F> cube_axes(const Vec3T<F>& r) {
+    using std::abs;
+    const MaskOf<F> y_over_x = abs(r.y) > abs(r.x);
+    const MaskOf<F> z = abs(r.z) > select(y_over_x, abs(r.y), abs(r.x));
+    const F r_a = select(z, r.z, select(y_over_x, r.y, r.x));
+    using M = MaskOf<F>;
+    return {M(!(y_over_x | z)), M(y_over_x & !z), z, r_a < F(0)};
 }
 
+// Face `face` (0…5) as CubeAxes, for one lane.
+template <class T>
+CubeAxes<T> cube_axes_of_face(int face) {
+    return {face / 2 == 0, face / 2 == 1, face / 2 == 2, face % 2 == 1};
+}
+
+// Where a prepared r meets the cube, for any lane type: the face, (s, t), and J before finish()'s
+// (or scaled()'s) power of two.
+template <class F>
+struct CubeCoordsJacobianLanes {
+    IntOf<F> face;
+    F s, t;
+    Jacobian23T<F> j;
+};
+
+// On the faces `a` (r's own, cube_axes(r), or a face known to be r's: the polar caps' ±Y), with
+// kCubeFaces' entries chosen by selects: s' = s_sign·r_{s_axis}/|r_a|, t' =
+// t_sign·r_{t_axis}/|r_a|, (s, t) = ((s' + 1)/2, (t' + 1)/2), and ∂s/∂r = k(g_s − s'σ e_a), ∂t/∂r =
+// k(g_t − t'σ e_a) with k = 1/(2|r_a|): g_s, g_t and e_a are distinct axes, so each row has two
+// non-zero entries.
+template <class F>
+[[gnu::always_inline]] inline CubeCoordsJacobianLanes<F> cube_coords_and_jacobian_lanes(
+    const Vec3T<F>& r, const CubeAxes<F>& a) {
+    using std::abs;
+    using I = IntOf<F>;
+    const F one(1), minus_one(-1), zero(0);
+    const F ma = abs(select(a.z, r.z, select(a.y, r.y, r.x)));  // in [1, 2) after prepare()
+    // a = x: s_axis z, t_axis y; a = y: s_axis x, t_axis z; a = z: s_axis x, t_axis y.
+    const F r_s = select(a.x, r.z, r.x), r_t = select(a.y, r.z, r.y);
+    const F s_sign =
+        select(a.x, select(a.negative, one, minus_one), select(a.z & a.negative, minus_one, one));
+    const F t_sign = select(a.y & !a.negative, one, minus_one);
+    const F sp = s_sign * r_s / ma, tp = t_sign * r_t / ma;
+    const F sigma = select(a.negative, minus_one, one);
+    const F k = one / (F(2) * ma);
+    const F ds_a = k * (zero - sp * sigma), dt_a = k * (zero - tp * sigma);
+    const F ds_s = k * s_sign, dt_t = k * t_sign;
+    const Jacobian23T<F> j{{select(a.x, ds_a, ds_s), select(a.y, ds_a, zero),
+                            select(a.x, ds_s, select(a.z, ds_a, zero))},
+                           {select(a.x, dt_a, zero), select(a.y, dt_a, dt_t),
+                            select(a.y, dt_t, select(a.z, dt_a, zero))}};
+    const I face = select(a.z, I(4), select(a.y, I(2), I(0))) + select(a.negative, I(1), I(0));
+    return {face, F(0.5) * (sp + one), F(0.5) * (tp + one), j};
+}
+
+// (face, s, t) and J at a prepared direction, on the faces `a`.
 template <class T>
 [[gnu::always_inline]] inline EnvCoordsJacobianT<T> cube_coords_and_jacobian_at(
-    const Prepared<T>& p) {
-    return cube_coords_and_jacobian_at(p, CubePoint<T>(p.r));
+    const Prepared<T>& p, const CubeAxes<T>& a) {
+    const CubeCoordsJacobianLanes<T> c = cube_coords_and_jacobian_lanes(p.r, a);
+    return {{c.face, c.s, c.t}, finish(p, c.j)};
 }
 
 template <class T>
 EnvCoordsJacobianT<T> cube_coords_and_jacobian(Vec3T<T> r_in) {
-    return cube_coords_and_jacobian_at(prepare(r_in));
+    const Prepared<T> p = prepare(r_in);
+    return cube_coords_and_jacobian_at(p, cube_axes(p.r));
 }
 
-// The same on face `Face`, which must be r_in's (cube_face_of()): the polar caps' ±Y.
+// The same on face `Face`, which must be r_in's (cube_axes()): the polar caps' ±Y.
 template <int Face, class T>
 EnvCoordsJacobianT<T> cube_coords_and_jacobian_on(Vec3T<T> r_in) {
-    const Prepared<T> p = prepare(r_in);
-    return cube_coords_and_jacobian_at(p, CubePoint<T>(p.r, Face));
+    return cube_coords_and_jacobian_at(prepare(r_in), cube_axes_of_face<T>(Face));
 }
 
 // ρ = √(r_x² + r_z²) of a prepared r: no overflow, |r_i| < 2.
-template <class T>
-T latlong_rho(Vec3T<T> r) {
-    return std::sqrt(r.x * r.x + r.z * r.z);
+template <class F>
+F latlong_rho(const Vec3T<F>& r) {
+    using std::sqrt;
+    return sqrt(r.x * r.x + r.z * r.z);
 }
 
-// (s, t) of a prepared r with its ρ.
-template <class T>
-[[gnu::always_inline]] inline Vec2T<T> latlong_coords_at(Vec3T<T> r, T rho) {
-    const T t = any_atan2(rho, r.y) / kPi<T>;  // = arccos(r_y/|r|)/π, accurate at the poles too
-    if (rho == 0) return {T(0.5), t};          // pole: s undefined, ½ by convention
-    const T s = T(0.5) + any_atan2(r.x, -r.z) / (2 * kPi<T>);
-    return {std::clamp(s, T(0), T(1)), std::clamp(t, T(0), T(1))};
+// (s, t) of a prepared r with its ρ, for any lane type. t = arccos(r_y/|r|)/π, accurate at the
+// poles too; at a pole (ρ = 0) s is undefined, ½ by convention.
+template <class F>
+[[gnu::always_inline]] inline Vec2T<F> latlong_coords_at(const Vec3T<F>& r, F rho) {
+    using S = ScalarOf<F>;
+    const F zero(0), one(1), half(0.5);
+    const F t = any_atan2(rho, r.y) / F(kPi<S>);
+    const F s = half + any_atan2(r.x, -r.z) / F(2 * kPi<S>);
+    const MaskOf<F> pole = rho == zero;
+    return {select(pole, half, clamp_like_std(s, zero, one)),
+            select(pole, t, clamp_like_std(t, zero, one))};
 }
 
-// The Jacobian at a prepared r with ρ = √(r_x² + r_z²).
+// The Jacobian at a prepared r with ρ = √(r_x² + r_z²) > 0, for any lane type, before finish()'s
+// (or scaled()'s) power of two: ∂s/∂r = (−r_z, 0, r_x)/(2πρ²); ∂t/∂r = −(e_y − r_y r/|r|²)/(πρ) =
+// (r_y r_x/ρ, −ρ, r_y r_z/ρ)/(π|r|²). 1/ρ is clamped to the finite range (0·(1/ρ) stays 0).
+template <class F>
+[[gnu::always_inline]] inline Jacobian23T<F> latlong_jacobian_lanes(const Vec3T<F>& r, F rho) {
+    using S = ScalarOf<F>;
+    const F cx = r.x / rho, cz = r.z / rho;
+    const F inv_rho = min_like_std(F(1) / rho, F(std::numeric_limits<S>::max()));
+    const F p2 = dot(r, r);  // in [1, 12]
+    const F a = inv_rho / F(2 * kPi<S>), b = F(1) / (F(kPi<S>) * p2);
+    return {{a * -cz, a * F(0), a * cx}, {b * (r.y * cx), b * -rho, b * (r.y * cz)}};
+}
+
+// The same at the pole: J undefined, the caller takes the isotropic fallback (§3.4).
 template <class T>
 [[gnu::always_inline]] inline Jacobian23T<T> latlong_jacobian_at(const Prepared<T>& p, T rho) {
-    const Vec3T<T> r = p.r;
-    if (rho == 0) return {};  // pole: J undefined, the caller takes the isotropic fallback (§3.4)
-    const T cx = r.x / rho, cz = r.z / rho, inv_rho = safe_inverse(rho);
-    const T p2 = dot(r, r);  // in [1, 12]
-    // ∂s/∂r = (−r_z, 0, r_x)/(2πρ²); ∂t/∂r = −(e_y − r_y r/|r|²)/(πρ) = (r_y r_x/ρ, −ρ, r_y
-    // r_z/ρ)/(π|r|²).
-    const Vec3T<T> ds = (inv_rho / (2 * kPi<T>)) * Vec3T<T>{-cz, 0, cx};
-    const Vec3T<T> dt = (1 / (kPi<T> * p2)) * Vec3T<T>{r.y * cx, -rho, r.y * cz};
-    return finish(p, {ds, dt});
+    if (rho == 0) return {};
+    return finish(p, latlong_jacobian_lanes(p.r, rho));
 }
 
 template <class T>

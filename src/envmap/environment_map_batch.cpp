@@ -9,7 +9,7 @@
 #include "envmap/environment_map.h"
 #include "envmap/polar_caps.h"
 #include "math/float4.h"
-#include "texture/footprint_assembly.h"
+#include "texture/footprint_assembly_lanes.h"
 #include "texture/sampling.h"
 
 namespace footprint {

@@ -7,11 +7,11 @@
 #include <tbb/parallel_for.h>
 
 #include "envmap/env_layout_detail.h"
-#include "envmap/env_layout_detail4.h"
 #include "envmap/env_sampling.h"
 #include "math/fast_atan2.h"
+#include "math/lanes.h"
 #include "texture/filters.h"
-#include "texture/footprint_assembly.h"
+#include "texture/footprint_assembly_lanes.h"
 #include "texture/texture_lookup.h"
 
 namespace footprint {
@@ -77,33 +77,53 @@ bool in_polar_cap_region(Vec3 r) {
 
 namespace {
 
-// K on the cap from map-space direction spreads (pairs of columns, each pair adding (G a)(G a)ᵀ +
-// (G b)(G b)ᵀ), and whether the caps can filter it, for r in the caps' region
+// K on a cap face of n texels from map-space direction spreads, for any lane type (math/lanes.h):
+// pairs of columns (dx, dy), and the roughness pair where given, each adding (G a)(G a)ᵀ +
+// (G b)(G b)ᵀ with G = n·J, J at (s, t) on the face (finished). `valid` where K is finite and the
+// probes stay on the face: they and their kernels reach about 2λ1 ≤ 2√tr K from the centre.
+template <class F>
+struct CapMatrixLanes {
+    Sym2Lanes<F> matrix;
+    MaskOf<F> valid;
+};
+
+template <class F>
+[[gnu::always_inline]] inline CapMatrixLanes<F> cap_matrix(F s, F t, const Jacobian23T<F>& j,
+                                                           const Vec3T<F>& dx, const Vec3T<F>& dy,
+                                                           const Vec3T<F>* roughness, F n) {
+    using std::sqrt;
+    auto on_cap = [&](const Vec3T<F>& w) { return Vec2T<F>{n * dot(j.ds, w), n * dot(j.dt, w)}; };
+    Sym2Lanes<F> k = footprint_matrix_lanes(on_cap(dx), on_cap(dy));
+    if (roughness) {
+        const Sym2Lanes<F> kr = footprint_matrix_lanes(on_cap(roughness[0]), on_cap(roughness[1]));
+        k = {k.xx + kr.xx, k.xy + kr.xy, k.yy + kr.yy};
+    }
+    const F zero(0), one(1);
+    const F reach = (F(2) * sqrt(k.xx + k.yy) + one) / n;
+    const MaskOf<F> on_face =
+        (s - reach >= zero) & (s + reach <= one) & (t - reach >= zero) & (t + reach <= one);
+    return {k, MaskOf<F>(is_finite(k.xx) & is_finite(k.xy) & is_finite(k.yy) & on_face)};
+}
+
+// K on the cap and whether the caps can filter it, for r in the caps' region
 // (in_polar_cap_region()). `latlong_trace`: tr K of the lat-long footprint, if one was computed (0
 // otherwise).
 PolarCapFootprint cap_footprint(const EnvironmentMap& map, Vec3 r, Vec3 dx, Vec3 dy,
                                 const Vec3* roughness, float latlong_trace) {
     PolarCapFootprint f;
     f.cap = map.polar_cap(r.y > 0 ? 0 : 1);
-    const float n = static_cast<float>(f.cap->width(0));
     // Face 2 or 3: |r_y| is the major axis within 30°.
     const EnvCoordsJacobian cj = r.y > 0 ? env_detail::cube_coords_and_jacobian_on<2>(r)
                                          : env_detail::cube_coords_and_jacobian_on<3>(r);
     f.coords = cj.coords;
-    // K on the cap from the footprint's map-space direction differentials (env_footprint.h): this
-    // keeps the anisotropy even where the lat-long footprint fell back to an isotropic one.
-    const Jacobian23& jc = cj.jacobian;
-    auto on_cap = [&](Vec3 w) { return Vec2{n * dot(jc.ds, w), n * dot(jc.dt, w)}; };
-    f.matrix = footprint_matrix(on_cap(dx), on_cap(dy));
-    if (roughness)
-        f.matrix = f.matrix + footprint_matrix(on_cap(roughness[0]), on_cap(roughness[1]));
+    // K from the footprint's map-space direction differentials (env_footprint.h): this keeps the
+    // anisotropy even where the lat-long footprint fell back to an isotropic one.
+    const CapMatrixLanes<float> k = cap_matrix(cj.coords.s, cj.coords.t, cj.jacobian, dx, dy,
+                                               roughness, static_cast<float>(f.cap->width(0)));
+    f.matrix = {k.matrix.xx, k.matrix.xy, k.matrix.yy};
     // Non-finite input left no differentials (env_footprint.h) but a roughness-only fallback K:
     // that K lives in lat-long texels, so the lat-long path filters it.
-    if (!f.matrix.is_finite() || (f.matrix.trace() == 0 && latlong_trace > 0)) return f;
-    // Stay on the face: the probes and their kernels reach about 2λ1 ≤ 2√tr K from the centre.
-    const float reach = (2 * std::sqrt(f.matrix.trace()) + 1) / n;
-    const EnvCoords& c = f.coords;
-    f.valid = c.s - reach >= 0 && c.s + reach <= 1 && c.t - reach >= 0 && c.t + reach <= 1;
+    f.valid = k.valid && !(f.matrix.trace() == 0 && latlong_trace > 0);
     return f;
 }
 
@@ -174,59 +194,47 @@ detail::Requested polar_cap_request(const PolarCapFootprint& f, float lod,
     return filter_cap(f, lod, options, out, &probe, &line);
 }
 
-// The operations of in_polar_cap_region(), the environment's polar_cap_lookup() and
-// cap_footprint() (form (a)), four lanes at once (env_layout_detail4.h).
+// in_polar_cap_region(), the environment's polar_cap_lookup() and cap_footprint() (form (a)),
+// four lanes at once: the same steps over Float4 (math/lanes.h), with prepare()'s rare cases left
+// to the scalar functions.
 void polar_cap_footprints4(const EnvironmentMap& map, const EnvRayDifferential* rays,
                            const IdentitySkippingRotation& to_map, const LookupOptions& options,
                            PolarCapFootprints4& out) {
     using namespace env_detail;
-    const Vec3x4 r = gather(rays, &EnvRayDifferential::direction);
-    const Vec3x4 m = rotate(to_map, r);
-    const Float4 len = sqrt(dot(m, m)), zero(0.0f), one(1.0f);
+    const Vec3T<Float4> m = rotate(to_map, gather(rays, &EnvRayDifferential::direction));
+    const Float4 len = sqrt(dot(m, m)), zero(0.0f);
     const Mask4 region = (len > zero) & (abs(m.y) >= Float4(kPolarCapCosine) * len);
     out.region = region.bits();
     out.valid = 0;
     if (out.region == 0) return;
-    // prepare()'s common case (A r finite, so r is finite as polar_cap_lookup() requires).
-    const Prepared4 prepared = prepare4(m);
-    Mask4 valid = region & prepared.common;
-    // Faces 2 (+Y) and 3 (−Y).
-    const Mask4 north = m.y > zero, none = zero > one, all = !none;
-    const CubeCoordsJacobian4 position =
-        cube_coords_and_jacobian4(prepared, {none, all, none, !north});
-    // K on the cap from the map-space differentials, zero where either is not finite (a point
-    // lookup).
-    const Vec3x4 dx = gather(rays, &EnvRayDifferential::d_dx);
-    const Vec3x4 dy = gather(rays, &EnvRayDifferential::d_dy);
-    const Mask4 spread = is_finite(dx) & is_finite(dy);
-    const Vec3x4 mdx = rotate(to_map, dx), mdy = rotate(to_map, dy);
-    auto spread_only = [&](const Vec3x4& v) {
-        return Vec3x4{select(spread, v.x, zero), select(spread, v.y, zero),
-                      select(spread, v.z, zero)};
-    };
+    // prepare()'s common case (A r finite, so r is finite as polar_cap_lookup() requires), on the
+    // faces 2 (+Y) and 3 (−Y).
+    const PreparedLanes<Float4> p = prepare_lanes(m);
+    const Mask4 north = m.y > zero, all = region | !region, none = !all;
+    const CubeCoordsJacobianLanes<Float4> c =
+        cube_coords_and_jacobian_lanes(p.r, CubeAxes<Float4>{none, all, none, !north});
+    // The map-space differentials, zero where either is not finite (a point lookup).
+    const Vec3T<Float4> dx = gather(rays, &EnvRayDifferential::d_dx);
+    const Vec3T<Float4> dy = gather(rays, &EnvRayDifferential::d_dy);
+    const Mask4 spread = is_finite_lanes(dx) & is_finite_lanes(dy);
+    const Vec3T<Float4> wx = select(spread, rotate(to_map, dx), Vec3T<Float4>{});
+    const Vec3T<Float4> wy = select(spread, rotate(to_map, dy), Vec3T<Float4>{});
     const MipPyramid& cap = *map.polar_cap(0);  // both caps are the same size
-    const Float4 n(static_cast<float>(cap.width(0)));
-    const Vec3x4 wx = spread_only(mdx), wy = spread_only(mdy);
-    const Sym2x4 k = footprint_matrix4(n * dot(position.ds, wx), n * dot(position.dt, wx),
-                                       n * dot(position.ds, wy), n * dot(position.dt, wy));
-    valid = valid & is_finite(k.xx) & is_finite(k.xy) & is_finite(k.yy);
-    // On the face: the probes and their kernels reach about 2λ1 ≤ 2√tr K from the centre.
-    const Float4 reach = (Float4(2.0f) * sqrt(k.xx + k.yy) + one) / n;
-    const Float4 s = position.s, t = position.t;
-    valid =
-        valid & (s - reach >= zero) & (s + reach <= one) & (t - reach >= zero) & (t + reach <= one);
-
-    out.valid = valid.bits();
+    const CapMatrixLanes<Float4> k = cap_matrix(c.s, c.t, scaled(c.j, p.scale), wx, wy,
+                                                static_cast<const Vec3T<Float4>*>(nullptr),
+                                                Float4(static_cast<float>(cap.width(0))));
+    out.valid = (region & p.common & k.valid).bits();
     if (out.valid == 0) return;
     select(north, Int4(0), Int4(1)).store(out.cap);
-    s.store(out.s);
-    t.store(out.t);
-    k.xx.store(out.xx);
-    k.xy.store(out.xy);
-    k.yy.store(out.yy);
-    (has_single_probe_rule(options) ? single_probe_lod(k.xx, k.xy, k.yy, options.lod_bias,
-                                                       cap.max_level(), options.isotropic_ratio)
-                                    : Float4(-1.0f))
+    c.s.store(out.s);
+    c.t.store(out.t);
+    k.matrix.xx.store(out.xx);
+    k.matrix.xy.store(out.xy);
+    k.matrix.yy.store(out.yy);
+    (has_single_probe_rule(options)
+         ? single_probe_lod(k.matrix.xx, k.matrix.xy, k.matrix.yy, options.lod_bias,
+                            cap.max_level(), options.isotropic_ratio)
+         : Float4(-1.0f))
         .store(out.lod);
 }
 

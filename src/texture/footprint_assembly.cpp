@@ -1,10 +1,12 @@
-#include "texture/footprint_assembly.h"
+#include "texture/footprint_assembly_lanes.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 
 #include "math/fast_log2.h"
+#include "math/footprint_ellipse_lanes.h"
+#include "math/lanes.h"
 
 #include "texture/filters.h"
 #include "texture/sampling.h"
@@ -13,10 +15,11 @@ namespace footprint {
 
 namespace {
 
-// The lod for a probe texel size, biased and clamped to the pyramid.
-float probe_lod(float texel_size, float lod_bias, int max_level) {
-    return std::clamp(fast_log2(std::max(texel_size, 1.0f)) + lod_bias, 0.0f,
-                      static_cast<float>(max_level));
+// The lod for a probe texel size, biased and clamped to the pyramid (any lane type).
+template <class F>
+F probe_lod(F texel_size, float lod_bias, int max_level) {
+    return clamp_like_std(fast_log2(max_like_std(texel_size, F(1))) + F(lod_bias), F(0),
+                          F(static_cast<float>(max_level)));
 }
 
 // a/√v_N for N Gaussian-weighted probes (footprint_assembly.h): Δ = σ_g ·
@@ -67,6 +70,28 @@ int floor_power_of_two(int n) {
     return p;
 }
 
+// Rule B's arithmetic (footprint_assembly.h), for any lane type: plan_probes() and the batches'
+// short_plans4() share it, and differ only in how they find the count N.
+// √(max(1, 3(λ1/T_p)² − 2)), whose ceiling is Rule B's N.
+template <class F>
+F rule_b_root(F l1, F tp) {
+    using std::sqrt;
+    const F ratio = l1 / tp;
+    return sqrt(max_like_std(F(1), F(3) * ratio * ratio - F(2)));
+}
+// Δ = √(3(λ1² − T_p²)/(N² − 1)) for N > 1 moment-matched probes.
+template <class F>
+F rule_b_spacing(F l1, F tp, F n) {
+    using std::sqrt;
+    return sqrt(max_like_std(F(0), F(3) * (l1 * l1 - tp * tp)) / (n * n - F(1)));
+}
+// σ_g = √(λ1² − T_p²)/2 of the Gaussian-weighted line.
+template <class F>
+F gaussian_sigma(F l1, F tp) {
+    using std::sqrt;
+    return F(0.5f) * sqrt(l1 * l1 - tp * tp);
+}
+
 }  // namespace
 
 void probe_weights(const ProbePlan& plan, float* weights) {
@@ -98,63 +123,36 @@ void probe_weights(const ProbePlan& plan, float* weights) {
 
 namespace {
 
-// λ1² and λ2² of K (spec §2.7), without square roots of λ.
-struct AxesSquared {
-    float major_sq, minor_sq;
-};
-AxesSquared axes_squared(const Sym2& k) {
-    const float w = std::sqrt((k.xx - k.yy) * (k.xx - k.yy) + 4 * k.xy * k.xy);
-    const float major_sq = 0.5f * (k.xx + k.yy + w);
-    return {major_sq, major_sq > 0 ? std::max(0.0f, k.determinant()) / major_sq : 0.0f};
+// single_probe_lod() for any lane type (math/lanes.h): one footprint, or four at once for the
+// batches.
+template <class F>
+[[gnu::always_inline]] inline F single_probe_lod_lanes(F xx, F xy, F yy, float lod_bias,
+                                                       int max_level, float isotropic_ratio) {
+    const F zero(0), one(1);
+    const F bias_lod(std::clamp(lod_bias, 0.0f, static_cast<float>(max_level)));
+    // Magnification (λ1² ≤ tr K ≤ 1 = T_min²): one probe at level 0, no eigenvalues needed.
+    const MaskOf<F> magnified = (xx + yy <= one) & (xx >= zero) & (yy >= zero);
+    if (none(!magnified)) return bias_lod;
+    const AxesSquared<F> a = axes_squared(xx, xy, yy);
+    const F tp_sq = max_like_std(a.minor_sq, one);  // T_p² = max(λ2, T_min)²
+    const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
+    const MaskOf<F> one_probe = a.major_sq <= F(ratio * ratio) * tp_sq;
+    // log2 √(λ1·T_p) = ¼ log2(λ1² T_p²), λ1 ≥ T_min.
+    const F lod =
+        clamp_like_std(F(0.25f) * fast_log2(max_like_std(a.major_sq, one) * tp_sq) + F(lod_bias),
+                       zero, F(static_cast<float>(max_level)));
+    return select(magnified, bias_lod, select(one_probe, lod, F(-1)));
 }
 
 }  // namespace
 
 float single_probe_lod(const Sym2& k, float lod_bias, int max_level, float isotropic_ratio) {
-    // Magnification (λ1² ≤ tr K ≤ 1 = T_min²): one probe at level 0, no eigenvalues needed.
-    if (k.xx + k.yy <= 1.0f && k.xx >= 0.0f && k.yy >= 0.0f)
-        return std::clamp(lod_bias, 0.0f, static_cast<float>(max_level));
-    const auto [major_sq, minor_sq] = axes_squared(k);
-    const float tp_sq = std::max(minor_sq, 1.0f);  // T_p² = max(λ2, T_min)²
-    const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
-    if (!(major_sq <= ratio * ratio * tp_sq)) return -1.0f;
-    // log2 √(λ1·T_p) = ¼ log2(λ1² T_p²), λ1 ≥ T_min.
-    return std::clamp(0.25f * fast_log2(std::max(major_sq, 1.0f) * tp_sq) + lod_bias, 0.0f,
-                      static_cast<float>(max_level));
+    return single_probe_lod_lanes(k.xx, k.xy, k.yy, lod_bias, max_level, isotropic_ratio);
 }
 
-namespace {
-
-// axes_squared() of four K, with w = √((k_xx − k_yy)² + 4k_xy²) (make_footprint_ellipse() takes
-// its eigenvector from w). major_sq is ½(tr K + w) itself: make_footprint_ellipse() raises it to
-// 0 first, which gives the same minor_sq (that is 0 unless major_sq > 0).
-struct AxesSquared4 {
-    Float4 w, major_sq, minor_sq;
-};
-AxesSquared4 axes_squared4(Float4 xx, Float4 xy, Float4 yy) {
-    const Float4 zero(0.0f);
-    const Float4 w = sqrt((xx - yy) * (xx - yy) + Float4(4.0f) * xy * xy);
-    const Float4 major_sq = Float4(0.5f) * (xx + yy + w);
-    return {w, major_sq,
-            select(major_sq > zero, max_like_std(zero, xx * yy - xy * xy) / major_sq, zero)};
-}
-
-}  // namespace
-
-// The same operations lane by lane (axes_squared4()), with selects for the branches.
 Float4 single_probe_lod(Float4 xx, Float4 xy, Float4 yy, float lod_bias, int max_level,
                         float isotropic_ratio) {
-    const Float4 zero(0.0f), one(1.0f), top(static_cast<float>(max_level));
-    const Mask4 magnified = (xx + yy <= one) & (xx >= zero) & (yy >= zero);
-    const auto [w, major_sq, minor_sq] = axes_squared4(xx, xy, yy);
-    const Float4 tp_sq = max_like_std(minor_sq, one);
-    const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
-    const Mask4 one_probe = major_sq <= Float4(ratio * ratio) * tp_sq;
-    const Float4 lod = clamp_like_std(
-        Float4(0.25f) * fast_log2(max_like_std(major_sq, one) * tp_sq) + Float4(lod_bias), zero,
-        top);
-    return select(magnified, Float4(std::clamp(lod_bias, 0.0f, static_cast<float>(max_level))),
-                  select(one_probe, lod, Float4(-1.0f)));
+    return single_probe_lod_lanes(xx, xy, yy, lod_bias, max_level, isotropic_ratio);
 }
 
 // make_footprint_ellipse() and plan_probes()' short lines by Rule B, lane by lane in the same order
@@ -173,15 +171,8 @@ void short_plans4(Float4 xx, Float4 xy, Float4 yy, ProbeRule rule, int max_probe
     if (rule != ProbeRule::moment_matched && (rule != ProbeRule::gaussian || !spacing_falls))
         return;
     const Float4 zero(0.0f), one(1.0f);
-    // make_footprint_ellipse(): λ1, λ2 and r1.
-    const auto [w, major_sq, minor_sq] = axes_squared4(xx, xy, yy);
-    const Float4 l1 = sqrt(max_like_std(zero, major_sq)), l2 = min_like_std(sqrt(minor_sq), l1);
-    const Mask4 xx_major = xx >= yy;
-    const Float4 rx = select(xx_major, xx - yy + w, Float4(2.0f) * xy);
-    const Float4 ry = select(xx_major, Float4(2.0f) * xy, yy - xx + w);
-    const Float4 len = sqrt(rx * rx + ry * ry);
-    const Mask4 unit = (len > zero) & is_finite(len);
-    const Float4 r1x = select(unit, rx / len, one), r1y = select(unit, ry / len, zero);
+    const EllipseLanes<Float4> ellipse = footprint_ellipse_lanes(xx, xy, yy);
+    const Float4 l1 = ellipse.major_radius, l2 = ellipse.minor_radius;
     // plan_probes(): more than one probe, N ≤ kShortLineProbes and within the budget.
     const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
     const Float4 tp = max_like_std(l2, one);
@@ -190,18 +181,15 @@ void short_plans4(Float4 xx, Float4 xy, Float4 yy, ProbeRule rule, int max_probe
     Float4 spacing, falloff(0.0f);
     if (rule == ProbeRule::moment_matched) {
         // N = ⌈√(max(1, 3(λ1/T_p)² − 2))⌉: 1 + the number of k = 1 … 7 below the root.
-        const Float4 r = l1 / tp;
-        const Float4 root = sqrt(max_like_std(one, Float4(3.0f) * r * r - Float4(2.0f)));
+        const Float4 root = rule_b_root(l1, tp);
         n = Int4(1);
         for (int k = 1; k < kShortLineProbes; ++k)
             n = select(root > Float4(static_cast<float>(k)), n + Int4(1), n);
         planned = planned & (root > one) &
                   (root <= Float4(static_cast<float>(std::min(kShortLineProbes, max_probes))));
-        const Float4 n_float = to_float(n);
-        spacing = sqrt(max_like_std(zero, Float4(3.0f) * (l1 * l1 - tp * tp)) /
-                       (n_float * n_float - one));
+        spacing = rule_b_spacing(l1, tp, to_float(n));
     } else {
-        const Float4 sigma = Float4(0.5f) * sqrt(l1 * l1 - tp * tp);
+        const Float4 sigma = gaussian_sigma(l1, tp);
         const Float4 c2(gaussian_spacing_factor(2));
         const Mask4 two = sigma * c2 <= tp;
         if (((!two) & planned).bits() == 0) {  // two probes wherever a line (the commonest case)
@@ -225,14 +213,11 @@ void short_plans4(Float4 xx, Float4 xy, Float4 yy, ProbeRule rule, int max_probe
     out.planned = planned.bits();
     if (out.planned == 0) return;
     n.store(out.count);
-    (spacing * r1x).store(out.step_x);
-    (spacing * r1y).store(out.step_y);
+    (spacing * ellipse.major_axis.x).store(out.step_x);
+    (spacing * ellipse.major_axis.y).store(out.step_y);
     tp.store(out.texel_size);
     falloff.store(out.weight_falloff);
-    // probe_lod()
-    clamp_like_std(fast_log2(max_like_std(tp, one)) + Float4(lod_bias), zero,
-                   Float4(static_cast<float>(max_level)))
-        .store(out.lod);
+    probe_lod(tp, lod_bias, max_level).store(out.lod);
 }
 
 float single_probe_lod(const Sym2& k, const LookupOptions& options, int max_level) {
@@ -256,16 +241,13 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
             if (l1 <= tp * isotropic_ratio) {
                 tp = std::sqrt(tp * std::max(l1, kMinTexelSize));  // one probe, √(λ1 T_p)
             } else {
-                const float ratio = l1 / tp;
-                n = static_cast<int>(std::ceil(std::sqrt(std::max(1.0f, 3 * ratio * ratio - 2))));
+                n = static_cast<int>(std::ceil(rule_b_root(l1, tp)));
                 if (n > max_probes) {
                     n = max_probes;
                     tp = std::max(tp, l1 * std::sqrt(3.0f / static_cast<float>(n * n + 2)));
                 }
                 if (n > 1) {
-                    const float spacing = std::sqrt(std::max(0.0f, 3 * (l1 * l1 - tp * tp)) /
-                                                    static_cast<float>(n * n - 1));
-                    plan.step = spacing * r1;
+                    plan.step = rule_b_spacing(l1, tp, static_cast<float>(n)) * r1;
                 } else {
                     tp = std::max(tp, l1);  // N_max = 1: one isotropic probe covering λ1
                 }
@@ -281,7 +263,7 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
                 break;
             }
             auto spacing_factor = [](int n) { return gaussian_spacing_factor(n); };
-            float sigma = 0.5f * std::sqrt(l1 * l1 - tp * tp);
+            float sigma = gaussian_sigma(l1, tp);
             int n = 2;
             // Two probes (c = 2) first: c(3) = 2.17 > c(2) (the ends' weights e^−2), so the descent
             // below, which stops where c(N − 1) is too large, would stop at four.

@@ -1,4 +1,4 @@
-#include "texture/footprint_assembly.h"
+#include "texture/footprint_assembly_lanes.h"
 
 #include <gtest/gtest.h>
 
