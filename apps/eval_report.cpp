@@ -252,26 +252,24 @@ class LabelPlacer {
         double x, y;         // the baseline's anchor point
         const char* anchor;  // SVG text-anchor: "start", "middle" or "end"
     };
-    LabelPlacer(double x0, double y0, double x1, double y1) : bounds_{x0, y0, x1, y1} {}
-    void take(double x0, double y0, double x1, double y1) { taken_.push_back({x0, y0, x1, y1}); }
+    LabelPlacer(double x0, double y0, double x1, double y1) { layout_.area = {x0, y0, x1, y1}; }
+    // A mark no label may cover.
+    void take(double x0, double y0, double x1, double y1) {
+        layout_.marks.push_back({x0, y0, x1, y1});
+    }
     // `text` placed: its <text …> start tag without the closing '>' (attributes x, y, anchor).
     std::string place(std::string_view text, const std::vector<Spot>& spots) {
         const double width = kCharWidth * static_cast<double>(characters(text));
-        const Spot* chosen = &spots.front();
-        for (const Spot& spot : spots)
-            if (fits(box(spot, width))) {
-                chosen = &spot;
-                break;
-            }
-        taken_.push_back(box(*chosen, width));
-        return "<text x=\"" + coord(chosen->x) + "\" y=\"" + coord(chosen->y) +
-               "\" text-anchor=\"" + chosen->anchor + "\"";
+        const Spot chosen = free_spot(spots, width).value_or(spots.front());
+        layout_.texts.emplace_back(text);
+        layout_.labels.push_back(box(chosen, width));
+        return "<text x=\"" + coord(chosen.x) + "\" y=\"" + coord(chosen.y) + "\" text-anchor=\"" +
+               chosen.anchor + "\"";
     }
+    const PlotLabelLayout& layout() const { return layout_; }
 
   private:
-    struct Box {
-        double x0, y0, x1, y1;
-    };
+    using Box = PlotBox;
     static constexpr double kCharWidth = 7.2, kAscent = 11, kDescent = 3;  // 12-pixel sans-serif
 
     static std::size_t characters(std::string_view utf8) {
@@ -286,21 +284,40 @@ class LabelPlacer {
                                                : s.x;
         return {x0, s.y - kAscent, x0 + width, s.y + kDescent};
     }
+    // The first of `spots` where a label `width` wide fits; when none does (a crowd of markers),
+    // the first that fits moved up or down by whole lines of text, the nearest first: the label
+    // then stands in a column beside the crowd, in its marker's colour.
+    std::optional<Spot> free_spot(const std::vector<Spot>& spots, double width) const {
+        constexpr double kLine = kAscent + kDescent;
+        const Box& area = layout_.area;
+        const int lines = static_cast<int>((area.y1 - area.y0) / kLine) + 1;
+        for (int k = 0; k <= lines; ++k)
+            for (double dy : {k * kLine, -k * kLine}) {
+                for (const Spot& spot : spots) {
+                    const Spot moved{spot.x, spot.y + dy, spot.anchor};
+                    if (fits(box(moved, width))) return moved;
+                }
+                if (k == 0) break;  // the spots as given, once
+            }
+        return std::nullopt;
+    }
+    static bool overlap(const Box& a, const Box& b) {
+        return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+    }
     bool fits(const Box& b) const {
-        if (b.x0 < bounds_.x0 || b.y0 < bounds_.y0 || b.x1 > bounds_.x1 || b.y1 > bounds_.y1)
-            return false;
-        for (const Box& t : taken_)
-            if (b.x0 < t.x1 && t.x0 < b.x1 && b.y0 < t.y1 && t.y0 < b.y1) return false;
+        const Box& area = layout_.area;
+        if (b.x0 < area.x0 || b.y0 < area.y0 || b.x1 > area.x1 || b.y1 > area.y1) return false;
+        for (const std::vector<Box>* taken : {&layout_.marks, &layout_.labels})
+            for (const Box& t : *taken)
+                if (overlap(b, t)) return false;
         return true;
     }
 
-    Box bounds_;
-    std::vector<Box> taken_;
+    PlotLabelLayout layout_;
 };
 
-}  // namespace
-
-std::string error_time_plot_svg(const EvalScene& scene) {
+// The plot's SVG; its label layout in `layout` when given.
+std::string error_time_plot(const EvalScene& scene, PlotLabelLayout* layout) {
     constexpr double svg_w = 680, svg_h = 420;
     constexpr double left = 72, right = 24, top = 24, bottom = 56;
     const double plot_w = svg_w - left - right, plot_h = svg_h - top - bottom;
@@ -483,7 +500,20 @@ std::string error_time_plot_svg(const EvalScene& scene) {
         << "\" stroke=\"#555\" stroke-dasharray=\"6 4\"/><text x=\"" << lx + 36 << "\" y=\""
         << ly + 33 << "\">equal RMSE: speedup</text></g>\n";
     svg << "</svg>\n";
+    if (layout) *layout = labels.layout();
     return svg.str();
+}
+
+}  // namespace
+
+std::string error_time_plot_svg(const EvalScene& scene) {
+    return error_time_plot(scene, nullptr);
+}
+
+PlotLabelLayout error_time_plot_labels(const EvalScene& scene) {
+    PlotLabelLayout layout;
+    error_time_plot(scene, &layout);
+    return layout;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -132,6 +132,23 @@ std::string speedup_label(const EqualErrorSpeedup& speedup, bool short_form = fa
 // and time are left out; with none left the SVG says "no data".
 std::string error_time_plot_svg(const EvalScene& scene);
 
+// A rectangle of the plot in SVG pixels (x to the right, y down).
+struct PlotBox {
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+// How error_time_plot_svg lays out its text labels (the spp of the supersampling points, the
+// methods' names, the speedups): each label's box, estimated from its length in characters, and
+// what no label may cover. The plot places each label at the first of its candidate spots that
+// stays inside `area` and overlaps no mark and no label placed before it, or, in a crowd, at the
+// nearest such spot whole lines of text above or below them.
+struct PlotLabelLayout {
+    PlotBox area;                    // the inside of the axes
+    std::vector<PlotBox> marks;      // the legend, every point and marker
+    std::vector<std::string> texts;  // the labels, in the order they were placed
+    std::vector<PlotBox> labels;     // their boxes
+};
+PlotLabelLayout error_time_plot_labels(const EvalScene& scene);
+
 // `text` with & < > " ' replaced by entities: safe in HTML and SVG text and quoted attributes.
 std::string html_escape(std::string_view text);
 

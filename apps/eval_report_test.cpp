@@ -323,6 +323,47 @@ TEST(EvalReportPlot, SurvivesMissingData) {
     for (const char* bad : {"nan", "inf"}) EXPECT_EQ(svg.find(bad), std::string::npos) << bad;
 }
 
+bool overlap(const PlotBox& a, const PlotBox& b) {
+    return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+}
+
+// Crowded plots, as real evaluations give them: five filter modes of nearly the same time and
+// error beside the supersampling curve. No label overlaps another, a point, a marker or the
+// legend, and every label stays inside the axes.
+TEST(EvalReportPlot, LabelsOverlapNothingInACrowdedPlot) {
+    struct Crowd {
+        const char* name;
+        double time_step, rmse_ratio;  // between one filter mode and the next
+    };
+    for (const Crowd& crowd : {Crowd{"spread", 1.15, 0.9}, Crowd{"close", 1.03, 0.97},
+                               Crowd{"identical", 1.0, 1.0}, Crowd{"on the curve", 1.6, 0.8}}) {
+        SCOPED_TRACE(crowd.name);
+        EvalScene scene;
+        scene.methods = synthetic_supersampling({1, 4, 16, 64, 256});
+        double seconds = 0.004, rmse = 0.05;
+        for (const char* name : {"bilinear", "trilinear", "fa", "fa-rough", "ewa-rough"}) {
+            scene.methods.push_back(filter_method(name, rmse, seconds));
+            seconds *= crowd.time_step;
+            rmse *= crowd.rmse_ratio;
+        }
+        const PlotLabelLayout layout = error_time_plot_labels(scene);
+        // 5 spp labels, 5 names, 5 speedups.
+        ASSERT_EQ(layout.labels.size(), 15u);
+        ASSERT_EQ(layout.texts.size(), 15u);
+        const PlotBox& area = layout.area;
+        for (std::size_t i = 0; i < layout.labels.size(); ++i) {
+            const PlotBox& a = layout.labels[i];
+            EXPECT_TRUE(a.x0 >= area.x0 && a.y0 >= area.y0 && a.x1 <= area.x1 && a.y1 <= area.y1)
+                << "'" << layout.texts[i] << "' leaves the plot";
+            for (std::size_t j = i + 1; j < layout.labels.size(); ++j)
+                EXPECT_FALSE(overlap(a, layout.labels[j]))
+                    << "'" << layout.texts[i] << "' overlaps '" << layout.texts[j] << "'";
+            for (const PlotBox& mark : layout.marks)
+                EXPECT_FALSE(overlap(a, mark)) << "'" << layout.texts[i] << "' covers a mark";
+        }
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // The heat maps' scale and legend
 
