@@ -5,7 +5,6 @@
 #include <optional>
 #include <string>
 
-#include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
 
 #include "command_util.h"
@@ -15,23 +14,6 @@
 namespace footprint {
 
 namespace {
-
-// Whether load_image's automatic encoding decodes `file` from sRGB: integer samples whose
-// metadata does not say linear (image_io.h). False when the header cannot be read.
-bool is_srgb_encoded(const std::filesystem::path& file) {
-    auto in = OIIO::ImageInput::open(file.string());
-    if (!in) {
-        OIIO::geterror();  // clear it: load_image has already read the file
-        return false;
-    }
-    const OIIO::ImageSpec& spec = in->spec();
-    std::string space = spec.get_string_attribute("oiio:ColorSpace");
-    for (char& c : space) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    const bool linear = space == "linear" || space == "lin_srgb" || space == "lin_rec709" ||
-                        space == "scene_linear";
-    in->close();
-    return !spec.format.is_floating_point() && !linear;
-}
 
 // The one-line error for non-finite pixels in A or B, naming the files.
 std::string non_finite_problem(const MetricsCommandOptions& options, const Image& a,

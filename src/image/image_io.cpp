@@ -89,6 +89,13 @@ bool says_linear(const std::string& color_space) {
     return s == "linear" || s == "lin_srgb" || s == "lin_rec709" || s == "scene_linear";
 }
 
+// ColorEncoding::automatic's rule: integer samples are sRGB-encoded unless the metadata says
+// linear.
+bool automatic_decodes_srgb(const OIIO::ImageSpec& spec) {
+    return !spec.format.is_floating_point() &&
+           !says_linear(spec.get_string_attribute("oiio:ColorSpace"));
+}
+
 // Checks that `file` is an existing, non-empty, readable regular file (clearer messages than
 // OpenImageIO gives for these cases).
 std::optional<Error> check_readable(const fs::path& file) {
@@ -418,6 +425,18 @@ bool is_supported_image_extension(const fs::path& file) {
     return kind_of(file) != FileKind::unknown;
 }
 
+bool is_srgb_encoded(const fs::path& file) {
+    auto in = OIIO::ImageInput::open(file.string());
+    if (!in) {
+        OIIO::geterror();  // clear OpenImageIO's pending message: the caller asked a yes/no
+                           // question
+        return false;
+    }
+    const bool srgb = automatic_decodes_srgb(in->spec());
+    in->close();
+    return srgb;
+}
+
 Result<Image> load_image(const fs::path& file, const ImageLoadOptions& options) {
     if (auto error = check_readable(file)) return *error;
     if (auto cause = check_png_structure(file)) return read_error(file, *cause);
@@ -483,8 +502,7 @@ Result<Image> load_image(const fs::path& file, const ImageLoadOptions& options) 
             decode = false;
             break;
         case ColorEncoding::automatic:
-            decode = !spec.format.is_floating_point() &&
-                     !says_linear(spec.get_string_attribute("oiio:ColorSpace"));
+            decode = automatic_decodes_srgb(spec);
             break;
     }
     if (decode) {

@@ -123,6 +123,11 @@ struct ImageToSave {
 // message then says).
 Status save_images(const std::vector<ImageToSave>& images, const ImageSaveOptions& options = {});
 
+// Whether load_image with ColorEncoding::automatic decodes `file` from sRGB: integer samples whose
+// metadata does not say linear (see "Colour handling" above). Reads only the header; false when it
+// cannot be read.
+bool is_srgb_encoded(const std::filesystem::path& file);
+
 // Writes `bytes` to `file` as save_image writes an encoded image: through a temporary file in the
 // same directory, every write, the fsync and the close checked, then a rename. For reports (JSON,
 // CSV, HTML) that must not be left half-written either.

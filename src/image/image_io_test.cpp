@@ -180,6 +180,25 @@ TEST_F(ImageIo, Srgb8PngRoundTrip) {
     }
 }
 
+// is_srgb_encoded() answers what load_image's automatic encoding does: decode an sRGB PNG, leave
+// a linear-tagged PNG and a float EXR alone; a file it cannot open is not sRGB.
+TEST_F(ImageIo, IsSrgbEncodedFollowsTheAutomaticRule) {
+    const Image image = make_image(8, 4, 3, 0.0f, 1.0f, 7u);
+    ImageSaveOptions linear;
+    linear.encoding = ColorEncoding::linear;
+    ASSERT_TRUE(save_image(image, path("srgb.png")).ok());
+    ASSERT_TRUE(save_image(image, path("linear.png"), linear).ok());
+    ASSERT_TRUE(save_image(image, path("float.exr")).ok());
+    EXPECT_TRUE(is_srgb_encoded(path("srgb.png")));
+    EXPECT_FALSE(is_srgb_encoded(path("linear.png")));
+    EXPECT_FALSE(is_srgb_encoded(path("float.exr")));
+    EXPECT_FALSE(is_srgb_encoded(path("missing.png")));
+    // The same decision as load_image: the linear PNG loads as stored, the sRGB one decoded.
+    const Result<Image> as_linear = load_image(path("linear.png"));
+    ASSERT_TRUE(as_linear.ok());
+    EXPECT_LE(max_abs_diff(*as_linear, image), 1.0f / 255);
+}
+
 TEST_F(ImageIo, Srgb16PngRoundTrip) {
     const Image image = make_image(16, 9, 3, 0.0f, 1.0f);
     const fs::path file = path("srgb16.png");
