@@ -10,47 +10,31 @@
 #include <algorithm>
 #include <cmath>
 
-#include "math/float4.h"
+#include <type_traits>
+
+#include "math/lanes.h"
 
 namespace footprint {
 
-inline float fast_atan2(float y, float x) {
-    constexpr float kHalfPi = 1.57079632679f, kPi = 3.14159265359f;
-    const float ax = std::fabs(x), ay = std::fabs(y);
-    const float big = std::max(ax, ay), small = std::min(ax, ay);
-    const float a = big > 0 ? small / big : 0.0f, s = a * a;
-    float r =
-        a *
-        (0.999999344f +
-         s * (-0.333298594f +
-              s * (0.199465662f +
-                   s * (-0.139086291f +
-                        s * (0.0964219496f +
-                             s * (-0.0559122972f + s * (0.0218629353f + s * -0.00405456079f)))))));
-    if (ay > ax) r = kHalfPi - r;
-    if (std::signbit(x)) r = kPi - r;
-    if (std::isnan(x) || std::isnan(y)) return x + y;
-    return std::copysign(r, y);
-}
-
-// The same for four (y, x) at once (math/float4.h): each lane is fast_atan2(y, x) bit for bit
+// For one lane (float) or four (Float4, math/lanes.h): each lane is the float result bit for bit
 // (a NaN lane may carry another NaN).
-inline Float4 fast_atan2(Float4 y, Float4 x) {
-    const Float4 ax = abs(x), ay = abs(y);
-    const Float4 big = max_like_std(ax, ay), small = min_like_std(ax, ay);
-    const Float4 a = select(big > Float4(0.0f), small / big, Float4(0.0f)), s = a * a;
-    Float4 r =
-        a *
-        (Float4(0.999999344f) +
-         s * (Float4(-0.333298594f) +
-              s * (Float4(0.199465662f) +
-                   s * (Float4(-0.139086291f) +
-                        s * (Float4(0.0964219496f) +
-                             s * (Float4(-0.0559122972f) +
-                                  s * (Float4(0.0218629353f) + s * Float4(-0.00405456079f))))))));
-    r = select(ay > ax, Float4(1.57079632679f) - r, r);
-    r = select(sign_bit(x), Float4(3.14159265359f) - r, r);
-    return select(is_not_nan(x) & is_not_nan(y), copysign(r, y), x + y);
+template <class F>
+inline F fast_atan2(F y, F x) {
+    static_assert(std::is_same_v<F, float> || std::is_same_v<F, Float4>);
+    using std::abs;
+    const F ax = abs(x), ay = abs(y);
+    const F big = max_like_std(ax, ay), small = min_like_std(ax, ay);
+    const F a = select(big > F(0.0f), small / big, F(0.0f)), s = a * a;
+    F r = a * (F(0.999999344f) +
+               s * (F(-0.333298594f) +
+                    s * (F(0.199465662f) +
+                         s * (F(-0.139086291f) +
+                              s * (F(0.0964219496f) +
+                                   s * (F(-0.0559122972f) +
+                                        s * (F(0.0218629353f) + s * F(-0.00405456079f))))))));
+    r = select(ay > ax, F(1.57079632679f) - r, r);
+    r = select(sign_bit(x), F(3.14159265359f) - r, r);
+    return select(MaskOf<F>(is_not_nan(x) & is_not_nan(y)), copysign(r, y), x + y);
 }
 
 }  // namespace footprint

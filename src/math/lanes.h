@@ -10,6 +10,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <concepts>
 #include <type_traits>
@@ -64,6 +65,34 @@ bool is_finite(T a) {
 template <std::floating_point T>
 bool is_not_nan(T a) {
     return !std::isnan(a);
+}
+
+// The sign bit (std::signbit), and |m| with s's sign.
+inline bool sign_bit(float a) {
+    return std::signbit(a);
+}
+inline float copysign(float magnitude, float sign) {
+    return std::copysign(magnitude, sign);
+}
+
+// Int4's bit operations for one lane: the IEEE-754 bits of a float as a 32-bit integer, logical
+// shifts, and the exact conversion back to float.
+inline int bits_of(float a) {
+    return std::bit_cast<int>(a);
+}
+inline float float_from_bits(int a) {
+    return std::bit_cast<float>(a);
+}
+template <int N>
+int shift_right(int a) {  // logical
+    return static_cast<int>(static_cast<unsigned>(a) >> N);
+}
+template <int N>
+int shift_left(int a) {
+    return static_cast<int>(static_cast<unsigned>(a) << N);
+}
+inline float to_float(int a) {
+    return static_cast<float>(a);
 }
 
 // Whether no lane of a mask is set.
