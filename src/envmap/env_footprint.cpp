@@ -143,9 +143,9 @@ struct PlainFootprintLanes {
 };
 
 template <class F>
-[[gnu::always_inline]] inline PlainFootprintLanes<F> plain_footprint(
-    EnvLayout layout, Vec2 texel_scale, const Vec3T<F>& r, const Vec3T<F>& dr_dx,
-    const Vec3T<F>& dr_dy, const IdentitySkippingRotation& to_map) {
+inline PlainFootprintLanes<F> plain_footprint(EnvLayout layout, Vec2 texel_scale, const Vec3T<F>& r,
+                                              const Vec3T<F>& dr_dx, const Vec3T<F>& dr_dy,
+                                              const IdentitySkippingRotation& to_map) {
     using namespace env_detail;
     using std::sqrt;
     PlainFootprintLanes<F> f;

@@ -48,7 +48,7 @@ inline Float4 inverse_binary_power(Float4 m) {
 }
 
 template <class F>
-[[gnu::always_inline]] inline PreparedLanes<F> prepare_lanes(const Vec3T<F>& r) {
+inline PreparedLanes<F> prepare_lanes(const Vec3T<F>& r) {
     using std::abs;
     const F m = max_like_std(max_like_std(abs(r.x), abs(r.y)), abs(r.z));
     // The sum is NaN only for a NaN component (the others are finite where m is in range).
@@ -112,7 +112,7 @@ template <class T>
 }
 
 template <class T>
-[[gnu::always_inline]] inline Prepared<T> prepare(Vec3T<T> r) {
+inline Prepared<T> prepare(Vec3T<T> r) {
     const PreparedLanes<T> common = prepare_lanes(r);
     if (!common.common) return prepare_rare(r);
     Prepared<T> p;
@@ -157,7 +157,7 @@ Jacobian23T<F> scaled(const Jacobian23T<F>& j, F scale) {
 }
 
 template <class T>
-[[gnu::always_inline]] inline Jacobian23T<T> finish(const Prepared<T>& p, Jacobian23T<T> j) {
+inline Jacobian23T<T> finish(const Prepared<T>& p, Jacobian23T<T> j) {
     if (p.usable && !p.infinite && p.exponent >= -100 && p.exponent <= 100)
         return scaled(j, p.scale);  // exact, and J ~ 1/|r| stays finite
     return finish_rare(p, j);
@@ -225,8 +225,8 @@ struct CubeCoordsJacobianLanes {
 // k(g_t − t'σ e_a) with k = 1/(2|r_a|): g_s, g_t and e_a are distinct axes, so each row has two
 // non-zero entries.
 template <class F>
-[[gnu::always_inline]] inline CubeCoordsJacobianLanes<F> cube_coords_and_jacobian_lanes(
-    const Vec3T<F>& r, const CubeAxes<F>& a) {
+inline CubeCoordsJacobianLanes<F> cube_coords_and_jacobian_lanes(const Vec3T<F>& r,
+                                                                 const CubeAxes<F>& a) {
     using std::abs;
     using I = IntOf<F>;
     const F one(1), minus_one(-1), zero(0);
@@ -251,8 +251,8 @@ template <class F>
 
 // (face, s, t) and J at a prepared direction, on the faces `a`.
 template <class T>
-[[gnu::always_inline]] inline EnvCoordsJacobianT<T> cube_coords_and_jacobian_at(
-    const Prepared<T>& p, const CubeAxes<T>& a) {
+inline EnvCoordsJacobianT<T> cube_coords_and_jacobian_at(const Prepared<T>& p,
+                                                         const CubeAxes<T>& a) {
     const CubeCoordsJacobianLanes<T> c = cube_coords_and_jacobian_lanes(p.r, a);
     return {{c.face, c.s, c.t}, finish(p, c.j)};
 }
@@ -279,7 +279,7 @@ F latlong_rho(const Vec3T<F>& r) {
 // (s, t) of a prepared r with its ρ, for any lane type. t = arccos(r_y/|r|)/π, accurate at the
 // poles too; at a pole (ρ = 0) s is undefined, ½ by convention.
 template <class F>
-[[gnu::always_inline]] inline Vec2T<F> latlong_coords_at(const Vec3T<F>& r, F rho) {
+inline Vec2T<F> latlong_coords_at(const Vec3T<F>& r, F rho) {
     using S = ScalarOf<F>;
     const F zero(0), one(1), half(0.5);
     const F t = any_atan2(rho, r.y) / F(kPi<S>);
@@ -293,7 +293,7 @@ template <class F>
 // (or scaled()'s) power of two: ∂s/∂r = (−r_z, 0, r_x)/(2πρ²); ∂t/∂r = −(e_y − r_y r/|r|²)/(πρ) =
 // (r_y r_x/ρ, −ρ, r_y r_z/ρ)/(π|r|²). 1/ρ is clamped to the finite range (0·(1/ρ) stays 0).
 template <class F>
-[[gnu::always_inline]] inline Jacobian23T<F> latlong_jacobian_lanes(const Vec3T<F>& r, F rho) {
+inline Jacobian23T<F> latlong_jacobian_lanes(const Vec3T<F>& r, F rho) {
     using S = ScalarOf<F>;
     const F cx = r.x / rho, cz = r.z / rho;
     const F inv_rho = min_like_std(F(1) / rho, F(std::numeric_limits<S>::max()));
@@ -304,7 +304,7 @@ template <class F>
 
 // The same at the pole: J undefined, the caller takes the isotropic fallback (§3.4).
 template <class T>
-[[gnu::always_inline]] inline Jacobian23T<T> latlong_jacobian_at(const Prepared<T>& p, T rho) {
+inline Jacobian23T<T> latlong_jacobian_at(const Prepared<T>& p, T rho) {
     if (rho == 0) return {};
     return finish(p, latlong_jacobian_lanes(p.r, rho));
 }

@@ -28,9 +28,8 @@ struct CentreProbe {
     EnvCoords coords;
     detail::TrilinearLevels levels;
 };
-[[gnu::always_inline]] inline CentreProbe centre_probe(const EnvironmentMap& map,
-                                                       const EnvCoords& c, float lod,
-                                                       const LookupOptions& options) {
+inline CentreProbe centre_probe(const EnvironmentMap& map, const EnvCoords& c, float lod,
+                                const LookupOptions& options) {
     return {c, detail::trilinear_levels(lod, map.face(c.face).max_level(),
                                         single_probe_blend(options.lod_blend))};
 }
@@ -97,10 +96,9 @@ enum class Routed { done, centre_probe, deferred_line };
 // A lookup of a computed footprint: one probe at its centre, returned in `probe` for the caller to
 // filter, a cube line on its face requested into `defer` where given, or any other lookup, done
 // here into out.
-[[gnu::always_inline]] inline Routed route_lookup(const EnvironmentMap& map,
-                                                  const EnvFootprint& footprint,
-                                                  const LookupOptions& options, float* out,
-                                                  CentreProbe& probe, DeferredCubeLine* defer) {
+inline Routed route_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
+                           const LookupOptions& options, float* out, CentreProbe& probe,
+                           DeferredCubeLine* defer) {
     const float lod = centre_probe_lod(map, footprint, options);
     if (lod >= 0.0f) {
         probe = centre_probe(map, footprint.coords, lod, options);

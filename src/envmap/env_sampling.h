@@ -67,24 +67,22 @@ inline const float* env_texel(const EnvironmentMap& map, int face, int level, in
 
 // The taps of a bilinear sample at position p on `view`, level `level` of `face`; taps beyond its
 // edges are read by direction (env_texel).
-[[gnu::always_inline]] inline BilinearTaps env_taps(const EnvironmentMap& map, int face, int level,
-                                                    const MipPyramid::LevelView& view,
-                                                    const BilinearPosition& p) {
+inline BilinearTaps env_taps(const EnvironmentMap& map, int face, int level,
+                             const MipPyramid::LevelView& view, const BilinearPosition& p) {
     if (p.inside) return taps_at(view, p.x0, p.x0 + 1, p.y0, p.y0 + 1, p.fx, p.fy);
     return env_taps_beyond_edge(map, face, level, p);
 }
 
 // Bilinear on a level of `face`, with taps beyond its edges read by direction.
 template <int S>
-[[gnu::always_inline]] inline Texel<S> env_bilinear(const EnvironmentMap& map, int face, int level,
-                                                    float s, float t) {
+inline Texel<S> env_bilinear(const EnvironmentMap& map, int face, int level, float s, float t) {
     const MipPyramid::LevelView& view = map.face(face).level(level);
     return blend_taps<S>(env_taps(map, face, level, view, bilinear_position(view, s, t)));
 }
 
 // The taps of a trilinear probe at (face, s, t) (ProbeTaps), read seamlessly (env_taps).
-[[gnu::always_inline]] inline ProbeTaps probe_taps(const EnvironmentMap& map, int face, float s,
-                                                   float t, TrilinearLevels levels) {
+inline ProbeTaps probe_taps(const EnvironmentMap& map, int face, float s, float t,
+                            TrilinearLevels levels) {
     return trilinear_taps(
         map.face(face), s, t, levels,
         [&](const MipPyramid::LevelView& view, int level, const BilinearPosition& p) {
@@ -94,9 +92,8 @@ template <int S>
 
 // The same where it is cheapest to ask for: a probe whose taps all lie on its face's row-major
 // levels (most) is addressed inline, without the edge handling.
-[[gnu::always_inline]] inline ProbeTaps probe_taps_on_face(const EnvironmentMap& map, int face,
-                                                           float s, float t,
-                                                           TrilinearLevels levels) {
+inline ProbeTaps probe_taps_on_face(const EnvironmentMap& map, int face, float s, float t,
+                                    TrilinearLevels levels) {
     const LineLevels on(map.face(face), levels);
     const BilinearPositionPair p = bilinear_positions(on.fine, on.coarse, s, t);
     if (!(p.fine.inside && p.coarse.inside && on.row_major()))

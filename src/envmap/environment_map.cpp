@@ -442,10 +442,9 @@ bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 map_direction, Vec
 namespace {
 
 // A form (a) lookup (the single-call entry points).
-[[gnu::always_inline]] inline void single_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx,
-                                                 Vec3 dr_dy, const LookupOptions& options,
-                                                 const IdentitySkippingRotation& to_map,
-                                                 float* out) {
+inline void single_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
+                          const LookupOptions& options, const IdentitySkippingRotation& to_map,
+                          float* out) {
     CentreProbe probe;
     if (route_lookup(map, r, dr_dx, dr_dy, options, to_map, out, probe, nullptr) ==
         Routed::centre_probe)

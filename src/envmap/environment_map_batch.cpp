@@ -19,9 +19,8 @@ namespace {
 // What a batch does with a routed lookup whose result goes to `result`: a deferred line is added
 // to `reads`, a centre probe's taps are requested into it, a lookup done needs nothing.
 template <std::size_t Capacity>
-[[gnu::always_inline]] inline void add_routed(const EnvironmentMap& map, Routed routed,
-                                              const CentreProbe& probe, int stride, float* result,
-                                              detail::RequestedReads<Capacity>& reads) {
+inline void add_routed(const EnvironmentMap& map, Routed routed, const CentreProbe& probe,
+                       int stride, float* result, detail::RequestedReads<Capacity>& reads) {
     switch (routed) {
         case Routed::done:
             break;
@@ -65,9 +64,9 @@ struct FourFootprints {
     float lod[4];                // the plain footprints' single-probe lods (< 0: a line)
     ShortPlans4 plans, cap_plans;
 
-    [[gnu::always_inline]] void compute(const EnvironmentMap& map, const EnvRayDifferential* rays,
-                                        const IdentitySkippingRotation& to_map,
-                                        const LookupOptions& options, const Setting& setting) {
+    void compute(const EnvironmentMap& map, const EnvRayDifferential* rays,
+                 const IdentitySkippingRotation& to_map, const LookupOptions& options,
+                 const Setting& setting) {
         plain.plain = plans.planned = 0;
         if (setting.caps) {
             polar_cap_footprints4(map, rays, to_map, options, capped);
@@ -102,11 +101,9 @@ struct FourFootprints {
 };
 
 // Form (a) lookups of many rays (the batch entry points).
-[[gnu::always_inline]] inline void batch_lookup(const EnvironmentMap& map,
-                                                std::span<const EnvRayDifferential> rays,
-                                                const LookupOptions& options,
-                                                const IdentitySkippingRotation& to_map,
-                                                float* out) {
+inline void batch_lookup(const EnvironmentMap& map, std::span<const EnvRayDifferential> rays,
+                         const LookupOptions& options, const IdentitySkippingRotation& to_map,
+                         float* out) {
     // The footprints are computed four at a time (FourFootprints). The lookups that are one probe
     // (most of them: at the footprint's centre, or on a polar cap), the cube lines on their face
     // (DeferredCubeLine) and the short lines on a polar cap are deferred: their texels are
@@ -179,10 +176,9 @@ struct FourFootprints {
 }
 
 // environment_lookup_batch() of computed footprints.
-[[gnu::always_inline]] inline void footprint_batch_lookup(const EnvironmentMap& map,
-                                                          std::span<const EnvFootprint> footprints,
-                                                          const LookupOptions& options,
-                                                          float* out) {
+inline void footprint_batch_lookup(const EnvironmentMap& map,
+                                   std::span<const EnvFootprint> footprints,
+                                   const LookupOptions& options, float* out) {
     // Each footprint routed as the single call routes it, its centre probe, cube line or polar
     // cap's probe or line read with its group's (as batch_lookup() reads them). On a cube or
     // lat-long map the lines off the polar caps are set aside and planned four at a time

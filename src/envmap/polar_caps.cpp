@@ -88,9 +88,8 @@ struct CapMatrixLanes {
 };
 
 template <class F>
-[[gnu::always_inline]] inline CapMatrixLanes<F> cap_matrix(F s, F t, const Jacobian23T<F>& j,
-                                                           const Vec3T<F>& dx, const Vec3T<F>& dy,
-                                                           const Vec3T<F>* roughness, F n) {
+inline CapMatrixLanes<F> cap_matrix(F s, F t, const Jacobian23T<F>& j, const Vec3T<F>& dx,
+                                    const Vec3T<F>& dy, const Vec3T<F>* roughness, F n) {
     using std::sqrt;
     auto on_cap = [&](const Vec3T<F>& w) { return Vec2T<F>{n * dot(j.ds, w), n * dot(j.dt, w)}; };
     Sym2Lanes<F> k = footprint_matrix_lanes(on_cap(dx), on_cap(dy));
@@ -145,9 +144,10 @@ namespace {
 
 // polar_cap_filter() at the footprint's single_probe_lod(), or given `probe` and `line`,
 // polar_cap_request().
-[[gnu::always_inline]] inline detail::Requested filter_cap(
-    const PolarCapFootprint& f, float lod, const LookupOptions& options, float* out,
-    detail::RequestedProbe* probe, detail::RequestedLine<detail::kRequestedLineProbes>* line) {
+inline detail::Requested filter_cap(const PolarCapFootprint& f, float lod,
+                                    const LookupOptions& options, float* out,
+                                    detail::RequestedProbe* probe,
+                                    detail::RequestedLine<detail::kRequestedLineProbes>* line) {
     const MipPyramid& cap = *f.cap;
     const EnvCoords& c = f.coords;
     // One probe (the common case): no ellipse axes.

@@ -16,7 +16,7 @@ struct AxesSquared {
     F w, major_sq, minor_sq;
 };
 template <class F>
-[[gnu::always_inline]] inline AxesSquared<F> axes_squared(F xx, F xy, F yy) {
+inline AxesSquared<F> axes_squared(F xx, F xy, F yy) {
     using std::sqrt;
     const F zero(0);
     const F w = sqrt((xx - yy) * (xx - yy) + F(4) * xy * xy);
@@ -34,7 +34,7 @@ struct EllipseLanes {
     Vec2T<F> major_axis;
 };
 template <class F>
-[[gnu::always_inline]] inline EllipseLanes<F> footprint_ellipse_lanes(F xx, F xy, F yy) {
+inline EllipseLanes<F> footprint_ellipse_lanes(F xx, F xy, F yy) {
     using std::sqrt;
     const F zero(0), one(1), two(2);
     const AxesSquared<F> a = axes_squared(xx, xy, yy);

@@ -126,8 +126,8 @@ namespace {
 // single_probe_lod() for any lane type (math/lanes.h): one footprint, or four at once for the
 // batches.
 template <class F>
-[[gnu::always_inline]] inline F single_probe_lod_lanes(F xx, F xy, F yy, float lod_bias,
-                                                       int max_level, float isotropic_ratio) {
+inline F single_probe_lod_lanes(F xx, F xy, F yy, float lod_bias, int max_level,
+                                float isotropic_ratio) {
     const F zero(0), one(1);
     const F bias_lod(std::clamp(lod_bias, 0.0f, static_cast<float>(max_level)));
     // Magnification (λ1² ≤ tr K ≤ 1 = T_min²): one probe at level 0, no eigenvalues needed.
@@ -317,20 +317,17 @@ namespace detail {
 namespace {
 
 // The plan of a footprint on `pyramid`.
-[[gnu::always_inline]] inline ProbePlan plan_for(const MipPyramid& pyramid,
-                                                 const FootprintEllipse& footprint,
-                                                 const LookupOptions& options) {
+inline ProbePlan plan_for(const MipPyramid& pyramid, const FootprintEllipse& footprint,
+                          const LookupOptions& options) {
     return plan_probes(footprint, options.probe_rule, options.max_probes, pyramid.max_level(),
                        options.lod_bias, options.isotropic_ratio);
 }
 
 // filter_footprint_assembly(), or given `probe` and `line`, request_footprint_assembly(), of a
 // footprint planned (plan_for()).
-[[gnu::always_inline]] inline Requested assemble(const MipPyramid& pyramid, float s, float t,
-                                                 const ProbePlan& plan,
-                                                 const LookupOptions& options, float* out,
-                                                 RequestedProbe* probe,
-                                                 RequestedLine<kRequestedLineProbes>* line) {
+inline Requested assemble(const MipPyramid& pyramid, float s, float t, const ProbePlan& plan,
+                          const LookupOptions& options, float* out, RequestedProbe* probe,
+                          RequestedLine<kRequestedLineProbes>* line) {
     // Offsets are in level-0 texels; divide by S = diag(W0, H0) for normalised units (spec §2.9).
     // Positions need no per-probe reduction: the footprint is bounded to a few texture sizes, and
     // sample_bilinear wraps taps outside the level.

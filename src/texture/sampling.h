@@ -139,7 +139,7 @@ inline void prefetch_taps(const BilinearTaps& taps, int stride) {
 
 // The bilinear blend of four taps.
 template <int S>
-[[gnu::always_inline]] inline Texel<S> blend_taps(const BilinearTaps& taps) {
+inline Texel<S> blend_taps(const BilinearTaps& taps) {
     const float fx = taps.fx, fy = taps.fy;
     const float wa = (1 - fx) * (1 - fy), wb = fx * (1 - fy), wc = (1 - fx) * fy, wd = fx * fy;
     Texel<S> r;
@@ -150,9 +150,8 @@ template <int S>
 
 // The taps of a bilinear sample of one level at position p; taps beyond the level's edge are
 // wrapped.
-[[gnu::always_inline]] inline BilinearTaps wrapped_taps(const MipPyramid::LevelView& level,
-                                                        WrapMode wrap_s, WrapMode wrap_t,
-                                                        const BilinearPosition& p) {
+inline BilinearTaps wrapped_taps(const MipPyramid::LevelView& level, WrapMode wrap_s,
+                                 WrapMode wrap_t, const BilinearPosition& p) {
     if (p.inside) return taps_at(level, p.x0, p.x0 + 1, p.y0, p.y0 + 1, p.fx, p.fy);
     return taps_at(level, wrap_index(p.x0, level.width, wrap_s),
                    wrap_index(p.x0 + 1, level.width, wrap_s),
@@ -162,9 +161,8 @@ template <int S>
 
 // Bilinear sample of one level at (s, t); taps beyond the level's edge are wrapped.
 template <int S>
-[[gnu::always_inline]] inline Texel<S> sample_bilinear(const MipPyramid::LevelView& level,
-                                                       WrapMode wrap_s, WrapMode wrap_t, float s,
-                                                       float t) {
+inline Texel<S> sample_bilinear(const MipPyramid::LevelView& level, WrapMode wrap_s,
+                                WrapMode wrap_t, float s, float t) {
     return blend_taps<S>(wrapped_taps(level, wrap_s, wrap_t, bilinear_position(level, s, t)));
 }
 
@@ -196,8 +194,8 @@ struct ProbeTaps {
 // (bilinear_positions), each level's taps addressed by taps_on(view, level, position) — wrapped at
 // a texture's edges, or read across an environment map's faces.
 template <class TapsOn>
-[[gnu::always_inline]] inline ProbeTaps trilinear_taps(const MipPyramid& pyramid, float s, float t,
-                                                       TrilinearLevels levels, TapsOn&& taps_on) {
+inline ProbeTaps trilinear_taps(const MipPyramid& pyramid, float s, float t, TrilinearLevels levels,
+                                TapsOn&& taps_on) {
     const MipPyramid::LevelView& fine = pyramid.level(levels.l0);
     if (levels.w == 0.0f) return {taps_on(fine, levels.l0, bilinear_position(fine, s, t)), {}};
     const MipPyramid::LevelView& coarse = pyramid.level(levels.l0 + 1);
@@ -206,8 +204,7 @@ template <class TapsOn>
 }
 
 // The taps of a trilinear probe of `pyramid` at (s, t); taps beyond a level's edge are wrapped.
-[[gnu::always_inline]] inline ProbeTaps probe_taps(const MipPyramid& pyramid, float s, float t,
-                                                   TrilinearLevels levels) {
+inline ProbeTaps probe_taps(const MipPyramid& pyramid, float s, float t, TrilinearLevels levels) {
     return trilinear_taps(pyramid, s, t, levels,
                           [&](const MipPyramid::LevelView& view, int, const BilinearPosition& p) {
                               return wrapped_taps(view, pyramid.wrap_s(), pyramid.wrap_t(), p);
@@ -220,7 +217,7 @@ inline void prefetch_probe(const ProbeTaps& taps, TrilinearLevels levels, int st
 }
 
 template <int S>
-[[gnu::always_inline]] inline Texel<S> blend_probe(const ProbeTaps& taps, TrilinearLevels levels) {
+inline Texel<S> blend_probe(const ProbeTaps& taps, TrilinearLevels levels) {
     Texel<S> r = blend_taps<S>(taps.fine);
     if (levels.w > 0.0f) {
         const Texel<S> coarse = blend_taps<S>(taps.coarse);
@@ -238,15 +235,15 @@ struct RequestedProbe {
 
     void request(int stride) const { prefetch_probe(taps, levels, stride); }
     template <int S>
-    [[gnu::always_inline]] Texel<S> blend() const {
+    Texel<S> blend() const {
         return blend_probe<S>(taps, levels);
     }
 };
 
 // Trilinear probe at a fractional level lod ∈ [0, max_level].
 template <int S>
-[[gnu::always_inline]] inline Texel<S> sample_trilinear(const MipPyramid& pyramid, float s, float t,
-                                                        float lod, LodBlend blend) {
+inline Texel<S> sample_trilinear(const MipPyramid& pyramid, float s, float t, float lod,
+                                 LodBlend blend) {
     const TrilinearLevels levels = trilinear_levels(lod, pyramid.max_level(), blend);
     return blend_probe<S>(probe_taps(pyramid, s, t, levels), levels);
 }
@@ -258,8 +255,8 @@ template <int S>
 // read, so that cache misses overlap (a bounded number in flight) instead of arriving one probe at
 // a time.
 template <int S, class Line>
-[[gnu::always_inline]] inline Texel<S> blend_line_ahead(int count, const float* weights,
-                                                        float coarse_weight, Line&& line) {
+inline Texel<S> blend_line_ahead(int count, const float* weights, float coarse_weight,
+                                 Line&& line) {
     Texel<S> fine{}, coarse{};
     auto read = [&](const auto& probe, int i) {
         add_scaled(fine, weights[i], line.fine(probe));
@@ -290,9 +287,8 @@ template <int S, class Line>
 // A line of `count` trilinear probes, all on `levels` (blend_line_ahead): taps_of(i) places probe
 // i and addresses its taps (ProbeTaps, read with any level's layout and edges).
 template <int S, class TapsOf>
-[[gnu::always_inline]] inline Texel<S> blend_probe_line(int count, const float* weights,
-                                                        TrilinearLevels levels, int stride,
-                                                        TapsOf&& taps_of) {
+inline Texel<S> blend_probe_line(int count, const float* weights, TrilinearLevels levels,
+                                 int stride, TapsOf&& taps_of) {
     struct Line {
         TapsOf& taps_of;
         TrilinearLevels levels;
@@ -335,10 +331,9 @@ inline bool line_inside(const MipPyramid::LevelView& fine, const MipPyramid::Lev
 
 // The taps of a trilinear probe at (s, t) on levels that hold all of them (line_inside()): what
 // trilinear_taps() gives there, without its edge tests.
-[[gnu::always_inline]] inline ProbeTaps probe_taps_inside(const MipPyramid::LevelView& fine,
-                                                          const MipPyramid::LevelView& coarse,
-                                                          float s, float t,
-                                                          TrilinearLevels levels) {
+inline ProbeTaps probe_taps_inside(const MipPyramid::LevelView& fine,
+                                   const MipPyramid::LevelView& coarse, float s, float t,
+                                   TrilinearLevels levels) {
     if (levels.w == 0.0f) {
         const BilinearPosition p = bilinear_position(fine, s, t);
         return {taps_at(fine, p.x0, p.x0 + 1, p.y0, p.y0 + 1, p.fx, p.fy), {}};
@@ -398,14 +393,12 @@ struct RowMajorProbe {
 
 // A RowMajorProbe's bilinear blend on its fine and on its coarse level.
 template <int S>
-[[gnu::always_inline]] inline Texel<S> blend_row_major_fine(const RowMajorProbe& probe,
-                                                            std::ptrdiff_t row_floats) {
+inline Texel<S> blend_row_major_fine(const RowMajorProbe& probe, std::ptrdiff_t row_floats) {
     return blend_taps<S>(
         row_major_taps(probe.fine, row_floats, S, probe.fraction[0], probe.fraction[1]));
 }
 template <int S>
-[[gnu::always_inline]] inline Texel<S> blend_row_major_coarse(const RowMajorProbe& probe,
-                                                              std::ptrdiff_t row_floats) {
+inline Texel<S> blend_row_major_coarse(const RowMajorProbe& probe, std::ptrdiff_t row_floats) {
     return blend_taps<S>(
         row_major_taps(probe.coarse, row_floats, S, probe.fraction[2], probe.fraction[3]));
 }
@@ -421,7 +414,7 @@ struct RowMajorLine {
         (Int4{fine_level.width, fine_level.height, coarse_level.width, coarse_level.height}),
         Float4);
 
-    [[gnu::always_inline]] RowMajorProbe place(int i) const {
+    RowMajorProbe place(int i) const {
         const auto position = position_of(i);
         const auto [lower, fraction] = floor_and_fraction(
             Float4{position.x, position.y, position.x, position.y} * size - 0.5f);
@@ -475,9 +468,8 @@ struct RequestedLine {
     // blend_probe_path_inside()'s arguments: false, with nothing requested, unless it would read
     // the path by RowMajorLine and count ≤ N.
     template <int S, class Corner, class PositionOf>
-    [[gnu::always_inline]] bool request(const MipPyramid& pyramid, int probe_count,
-                                        const float* probe_weights, TrilinearLevels levels,
-                                        Corner lower, Corner upper, PositionOf&& position_of) {
+    bool request(const MipPyramid& pyramid, int probe_count, const float* probe_weights,
+                 TrilinearLevels levels, Corner lower, Corner upper, PositionOf&& position_of) {
         const LineLevels on(pyramid, levels);
         if (probe_count > N || !on.row_major() || !on.hold(lower, upper)) return false;
         const RowMajorLine<S, PositionOf> line{on.fine, on.coarse, position_of, levels.w > 0.0f};
@@ -493,7 +485,7 @@ struct RequestedLine {
     }
 
     template <int S>
-    [[gnu::always_inline]] Texel<S> blend() const {
+    Texel<S> blend() const {
         struct Requested {
             const RequestedLine& line;
             RowMajorProbe place(int i) const { return line.probes[i]; }
@@ -514,11 +506,9 @@ struct RequestedLine {
 // row-major levels, probe_taps_inside() on tiled ones — and written to out, true; otherwise nothing
 // written, false, for the caller's edge-aware path.
 template <class Corner, class PositionOf>
-[[gnu::always_inline]] inline bool blend_probe_path_inside(const MipPyramid& pyramid, int count,
-                                                           const float* weights,
-                                                           TrilinearLevels levels, Corner lower,
-                                                           Corner upper, PositionOf&& position_of,
-                                                           float* out) {
+inline bool blend_probe_path_inside(const MipPyramid& pyramid, int count, const float* weights,
+                                    TrilinearLevels levels, Corner lower, Corner upper,
+                                    PositionOf&& position_of, float* out) {
     const LineLevels on(pyramid, levels);
     if (!on.hold(lower, upper)) return false;
     const MipPyramid::LevelView &fine = on.fine, &coarse = on.coarse;
@@ -539,10 +529,8 @@ template <class Corner, class PositionOf>
 
 // The same for a straight line, positions c + k·Δ: its ends bound it (line_inside()).
 template <class PositionOf>
-[[gnu::always_inline]] inline bool blend_probe_line_inside(const MipPyramid& pyramid, int count,
-                                                           const float* weights,
-                                                           TrilinearLevels levels,
-                                                           PositionOf&& position_of, float* out) {
+inline bool blend_probe_line_inside(const MipPyramid& pyramid, int count, const float* weights,
+                                    TrilinearLevels levels, PositionOf&& position_of, float* out) {
     return blend_probe_path_inside(pyramid, count, weights, levels, position_of(0),
                                    position_of(count - 1), position_of, out);
 }

@@ -36,10 +36,9 @@ struct Requests {
 // batch), a lookup that is one bilinear or trilinear probe — magnification, the GL rule, a
 // near-isotropic footprint — requested into requests.probe, and a short footprint-assembly line
 // into requests.line, for the caller to read (bit for bit what is done into out without them).
-[[gnu::always_inline]] inline detail::Requested route_lookup(const MipPyramid& pyramid,
-                                                             const TextureCoords& c,
-                                                             const LookupOptions& options,
-                                                             float* out, const Requests* requests) {
+inline detail::Requested route_lookup(const MipPyramid& pyramid, const TextureCoords& c,
+                                      const LookupOptions& options, float* out,
+                                      const Requests* requests) {
     using detail::Requested;
     // One trilinear probe at reduced (s, t): lookup_trilinear(), or requested.
     auto trilinear = [&](float s, float t, float lod, LodBlend blend) {
