@@ -36,15 +36,16 @@ struct PreparedLanes {
 
 // 2^-⌊log2 m⌋ for a positive normal m, from the IEEE-754 bits: m's biased exponent e gives the
 // bits of 2^(bias − e) as ((2·bias − e) << mantissa bits).
-inline float inverse_binary_power(float m) {
-    return std::bit_cast<float>((254u - (std::bit_cast<std::uint32_t>(m) >> 23)) << 23);
+// One float lane or four (math/lanes.h's bit operations); double, with its own 64-bit layout, has
+// the overload below.
+template <class F>
+inline F inverse_binary_power(F m) {
+    using I = IntOf<F>;
+    return float_from_bits(shift_left<23>(I(254) - shift_right<23>(bits_of(m))));
 }
 inline double inverse_binary_power(double m) {
     return std::bit_cast<double>((std::uint64_t{2046} - (std::bit_cast<std::uint64_t>(m) >> 52))
                                  << 52);
-}
-inline Float4 inverse_binary_power(Float4 m) {
-    return float_from_bits(shift_left<23>(Int4(254) - shift_right<23>(bits_of(m))));
 }
 
 template <class F>

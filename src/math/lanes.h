@@ -104,10 +104,6 @@ inline bool none(Mask4 m) {
 }
 
 template <class M, class F>
-Vec2T<F> select(M m, const Vec2T<F>& a, const Vec2T<F>& b) {
-    return {select(m, a.x, b.x), select(m, a.y, b.y)};
-}
-template <class M, class F>
 Vec3T<F> select(M m, const Vec3T<F>& a, const Vec3T<F>& b) {
     return {select(m, a.x, b.x), select(m, a.y, b.y), select(m, a.z, b.z)};
 }
