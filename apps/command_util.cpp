@@ -9,7 +9,10 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
+#include "demo_scenes.h"
 #include "image/image_io.h"
+#include "plane_view.h"
+#include "scene/scene_file.h"
 
 namespace footprint {
 
@@ -219,6 +222,35 @@ std::string panel_label(const std::string& method, int spp, double rmse, double 
         label += " | " + (seconds < 1 ? formatted("%.3g", seconds * 1e3) + " ms"
                                       : formatted("%.3g", seconds) + " s");
     return label;
+}
+
+bool is_float_image_file(const fs::path& file) {
+    std::string ext = file.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".exr" || ext == ".hdr";
+}
+
+Result<NamedScene> resolve_scene(const std::string& name, std::optional<int> width) {
+    const auto& demos = demo_scene_names();
+    if (std::find(demos.begin(), demos.end(), name) != demos.end()) {
+        DemoSceneOptions demo_options;
+        if (width) {
+            demo_options.width = *width;
+            demo_options.height = plane_view_height(*width);
+        }
+        Result<DemoScene> demo = make_demo_scene(name, demo_options);
+        if (!demo) return demo.error();
+        return NamedScene{demo->name, demo->title, std::move(demo->scene)};
+    }
+    if (fs::path(name).extension() == ".json") {
+        Result<SceneDesc> desc = load_scene_file(name);
+        if (!desc) return Error{with_shared_data_hint(desc.error().message)};
+        return NamedScene{fs::path(name).stem().string(), name, std::move(*desc)};
+    }
+    std::string valid;
+    for (const std::string& n : demos) valid += (valid.empty() ? "" : ", ") + n;
+    return Error{"unknown scene '" + name + "': not a built-in demo (" + valid +
+                 ") nor a .json scene file"};
 }
 
 }  // namespace footprint

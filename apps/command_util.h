@@ -11,6 +11,7 @@
 #include "core/result.h"
 #include "image/image.h"
 #include "image/image_io.h"
+#include "scene/scene.h"
 
 namespace footprint {
 
@@ -23,6 +24,10 @@ std::string quoted(const std::filesystem::path& path);
 // Why `file` cannot be written as an image (no file name, unsupported extension, missing
 // directory, a directory), or nullopt if it can.
 std::optional<std::string> output_file_problem(const std::filesystem::path& file);
+
+// Whether an output file holds linear radiance as rendered (.exr, .hdr) rather than sRGB-encoded
+// integers (exposure applies to those only).
+bool is_float_image_file(const std::filesystem::path& file);
 
 // `message` of a scene file that did not load; where the missing file is one of the optional shared
 // data set (../shared/data beside the repository, which a clone lacks), it says so.
@@ -93,5 +98,14 @@ ContactSheet contact_sheet(const std::vector<const Image*>& images,
 // "fa-rough | 1 spp | RMSE 0.2703 | 31 ms"; without the RMSE part when `rmse` is NaN (the
 // reference itself).
 std::string panel_label(const std::string& method, int spp, double rmse, double seconds);
+
+// A scene named on the command line: a built-in demo scene by name (apps/demo_scenes.h), `width`
+// pixels wide and plane_view_height(width) high where a width is given (else its own size), or a
+// scene file (.json, its own size). The error names an unknown name with the valid ones.
+struct NamedScene {
+    std::string name, title;
+    SceneDesc desc;
+};
+Result<NamedScene> resolve_scene(const std::string& name, std::optional<int> width = std::nullopt);
 
 }  // namespace footprint

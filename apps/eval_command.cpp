@@ -45,32 +45,6 @@ constexpr std::uint32_t kReferenceSeed = 1, kSequenceReferenceSeed = 2, kFirstMe
 constexpr int kMaxSpp = 1 << 16, kMaxReferenceSpp = 1 << 20, kMaxThreads = 1024;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-struct NamedScene {
-    std::string name, title;
-    SceneDesc desc;
-};
-
-Result<NamedScene> resolve_scene(const std::string& name, const EvalCommandOptions& options) {
-    const auto& demos = demo_scene_names();
-    if (std::find(demos.begin(), demos.end(), name) != demos.end()) {
-        DemoSceneOptions demo_options;
-        demo_options.width = options.width;
-        demo_options.height = plane_view_height(options.width);
-        Result<DemoScene> demo = make_demo_scene(name, demo_options);
-        if (!demo) return demo.error();
-        return NamedScene{demo->name, demo->title, std::move(demo->scene)};
-    }
-    if (fs::path(name).extension() == ".json") {
-        Result<SceneDesc> desc = load_scene_file(name);
-        if (!desc) return Error{with_shared_data_hint(desc.error().message)};
-        return NamedScene{fs::path(name).stem().string(), name, std::move(*desc)};
-    }
-    std::string valid;
-    for (const std::string& n : demos) valid += (valid.empty() ? "" : ", ") + n;
-    return Error{"unknown scene '" + name + "': not a built-in demo (" + valid +
-                 ") nor a .json scene file"};
-}
-
 struct Timed {
     Image image;
     double seconds = 0;
@@ -130,34 +104,6 @@ Result<Image> cached(const fs::path& file, bool& was_cached, const std::function
     Image image = make();
     if (Status s = save_image(image, file); !s) return s.error();
     return image;
-}
-
-// The interior: pixels whose pixel filter (±3σ = ±1.5 pixels around the centre) sees one object
-// only — no silhouette, no object/background edge — at the scene's still camera. Texture filters
-// can remove the aliasing there; at silhouettes only more samples can.
-Image interior_mask(const RenderScene& scene) {
-    const SceneDesc& desc = scene.desc();
-    const PinholeCamera camera(desc.camera, desc.width, desc.height);
-    Image mask(desc.width, desc.height, 1, 0.0f);
-    constexpr double kReach = 1.5;
-    const double offsets[3] = {-kReach, 0, kReach};
-    for (int y = 0; y < desc.height; ++y) {
-        for (int x = 0; x < desc.width; ++x) {
-            int object = -2;
-            bool same = true;
-            for (double dy : offsets) {
-                for (double dx : offsets) {
-                    const RayDifferential ray = camera.ray(x + 0.5 + dx, y + 0.5 + dy);
-                    const std::optional<SceneHit> hit = scene.intersect(ray.ray, 1e-9, INFINITY);
-                    const int id = hit ? hit->surface.object : -1;
-                    if (object == -2) object = id;
-                    same = same && id == object && id >= 0;
-                }
-            }
-            mask.at(x, y, 0) = same ? 1.0f : 0.0f;
-        }
-    }
-    return mask;
 }
 
 // What people look at: sRGB of the value clamped to [0, 1].
@@ -226,7 +172,7 @@ int run_eval_command(const EvalCommandOptions& options) {
     if (names.empty()) names = demo_scene_names();
     std::vector<NamedScene> scenes;
     for (const std::string& name : names) {
-        Result<NamedScene> scene = resolve_scene(name, options);
+        Result<NamedScene> scene = resolve_scene(name, options.width);
         if (!scene) return fail(scene.error().message);
         scenes.push_back(std::move(*scene));
     }

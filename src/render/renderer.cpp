@@ -354,6 +354,31 @@ std::span<const FilterMode> all_filter_modes() {
     return kAllModes;
 }
 
+Image interior_mask(const RenderScene& scene) {
+    const SceneDesc& desc = scene.desc();
+    const PinholeCamera camera(desc.camera, desc.width, desc.height);
+    Image mask(desc.width, desc.height, 1, 0.0f);
+    constexpr double kReach = 1.5;
+    const double offsets[3] = {-kReach, 0, kReach};
+    for (int y = 0; y < desc.height; ++y) {
+        for (int x = 0; x < desc.width; ++x) {
+            int object = -2;
+            bool same = true;
+            for (double dy : offsets) {
+                for (double dx : offsets) {
+                    const RayDifferential ray = camera.ray(x + 0.5 + dx, y + 0.5 + dy);
+                    const std::optional<SceneHit> hit = scene.intersect(ray.ray, 1e-9, INFINITY);
+                    const int id = hit ? hit->surface.object : -1;
+                    if (object == -2) object = id;
+                    same = same && id == object && id >= 0;
+                }
+            }
+            mask.at(x, y, 0) = same ? 1.0f : 0.0f;
+        }
+    }
+    return mask;
+}
+
 int render_tile_count(int width, int height) {
     return ((width + kTileSize - 1) / kTileSize) * ((height + kTileSize - 1) / kTileSize);
 }

@@ -97,4 +97,10 @@ Image render(const RenderScene& scene, const RenderOptions& options, RenderStats
 
 int render_tile_count(int width, int height);
 
+// The interior of the scene's image at its still camera: 1 where the pixel filter (±3σ = ±1.5
+// pixels around the centre) sees one object only — no silhouette, no object/background edge —
+// else 0 (one channel). Texture filters can remove the aliasing there; at silhouettes only more
+// samples can. The mask of `footprint eval`'s interior errors.
+Image interior_mask(const RenderScene& scene);
+
 }  // namespace footprint

@@ -22,29 +22,6 @@ F probe_lod(F texel_size, float lod_bias, int max_level) {
                           F(static_cast<float>(max_level)));
 }
 
-// a/√v_N for N Gaussian-weighted probes (footprint_assembly.h): Δ = σ_g ·
-// gaussian_spacing_factor(N). v_N is the variance, in u units, of the weights exp(−½u²) on N even
-// nodes over [−κ, κ]. Tabulated on first use (so that programs that never plan a Gaussian line
-// do not pay for it), since a plan may look several up.
-float gaussian_spacing_factor(int n) {
-    constexpr int kTableSize = kMaxProbeCount + 1;  // every count a plan may hold
-    static const std::array<float, kTableSize> table = [] {
-        std::array<float, kTableSize> t{};
-        for (int m = 2; m < kTableSize; ++m) {
-            const double a = 2.0 * kGaussianProbeExtent / (m - 1);
-            double sw = 0, swu = 0;
-            for (int i = 0; i < m; ++i) {
-                const double u = (i - 0.5 * (m - 1)) * a, w = std::exp(-0.5 * u * u);
-                sw += w;
-                swu += w * u * u;
-            }
-            t[m] = static_cast<float>(a / std::sqrt(swu / sw));
-        }
-        return t;
-    }();
-    return table[std::clamp(n, 2, kTableSize - 1)];
-}
-
 // The Gaussian fall-off a = 2κ_g/(N − 1) that plan_probes() gives a line of N probes, and the
 // ratio q = e^{−a²/8} that probe_weights() builds its weights from, for every count a plan may
 // hold: tabulated once, so that a short line's weights cost no exp beside its few probes.
@@ -93,6 +70,28 @@ F gaussian_sigma(F l1, F tp) {
 }
 
 }  // namespace
+
+// a/√v_N, v_N the variance, in u units, of the weights exp(−½u²) on N even nodes over [−κ, κ].
+// Tabulated on first use (so that programs that never plan a Gaussian line do not pay for it),
+// since a plan may look several up.
+float gaussian_spacing_factor(int n) {
+    constexpr int kTableSize = kMaxProbeCount + 1;  // every count a plan may hold
+    static const std::array<float, kTableSize> table = [] {
+        std::array<float, kTableSize> t{};
+        for (int m = 2; m < kTableSize; ++m) {
+            const double a = 2.0 * kGaussianProbeExtent / (m - 1);
+            double sw = 0, swu = 0;
+            for (int i = 0; i < m; ++i) {
+                const double u = (i - 0.5 * (m - 1)) * a, w = std::exp(-0.5 * u * u);
+                sw += w;
+                swu += w * u * u;
+            }
+            t[m] = static_cast<float>(a / std::sqrt(swu / sw));
+        }
+        return t;
+    }();
+    return table[std::clamp(n, 2, kTableSize - 1)];
+}
 
 void probe_weights(const ProbePlan& plan, float* weights) {
     // From the centre out by the recurrence w_{k+1} = w_k·r_k, r_{k+1} = r_k·e^{−a²}, mirrored, so

@@ -69,6 +69,11 @@ float single_probe_lod(const Sym2& k, const LookupOptions& options, int max_leve
 // The most probes a plan holds (max_probes is clamped to it).
 constexpr int kMaxProbeCount = 1024;
 
+// c(N) of N ≥ 2 Gaussian-weighted probes: their spacing is Δ = σ_g·c(N), σ_g = √(λ1² − T_p²)/2
+// (the weights' standard deviation). Counts outside [2, kMaxProbeCount] read the nearest end. (The
+// GPU path uploads it as a table.)
+float gaussian_spacing_factor(int n);
+
 // The (unnormalised) weight of each of plan.count probes: 1, or ∝ exp(−½(a·k)²), k = i − (N−1)/2
 // (two probes weigh 1 each).
 void probe_weights(const ProbePlan& plan, float* weights);
