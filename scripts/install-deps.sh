@@ -13,6 +13,8 @@ packages=(
     chromium                                                  # footprint eval's report check
     fonts-dejavu-core                                         # contact sheets' labels
     valgrind                                                  # bench/env-instructions.sh
+    libepoxy-dev libegl-dev libgl1-mesa-dri libglfw3-dev      # the GPU path (OpenGL 4.5, EGL)
+    xvfb xauth                                                # footprint view's test (a display)
 )
 
 missing=()

@@ -72,6 +72,12 @@ class RenderScene {
     const SceneDesc& desc() const { return desc_; }
     const RenderEnvironment* environment() const { return environment_.get(); }
 
+    // The material of analytic object `object` (an index into desc().objects); nullptr for a mesh.
+    const RenderMaterial* analytic_material(int object) const {
+        const int m = object_material_[static_cast<std::size_t>(object)];
+        return m < 0 ? nullptr : &materials_[static_cast<std::size_t>(m)];
+    }
+
     // The nearest hit along the ray with t in (t_min, t_max), over all objects. Thread-safe.
     std::optional<SceneHit> intersect(const Ray& ray, double t_min, double t_max) const;
 

@@ -1,0 +1,327 @@
+#include "gpu/gpu_renderer.h"
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "gpu/gl_context.h"
+#include "gpu/gl_objects.h"
+#include "gpu/gpu_scene.h"
+#include "gpu/gpu_shaders.h"
+#include "texture/footprint_assembly.h"
+
+namespace footprint {
+
+namespace {
+
+constexpr GpuFilter kAllGpuFilters[] = {GpuFilter::point, GpuFilter::trilinear, GpuFilter::fa,
+                                        GpuFilter::fa_rough, GpuFilter::hw_aniso};
+
+}  // namespace
+
+std::optional<GpuFilter> parse_gpu_filter(std::string_view name) {
+    for (GpuFilter f : kAllGpuFilters)
+        if (name == gpu_filter_name(f)) return f;
+    return std::nullopt;
+}
+
+const char* gpu_filter_name(GpuFilter filter) {
+    switch (filter) {
+        case GpuFilter::point:
+            return "point";
+        case GpuFilter::trilinear:
+            return "trilinear";
+        case GpuFilter::fa:
+            return "fa";
+        case GpuFilter::fa_rough:
+            return "fa-rough";
+        case GpuFilter::hw_aniso:
+            return "hw-aniso";
+    }
+    return "?";
+}
+
+std::span<const GpuFilter> all_gpu_filters() {
+    return kAllGpuFilters;
+}
+
+// ---- GpuDevice.
+
+struct GpuDevice::Impl {
+    gpu::GlContext context;
+};
+
+GpuDevice::GpuDevice() = default;
+GpuDevice::GpuDevice(GpuDevice&&) noexcept = default;
+GpuDevice& GpuDevice::operator=(GpuDevice&&) noexcept = default;
+GpuDevice::~GpuDevice() = default;
+
+Result<GpuDevice> GpuDevice::headless() {
+    Result<gpu::GlContext> context = gpu::GlContext::headless();
+    if (!context) return context.error();
+    GpuDevice device;
+    device.impl_ = std::make_unique<Impl>(Impl{std::move(*context)});
+    return device;
+}
+
+const std::string& GpuDevice::description() const {
+    return impl_->context.device();
+}
+
+// ---- GpuRenderer.
+
+struct GpuRenderer::Impl {
+    const RenderScene* scene = nullptr;
+    gpu::GpuScene gpu;
+    gpu::Program program;
+    gpu::VertexArray vertex_array;
+    gpu::Buffer objects, lights;
+    // The offscreen target of render(), resized on demand.
+    gpu::Framebuffer framebuffer;
+    gpu::Texture color;
+    int target_width = 0, target_height = 0;
+    // Timestamps before and after a frame's draw (GL_TIMESTAMP, which every driver implements
+    // alike; llvmpipe's GL_TIME_ELAPSED is not a duration), two frames' worth: draw() reads the
+    // previous frame's, so that the CPU never waits on the GPU.
+    gpu::Query queries[2][2];
+    int frame_index = 0;
+
+    void begin_timing(int slot) const { glQueryCounter(queries[slot][0].get(), GL_TIMESTAMP); }
+    void end_timing(int slot) const { glQueryCounter(queries[slot][1].get(), GL_TIMESTAMP); }
+    double elapsed_ms(int slot) const {
+        GLuint64 start = 0, end = 0;
+        glGetQueryObjectui64v(queries[slot][0].get(), GL_QUERY_RESULT, &start);
+        glGetQueryObjectui64v(queries[slot][1].get(), GL_QUERY_RESULT, &end);
+        return static_cast<double>(end - start) * 1e-6;
+    }
+
+    GLint uniform(const char* name) const { return glGetUniformLocation(program.get(), name); }
+    void set_frame_uniforms(const CameraDesc& camera, int width, int height,
+                            const GpuRenderOptions& options);
+    void bind_textures(GpuFilter filter) const;
+    void ensure_target(int width, int height);
+    void draw_pass(const CameraDesc& camera, int width, int height,
+                   const GpuRenderOptions& options);
+};
+
+namespace {
+
+int mode_code(GpuFilter filter) {
+    return static_cast<int>(filter);  // common.glsl's MODE_* are in GpuFilter's order
+}
+
+int layout_code(const gpu::GpuScene& gpu) {
+    if (!gpu.has_environment) return -1;
+    return gpu.layout == EnvLayout::cube ? 0 : 1;  // common.glsl's ENV_*
+}
+
+void set_vec3(GLint location, Vec3d v) {
+    glUniform3f(location, static_cast<float>(v.x), static_cast<float>(v.y),
+                static_cast<float>(v.z));
+}
+
+}  // namespace
+
+void GpuRenderer::Impl::set_frame_uniforms(const CameraDesc& camera, int width, int height,
+                                           const GpuRenderOptions& options) {
+    // render/camera.h's pinhole camera, at the origin (gpu_scene.h: camera-relative positions).
+    const Vec3d forward = normalize(camera.look_at - camera.position);
+    const Vec3d right = normalize(cross(forward, camera.up));
+    const Vec3d up = cross(right, forward);
+    set_vec3(uniform("u_camera_forward"), forward);
+    set_vec3(uniform("u_camera_right"), right);
+    set_vec3(uniform("u_camera_up"), up);
+    glUniform1f(uniform("u_pixel_angle"),
+                static_cast<float>(std::tan(0.5 * camera.fov_y_deg * std::numbers::pi / 180.0) /
+                                   (0.5 * height)));
+    glUniform2i(uniform("u_size"), width, height);
+    glUniform1i(uniform("u_mode"), mode_code(options.filter));
+    glUniform1i(uniform("u_max_probes"), std::clamp(options.max_probes, 1, kMaxProbeCount));
+    glUniform1f(uniform("u_kappa"), options.kappa);
+    const Vec3 b = scene->desc().background;
+    glUniform3f(uniform("u_background"), b.x, b.y, b.z);
+
+    const std::vector<gpu::ObjectRecord> objects_now =
+        gpu::object_records(*scene, gpu, camera.position);
+    const std::vector<gpu::LightRecord> lights_now =
+        gpu::light_records(scene->desc(), camera.position);
+    glNamedBufferSubData(objects.get(), 0,
+                         static_cast<GLsizeiptr>(objects_now.size() * sizeof(gpu::ObjectRecord)),
+                         objects_now.data());
+    glNamedBufferSubData(lights.get(), 0,
+                         static_cast<GLsizeiptr>(lights_now.size() * sizeof(gpu::LightRecord)),
+                         lights_now.data());
+    glUniform1i(uniform("u_object_count"), static_cast<int>(objects_now.size()));
+    glUniform1i(uniform("u_light_count"), static_cast<int>(lights_now.size()));
+
+    glUniform1i(uniform("u_env_layout"), layout_code(gpu));
+    if (const RenderEnvironment* env = scene->environment()) {
+        glUniformMatrix3fv(uniform("u_env_rotation"), 1, GL_TRUE, &env->rotation.m[0][0]);
+        const Vec2 s = env->map.texel_scale();
+        glUniform2f(uniform("u_env_texel_scale"), s.x, s.y);
+        glUniform1i(uniform("u_env_caps"), gpu.has_caps ? 1 : 0);
+        glUniform3f(uniform("u_env_mean"), env->mean[0], env->mean[1], env->mean[2]);
+    }
+}
+
+void GpuRenderer::Impl::bind_textures(GpuFilter filter) const {
+    const bool anisotropic = filter == GpuFilter::hw_aniso;
+    auto bind = [&](int unit, const gpu::MapTexture& map) {
+        glBindTextureUnit(static_cast<GLuint>(unit), map.texture.get());
+        glBindSampler(static_cast<GLuint>(unit),
+                      anisotropic ? map.anisotropic.get() : map.trilinear.get());
+        glUniform4f(uniform(("u_map_info[" + std::to_string(unit) + "]").c_str()),
+                    static_cast<float>(map.width), static_cast<float>(map.height),
+                    static_cast<float>(map.levels - 1), static_cast<float>(map.layers));
+    };
+    for (std::size_t i = 0; i < gpu.color_maps.size(); ++i)
+        bind(gpu::kColorUnit + static_cast<int>(i), gpu.color_maps[i]);
+    for (std::size_t i = 0; i < gpu.bump_maps.size(); ++i)
+        bind(gpu::kBumpUnit + static_cast<int>(i), gpu.bump_maps[i]);
+    if (gpu.latlong.texture) bind(gpu::kLatlongUnit, gpu.latlong);
+    if (gpu.caps.texture) bind(gpu::kCapsUnit, gpu.caps);
+    if (gpu.cube) {
+        glBindTextureUnit(gpu::kCubeUnit, gpu.cube.get());
+        glBindSampler(gpu::kCubeUnit, gpu.cube_sampler.get());
+    }
+}
+
+void GpuRenderer::Impl::ensure_target(int width, int height) {
+    if (width == target_width && height == target_height) return;
+    color = gpu::create_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(color.get(), 1, GL_RGBA32F, width, height);
+    GLuint name = 0;
+    glCreateFramebuffers(1, &name);
+    framebuffer = gpu::Framebuffer(name);
+    glNamedFramebufferTexture(framebuffer.get(), GL_COLOR_ATTACHMENT0, color.get(), 0);
+    target_width = width;
+    target_height = height;
+}
+
+void GpuRenderer::Impl::draw_pass(const CameraDesc& camera, int width, int height,
+                                  const GpuRenderOptions& options) {
+    glUseProgram(program.get());
+    set_frame_uniforms(camera, width, height, options);
+    bind_textures(options.filter);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, objects.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, gpu.material_buffer.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, lights.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, gpu.gaussian_spacing_buffer.get());
+    glBindVertexArray(vertex_array.get());
+    glViewport(0, 0, width, height);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+GpuRenderer::GpuRenderer() = default;
+GpuRenderer::GpuRenderer(GpuRenderer&&) noexcept = default;
+GpuRenderer& GpuRenderer::operator=(GpuRenderer&&) noexcept = default;
+GpuRenderer::~GpuRenderer() = default;
+
+namespace {
+
+// The sampler uniforms point at their texture units once (gpu_scene.h's kColorUnit …).
+void assign_units(GLuint program) {
+    auto set = [&](const std::string& name, int unit) {
+        const GLint location = glGetUniformLocation(program, name.c_str());
+        if (location >= 0) glProgramUniform1i(program, location, unit);
+    };
+    for (int unit = 0; unit <= gpu::kCapsUnit; ++unit)
+        set("u_maps[" + std::to_string(unit) + "]", unit);
+    set("u_env_cube", gpu::kCubeUnit);
+}
+
+}  // namespace
+
+Result<GpuRenderer> GpuRenderer::create(const RenderScene& scene) {
+    auto impl = std::make_unique<Impl>();
+    impl->scene = &scene;
+    Result<gpu::GpuScene> uploaded = gpu::upload_scene(scene);
+    if (!uploaded) return uploaded.error();
+    impl->gpu = std::move(*uploaded);
+    using namespace gpu::shaders;
+    Result<gpu::Program> program = gpu::compile_graphics_program(
+        {kFullscreenVert}, {kCommonGlsl, kGeometryGlsl, kFilteringGlsl, kBumpGlsl, kEnvironmentGlsl,
+                            kShadingGlsl, kRenderFrag});
+    if (!program) return program.error();
+    impl->program = std::move(*program);
+    assign_units(impl->program.get());
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    impl->vertex_array = gpu::VertexArray(vao);
+    const std::size_t objects = std::max<std::size_t>(1, scene.desc().objects.size());
+    const std::size_t lights = std::max<std::size_t>(1, scene.desc().lights.size());
+    impl->objects = gpu::create_buffer();
+    glNamedBufferStorage(impl->objects.get(),
+                         static_cast<GLsizeiptr>(objects * sizeof(gpu::ObjectRecord)), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
+    impl->lights = gpu::create_buffer();
+    glNamedBufferStorage(impl->lights.get(),
+                         static_cast<GLsizeiptr>(lights * sizeof(gpu::LightRecord)), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
+    for (auto& pair : impl->queries)
+        for (gpu::Query& q : pair) {
+            GLuint name = 0;
+            glCreateQueries(GL_TIMESTAMP, 1, &name);
+            q = gpu::Query(name);
+        }
+    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    if (std::string e = gpu::gl_error("preparing the GPU renderer"); !e.empty()) return Error{e};
+    GpuRenderer renderer;
+    renderer.impl_ = std::move(impl);
+    return renderer;
+}
+
+Result<Image> GpuRenderer::render(const GpuRenderOptions& options, GpuFrameStats* stats) {
+    const SceneDesc& desc = impl_->scene->desc();
+    const CameraDesc camera = options.frame_count >= 1
+                                  ? camera_for_frame(desc, options.frame, options.frame_count)
+                                  : desc.camera;
+    return render(camera, desc.width, desc.height, options, stats);
+}
+
+Result<Image> GpuRenderer::render(const CameraDesc& camera, int width, int height,
+                                  const GpuRenderOptions& options, GpuFrameStats* stats) {
+    GLint max_size[2] = {0, 0};
+    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, max_size);
+    if (width < 1 || height < 1 || width > max_size[0] || height > max_size[1])
+        return Error{"image size " + std::to_string(width) + "x" + std::to_string(height) +
+                     " is outside 1x1 to " + std::to_string(max_size[0]) + "x" +
+                     std::to_string(max_size[1]) + " on this GPU"};
+    Impl& impl = *impl_;
+    impl.ensure_target(width, height);
+    glBindFramebuffer(GL_FRAMEBUFFER, impl.framebuffer.get());
+    const auto start = std::chrono::steady_clock::now();
+    impl.begin_timing(0);
+    impl.draw_pass(camera, width, height, options);
+    impl.end_timing(0);
+    glFinish();
+    const double wall_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    std::vector<float> rgba(static_cast<std::size_t>(width) * height * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, rgba.data());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    const double gpu_ms = impl.elapsed_ms(0);
+    if (std::string e = gpu::gl_error("rendering a frame"); !e.empty()) return Error{e};
+    if (stats) *stats = {gpu_ms, wall_ms};
+    Image image(width, height, 3);
+    for (std::size_t i = 0; i < image.pixel_count(); ++i)
+        for (int c = 0; c < 3; ++c) image.pixels[i * 3 + c] = rgba[i * 4 + c];
+    return image;
+}
+
+double GpuRenderer::draw(const CameraDesc& camera, int width, int height,
+                         const GpuRenderOptions& options) {
+    Impl& impl = *impl_;
+    const int now = impl.frame_index % 2, previous = 1 - now;
+    impl.begin_timing(now);
+    impl.draw_pass(camera, width, height, options);
+    impl.end_timing(now);
+    const double ms = impl.frame_index > 0 ? impl.elapsed_ms(previous) : -1.0;
+    ++impl.frame_index;
+    return ms;
+}
+
+}  // namespace footprint

@@ -1,0 +1,176 @@
+// The GPU path's analytic checks (gpu/gpu_renderer.h); the demo scenes against the CPU renderer
+// are in apps/gpu_scenes_test.cpp.
+#include "gpu/gpu_renderer.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+
+#include "gpu/gpu_test_device.h"
+#include "metrics/image_metrics.h"
+#include "render/camera.h"
+#include "render/renderer.h"
+
+namespace footprint {
+namespace {
+
+// A lat-long environment of one colour, in memory.
+EnvironmentDesc constant_environment(std::array<float, 3> colour) {
+    auto image = std::make_shared<Image>(64, 32, 3);
+    for (std::size_t i = 0; i < image->pixel_count(); ++i)
+        for (int c = 0; c < 3; ++c) image->pixels[i * 3 + c] = colour[c];
+    EnvironmentDesc env;
+    env.images.push_back({{}, image, "constant"});
+    env.layout = EnvLayout::latlong;
+    return env;
+}
+
+SceneDesc mirror_plane_scene(int width, int height) {
+    SceneDesc desc;
+    desc.width = width;
+    desc.height = height;
+    desc.camera = {{0, 1, 3}, {0, 0, 0}, {0, 1, 0}, 50};
+    desc.environment = constant_environment({0.5f, 1.0f, 2.0f});
+    ObjectDesc plane;
+    PlaneShape shape;
+    shape.infinite = true;
+    plane.shape = shape;
+    plane.material.diffuse = 0;
+    plane.material.mirror = 1;
+    plane.material.fresnel_f0 = 0.04f;
+    desc.objects.push_back(plane);
+    return desc;
+}
+
+Image render_gpu(const RenderScene& scene, GpuFilter filter) {
+    Result<GpuRenderer> renderer = GpuRenderer::create(scene);
+    EXPECT_TRUE(renderer) << renderer.error().message;
+    if (!renderer) return {};
+    GpuRenderOptions options;
+    options.filter = filter;
+    Result<Image> image = renderer->render(options);
+    EXPECT_TRUE(image) << image.error().message;
+    return image ? *image : Image{};
+}
+
+// A constant environment filtered by any footprint is the constant (up to float rounding of the
+// probe weights): what a mirror shows is environment × Schlick's Fresnel of the pixel's angle.
+constexpr float kConstantTolerance = 1e-4f;  // relative
+
+TEST(GpuRenderer, MirrorPlaneInAConstantEnvironmentIsEnvironmentTimesFresnel) {
+    FOOTPRINT_GPU_DEVICE_OR_SKIP();
+    const SceneDesc desc = mirror_plane_scene(48, 32);
+    Result<RenderScene> scene = prepare_render_scene(desc);
+    ASSERT_TRUE(scene) << scene.error().message;
+    const PinholeCamera camera(desc.camera, desc.width, desc.height);
+    for (GpuFilter filter : all_gpu_filters()) {
+        const Image image = render_gpu(*scene, filter);
+        ASSERT_EQ(image.width, desc.width);
+        int checked = 0;
+        for (int y = 0; y < desc.height; ++y)
+            for (int x = 0; x < desc.width; ++x) {
+                const RayDifferential ray = camera.ray(x + 0.5, y + 0.5);
+                const Vec3d d = normalize(ray.ray.direction);
+                const std::array<float, 3> env{0.5f, 1.0f, 2.0f};
+                if (d.y >= 0) {  // the sky: the environment itself
+                    for (int c = 0; c < 3; ++c)
+                        EXPECT_NEAR(image.at(x, y, c), env[c], kConstantTolerance * env[c]);
+                    continue;
+                }
+                const float cosine = static_cast<float>(-d.y);  // n̂·v̂ on the plane y = 0
+                const float c5 = std::pow(1 - cosine, 5.0f);
+                const float fresnel = 0.04f + 0.96f * c5;
+                for (int c = 0; c < 3; ++c)
+                    EXPECT_NEAR(image.at(x, y, c), fresnel * env[c],
+                                kConstantTolerance * env[c] + 1e-5f)
+                        << gpu_filter_name(filter) << " at (" << x << ", " << y << ")";
+                ++checked;
+            }
+        EXPECT_GT(checked, desc.width * desc.height / 4);
+    }
+}
+
+TEST(GpuRenderer, TheSameFrameTwiceGivesIdenticalPixels) {
+    FOOTPRINT_GPU_DEVICE_OR_SKIP();
+    SceneDesc desc = mirror_plane_scene(37, 23);
+    desc.objects[0].material.bump.source = BumpDesc::Source::height_map;
+    auto height = std::make_shared<Image>(32, 32, 1);
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) height->at(x, y, 0) = std::sin(0.7f * x) * std::cos(0.4f * y);
+    desc.objects[0].material.bump.map = {{}, height, "waves"};
+    desc.objects[0].material.bump.strength = 0.05f;
+    Result<RenderScene> scene = prepare_render_scene(desc);
+    ASSERT_TRUE(scene) << scene.error().message;
+    Result<GpuRenderer> renderer = GpuRenderer::create(*scene);
+    ASSERT_TRUE(renderer) << renderer.error().message;
+    for (GpuFilter filter : all_gpu_filters()) {
+        GpuRenderOptions options;
+        options.filter = filter;
+        Result<Image> a = renderer->render(options), b = renderer->render(options);
+        ASSERT_TRUE(a && b);
+        EXPECT_EQ(a->pixels, b->pixels) << gpu_filter_name(filter);
+    }
+}
+
+// The tolerance of the GPU against the CPU renderer per pixel value: float geometry around the
+// camera (the CPU's is double) and the hardware's bilinear weights (8 fractional bits on most
+// GPUs) move a value by a few 1e-4 where the image has texel-scale contrast.
+constexpr double kGpuCpuRmse = 1e-3;
+
+TEST(GpuRenderer, OneByOneAndOddSizesMatchTheCpu) {
+    FOOTPRINT_GPU_DEVICE_OR_SKIP();
+    for (auto [w, h] : {std::pair{1, 1}, {7, 5}, {33, 17}, {2, 31}}) {
+        SceneDesc desc = mirror_plane_scene(w, h);
+        ObjectDesc sphere;
+        sphere.shape = SphereShape{{0, 0.5, 0}, 0.5};
+        sphere.material.specular = 0.5f;
+        desc.objects.push_back(sphere);
+        desc.lights.push_back({LightType::point, {}, {1, 3, 2}, {4, 4, 4}});
+        Result<RenderScene> scene = prepare_render_scene(desc);
+        ASSERT_TRUE(scene) << scene.error().message;
+        const Image gpu = render_gpu(*scene, GpuFilter::fa_rough);
+        ASSERT_EQ(gpu.width, w);
+        ASSERT_EQ(gpu.height, h);
+        RenderOptions cpu_options;
+        cpu_options.filter = FilterMode::fa_rough;
+        const Result<ImageComparison> d = compare_images(gpu, render(*scene, cpu_options));
+        ASSERT_TRUE(d) << d.error().message;
+        EXPECT_LT(d->rmse, kGpuCpuRmse) << w << "x" << h;
+    }
+}
+
+TEST(GpuRenderer, RefusesWhatItDoesNotDrawYetNamingTheObject) {
+    FOOTPRINT_GPU_DEVICE_OR_SKIP();
+    SceneDesc desc = mirror_plane_scene(8, 8);
+    ObjectDesc torus;
+    torus.name = "ring";
+    torus.shape = TorusShape{};
+    desc.objects.push_back(torus);
+    Result<RenderScene> scene = prepare_render_scene(desc);
+    ASSERT_TRUE(scene) << scene.error().message;
+    Result<GpuRenderer> renderer = GpuRenderer::create(*scene);
+    ASSERT_FALSE(renderer);
+    EXPECT_EQ(renderer.error().message, "objects[1] (ring): the torus is not on the GPU yet");
+}
+
+TEST(GpuRenderer, RefusesImageSizesTheGpuCannotHold) {
+    FOOTPRINT_GPU_DEVICE_OR_SKIP();
+    Result<RenderScene> scene = prepare_render_scene(mirror_plane_scene(8, 8));
+    ASSERT_TRUE(scene);
+    Result<GpuRenderer> renderer = GpuRenderer::create(*scene);
+    ASSERT_TRUE(renderer);
+    Result<Image> image = renderer->render(scene->desc().camera, 0, 8, GpuRenderOptions{});
+    ASSERT_FALSE(image);
+    EXPECT_NE(image.error().message.find("image size 0x8 is outside 1x1 to"), std::string::npos)
+        << image.error().message;
+}
+
+TEST(GpuFilter, NamesRoundTrip) {
+    for (GpuFilter f : all_gpu_filters()) EXPECT_EQ(parse_gpu_filter(gpu_filter_name(f)), f);
+    EXPECT_FALSE(parse_gpu_filter("bilinear"));
+    EXPECT_EQ(all_gpu_filters().size(), 5u);
+}
+
+}  // namespace
+}  // namespace footprint

@@ -1,0 +1,110 @@
+// gpu/shaders/bump.glsl — bump maps as slopes in a local frame, and the bump + roughness lookup by
+// moments (bump/bump_pyramid.h, bump/local_frame.h, render/bump_frame.cpp, spec §5–6).
+//
+// A bump map is its moment pyramid as two layers: (μ'1, μ'2, M2'11, M2'12) and (M2'22): every
+// filter blends the moments with its weights, and K_b = M2 − μμᵀ is the covariance of all the
+// finest-level slopes in the filtered region.
+
+struct SlopeStats {
+    vec2 mean;  // μ
+    vec3 k;     // K_b = (xx, xy, yy)
+};
+
+// The nearest PSD matrix (bump/roughness.h's clamp_to_psd).
+vec3 clamp_to_psd(vec3 k) {
+    if (!is_finite(k.x + k.y + k.z)) return vec3(0);
+    if (k.x >= 0.0 && k.z >= 0.0 && k.x * k.z - k.y * k.y >= 0.0) return k;
+    float w = sqrt((k.x - k.z) * (k.x - k.z) + 4.0 * k.y * k.y);
+    float major = max(0.0, 0.5 * (k.x + k.z + w)), minor = max(0.0, 0.5 * (k.x + k.z - w));
+    vec2 r = k.x >= k.z ? vec2(k.x - k.z + w, 2.0 * k.y) : vec2(2.0 * k.y, k.z - k.x + w);
+    float len = length(r);
+    r = len > 0.0 ? r / len : vec2(1, 0);
+    vec2 q = vec2(-r.y, r.x);
+    return major * vec3(r.x * r.x, r.x * r.y, r.y * r.y) + minor * vec3(q.x * q.x, q.x * q.y, q.y * q.y);
+}
+
+SlopeStats from_moments(Texel m, vec2 offset) {
+    float m1 = m.a.x, m2 = m.a.y;
+    return SlopeStats(vec2(m1, m2) + offset,
+                      clamp_to_psd(vec3(m.a.z - m1 * m1, m.a.w - m1 * m2, m.b.x - m2 * m2)));
+}
+
+// B = [[d1, d2], [0, d3]] with B Bᵀ = K (bump/roughness.h's roughness_factor).
+vec3 roughness_factor(vec3 k) {
+    if (!is_finite(k.x + k.y + k.z)) return vec3(0);
+    float scale = max(0.0, k.x) + max(0.0, k.z);
+    if (k.z > 1e-12 * scale && k.z > 0.0) {
+        float d3 = sqrt(k.z);
+        float bound = sqrt(max(0.0, k.x));
+        return vec3(sqrt(max(0.0, k.x * k.z - k.y * k.y) / k.z), clamp(k.y / d3, -bound, bound), d3);
+    }
+    return vec3(sqrt(max(0.0, k.x)), 0, 0);
+}
+
+// ---- Frames (spec §6). T = (t1 t2) = ∂n̂_m/∂b; slope_sign as render/bump_frame.h.
+struct Frame {
+    vec3 t1, t2;
+    float slope_sign;
+};
+
+// The unit world axis least aligned with unit v (ties to the lower index).
+vec3 least_aligned_axis(vec3 v) {
+    vec3 a = abs(v);
+    if (a.x <= a.y && a.x <= a.z) return vec3(1, 0, 0);
+    if (a.y <= a.z) return vec3(0, 1, 0);
+    return vec3(0, 0, 1);
+}
+
+// e1 = (d × n̂)/|d × n̂| re-orthogonalised against n̂, if |d̂ × n̂| ≥ min_sin.
+bool frame_from_direction(vec3 n_hat, vec3 d, float min_sin, out Frame frame) {
+    float len = length(d);
+    frame = Frame(vec3(0), vec3(0), 1.0);
+    if (!(len > 0.0)) return false;
+    vec3 w = cross(d / len, n_hat);
+    w -= dot(w, n_hat) * n_hat;
+    if (!(length(w) >= min_sin)) return false;
+    vec3 e1 = normalize(w);
+    frame = Frame(e1, cross(n_hat, e1), 1.0);
+    return true;
+}
+
+// Spec §6.2: e1 = (m × n̂)/|m × n̂|, e2 = n̂ × e1, with local_frame.h's fallbacks.
+Frame orthonormal_frame(vec3 n, vec3 m) {
+    vec3 n_hat = normalize(n);
+    Frame f;
+    if (frame_from_direction(n_hat, m, 1e-3, f)) return f;
+    if (length(m) > 0.0 && frame_from_direction(n_hat, least_aligned_axis(normalize(m)), 1e-3, f))
+        return f;
+    frame_from_direction(n_hat, least_aligned_axis(n_hat), 0.0, f);
+    return f;
+}
+
+// Spec §6.1 with a shading normal: s_u = σ n̂ × p_v, s_v = σ p_u × n̂, T = (s_u s_v)/|n|.
+Frame natural_frame(vec3 pu, vec3 pv, vec3 n, bool normalized) {
+    vec3 ns = normalize(n);
+    vec3 pn = cross(pu, pv);
+    float area = dot(ns, pn);
+    if (!(abs(area) > 1e-6 * length(pn))) return Frame(vec3(0), vec3(0), -1.0);
+    float sigma = area > 0.0 ? 1.0 : -1.0;
+    vec3 su = sigma * cross(ns, pv), sv = sigma * cross(pu, ns);
+    if (normalized) return Frame(normalize(su), normalize(sv), -1.0);
+    return Frame(su / abs(area), sv / abs(area), -1.0);
+}
+
+// The frame of a material's bump map at a hit (render/bump_frame.cpp).
+Frame bump_frame(Material m, Hit hit) {
+    int kind = int(m.bump.z);
+    if (kind == 0) return natural_frame(hit.dpdu, hit.dpdv, hit.n, false);
+    if (kind == 1) return natural_frame(hit.dpdu, hit.dpdv, hit.n, true);
+    vec3 main_direction = m.main_direction.xyz;
+    return orthonormal_frame(hit.n, dot(main_direction, main_direction) == 0.0 ? hit.dpdv
+                                                                                : main_direction);
+}
+
+// K_b in the orthonormal basis (e1, e2) (render/bump_frame.h's covariance_in_frame).
+vec3 covariance_in_frame(vec3 k, Frame t, vec3 e1, vec3 e2) {
+    float a1 = dot(e1, t.t1), a2 = dot(e1, t.t2), b1 = dot(e2, t.t1), b2 = dot(e2, t.t2);
+    mat2 kk = mat2(k.x, k.y, k.y, k.z);
+    vec2 a = vec2(a1, a2), b = vec2(b1, b2);
+    return vec3(dot(a, kk * a), dot(a, kk * b), dot(b, kk * b));
+}

@@ -1,0 +1,405 @@
+// gpu/shaders/environment.glsl — environment maps filtered per pixel (envmap/, spec §2–3): the
+// layouts' coordinates and Jacobians, the footprint K = D Dᵀ + κ² K3 and its anisotropic lookup.
+//
+// Layouts: a lat-long map (map MAP_LATLONG, s repeating, t clamped) with its two polar caps (map
+// MAP_CAPS, layer 0 = +Y, 1 = −Y), or a cube map (a samplerCube with seamless filtering, the
+// hardware's own re-projection of a probe onto the face that owns its direction, spec §3.1).
+
+const int ENV_NONE = -1;
+const int ENV_CUBE = 0;  // envmap/env_layout.h's EnvLayout order
+const int ENV_LATLONG = 1;
+
+uniform int u_env_layout;
+uniform mat3 u_env_rotation;   // A: world → map
+uniform vec2 u_env_texel_scale;  // S = (W0, H0) of level 0 (a cube face's size for both)
+uniform int u_env_caps;        // 1: the lat-long map has polar caps
+uniform vec3 u_env_mean;       // the map's mean colour (ambient light)
+uniform samplerCube u_env_cube;  // the lat-long map and its caps are u_maps[MAP_LATLONG], [MAP_CAPS]
+
+// Where a direction lands on the map and the Jacobian J_P = ∂(s,t)/∂r there (rows ds, dt).
+struct EnvPoint {
+    int face;
+    vec2 st;
+    vec3 ds, dt;
+};
+
+// ---- Lat-long (§3.4): s = ½ + atan2(r_x, −r_z)/(2π), t = θ/π (y up).
+EnvPoint latlong_point(vec3 r) {
+    float rho = length(r.xz), len = length(r);
+    if (rho == 0.0) return EnvPoint(0, vec2(0.5, r.y > 0.0 ? 0.0 : 1.0), vec3(0), vec3(0));
+    vec2 st = vec2(0.5 + atan(r.x, -r.z) / TWO_PI, atan(rho, r.y) / PI);
+    vec3 ds = vec3(-r.z, 0, r.x) / (TWO_PI * rho * rho);
+    vec3 dt = -(vec3(0, 1, 0) - (r.y / (len * len)) * r) / (PI * rho);
+    return EnvPoint(0, st, ds, dt);
+}
+
+vec3 latlong_direction(vec2 st) {
+    float phi = TWO_PI * (st.x - 0.5), theta = PI * st.y;
+    return vec3(sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi));
+}
+
+// ---- Cube (§3.1, the OpenGL face table: +X −X +Y −Y +Z −Z).
+void cube_face_axes(int face, out vec3 major, out vec3 gs, out vec3 gt) {
+    switch (face) {
+        case 0: major = vec3(1, 0, 0); gs = vec3(0, 0, -1); gt = vec3(0, -1, 0); break;
+        case 1: major = vec3(-1, 0, 0); gs = vec3(0, 0, 1); gt = vec3(0, -1, 0); break;
+        case 2: major = vec3(0, 1, 0); gs = vec3(1, 0, 0); gt = vec3(0, 0, 1); break;
+        case 3: major = vec3(0, -1, 0); gs = vec3(1, 0, 0); gt = vec3(0, 0, -1); break;
+        case 4: major = vec3(0, 0, 1); gs = vec3(1, 0, 0); gt = vec3(0, -1, 0); break;
+        default: major = vec3(0, 0, -1); gs = vec3(-1, 0, 0); gt = vec3(0, -1, 0); break;
+    }
+}
+
+int cube_face(vec3 r) {
+    vec3 a = abs(r);
+    if (a.x >= a.y && a.x >= a.z) return r.x < 0.0 ? 1 : 0;
+    if (a.y >= a.z) return r.y < 0.0 ? 3 : 2;
+    return r.z < 0.0 ? 5 : 4;
+}
+
+// r on a given face (its major axis need not be r's largest: the polar caps use faces 2 and 3).
+EnvPoint cube_point_on(int face, vec3 r) {
+    vec3 major, gs, gt;
+    cube_face_axes(face, major, gs, gt);
+    float ma = dot(major, r);  // |ma|, positive on its own face
+    float sp = dot(gs, r) / ma, tp = dot(gt, r) / ma;
+    return EnvPoint(face, 0.5 * (vec2(sp, tp) + 1.0), (gs - sp * major) * (0.5 / ma),
+                    (gt - tp * major) * (0.5 / ma));
+}
+
+vec3 cube_direction(int face, vec2 st) {
+    vec3 major, gs, gt;
+    cube_face_axes(face, major, gs, gt);
+    return major + (2.0 * st.x - 1.0) * gs + (2.0 * st.y - 1.0) * gt;
+}
+
+EnvPoint env_point(vec3 r) {
+    return u_env_layout == ENV_CUBE ? cube_point_on(cube_face(r), r) : latlong_point(r);
+}
+
+// G x = S J_P x: the map motion, in level-0 texels, of a change x of the (map-space) direction.
+vec2 map_motion(EnvPoint p, vec3 x) {
+    return u_env_texel_scale * vec2(dot(p.ds, x), dot(p.dt, x));
+}
+
+// ---- The footprint (envmap/env_footprint.h).
+struct EnvFootprint {
+    vec3 map_direction;  // A v_r
+    EnvPoint point;
+    vec2 d_dx, d_dy;  // D's columns (curvature and aperture), level-0 texels per pixel
+    vec3 k;           // K = D Dᵀ + κ² K3
+    vec3 map_dr_dx, map_dr_dy, map_rough1, map_rough2;  // A ∂v_r/∂x, A ∂v_r/∂y, κ A (A_n E B)
+    bool fallback;    // isotropic (a pole, non-finite input)
+};
+
+// The largest singular value of [a b] with both columns projected onto the plane ⟂ r̂.
+float largest_tangent_singular_value(vec3 r, vec3 a, vec3 b) {
+    vec3 r_hat = normalize(r);
+    a -= dot(a, r_hat) * r_hat;
+    b -= dot(b, r_hat) * r_hat;
+    return ellipse_of(vec3(dot(a, a), dot(a, b), dot(b, b))).l1;
+}
+
+void set_isotropic(inout EnvFootprint f, float tp) {
+    if (!is_finite(tp)) tp = 0.0;
+    f.d_dx = vec2(tp, 0);
+    f.d_dy = vec2(0, tp);
+    f.k = vec3(tp * tp, 0, tp * tp);
+    f.fallback = true;
+}
+
+// K for a direction r with spread ∂r/∂x, ∂r/∂y and the roughness columns rough1, rough2 (zero for
+// form (a)): D = G [∂r/∂x, ∂r/∂y], K3 = (G rough1)(G rough1)ᵀ + (G rough2)(G rough2)ᵀ. Towards a
+// lat-long pole (where the footprint, to 2σ, reaches it) the footprint is isotropic with
+// T_p = (H0/π)·θ_fp (§3.4).
+EnvFootprint footprint_of_spread(vec3 r, vec3 dr_dx, vec3 dr_dy, vec3 rough1, vec3 rough2) {
+    EnvFootprint f;
+    f.fallback = false;
+    f.map_direction = u_env_rotation * r;
+    f.point = env_point(f.map_direction);
+    f.map_dr_dx = u_env_rotation * dr_dx;
+    f.map_dr_dy = u_env_rotation * dr_dy;
+    f.map_rough1 = u_kappa * (u_env_rotation * rough1);
+    f.map_rough2 = u_kappa * (u_env_rotation * rough2);
+    if (u_env_layout == ENV_LATLONG) {
+        vec3 m = f.map_direction;
+        float spread = sqrt(dot(dr_dx, dr_dx) + dot(dr_dy, dr_dy)) +
+                       abs(u_kappa) * sqrt(dot(rough1, rough1) + dot(rough2, rough2));
+        float rho = length(m.xz);
+        if (rho == 0.0 || rho < spread) {
+            float theta = (largest_tangent_singular_value(r, dr_dx, dr_dy) +
+                           u_kappa * largest_tangent_singular_value(r, rough1, rough2)) / length(r);
+            if (rho == 0.0 || rho < sin(min(theta, 0.5 * PI)) * length(m)) {
+                set_isotropic(f, u_env_texel_scale.y / PI * theta);
+                return f;
+            }
+        }
+    }
+    f.d_dx = map_motion(f.point, f.map_dr_dx);
+    f.d_dy = map_motion(f.point, f.map_dr_dy);
+    vec3 curvature = footprint_matrix(f.d_dx, f.d_dy);
+    vec3 roughness = footprint_matrix(map_motion(f.point, u_env_rotation * rough1),
+                                      map_motion(f.point, u_env_rotation * rough2));
+    f.k = curvature + (u_kappa * u_kappa) * roughness;  // eq. 13
+    return f;
+}
+
+// Form (a), for rays that escape: the direction r and its ray differentials.
+EnvFootprint ray_footprint(vec3 r, vec3 dr_dx, vec3 dr_dy) {
+    EnvFootprint f = footprint_of_spread(r, dr_dx, dr_dy, vec3(0), vec3(0));
+    if (!is_finite(f.k.x + f.k.y + f.k.z)) {
+        f.d_dx = f.d_dy = vec2(0);
+        f.k = vec3(0);
+        f.map_dr_dx = f.map_dr_dy = vec3(0);
+    }
+    return f;
+}
+
+// Form (b), Schilling's (spec §2.2–2.6): v surface → eye, n the facing normal and its
+// derivatives, b the mean slope in the frame T = (t1, t2), B = (d1, d2, d3) the roughness factor,
+// K_b its covariance.
+EnvFootprint reflection_footprint(vec3 v, vec3 dv_dx, vec3 dv_dy, vec3 n, vec3 dn_dx, vec3 dn_dy,
+                                  vec2 b, Frame t, vec3 rough, vec3 k_b) {
+    float n_len = length(n);
+    vec3 nm = n + n_len * (b.x * t.t1 + b.y * t.t2);
+    if (!is_finite(nm.x + nm.y + nm.z) || !(dot(nm, v) > 0.0)) nm = n;  // the bump faces away
+    if (!(dot(n, v) > 0.0)) {  // a silhouette: n clamped towards v
+        vec3 v_hat = normalize(v);
+        n -= (dot(n, v_hat) - 1e-3 * n_len) * v_hat;
+        nm = n;
+    }
+    float nm_v = dot(nm, v), nm_nm = dot(nm, nm);
+    vec3 reflected = 2.0 * nm_v * nm - nm_nm * v;  // eq. 4
+#define A_V(x) (2.0 * dot(nm, x) * nm - nm_nm * (x))
+#define A_N(x) (2.0 * nm_v * (x) + 2.0 * dot(v, x) * nm - 2.0 * dot(nm, x) * v)
+    vec3 dvr_dx = A_V(dv_dx) + A_N(dn_dx), dvr_dy = A_V(dv_dy) + A_N(dn_dy);  // eq. 5
+    vec3 rough1 = A_N(n_len * rough.x * t.t1);                                 // eqs. 10–12
+    vec3 rough2 = A_N(n_len * (rough.y * t.t1 + rough.z * t.t2));
+    EnvFootprint f = footprint_of_spread(reflected, dvr_dx, dvr_dy, rough1, rough2);
+    if (!f.fallback && !is_finite(f.k.x + f.k.y + f.k.z + f.d_dx.x + f.d_dx.y + f.d_dy.x + f.d_dy.y)) {
+        // §4: isotropic from the roughness alone, T_p = max(1, κ·‖G A_n E‖·l1).
+        Ellipse gae = ellipse_of(footprint_matrix(
+            map_motion(f.point, u_env_rotation * A_N(n_len * t.t1)),
+            map_motion(f.point, u_env_rotation * A_N(n_len * t.t2))));
+        float tp = u_kappa * gae.l1 * ellipse_of(k_b).l1;  // l1 = √λ_max(K_b)
+        set_isotropic(f, is_finite(tp) ? max(1.0, tp) : 1.0);
+        f.map_dr_dx = f.map_dr_dy = f.map_rough1 = f.map_rough2 = vec3(0);
+    }
+#undef A_V
+#undef A_N
+    return f;
+}
+
+// ---- Lookups.
+
+// One trilinear probe of the map at a map-space direction (cube) or (s, t) (lat-long).
+vec4 env_probe_direction(vec3 direction, float lod) {
+    return textureLod(u_env_cube, direction, lod);
+}
+// A lat-long probe's bilinear sample of one level, its taps beyond a pole read over the pole:
+// row −1 − k is row k half a turn around, x + W/2 (envmap/env_sampling.h), where the hardware
+// would clamp to the edge row.
+vec4 latlong_level_over_pole(vec2 st, int level) {
+    ivec2 size = max(ivec2(map_size(MAP_LATLONG)) >> level, ivec2(1));
+    vec2 x = st * vec2(size) - 0.5;
+    ivec2 i0 = ivec2(floor(x));
+    vec2 f = x - vec2(i0);
+    vec4 taps[4];
+    for (int k = 0; k < 4; ++k) {
+        ivec2 i = i0 + ivec2(k & 1, k >> 1);
+        if (i.y < 0 || i.y >= size.y) {
+            i.y = i.y < 0 ? -1 - i.y : 2 * size.y - 1 - i.y;
+            i.x += size.x / 2;
+        }
+        i.x = ((i.x % size.x) + size.x) % size.x;
+        taps[k] = texelFetch(u_maps[MAP_LATLONG], ivec3(i.x, clamp(i.y, 0, size.y - 1), 0), level);
+    }
+    return mix(mix(taps[0], taps[1], f.x), mix(taps[2], taps[3], f.x), f.y);
+}
+
+// Whether a bilinear sample at t on a level of `height` rows reaches beyond a pole.
+bool crosses_pole(float t, int height) {
+    float y = t * float(height) - 0.5;
+    return y < 0.0 || y > float(height - 1);
+}
+
+// One trilinear probe of the lat-long map: the hardware's, or, where its taps reach over a pole,
+// the same two levels sampled over the pole.
+vec4 env_probe_latlong(vec2 st, float lod) {
+    int max_level = map_max_level(MAP_LATLONG);
+    int l0 = min(int(lod), max_level);
+    float w = l0 < max_level ? lod - float(l0) : 0.0;
+    int h0 = max(int(map_size(MAP_LATLONG).y) >> l0, 1), h1 = max(h0 >> 1, 1);
+    if (!crosses_pole(st.y, h0) && !(w > 0.0 && crosses_pole(st.y, h1)))
+        return sample_lod(MAP_LATLONG, vec3(st, 0), lod);
+    vec4 fine = latlong_level_over_pole(st, l0);
+    return w > 0.0 ? mix(fine, latlong_level_over_pole(st, l0 + 1), w) : fine;
+}
+
+// A point sample (level-0 bilinear) in world direction r: the `point` mode.
+vec3 env_point_sample(vec3 r) {
+    vec3 m = u_env_rotation * r;
+    if (u_env_layout == ENV_CUBE) return env_probe_direction(m, 0.0).rgb;
+    return env_probe_latlong(latlong_point(m).st, 0.0).rgb;
+}
+
+// The GPU's own anisotropic filter over the footprint's curvature term (no roughness).
+vec3 env_hardware(EnvFootprint f) {
+    if (u_env_layout == ENV_CUBE)  // trilinear: cube maps get no anisotropy on most hardware
+        return textureGrad(u_env_cube, f.map_direction, f.map_dr_dx, f.map_dr_dy).rgb;
+    return hardware_lookup(MAP_LATLONG, 1, f.point.st, f.d_dx, f.d_dy).a.rgb;
+}
+
+// ---- Polar caps (envmap/polar_caps.h): a footprint centred within 30° of a pole whose probes
+// stay on the cap's face is filtered on the cap, K from the map-space direction spreads.
+struct CapFootprint {
+    bool valid;
+    int layer;  // 0: +Y, 1: −Y
+    vec2 st;
+    vec3 k;
+};
+
+CapFootprint cap_footprint(EnvFootprint f, float latlong_trace) {
+    CapFootprint c;
+    vec3 r = f.map_direction;
+    c.valid = false;
+    if (u_env_caps == 0 || !(abs(r.y) >= 0.8660254 * length(r))) return c;
+    c.layer = r.y > 0.0 ? 0 : 1;
+    EnvPoint p = cube_point_on(2 + c.layer, r);
+    float n = map_size(MAP_CAPS).x;
+    vec2 a = n * vec2(dot(p.ds, f.map_dr_dx), dot(p.dt, f.map_dr_dx));
+    vec2 b = n * vec2(dot(p.ds, f.map_dr_dy), dot(p.dt, f.map_dr_dy));
+    vec2 c1 = n * vec2(dot(p.ds, f.map_rough1), dot(p.dt, f.map_rough1));
+    vec2 c2 = n * vec2(dot(p.ds, f.map_rough2), dot(p.dt, f.map_rough2));
+    c.k = footprint_matrix(a, b) + footprint_matrix(c1, c2);
+    c.st = p.st;
+    float reach = (2.0 * sqrt(c.k.x + c.k.z) + 1.0) / n;
+    bool on_face = p.st.x - reach >= 0.0 && p.st.x + reach <= 1.0 && p.st.y - reach >= 0.0 &&
+                   p.st.y + reach <= 1.0;
+    c.valid = is_finite(c.k.x + c.k.y + c.k.z) && on_face &&
+              !(c.k.x + c.k.z == 0.0 && latlong_trace > 0.0);
+    return c;
+}
+
+vec3 cap_lookup(CapFootprint c, int mode) {
+    int max_level = map_max_level(MAP_CAPS);
+    Ellipse e = ellipse_of(c.k);
+    if (mode == MODE_TRILINEAR)
+        return sample_lod(MAP_CAPS, vec3(c.st, c.layer),
+                          clamp(log2(max(e.l1, 1e-30)), 0.0, float(max_level))).rgb;
+    Plan plan = plan_probes(e, u_max_probes, max_level);
+    vec2 size = map_size(MAP_CAPS);
+    vec3 sum = vec3(0);
+    float weights = 0.0;
+    for (int i = 0; i < plan.count; ++i) {
+        float w = probe_weight(plan, i);
+        sum += w * sample_lod(MAP_CAPS, vec3(c.st + probe_offset(plan, i) / size, c.layer),
+                              plan.lod).rgb;
+        weights += w;
+    }
+    return sum / weights;
+}
+
+// Lat-long probe placement on the sphere (environment_map.cpp's TangentProbes): an offset o in
+// level-0 texels is taken back to the tangent plane at r̂ through J_t⁻¹ and placed at the
+// direction r̂ + J_t⁻¹ o, so that the probes follow the great circle through r̂.
+struct TangentProbes {
+    bool valid;
+    vec3 centre, e1, e2;
+    mat2 inv;  // J_t⁻¹, radians per texel
+};
+
+TangentProbes tangent_probes(vec3 direction) {
+    TangentProbes t;
+    t.centre = normalize(direction);
+    t.e1 = normalize(cross(t.centre, abs(t.centre.x) < 0.6 ? vec3(1, 0, 0) : vec3(0, 1, 0)));
+    t.e2 = cross(t.centre, t.e1);
+    EnvPoint p = latlong_point(t.centre);
+    float j11 = u_env_texel_scale.x * dot(p.ds, t.e1), j12 = u_env_texel_scale.x * dot(p.ds, t.e2);
+    float j21 = u_env_texel_scale.y * dot(p.dt, t.e1), j22 = u_env_texel_scale.y * dot(p.dt, t.e2);
+    float det = j11 * j22 - j12 * j21;
+    t.valid = abs(det) > 1e-12 * (j11 * j11 + j12 * j12 + j21 * j21 + j22 * j22) && is_finite(det);
+    t.inv = t.valid ? mat2(j22, -j21, -j12, j11) / det : mat2(0);  // column-major
+    return t;
+}
+
+vec2 tangent_place(TangentProbes t, vec2 offset) {
+    vec2 ab = t.inv * offset;
+    return latlong_point(t.centre + ab.x * t.e1 + ab.y * t.e2).st;
+}
+
+// The lat-long line of probes: its ends placed exactly, the probes between on the quadratic
+// through them and the centre (envmap/latlong_path.h), any that would cross a pole exactly.
+vec3 latlong_line(EnvFootprint f, Plan plan) {
+    TangentProbes tangent = tangent_probes(f.map_direction);
+    vec2 c = f.point.st;
+    vec2 h = vec2(0), q = vec2(0);
+    bool path = tangent.valid && plan.count > 2;
+    if (path) {
+        vec2 a = tangent_place(tangent, probe_offset(plan, plan.count - 1)) - c;
+        vec2 b = tangent_place(tangent, -probe_offset(plan, plan.count - 1)) - c;
+        a.x -= round(a.x);  // unwrapped across the seam
+        b.x -= round(b.x);
+        h = 0.5 * (a - b);
+        q = 0.5 * (a + b);
+    }
+    vec3 sum = vec3(0);
+    float weights = 0.0, half_count = 0.5 * float(plan.count - 1);
+    for (int i = 0; i < plan.count; ++i) {
+        vec2 st;
+        float u = (float(i) - half_count) / half_count;
+        vec2 on_path = c + u * (h + u * q);
+        if (path && on_path.y >= 0.0 && on_path.y <= 1.0) {
+            st = on_path;
+        } else if (tangent.valid) {
+            st = tangent_place(tangent, probe_offset(plan, i));
+        } else {
+            st = c + probe_offset(plan, i) / u_env_texel_scale;
+            if (st.y < 0.0 || st.y > 1.0) st = latlong_point(latlong_direction(st)).st;
+        }
+        float w = probe_weight(plan, i);
+        sum += w * env_probe_latlong(st, plan.lod).rgb;
+        weights += w;
+    }
+    return sum / weights;
+}
+
+// The cube line: probes on the centre face's plane along r1, each a direction the hardware
+// places on the face that owns it, all at the centre face's lod.
+vec3 cube_line(EnvFootprint f, Plan plan) {
+    vec3 sum = vec3(0);
+    float weights = 0.0;
+    for (int i = 0; i < plan.count; ++i) {
+        vec2 st = f.point.st + probe_offset(plan, i) / u_env_texel_scale;
+        float w = probe_weight(plan, i);
+        sum += w * env_probe_direction(cube_direction(f.point.face, st), plan.lod).rgb;
+        weights += w;
+    }
+    return sum / weights;
+}
+
+// The environment filtered over footprint f in `mode` (trilinear, fa, fa-rough, hw-aniso);
+// latlong_trace: tr K of a form (b) footprint (0 for form (a)), which decides whether a cap takes a
+// fallback footprint.
+vec3 env_lookup(EnvFootprint f, int mode, float latlong_trace) {
+    if (mode == MODE_HW_ANISO) return env_hardware(f);
+    if (u_env_layout == ENV_LATLONG) {
+        CapFootprint cap = cap_footprint(f, latlong_trace);
+        if (cap.valid) return cap_lookup(cap, mode);
+    }
+    int max_level = u_env_layout == ENV_CUBE ? textureQueryLevels(u_env_cube) - 1
+                                             : map_max_level(MAP_LATLONG);
+    Ellipse e = is_finite(f.k.x + f.k.y + f.k.z) ? ellipse_of(f.k) : Ellipse(0.0, 0.0, vec2(1, 0));
+    float limit = 4.0 * max(u_env_texel_scale.x, u_env_texel_scale.y);
+    e.l1 = min(e.l1, limit);
+    e.l2 = min(e.l2, limit);
+    Plan plan;
+    if (mode == MODE_TRILINEAR)
+        plan = Plan(1, vec2(0), clamp(log2(max(e.l1, 1e-30)), 0.0, float(max_level)), 0.0);
+    else
+        plan = plan_probes(e, u_max_probes, max_level);
+    if (plan.count == 1)
+        return u_env_layout == ENV_CUBE ? env_probe_direction(f.map_direction, plan.lod).rgb
+                                        : env_probe_latlong(f.point.st, plan.lod).rgb;
+    return u_env_layout == ENV_CUBE ? cube_line(f, plan) : latlong_line(f, plan);
+}

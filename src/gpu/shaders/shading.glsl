@@ -1,0 +1,154 @@
+// gpu/shaders/shading.glsl — roughness-aware Blinn-Phong and Fresnel (shading/blinn_phong.h), and
+// the shading of one hit (render/renderer.h's "Shading"), the same steps as the CPU renderer.
+
+float schlick_fresnel(float f0, float cos_theta) {
+    float c = clamp(1.0 - cos_theta, 0.0, 1.0);
+    float c2 = c * c;
+    return f0 + (1.0 - f0) * c2 * c2 * c;
+}
+
+float blinn_phong(float cos_a, float shininess) {
+    if (!(cos_a > 0.0)) return 0.0;
+    return pow(min(cos_a, 1.0), max(0.0, shininess));
+}
+
+// cos²a' = cos²a / (term + cos²a).
+float modified_cos2(float cos2, float term) {
+    float den = term + cos2;
+    return den > 0.0 ? cos2 / den : 0.0;
+}
+
+// The Gaussian rough Blinn-Phong lobe: K_rel = I + m K_b (shading/blinn_phong.h).
+float rough_blinn_phong(float cos_a, vec2 d, vec3 k_b, float shininess) {
+    if (!(cos_a > 0.0)) return 0.0;
+    float c = min(cos_a, 1.0), c2 = c * c;
+    float m = max(0.0, shininess);
+    float xx = max(0.0, k_b.x), yy = max(0.0, k_b.z);
+    float bound = sqrt(xx * yy), xy = clamp(k_b.y, -bound, bound);
+    float det_rel = 1.0 + m * (xx + yy) + m * m * max(0.0, xx * yy - xy * xy);
+    float adj_b = max(0.0, yy * d.x * d.x - 2.0 * xy * d.x * d.y + xx * d.y * d.y);
+    float term = (d.x * d.x + d.y * d.y + m * adj_b) / det_rel;
+    return pow(modified_cos2(c2, term), 0.5 * m) / sqrt(det_rel);
+}
+
+float specular_lobe(bool rough, vec3 n, vec3 e1, vec3 e2, vec3 h, vec3 k_b, float shininess) {
+    float cos_a = dot(n, h);
+    if (!(cos_a > 0.0)) return 0.0;
+    if (!rough) return blinn_phong(cos_a, shininess);
+    return rough_blinn_phong(cos_a, vec2(-dot(h, e1), -dot(h, e2)), k_b, shininess);
+}
+
+void tangent_basis(vec3 n, out vec3 u, out vec3 v) {
+    u = normalize(cross(n, abs(n.x) < 0.6 ? vec3(1, 0, 0) : vec3(0, 1, 0)));
+    v = cross(n, u);
+}
+
+// ---- Material maps: colour map i is u_maps[i], bump map i is u_maps[kMaxMaps + i].
+const int kMaxMaps = 8;
+
+// ---- One hit, shaded (render/renderer.cpp's shade_hit()).
+vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
+    Material material = materials[objects[hit.object].info.y];
+    int mode = u_mode;
+    bool filtered = mode != MODE_POINT;
+    bool rough_mode = mode == MODE_FA_ROUGH;
+
+    // Ray differentials → texture coordinates: (s, t) = (u, 1 − v) and their derivatives.
+    Differentials diff;
+    diff.valid = false;
+    if (filtered) diff = surface_differentials(ray, dddx, dddy, hit);
+    if (!diff.valid) {
+        diff.dpdx = diff.dpdy = diff.dndx = diff.dndy = vec3(0);
+        diff.duvdx = diff.duvdy = vec2(0);
+    }
+    vec2 st = fract(vec2(hit.uv.x, 1.0 - hit.uv.y));
+    vec4 dst = vec4(diff.duvdx.x, -diff.duvdx.y, diff.duvdy.x, -diff.duvdy.y);
+
+    vec3 base = material.base_color.rgb;
+    int color_map = int(material.base_color.w);
+    if (color_map >= 0) base *= lookup_2d(color_map, 1, st, dst, mode).a.rgb;
+
+    // Bump: the mean slope b and roughness K_b of the filtered region (spec §5.4).
+    vec2 slope = vec2(0);
+    vec3 k_b = material.roughness.xyz;
+    int bump_map = int(material.bump.y);
+    if (bump_map >= 0) {
+        SlopeStats stats = from_moments(lookup_2d(kMaxMaps + bump_map, 2, st, dst, mode),
+                                        vec2(material.main_direction.w, material.roughness.w));
+        slope = stats.mean;
+        k_b = stats.k;
+    }
+    if (!rough_mode) k_b = vec3(0);
+    bool bumped = bump_map >= 0 || material.bump.w > 0.0;
+    Frame frame = Frame(vec3(1, 0, 0), vec3(0, 1, 0), 1.0);
+    if (bumped) frame = bump_frame(material, hit);
+    vec2 b_t = frame.slope_sign * slope;
+
+    // Face the viewer (a surface seen from behind is shaded as its mirror image).
+    vec3 n = hit.n, dndx = diff.dndx, dndy = diff.dndy;
+    vec3 v = ray.origin - hit.p, v_hat = normalize(v);
+    if (dot(hit.n, v) < 0.0) {
+        n = -n;
+        dndx = -dndx;
+        dndy = -dndy;
+        frame.t1 = -frame.t1;
+        frame.t2 = -frame.t2;
+    }
+    if (!is_finite(b_t.x + b_t.y)) b_t = vec2(0);
+    vec3 n_m = bumped ? n + length(n) * (b_t.x * frame.t1 + b_t.y * frame.t2) : n;
+    vec3 n_hat = normalize(n_m);
+    if (dot(n_hat, v_hat) <= 0.0) n_hat = n;  // a slope tilted past the viewer (spec §4)
+    if (dot(n_hat, v_hat) <= 0.0) n_hat = v_hat;
+
+    vec3 color = vec3(0);
+    vec3 e1, e2;
+    tangent_basis(n_hat, e1, e2);
+    vec3 k_e = bumped && rough_mode ? covariance_in_frame(k_b, frame, e1, e2) : k_b;
+    for (int i = 0; i < u_light_count; ++i) {
+        Light light = lights[i];
+        vec3 l;
+        float scale = 1.0;
+        if (light.direction.w == 0.0) {
+            l = normalize(-light.direction.xyz);
+        } else {
+            vec3 d = light.position.xyz - hit.p;
+            float d2 = dot(d, d);
+            if (!(d2 > 0.0)) continue;
+            l = d / sqrt(d2);
+            scale = 1.0 / d2;
+        }
+        float cos_l = dot(n_hat, l);
+        if (cos_l <= 0.0) continue;
+        vec3 h = normalize(l + v_hat);
+        float spec = material.weights.y > 0.0
+                         ? material.weights.y *
+                               specular_lobe(rough_mode, n_hat, e1, e2, h, k_e, material.weights.z)
+                         : 0.0;
+        color += scale * light.color.rgb * (material.weights.x * cos_l * base + spec);
+    }
+
+    if (u_env_layout != ENV_NONE && material.weights.x > 0.0)
+        color += material.weights.x * base * u_env_mean;
+    if (u_env_layout != ENV_NONE && material.weights.w > 0.0) {
+        vec3 texel;
+        if (filtered) {
+            Frame t = bumped ? frame : Frame(vec3(1, 0, 0), vec3(0, 1, 0), 1.0);
+            EnvFootprint f = reflection_footprint(v, -diff.dpdx, -diff.dpdy, n, dndx, dndy,
+                                                  bumped ? b_t : vec2(0), t,
+                                                  bumped ? roughness_factor(k_b) : vec3(0), k_b);
+            texel = env_lookup(f, mode, f.k.x + f.k.z);
+        } else {
+            texel = env_point_sample(2.0 * dot(n_hat, v_hat) * n_hat - v_hat);
+        }
+        color += material.weights.w * schlick_fresnel(material.bump.x, dot(n_hat, v_hat)) * texel;
+    }
+    return color;
+}
+
+// A ray that escapes: the environment filtered over the camera ray's own differentials (form (a)),
+// or the background colour.
+vec3 background(Ray ray, vec3 dddx, vec3 dddy) {
+    if (u_env_layout == ENV_NONE) return u_background;
+    if (u_mode == MODE_POINT) return env_point_sample(ray.direction);
+    return env_lookup(ray_footprint(ray.direction, dddx, dddy), u_mode, 0.0);
+}
