@@ -20,15 +20,20 @@ constexpr TextureFilter kPlaneFilters[] = {
 struct Hint {
     std::string_view word, name;
 };
-constexpr Hint kHints[] = {{"point", "bilinear"},
-                           {"footprint_assembly", "fa"},
-                           {"footprint-assembly", "fa"},
-                           {"summed_area", "sat"},
+constexpr Hint kHints[] = {{"point", "bilinear"},        {"bilinear", "point"},
+                           {"aniso", "hw-aniso"},        {"footprint_assembly", "fa"},
+                           {"footprint-assembly", "fa"}, {"summed_area", "sat"},
                            {"summed-area", "sat"}};
 
 std::vector<std::string_view> render_names() {
     std::vector<std::string_view> names;
     for (FilterMode mode : all_filter_modes()) names.emplace_back(filter_mode_name(mode));
+    return names;
+}
+
+std::vector<std::string_view> gpu_names() {
+    std::vector<std::string_view> names;
+    for (GpuFilter filter : all_gpu_filters()) names.emplace_back(gpu_filter_name(filter));
     return names;
 }
 
@@ -59,16 +64,19 @@ Error unknown_filter(std::string_view name, const std::vector<std::string_view>&
     std::vector<std::string_view> vocabulary = render_names();
     for (std::string_view other : plane_names())
         if (!contains(vocabulary, other)) vocabulary.push_back(other);
-    if (contains(vocabulary, name)) {
-        return Error{"--filter: footprint " + std::string(command) + " has no filter " +
-                     quoted_name + "; it accepts " + list};
-    }
+    for (std::string_view other : gpu_names())
+        if (!contains(vocabulary, other)) vocabulary.push_back(other);
     std::optional<std::string_view> guess;
     for (const Hint& hint : kHints)
         if (hint.word == name && contains(accepted, hint.name)) guess = hint.name;
-    if (!guess) guess = closest_name(name, accepted);
+    const bool known = contains(vocabulary, name);
+    if (!guess && !known) guess = closest_name(name, accepted);
     const std::string did_you_mean =
         guess ? " (did you mean '" + std::string(*guess) + "'?)" : std::string();
+    if (known) {
+        return Error{"--filter: footprint " + std::string(command) + " has no filter " +
+                     quoted_name + did_you_mean + "; it accepts " + list};
+    }
     return Error{"--filter: unknown filter " + quoted_name + did_you_mean + "; footprint " +
                  std::string(command) + " accepts " + list};
 }
@@ -90,6 +98,15 @@ std::string plane_filter_names(std::string_view separator) {
 Result<FilterMode> parse_render_filter(std::string_view name) {
     if (const std::optional<FilterMode> mode = parse_filter_mode(name)) return *mode;
     return unknown_filter(name, render_names(), "render");
+}
+
+Result<GpuFilter> parse_gpu_render_filter(std::string_view name) {
+    if (const std::optional<GpuFilter> filter = parse_gpu_filter(name)) return *filter;
+    return unknown_filter(name, gpu_names(), "render --device gpu");
+}
+
+std::string gpu_filter_names(std::string_view separator) {
+    return joined(gpu_names(), separator);
 }
 
 Result<TextureFilter> parse_plane_filter(std::string_view name) {

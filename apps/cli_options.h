@@ -18,6 +18,10 @@
 //   sat        summed-area table (Crow 1984)                             -      x      x
 //   reference  the ground truth: N samples per pixel, each a bilinear    x     (texture-demo's
 //              lookup of the finest level                                       reference image)
+//   point      the GPU path's bilinear (render --device gpu, view)
+//   hw-aniso   the GPU's own anisotropic filtering (render --device gpu, view)
+// With --device gpu, render (and view) take point, trilinear, fa, fa-rough and hw-aniso
+// (gpu/gpu_renderer.h's GpuFilter).
 //
 // An unknown name is refused with one message naming the option, the value, the closest name
 // ("did you mean", core/suggest.h) and the names the command accepts.
@@ -29,6 +33,7 @@
 #include <string_view>
 
 #include "core/result.h"
+#include "gpu/gpu_renderer.h"
 #include "render/renderer.h"
 #include "texture/texture_lookup.h"
 
@@ -48,6 +53,9 @@ std::string plane_filter_names(std::string_view separator);
 //   "--filter: footprint render has no filter 'sat'; it accepts bilinear, …"
 Result<FilterMode> parse_render_filter(std::string_view name);
 Result<TextureFilter> parse_plane_filter(std::string_view name);
+// --filter NAME of `footprint render --device gpu` and `footprint view`.
+Result<GpuFilter> parse_gpu_render_filter(std::string_view name);
+std::string gpu_filter_names(std::string_view separator);
 
 // The integers an option accepts, low … high: what range_problem checks and --help says.
 struct IntRange {

@@ -129,7 +129,8 @@ TEST_F(CommandTest, UnknownFiltersAreAnsweredFromTheVocabulary) {
         "footprint plane accepts nearest, bilinear, trilinear, fa, ewa, sat\n";
     const std::pair<const char*, std::string> cases[] = {
         {"point",
-         "footprint: --filter: unknown filter 'point' (did you mean 'bilinear'?); " + accepted},
+         "footprint: --filter: footprint plane has no filter 'point' (did you mean 'bilinear'?); "
+         "it accepts nearest, bilinear, trilinear, fa, ewa, sat\n"},
         {"footprint_assembly",
          "footprint: --filter: unknown filter 'footprint_assembly' (did you mean 'fa'?); " +
              accepted},

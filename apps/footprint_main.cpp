@@ -1,5 +1,6 @@
 // footprint — the command-line program: argument parsing only; the commands live in demo.cpp,
-// env_command.cpp, eval_command.cpp, metrics_command.cpp, render_command.cpp and texture_demo.cpp.
+// env_command.cpp, eval_command.cpp, metrics_command.cpp, render_command.cpp, texture_demo.cpp and
+// view_command.cpp.
 //   footprint --version
 //   footprint demo [--out DIR] [--scene NAME...] [--size N] [--spp N] [--threads N] [--quiet]
 //   footprint eval [SCENE...] [--out DIR] [--size W] [--reference-spp N] [--spp-list 1,4,16,64]
@@ -10,8 +11,11 @@
 //                   [--quiet]
 //   footprint env convert IN [IN...] --to LAYOUT -o OUT [-o OUT...] [--size N] [--from LAYOUT]
 //                         [--from-cube-layout A] [--cube-layout A] [--repair-non-finite] [--quiet]
-//   footprint render SCENE.json -o OUT [--filter MODE] [--spp N] [--seed N] [--size WIDTH]
-//                    [--frames N] [--threads N] [--exposure E] [--json] [--quiet]
+//   footprint render SCENE -o OUT [--filter MODE] [--spp N] [--seed N] [--size WIDTH]
+//                    [--frames N] [--threads N] [--exposure E] [--device cpu|gpu] [--json]
+//                    [--quiet]
+//   footprint view SCENE [--filter MODE] [--size WxH] [--exposure E] [--frames N]
+//                  [--screenshot FILE]
 // Filter names: one vocabulary across the commands (apps/cli_options.h, kFilterHelp below).
 // Exit status: 0 success, 1 bad input or failure (one line on stderr), 2 command-line usage error.
 #include <CLI/CLI.hpp>
@@ -28,6 +32,7 @@
 #include "metrics_command.h"
 #include "render_command.h"
 #include "texture_demo.h"
+#include "view_command.h"
 
 namespace {
 
@@ -48,6 +53,9 @@ Filters (--filter; a name means the same filter in every command):
   sat        summed-area table                                   plane, texture-demo
   reference  the ground truth: --spp samples per pixel, each     render (demo, eval and
              a finest-level bilinear lookup                      texture-demo render one)
+  point      the GPU path's bilinear                             render --device gpu, view
+  hw-aniso   the GPU's own anisotropic filtering (no roughness)  render --device gpu, view
+  (render --device gpu and view also take trilinear, fa, fa-rough)
 )";
 
 int run(int argc, char** argv) {
@@ -203,7 +211,9 @@ int run(int argc, char** argv) {
     std::string render_scene, render_output;
     CLI::App* render_cmd = app.add_subcommand(
         "render", "Render a scene file (JSON) with one filter mode, or its ground truth");
-    render_cmd->add_option("scene", render_scene, "Scene file (.json)")->required();
+    render_cmd
+        ->add_option("scene", render_scene, "Scene file (.json) or a built-in demo scene's name")
+        ->required();
     render_cmd
         ->add_option("-o,--out", render_output,
                      "Output image (.png/.jpg/.tif sRGB, .exr/.hdr linear)")
@@ -227,12 +237,31 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     render_cmd->add_option("--frames", render.frames,
                            "Render N ≥ 1 frames along the scene's camera_path (OUT_0000.png, …)");
+    render_cmd
+        ->add_option("--device", render.device,
+                     "cpu, or gpu: the GPU path, one sample per pixel (--filter " +
+                         footprint::gpu_filter_names("|") + ")")
+        ->capture_default_str();
     render_cmd->add_flag("--json", render.json, "Print a one-line JSON summary to stdout");
     render_cmd->add_flag("--quiet,-q", render.quiet, "No progress output");
+
+    footprint::ViewCommandOptions view;
+    CLI::App* view_cmd = app.add_subcommand(
+        "view", "Show a scene in a window, rendered on the GPU (orbit, zoom, switch modes)");
+    view_cmd->add_option("scene", view.scene, "Scene file (.json) or a built-in demo scene's name")
+        ->required();
+    view_cmd->add_option("--filter", view.filter, footprint::gpu_filter_names("|"))
+        ->capture_default_str();
+    view_cmd->add_option("--size", view.size, "Window size WIDTHxHEIGHT (default 1280x720)");
+    view_cmd->add_option("--exposure", view.exposure, "Exposure in stops")->capture_default_str();
+    view_cmd->add_option("--frames", view.frames, "Close after N frames (scripted runs)");
+    view_cmd->add_option("--screenshot", view.screenshot,
+                         "With --frames: write the last frame to this image file");
 
     // After the subcommands (which would inherit it): the commands with --filter get it too.
     app.footer(kFilterHelp);
     render_cmd->footer(kFilterHelp);
+    view_cmd->footer(kFilterHelp);
     plane_cmd->footer(kFilterHelp);
 
     try {
@@ -272,6 +301,7 @@ int run(int argc, char** argv) {
         render.output = render_output;
         return footprint::run_render_command(render);
     }
+    if (*view_cmd) return footprint::run_view_command(view);
     if (*env_cmd) {
         convert.inputs.assign(convert_inputs.begin(), convert_inputs.end());
         convert.outputs.assign(convert_outputs.begin(), convert_outputs.end());

@@ -15,6 +15,7 @@
 
 #include "demo.h"
 #include "demo_scenes.h"
+#include "gpu/gpu_test_device.h"
 #include "image/image_io.h"
 #include "render_command.h"
 
@@ -133,6 +134,85 @@ TEST_F(RenderCommandTest, BadInputGivesOneLineErrorsAndNoOutput) {
     EXPECT_FALSE(fs::exists(dir_ / "a.png"));
 }
 
+TEST_F(RenderCommandTest, GpuDeviceWritesTheSameOutputsAndSummary) {
+    FOOTPRINT_GPU_DEVICE_OR_SKIP();
+    std::string out, err;
+    RenderCommandOptions o = options("gpu.exr", "fa-rough");
+    o.device = "gpu";
+    o.json = true;
+    ASSERT_EQ(render_cmd(o, &err, &out), 0) << err;
+    const nlohmann::json summary = nlohmann::json::parse(out);
+    EXPECT_EQ(summary["device"], "gpu");
+    EXPECT_EQ(summary["filter"], "fa-rough");
+    EXPECT_EQ(summary["width"], 24);
+    EXPECT_EQ(summary["pixels"], 24 * 16);
+    EXPECT_FALSE(summary["gpu"].get<std::string>().empty());
+    EXPECT_GE(summary["gpu_ms"].get<double>(), 0.0);
+    Result<Image> gpu = load_image(dir_ / "gpu.exr");
+    ASSERT_TRUE(gpu);
+    RenderCommandOptions cpu = options("cpu.exr", "fa-rough");
+    ASSERT_EQ(render_cmd(cpu, &err), 0) << err;
+    Result<Image> reference = load_image(dir_ / "cpu.exr");
+    ASSERT_TRUE(reference);
+    double worst = 0;
+    for (std::size_t i = 0; i < gpu->pixels.size(); ++i)
+        worst = std::max(worst, double(std::abs(gpu->pixels[i] - reference->pixels[i])));
+    EXPECT_LT(worst, 0.02);  // the GPU path renders the CPU's image (apps/gpu_scenes_test.cpp)
+
+    RenderCommandOptions frames = options("seq.png", "trilinear");
+    frames.device = "gpu";
+    frames.scene = "water";  // a built-in demo scene, which has a camera path
+    frames.width = 32;
+    frames.frames = 2;
+    ASSERT_EQ(render_cmd(frames, &err), 0) << err;
+    EXPECT_TRUE(fs::exists(dir_ / "seq_0000.png"));
+    EXPECT_TRUE(fs::exists(dir_ / "seq_0001.png"));
+}
+
+TEST_F(RenderCommandTest, GpuDeviceRefusesWhatItCannotDoInOneLine) {
+    FOOTPRINT_GPU_DEVICE_OR_SKIP();
+    std::string err;
+    RenderCommandOptions o = options("a.png", "ewa-rough");
+    o.device = "gpu";
+    EXPECT_EQ(render_cmd(o, &err), 1);
+    EXPECT_EQ(err,
+              "footprint: --filter: footprint render --device gpu has no filter 'ewa-rough'; it "
+              "accepts point, trilinear, fa, fa-rough, hw-aniso\n");
+    o.filter = "bilinear";
+    EXPECT_EQ(render_cmd(o, &err), 1);
+    EXPECT_NE(err.find("(did you mean 'point'?)"), std::string::npos) << err;
+    o.filter = "fa";
+    o.spp = 4;
+    EXPECT_EQ(render_cmd(o, &err), 1);
+    EXPECT_EQ(err, "footprint: --spp 4: --device gpu renders one sample per pixel (--spp 1)\n");
+    o.spp.reset();
+    o.device = "tpu";
+    EXPECT_EQ(render_cmd(o, &err), 1);
+    EXPECT_EQ(err, "footprint: --device: unknown device 'tpu'; it is cpu or gpu\n");
+
+    // A missing environment: the same error as on the CPU (the scene is prepared alike).
+    write("missing_env.json", R"({"camera": {"position": [0, 1, 3], "look_at": [0, 0, 0]},
+                                  "environment": {"file": "absent.hdr"}, "objects": []})");
+    RenderCommandOptions env = options("a.png", "fa");
+    env.scene = dir_ / "missing_env.json";
+    std::string cpu_err;
+    EXPECT_EQ(render_cmd(env, &cpu_err), 1);
+    env.device = "gpu";
+    EXPECT_EQ(render_cmd(env, &err), 1);
+    EXPECT_EQ(err, cpu_err);
+    EXPECT_NE(err.find("absent.hdr"), std::string::npos) << err;
+
+    write("torus.json", R"({"camera": {"position": [0, 1, 3], "look_at": [0, 0, 0]},
+                           "objects": [{"name": "ring", "shape": "torus"}]})");
+    RenderCommandOptions torus = options("a.png", "fa");
+    torus.scene = dir_ / "torus.json";
+    torus.device = "gpu";
+    EXPECT_EQ(render_cmd(torus, &err), 1);
+    EXPECT_EQ(err, "footprint: " + (dir_ / "torus.json").string() +
+                       ": objects[0] (ring): the torus is not on the GPU yet\n");
+    EXPECT_FALSE(fs::exists(dir_ / "a.png"));
+}
+
 // A scene that reads the shared data set (examples/scenes/showcase.json), on a clone without it:
 // the message says where the file was to come from.
 TEST_F(RenderCommandTest, AMissingSharedDataFileSaysWhereItComesFrom) {
@@ -169,7 +249,8 @@ TEST_F(RenderCommandTest, UnknownFiltersAreAnsweredFromTheVocabulary) {
         {"fa_rough",
          "footprint: --filter: unknown filter 'fa_rough' (did you mean 'fa-rough'?); " + accepted},
         {"point",
-         "footprint: --filter: unknown filter 'point' (did you mean 'bilinear'?); " + accepted},
+         "footprint: --filter: footprint render has no filter 'point' (did you mean 'bilinear'?); "
+         "it accepts bilinear, trilinear, fa, fa-rough, ewa-rough, reference\n"},
         {"sat",
          "footprint: --filter: footprint render has no filter 'sat'; it accepts bilinear, "
          "trilinear, fa, fa-rough, ewa-rough, reference\n"},

@@ -1,6 +1,7 @@
 #include "render_command.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -9,6 +10,7 @@
 
 #include "cli_options.h"
 #include "command_util.h"
+#include "gpu/gpu_renderer.h"
 #include "image/image_io.h"
 #include "progress.h"
 #include "render/render_scene.h"
@@ -23,12 +25,6 @@ constexpr int kDefaultReferenceSpp = 64;
 constexpr int kMaxSpp = 1 << 16;
 constexpr int kMaxFrames = 100000;
 constexpr int kMaxThreads = 1024;
-
-bool is_float_format(const std::filesystem::path& file) {
-    std::string ext = file.extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext == ".exr" || ext == ".hdr";
-}
 
 }  // namespace
 
@@ -107,16 +103,98 @@ void report(const RenderCommandOptions& options, const SceneDesc& desc, const Re
     report_written(what, desc.width, desc.height, mode, ro.spp, stats.seconds);
 }
 
+void apply_exposure(const RenderCommandOptions& options, Image& image) {
+    if (is_float_image_file(options.output) || options.exposure == 0) return;
+    const float scale = std::exp2(options.exposure);
+    for (float& v : image.pixels) v *= scale;
+}
+
+// The scene file's name before a message that does not start with it.
+std::string with_scene(const std::filesystem::path& scene, const std::string& message) {
+    const std::string name = scene.string();
+    return message.rfind(name, 0) == 0 ? message : name + ": " + message;
+}
+
+// --device gpu: the same scene, outputs and report, rendered by the GPU path.
+int run_gpu_render(const RenderCommandOptions& options, GpuFilter filter, const SceneDesc& desc,
+                   const RenderScene& scene) {
+    Result<GpuDevice> device = GpuDevice::headless();
+    if (!device) return fail("--device gpu: " + device.error().message);
+    Result<GpuRenderer> renderer = GpuRenderer::create(scene);
+    if (!renderer) return fail(with_scene(options.scene, renderer.error().message));
+    const int frame_count = options.frames.value_or(1);
+    GpuRenderOptions render_options;
+    render_options.filter = filter;
+    render_options.frame_count = options.frames.value_or(0);
+    double seconds = 0, gpu_ms = 0;
+    RunOutputs outputs;  // a sequence that fails part way leaves none of its frames behind
+    for (int frame = 0; frame < frame_count; ++frame) {
+        render_options.frame = frame;
+        const auto start = std::chrono::steady_clock::now();
+        GpuFrameStats stats;
+        Result<Image> image = renderer->render(render_options, &stats);
+        if (!image) return fail("--device gpu: " + image.error().message);
+        seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        gpu_ms += stats.gpu_ms;
+        apply_exposure(options, *image);
+        const std::filesystem::path file =
+            options.frames ? frame_file(options.output, frame, frame_count) : options.output;
+        if (Status saved = outputs.save(*image, file); !saved) return fail(saved.error().message);
+    }
+    outputs.keep();
+    const std::uint64_t pixels = static_cast<std::uint64_t>(desc.width) * desc.height * frame_count;
+    if (options.json) {
+        const nlohmann::json summary = {{"scene", options.scene.string()},
+                                        {"output", options.output.string()},
+                                        {"device", "gpu"},
+                                        {"gpu", device->description()},
+                                        {"filter", gpu_filter_name(filter)},
+                                        {"spp", 1},
+                                        {"width", desc.width},
+                                        {"height", desc.height},
+                                        {"pixels", pixels},
+                                        {"seconds", seconds},
+                                        {"gpu_ms", gpu_ms},
+                                        {"frames", frame_count}};
+        std::printf("%s\n", summary.dump().c_str());
+        return 0;
+    }
+    if (options.quiet) return 0;
+    const std::string what =
+        options.frames ? std::to_string(frame_count) + " frames " +
+                             frame_file(options.output, 0, frame_count).string() + " … " +
+                             frame_file(options.output, frame_count - 1, frame_count).string()
+                       : options.output.string();
+    report_written(what, desc.width, desc.height,
+                   std::string(gpu_filter_name(filter)) + ", GPU " + device->description(), 1,
+                   seconds);
+    return 0;
+}
+
 }  // namespace
 
 int run_render_command(const RenderCommandOptions& options) {
-    const Result<FilterMode> mode = parse_render_filter(options.filter);
+    if (options.device != "cpu" && options.device != "gpu")
+        return fail("--device: unknown device '" + options.device + "'; it is cpu or gpu");
+    const bool gpu = options.device == "gpu";
+    std::optional<GpuFilter> gpu_filter;
+    if (gpu) {
+        const Result<GpuFilter> filter = parse_gpu_render_filter(options.filter);
+        if (!filter) return fail(filter.error().message);
+        gpu_filter = *filter;
+        if (options.spp && *options.spp != 1)
+            return fail("--spp " + std::to_string(*options.spp) +
+                        ": --device gpu renders one sample per pixel (--spp 1)");
+    }
+    const Result<FilterMode> mode =
+        gpu ? Result<FilterMode>(FilterMode::fa_rough) : parse_render_filter(options.filter);
     if (!mode) return fail(mode.error().message);
     if (const auto problem = option_problem(options)) return fail(*problem);
     if (const auto problem = output_file_problem(options.output)) return fail(*problem);
 
-    Result<SceneDesc> desc = load_scene_file(options.scene);
-    if (!desc) return fail(with_shared_data_hint(desc.error().message));
+    Result<NamedScene> named = resolve_scene(options.scene.string());
+    if (!named) return fail(named.error().message);
+    SceneDesc* desc = &named->desc;
     const bool show_progress = !options.quiet && Progress::stderr_is_terminal();
     if (show_progress) std::fprintf(stderr, "  loading %s\n", options.scene.string().c_str());
     if (options.frames && desc->camera_path.empty()) {
@@ -125,6 +203,7 @@ int run_render_command(const RenderCommandOptions& options) {
     if (options.width) resize_image(*desc, *options.width);
     Result<RenderScene> scene = prepare_render_scene(*desc);
     if (!scene) return fail(scene.error().message);
+    if (gpu) return run_gpu_render(options, *gpu_filter, *desc, *scene);
 
     RenderOptions render_options;
     render_options.filter = *mode;
@@ -150,10 +229,7 @@ int run_render_command(const RenderCommandOptions& options) {
         stats.lookups += frame_stats.lookups;
         stats.non_finite_samples += frame_stats.non_finite_samples;
         stats.non_finite_pixels += frame_stats.non_finite_pixels;
-        if (!is_float_format(options.output) && options.exposure != 0) {
-            const float scale = std::exp2(options.exposure);
-            for (float& v : image.pixels) v *= scale;
-        }
+        apply_exposure(options, image);
         const std::filesystem::path file =
             options.frames ? frame_file(options.output, frame, frame_count) : options.output;
         if (Status saved = outputs.save(image, file); !saved) return fail(saved.error().message);

@@ -1,14 +1,22 @@
-// apps/render_command.h — `footprint render`: a scene file rendered with one filter mode.
+// apps/render_command.h — `footprint render`: a scene rendered with one filter mode.
 //
-//   footprint render SCENE.json -o OUT [--filter MODE] [--spp N] [--seed N] [--size WIDTH]
-//                    [--frames N] [--threads N] [--exposure E] [--json] [--quiet]
+//   footprint render SCENE -o OUT [--filter MODE] [--spp N] [--seed N] [--size WIDTH]
+//                    [--frames N] [--threads N] [--exposure E] [--device cpu|gpu] [--json]
+//                    [--quiet]
 //
-// MODE is one of the filter vocabulary's render filters (apps/cli_options.h). --size WIDTH
-// renders WIDTH pixels wide, the height following the scene's aspect ratio (its image width and
-// height). --seed N chooses the sample sequences (render/renderer.h's RenderOptions::seed): the
-// same seed gives the same image, different seeds independent samples. --frames N renders N
-// frames along the scene's camera_path (scene/scene.h; an error without one) into OUT with the
-// frame number before the extension: out.png → out_0000.png … (4 digits, more if N needs them).
+// --device gpu renders on the GPU path (gpu/gpu_renderer.h), headless through EGL, one sample per
+// pixel: MODE is then one of point, trilinear, fa, fa-rough, hw-aniso, --spp must be 1 and
+// --seed and --threads do not apply. The outputs, --frames and --size are the same; a scene
+// the GPU path does not draw yet, or a machine without an EGL device, is refused with an error.
+//
+// SCENE is a scene file (.json) or a built-in demo scene's name (apps/command_util.h's
+// resolve_scene). MODE is one of the filter vocabulary's render filters (apps/cli_options.h).
+// --size WIDTH renders WIDTH pixels wide, the height following the scene's aspect ratio (its image
+// width and height). --seed N chooses the sample sequences (render/renderer.h's
+// RenderOptions::seed): the same seed gives the same image, different seeds independent samples.
+// --frames N renders N frames along the scene's camera_path (scene/scene.h; an error without one)
+// into OUT with the frame number before the extension: out.png → out_0000.png … (4 digits, more if
+// N needs them).
 //
 // Returns the process exit status: 0, or 1 after one line "footprint: <what is wrong>" on stderr
 // naming the file, key or value at fault (scene errors come from scene/scene_file.h and
@@ -24,6 +32,9 @@
 //   {"scene": …, "output": …, "filter": …, "spp": …, "seed": …, "threads": …, "width": …,
 //    "height": …, "pixels": …, "seconds": …, "lookups": …, "non_finite_samples": …,
 //    "non_finite_pixels": …, "frames": …}   (pixels, seconds, lookups, non-finite: all frames)
+//   with --device gpu: {"scene", "output", "device": "gpu", "gpu": the renderer's name, "filter",
+//    "spp": 1, "width", "height", "pixels", "seconds", "gpu_ms", "frames"} (gpu_ms: the GPU time
+//    of all frames, timer queries; seconds: the wall time of rendering and reading back)
 #pragma once
 
 #include <cstdint>
@@ -40,9 +51,10 @@ struct RenderCommandOptions {
     std::optional<int> spp;           // 1 … 65536; not given: 1, or 64 for the reference
     std::optional<int> width;         // --size: 16 … 16384; not given: the scene's own size
     std::uint32_t seed = 1;
-    int threads = 0;            // 0: all cores
-    float exposure = 0;         // stops, for integer outputs
-    std::optional<int> frames;  // 1 … 100000: a sequence; not given: one image (scene camera)
+    int threads = 0;             // 0: all cores
+    float exposure = 0;          // stops, for integer outputs
+    std::optional<int> frames;   // 1 … 100000: a sequence; not given: one image (scene camera)
+    std::string device = "cpu";  // "cpu" or "gpu"
     bool json = false;
     bool quiet = false;
 };

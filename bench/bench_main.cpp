@@ -3,6 +3,7 @@
 //   footprint-bench pyramid [--json FILE]   MIP pyramid build time and memory layouts
 //   footprint-bench bump [--json FILE]      bump/roughness pyramid build and filtered bump lookups
 //   footprint-bench env [--json FILE]       environment-map lookups vs OpenImageIO's environment()
+//   footprint-bench gpu [--json FILE] [--size WxH]   GPU frame times per mode vs hw-aniso
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -10,6 +11,7 @@
 
 #include "bump_bench.h"
 #include "env_bench.h"
+#include "gpu_bench.h"
 #include "pyramid_bench.h"
 #include "texture_bench.h"
 
@@ -96,12 +98,32 @@ int main(int argc, char** argv) {
     envc->add_flag("!--no-oiio", env.with_oiio, "skip the OpenImageIO peer");
     envc->add_flag("--quiet", env.quiet, "no progress output");
 
+    GpuBenchOptions gpu;
+    CLI::App* gpuc = app.add_subcommand(
+        "gpu",
+        "GPU frame times of every mode on the demo scenes, against hw-aniso (the GPU's own)");
+    gpuc->add_option("--json", gpu.json_path, "write the results as JSON to this file");
+    gpuc->add_option("--size", gpu.size, "frame size WIDTHxHEIGHT")->capture_default_str();
+    gpuc->add_option("--frames", gpu.frames, "timed frames per mode and scene")
+        ->check(CLI::Range(1, 100000))
+        ->capture_default_str();
+    gpuc->add_option("--warmup", gpu.warmup, "untimed frames first")
+        ->check(CLI::Range(0, 1000))
+        ->capture_default_str();
+    gpuc->add_option("--scenes", gpu.scenes, "demo scenes (default: all)");
+    gpuc->add_flag("--quality", gpu.quality,
+                   "measure the images instead: interior RMSE against the CPU reference");
+    gpuc->add_option("--reference-spp", gpu.reference_spp, "the reference's samples per pixel")
+        ->check(CLI::Range(1, 65536))
+        ->capture_default_str();
+
     CLI11_PARSE(app, argc, argv);
     try {
         if (*tex) return run_texture_bench(texture);
         if (*pyr) return run_pyramid_bench(pyramid);
         if (*bmp) return run_bump_bench(bump);
         if (*envc) return run_env_bench(env);
+        if (*gpuc) return run_gpu_bench(gpu);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "footprint-bench: %s\n", e.what());
         return 1;
