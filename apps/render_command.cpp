@@ -65,6 +65,14 @@ void resize_image(SceneDesc& desc, int width) {
     desc.width = width;
 }
 
+// What a run wrote, for its report line: the output, or a sequence's first and last frames.
+std::string written_files(const RenderCommandOptions& options, int frame_count) {
+    if (!options.frames) return options.output.string();
+    return std::to_string(frame_count) + " frames " +
+           frame_file(options.output, 0, frame_count).string() + " … " +
+           frame_file(options.output, frame_count - 1, frame_count).string();
+}
+
 void report(const RenderCommandOptions& options, const SceneDesc& desc, const RenderOptions& ro,
             const RenderStats& stats, int frame_count) {
     const char* mode = filter_mode_name(ro.filter);
@@ -95,11 +103,7 @@ void report(const RenderCommandOptions& options, const SceneDesc& desc, const Re
                      static_cast<unsigned long long>(stats.non_finite_pixels));
     }
     if (options.json) return;
-    const std::string what =
-        options.frames ? std::to_string(frame_count) + " frames " +
-                             frame_file(options.output, 0, frame_count).string() + " … " +
-                             frame_file(options.output, frame_count - 1, frame_count).string()
-                       : options.output.string();
+    const std::string what = written_files(options, frame_count);
     report_written(what, desc.width, desc.height, mode, ro.spp, stats.seconds);
 }
 
@@ -160,11 +164,7 @@ int run_gpu_render(const RenderCommandOptions& options, GpuFilter filter, const 
         return 0;
     }
     if (options.quiet) return 0;
-    const std::string what =
-        options.frames ? std::to_string(frame_count) + " frames " +
-                             frame_file(options.output, 0, frame_count).string() + " … " +
-                             frame_file(options.output, frame_count - 1, frame_count).string()
-                       : options.output.string();
+    const std::string what = written_files(options, frame_count);
     report_written(what, desc.width, desc.height,
                    std::string(gpu_filter_name(filter)) + ", GPU " + device->description(), 1,
                    seconds);

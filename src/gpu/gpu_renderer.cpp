@@ -2,12 +2,12 @@
 
 #include <chrono>
 #include <cmath>
-#include <numbers>
 
 #include "gpu/gl_context.h"
 #include "gpu/gl_objects.h"
 #include "gpu/gpu_scene.h"
 #include "gpu/gpu_shaders.h"
+#include "render/camera.h"
 #include "texture/footprint_assembly.h"
 
 namespace footprint {
@@ -125,15 +125,11 @@ void set_vec3(GLint location, Vec3d v) {
 void GpuRenderer::Impl::set_frame_uniforms(const CameraDesc& camera, int width, int height,
                                            const GpuRenderOptions& options) {
     // render/camera.h's pinhole camera, at the origin (gpu_scene.h: camera-relative positions).
-    const Vec3d forward = normalize(camera.look_at - camera.position);
-    const Vec3d right = normalize(cross(forward, camera.up));
-    const Vec3d up = cross(right, forward);
-    set_vec3(uniform("u_camera_forward"), forward);
-    set_vec3(uniform("u_camera_right"), right);
-    set_vec3(uniform("u_camera_up"), up);
-    glUniform1f(uniform("u_pixel_angle"),
-                static_cast<float>(std::tan(0.5 * camera.fov_y_deg * std::numbers::pi / 180.0) /
-                                   (0.5 * height)));
+    const PinholeCamera pinhole(camera, width, height);
+    set_vec3(uniform("u_camera_forward"), pinhole.forward());
+    set_vec3(uniform("u_camera_right"), pinhole.right());
+    set_vec3(uniform("u_camera_up"), pinhole.up());
+    glUniform1f(uniform("u_pixel_angle"), static_cast<float>(pinhole.pixel_angle()));
     glUniform2i(uniform("u_size"), width, height);
     glUniform1i(uniform("u_mode"), mode_code(options.filter));
     glUniform1i(uniform("u_max_probes"), std::clamp(options.max_probes, 1, kMaxProbeCount));

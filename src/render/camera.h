@@ -24,6 +24,9 @@ class PinholeCamera {
 
     Vec3d position() const { return position_; }
     Vec3d forward() const { return forward_; }
+    Vec3d right() const { return right_; }
+    Vec3d up() const { return up_; }
+    double pixel_angle() const { return a_; }  // a: ∂d/∂x = a r, ∂d/∂y = −a u
 
   private:
     Vec3d position_, forward_, right_, up_;
