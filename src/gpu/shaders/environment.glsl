@@ -285,19 +285,9 @@ vec3 cap_lookup(CapFootprint c, int mode) {
     int max_level = map_max_level(MAP_CAPS);
     Ellipse e = ellipse_of(c.k);
     if (mode == MODE_TRILINEAR)
-        return sample_lod(MAP_CAPS, vec3(c.st, c.layer),
-                          clamp(log2(max(e.l1, 1e-30)), 0.0, float(max_level))).rgb;
-    Plan plan = plan_probes(e, u_max_probes, max_level);
-    vec2 size = map_size(MAP_CAPS);
-    vec3 sum = vec3(0);
-    float weights = 0.0;
-    for (int i = 0; i < plan.count; ++i) {
-        float w = probe_weight(plan, i);
-        sum += w * sample_lod(MAP_CAPS, vec3(c.st + probe_offset(plan, i) / size, c.layer),
-                              plan.lod).rgb;
-        weights += w;
-    }
-    return sum / weights;
+        return probe(MAP_CAPS, c.layer, 1, c.st, clamp(log2(max(e.l1, 1e-30)), 0.0, float(max_level)))
+            .a.rgb;
+    return assemble(MAP_CAPS, c.layer, 1, c.st, plan_probes(e, u_max_probes, max_level)).a.rgb;
 }
 
 // Lat-long probe placement on the sphere (environment_map.cpp's TangentProbes): an offset o in

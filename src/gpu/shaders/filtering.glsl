@@ -58,10 +58,11 @@ Texel texel_sum(Texel x, Texel y) {
     return Texel(x.a + y.a, x.b + y.b);
 }
 
-// One trilinear probe at a hardware lod (the level blend GL_LINEAR_MIPMAP_LINEAR does).
-Texel probe(int map, int layers, vec2 st, float lod) {
-    return Texel(sample_lod(map, vec3(st, 0), lod),
-                 layers > 1 ? sample_lod(map, vec3(st, 1), lod) : vec4(0));
+// One trilinear probe at a hardware lod (the level blend GL_LINEAR_MIPMAP_LINEAR does) of layer
+// `first` and, with layers = 2, the layer after it.
+Texel probe(int map, int first, int layers, vec2 st, float lod) {
+    return Texel(sample_lod(map, vec3(st, first), lod),
+                 layers > 1 ? sample_lod(map, vec3(st, first + 1), lod) : vec4(0));
 }
 
 // The hardware lod that reads `lod`'s two levels with the blend weight w' = (4^w − 1)/3 instead of
@@ -148,16 +149,18 @@ float probe_weight(Plan plan, int i) {
     return plan.count <= 2 ? 1.0 : exp(-0.5 * (plan.falloff * k) * (plan.falloff * k));
 }
 
-// C = Σ w_i trilinear(c + o_i) / Σ w_i (spec §2.9), probes along r1 in (s, t).
-Texel assemble(int map, int layers, vec2 st, Plan plan) {
-    if (plan.count == 1) return probe(map, layers, st, plan.lod);
+// C = Σ w_i trilinear(c + o_i) / Σ w_i (spec §2.9), probes along r1 in (s, t), of layers `first`
+// … first + layers − 1.
+Texel assemble(int map, int first, int layers, vec2 st, Plan plan) {
+    if (plan.count == 1) return probe(map, first, layers, st, plan.lod);
     vec2 size = map_size(map);
     Texel sum = Texel(vec4(0), vec4(0));
     float weights = 0.0;
     for (int i = 0; i < plan.count; ++i) {
         float w = probe_weight(plan, i);
-        sum = texel_sum(sum, texel_scaled(probe(map, layers, st + probe_offset(plan, i) / size,
-                                                plan.lod), w));
+        sum = texel_sum(sum, texel_scaled(probe(map, first, layers,
+                                                st + probe_offset(plan, i) / size, plan.lod),
+                                          w));
         weights += w;
     }
     return texel_scaled(sum, 1.0 / weights);
@@ -174,20 +177,20 @@ Texel hardware_lookup(int map, int layers, vec2 st, vec2 d_dx, vec2 d_dy) {
 // A filtered lookup of a 2D map in `mode` (texture/texture_lookup.h's coords overload):
 // st = (s, t), dst = (∂s/∂x, ∂t/∂x, ∂s/∂y, ∂t/∂y) in normalised units.
 Texel lookup_2d(int map, int layers, vec2 st, vec4 dst, int mode) {
-    if (mode == MODE_POINT) return probe(map, layers, st, 0.0);
+    if (mode == MODE_POINT) return probe(map, 0, layers, st, 0.0);
     vec2 size = map_size(map);
     if (mode == MODE_HW_ANISO) return hardware_lookup(map, layers, st, dst.xy * size, dst.zw * size);
     int max_level = map_max_level(map);
     vec2 d_dx = dst.xy * size, d_dy = dst.zw * size;  // the columns of D, level-0 texels
     float len_x2 = dot(d_dx, d_dx), len_y2 = dot(d_dy, d_dy);
     if (!is_finite(len_x2 + len_y2) || len_x2 + len_y2 <= 1.0)  // magnification, or no footprint
-        return probe(map, layers, st, 0.0);
+        return probe(map, 0, layers, st, 0.0);
     if (mode == MODE_TRILINEAR)  // GL's rule: ρ = max(|∂(X,Y)/∂x|, |∂(X,Y)/∂y|)
-        return probe(map, layers, st,
+        return probe(map, 0, layers, st,
                      clamp(0.5 * log2(max(len_x2, len_y2)), 0.0, float(max_level)));
     Ellipse e = ellipse_of(footprint_matrix(d_dx, d_dy));
     float limit = 4.0 * max(size.x, size.y);  // larger footprints read the coarsest levels
     e.l1 = min(e.l1, limit);
     e.l2 = min(e.l2, limit);
-    return assemble(map, layers, st, plan_probes(e, u_max_probes, max_level));
+    return assemble(map, 0, layers, st, plan_probes(e, u_max_probes, max_level));
 }

@@ -32,6 +32,15 @@ vec2 cos_sin(float along_cos, float along_sin) {
     return h > 0.0 ? vec2(along_cos, along_sin) / h : vec2(1, 0);
 }
 
+// The radial direction e(φ) about an object's axes and its derivative e'(φ) (shapes.cpp's
+// radial() and radial_derivative()), φ as (cos φ, sin φ).
+vec3 radial(Object o, vec2 phi) {
+    return phi.y * o.axis_u.xyz - phi.x * o.axis_v.xyz;
+}
+vec3 radial_derivative(Object o, vec2 phi) {
+    return phi.x * o.axis_u.xyz + phi.y * o.axis_v.xyz;
+}
+
 // u = ½ + φ/(2π) for φ as (cos φ, sin φ) (shapes.cpp's azimuth_u).
 float azimuth_u(vec2 phi) {
     if (phi.y == 0.0 && phi.x > 0.0) return 0.5;
@@ -81,7 +90,7 @@ bool hit_sphere(Object o, Ray ray, float len, vec3 d, inout Hit hit) {
         float rho = length(vec2(dot(q, u), dot(q, v)));
         vec2 phi = cos_sin(-dot(q, v), dot(q, u));
         vec2 theta = cos_sin(dot(q, a), rho);
-        vec3 e = phi.y * u - phi.x * v, de = phi.x * u + phi.y * v;
+        vec3 e = radial(o, phi), de = radial_derivative(o, phi);
         vec3 n = theta.y * e + theta.x * a;
         vec3 dpdu = (TWO_PI * radius * theta.y) * de;
         vec3 dpdv = (-PI * radius) * (theta.x * e - theta.y * a);
@@ -108,7 +117,7 @@ bool hit_cylinder(Object o, Ray ray, float len, vec3 d, inout Hit hit) {
         float along = dot(q, a);
         if (!(abs(along) <= 0.5 * height)) continue;
         vec2 phi = cos_sin(-dot(q, v), dot(q, u));
-        vec3 e = phi.y * u - phi.x * v, de = phi.x * u + phi.y * v;
+        vec3 e = radial(o, phi), de = radial_derivative(o, phi);
         hit = Hit(t, p, e, (TWO_PI * radius) * de, height * a, TWO_PI * de, vec3(0),
                   vec2(azimuth_u(phi), along / height + 0.5), hit.object);
         return true;
