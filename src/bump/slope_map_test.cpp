@@ -10,6 +10,7 @@
 #include <random>
 #include <string>
 
+#include "core/test_temp_dir.h"
 #include "image/image_io.h"
 #include "math/vec3.h"
 
@@ -43,25 +44,7 @@ double texel_v(int y, int height, double dv) {
 }
 
 // A fresh directory under the system temp dir, removed when the test ends.
-class TempDir {
-  public:
-    TempDir() {
-        std::random_device rd;
-        path_ = fs::temp_directory_path() /
-                ("footprint-slope-map-" + std::to_string(rd()) + "-" + std::to_string(rd()));
-        fs::create_directory(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const fs::path& path() const { return path_; }
-
-  private:
-    fs::path path_;
-};
+using test::TempDir;
 
 // A height map holding h = a·x + c·y in map units (x = column, y = row from the top).
 Image ramp(int w, int h, float a, float c, float offset = 3.0f) {

@@ -16,6 +16,7 @@
 #include <random>
 
 #include "core/test_shared_data.h"
+#include "core/test_temp_dir.h"
 #include "envmap/env_convert.h"
 #include "image/image_io_detail.h"
 
@@ -54,27 +55,7 @@ const float* texel_at(const std::array<Image, 6>& faces, Vec3d d) {
 
 using test::shared_data_dir;
 
-class TempDir {
-  public:
-    TempDir() {
-        std::random_device random;
-        path_ = fs::temp_directory_path() / ("footprint-envio-test-" + std::to_string(random()));
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(path_, ignored);
-    }
-    const fs::path& path() const { return path_; }
-    int entries() const {
-        int n = 0;
-        for ([[maybe_unused]] const auto& e : fs::directory_iterator(path_)) ++n;
-        return n;
-    }
-
-  private:
-    fs::path path_;
-};
+using test::TempDir;
 
 // ---- Arrangements.
 

@@ -8,12 +8,12 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
-#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/test_shared_data.h"
+#include "core/test_temp_dir.h"
 #include "image/color.h"
 #include "image/image_io.h"
 
@@ -24,23 +24,7 @@ namespace fs = std::filesystem;
 
 using test::shared_data_dir;
 
-class TempDir {
-  public:
-    TempDir() {
-        std::random_device random;
-        path_ = fs::temp_directory_path() / ("footprint-mesh-test-" + std::to_string(random()));
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(path_, ignored);
-    }
-    const fs::path& path() const { return path_; }
-    fs::path operator/(const std::string& name) const { return path_ / name; }
-
-  private:
-    fs::path path_;
-};
+using test::TempDir;
 
 void write_file(const fs::path& file, const std::string& text) {
     std::ofstream out(file, std::ios::binary);

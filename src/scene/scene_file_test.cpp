@@ -6,13 +6,13 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
-#include <random>
 #include <string>
 #include <variant>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "core/test_temp_dir.h"
 #include "image/image_io.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
@@ -24,25 +24,7 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 // A fresh folder under the system temp directory, removed with everything in it.
-class TempDir {
-  public:
-    TempDir() {
-        std::random_device random;
-        path_ = fs::temp_directory_path() / ("footprint-scene-test-" + std::to_string(random()) +
-                                             "-" + std::to_string(random()));
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(path_, ignored);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const fs::path& path() const { return path_; }
-
-  private:
-    fs::path path_;
-};
+using test::TempDir;
 
 void write_file(const fs::path& file, const std::string& text) {
     fs::create_directories(file.parent_path());
