@@ -140,6 +140,19 @@ std::optional<std::string> range_problem(std::string_view option, long long valu
     return range_problem(option, value, range.low, range.high, note);
 }
 
+Result<ImageSize> parse_image_size(std::string_view option, const std::string& text) {
+    ImageSize size;
+    char x = 0;
+    char rest = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &size.width, &x, &size.height, &rest) != 3 ||
+        (x != 'x' && x != 'X'))
+        return Error{std::string(option) + " '" + text + "': expected WIDTHxHEIGHT, e.g. 1280x720"};
+    const std::string name(option);
+    if (auto p = range_problem(name + " width", size.width, 1, 16384)) return Error{*p};
+    if (auto p = range_problem(name + " height", size.height, 1, 16384)) return Error{*p};
+    return size;
+}
+
 void report_written(const std::string& what, int width, int height, std::string_view filter,
                     std::optional<int> spp, double seconds) {
     const std::string samples = spp ? ", " + std::to_string(*spp) + " spp" : std::string();

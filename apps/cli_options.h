@@ -78,6 +78,14 @@ std::optional<std::string> range_problem(std::string_view option, long long valu
 std::optional<std::string> range_problem(std::string_view option, long long value, IntRange range,
                                          std::string_view note = {});
 
+// --size WIDTHxHEIGHT of the GPU commands (view, footprint-bench gpu), each side 1 to 16384:
+//   "--size '12by9': expected WIDTHxHEIGHT, e.g. 1280x720"
+//   "--size width 0 is out of range (1 to 16384)"
+struct ImageSize {
+    int width = 0, height = 0;
+};
+Result<ImageSize> parse_image_size(std::string_view option, const std::string& text);
+
 // What a command wrote, one line on stderr, as every command that writes an image says it:
 //   "footprint: wrote out.png (480x270, fa, 1 spp, 0.05 s)"
 // `what` is the file, or a sequence's "8 frames a_0000.png … a_0007.png"; `spp` is left out when

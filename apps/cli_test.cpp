@@ -170,6 +170,22 @@ TEST(FilterVocabulary, SharedNamesAreTheSameFilter) {
 }
 
 // --help states the widths each command's --size accepts: the range in the command's own refusal.
+TEST(ImageSizeOption, ParsesWidthByHeightAndNamesWhatIsWrong) {
+    Result<ImageSize> size = parse_image_size("--size", "1920x1080");
+    ASSERT_TRUE(size);
+    EXPECT_EQ(size->width, 1920);
+    EXPECT_EQ(size->height, 1080);
+    EXPECT_EQ(parse_image_size("--size", "7X5")->height, 5);
+    for (const char* bad : {"1920", "1920x", "x1080", "12by9", "1920x1080px", ""})
+        EXPECT_EQ(parse_image_size("--size", bad).error().message,
+                  "--size '" + std::string(bad) + "': expected WIDTHxHEIGHT, e.g. 1280x720")
+            << bad;
+    EXPECT_EQ(parse_image_size("--size", "0x8").error().message,
+              "--size width 0 is out of range (1 to 16384)");
+    EXPECT_EQ(parse_image_size("--size", "8x20000").error().message,
+              "--size height 20000 is out of range (1 to 16384)");
+}
+
 TEST(CommandHelp, SizeHelpShowsTheRangeTheCommandChecks) {
     const auto refusal = [](const std::function<int(int)>& run, int width) {
         ::testing::internal::CaptureStderr();

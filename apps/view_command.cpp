@@ -188,14 +188,6 @@ struct FrameTarget {
     }
 };
 
-std::optional<std::pair<int, int>> parse_size(const std::string& text) {
-    int w = 0, h = 0;
-    char x = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d", &w, &x, &h) != 3 || (x != 'x' && x != 'X'))
-        return std::nullopt;
-    return std::pair{w, h};
-}
-
 }  // namespace
 
 int run_view_command(const ViewCommandOptions& options) {
@@ -203,12 +195,10 @@ int run_view_command(const ViewCommandOptions& options) {
     if (!filter) return fail(filter.error().message);
     int width = 1280, height = 720;
     if (!options.size.empty()) {
-        const auto size = parse_size(options.size);
-        if (!size)
-            return fail("--size '" + options.size + "': expected WIDTHxHEIGHT, e.g. 1280x720");
-        if (auto p = range_problem("--size width", size->first, 1, 16384)) return fail(*p);
-        if (auto p = range_problem("--size height", size->second, 1, 16384)) return fail(*p);
-        std::tie(width, height) = *size;
+        const Result<ImageSize> size = parse_image_size("--size", options.size);
+        if (!size) return fail(size.error().message);
+        width = size->width;
+        height = size->height;
     }
     if (options.frames)
         if (auto p = range_problem("--frames", *options.frames, 1, kMaxFrames)) return fail(*p);

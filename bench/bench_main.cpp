@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
     gpuc->add_option("--warmup", gpu.warmup, "untimed frames first")
         ->check(CLI::Range(0, 1000))
         ->capture_default_str();
-    gpuc->add_option("--scenes", gpu.scenes, "demo scenes (default: all)");
+    gpuc->add_option("--scenes", gpu.scenes, "demo scene names or scene files (default: every demo scene)");
     gpuc->add_flag("--quality", gpu.quality,
                    "measure the images instead: interior RMSE against the CPU reference");
     gpuc->add_option("--reference-spp", gpu.reference_spp, "the reference's samples per pixel")

@@ -5,6 +5,8 @@
 #include <limits>
 
 #include "bench_util.h"
+#include "cli_options.h"
+#include "command_util.h"
 #include "demo_scenes.h"
 #include "gpu/gpu_renderer.h"
 #include "metrics/image_metrics.h"
@@ -65,14 +67,12 @@ nlohmann::json measure_quality(const std::string& name, const RenderScene& scene
 }  // namespace
 
 int run_gpu_bench(const GpuBenchOptions& options) {
-    int width = 0, height = 0;
-    char x = 0;
-    if (std::sscanf(options.size.c_str(), "%d%c%d", &width, &x, &height) != 3 || x != 'x' ||
-        width < 1 || height < 1 || width > 16384 || height > 16384) {
-        std::fprintf(stderr, "footprint-bench: --size '%s': expected WIDTHxHEIGHT, 1 to 16384\n",
-                     options.size.c_str());
+    const Result<ImageSize> size = parse_image_size("--size", options.size);
+    if (!size) {
+        std::fprintf(stderr, "footprint-bench: %s\n", size.error().message.c_str());
         return 1;
     }
+    const int width = size->width, height = size->height;
     Result<GpuDevice> device = GpuDevice::headless();
     if (!device) {
         std::fprintf(stderr, "footprint-bench: gpu: %s\n", device.error().message.c_str());
@@ -97,15 +97,14 @@ int run_gpu_bench(const GpuBenchOptions& options) {
     nlohmann::json targets = nlohmann::json::array(), quality = nlohmann::json::array();
     bool all_met = true;
     for (const std::string& name : scenes) {
-        DemoSceneOptions demo_options;
-        demo_options.width = width;
-        demo_options.height = height;
-        Result<DemoScene> demo = make_demo_scene(name, demo_options);
-        if (!demo) {
-            std::fprintf(stderr, "footprint-bench: %s\n", demo.error().message.c_str());
+        Result<NamedScene> named = resolve_scene(name);
+        if (!named) {
+            std::fprintf(stderr, "footprint-bench: %s\n", named.error().message.c_str());
             return 1;
         }
-        Result<RenderScene> scene = prepare_render_scene(demo->scene);
+        named->desc.width = width;
+        named->desc.height = height;
+        Result<RenderScene> scene = prepare_render_scene(named->desc);
         if (!scene) {
             std::fprintf(stderr, "footprint-bench: %s\n", scene.error().message.c_str());
             return 1;

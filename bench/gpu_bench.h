@@ -1,6 +1,7 @@
 // bench/gpu_bench.h — `footprint-bench gpu`: GPU frame times of every mode on the demo scenes.
 //
-// Each demo scene (apps/demo_scenes.h) is rendered at --size (1920x1080 by default) in every GPU
+// Each demo scene (apps/demo_scenes.h), or each of --scenes (demo names or scene files, e.g.
+// examples/scenes/showcase.json), is rendered at --size (1920x1080 by default) in every GPU
 // mode (gpu/gpu_renderer.h): --warmup frames first, then --frames timed ones. A frame's time is
 // its GPU time between two timestamp queries around its draw (not the read back); the median of
 // the timed frames counts, and frames/s = 1000 / median ms. The wall time of the draw until
@@ -26,7 +27,7 @@ struct GpuBenchOptions {
     std::string size = "1920x1080";
     int frames = 20;
     int warmup = 3;
-    std::vector<std::string> scenes;  // empty: every demo scene
+    std::vector<std::string> scenes;  // demo scene names or .json files; empty: every demo scene
     bool quality = false;
     int reference_spp = 1024;
 };
