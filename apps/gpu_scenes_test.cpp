@@ -11,40 +11,16 @@
 #include "envmap/environment_map.h"
 #include "gpu/gpu_renderer.h"
 #include "gpu/gpu_test_device.h"
-#include "metrics/image_metrics.h"
+#include "gpu_test_support.h"
 #include "render/renderer.h"
 
 namespace footprint {
 namespace {
 
-// The CPU mode each GPU mode reproduces (hw-aniso has none).
-std::optional<FilterMode> cpu_counterpart(GpuFilter f) {
-    switch (f) {
-        case GpuFilter::point:
-            return FilterMode::bilinear;
-        case GpuFilter::trilinear:
-            return FilterMode::trilinear;
-        case GpuFilter::fa:
-            return FilterMode::fa;
-        case GpuFilter::fa_rough:
-            return FilterMode::fa_rough;
-        case GpuFilter::hw_aniso:
-            return std::nullopt;
-    }
-    return std::nullopt;
-}
-
-// GPU against CPU, RMSE in linear light, per mode. Both run the same steps on the same pyramids;
-// what differs: the GPU's geometry is float around the camera (the CPU's double), and its
-// bilinear taps weigh with 8 fractional bits on most hardware. `point` reads level 0 of every map
-// at one position per pixel, so a position moved by rounding lands on texel-scale contrast (the
-// aliased detail is all there is); the filtered modes read levels whose contrast per texel is
-// lower. Measured on llvmpipe: point ≤ 6e-4, the filtered modes ≤ 1.3e-4 (docs/gpu.md). The
-// tolerances are 5 to 8 times that, and 10 times below the smallest difference between two CPU
-// modes on a scene (checked below), so that a wrong sign or a transposed matrix fails.
-double gpu_cpu_tolerance(GpuFilter f) {
-    return f == GpuFilter::point ? 3e-3 : 1e-3;
-}
+using test::cpu_counterpart;
+using test::gpu_cpu_tolerance;
+using test::gpu_render;
+using test::rmse;
 
 struct DemoRender {
     RenderScene scene;
@@ -61,22 +37,6 @@ DemoRender prepare_demo(const std::string& name, int width, int height) {
     EXPECT_TRUE(scene) << scene.error().message;
     Image mask = interior_mask(*scene);
     return {std::move(*scene), std::move(mask)};
-}
-
-Image gpu_render(GpuRenderer& renderer, GpuFilter filter) {
-    GpuRenderOptions options;
-    options.filter = filter;
-    Result<Image> image = renderer.render(options);
-    EXPECT_TRUE(image) << image.error().message;
-    return image ? *image : Image{};
-}
-
-double rmse(const Image& a, const Image& b, const Image* mask = nullptr) {
-    MetricsOptions options;
-    options.mask = mask;
-    Result<ImageComparison> d = compare_images(a, b, options);
-    EXPECT_TRUE(d) << d.error().message;
-    return d ? d->rmse : INFINITY;
 }
 
 TEST(GpuScenes, EveryModeMatchesTheCpuRendererOnEveryDemoScene) {
@@ -104,26 +64,24 @@ TEST(GpuScenes, EveryModeMatchesTheCpuRendererOnEveryDemoScene) {
     }
 }
 
-// A cube map: the zebra sky converted to six faces, on a mirror sphere and a bumpy mirror plate.
-// Footprint-assembly probes cross face edges on both paths (the GPU's by its seamless cube
-// filtering); CPU trilinear reads the centre face only (envmap/environment_map.h), the GPU's is
-// seamless, so trilinear is not compared.
-TEST(GpuScenes, CubeMapsMatchTheCpuRenderer) {
-    FOOTPRINT_GPU_DEVICE_OR_SKIP();
+// The zebra sky converted to `layout`, on a mirror sphere (which reflects every direction: the
+// cube's edges and corners, the sphere map's rim, the paraboloids' equator) and a bumpy mirror
+// plate.
+RenderScene zebra_mirrors(EnvLayout layout) {
     Result<EnvironmentMap> latlong = EnvironmentMap::from_latlong(make_zebra_latlong(256));
-    ASSERT_TRUE(latlong);
+    EXPECT_TRUE(latlong);
     EnvConvertOptions convert;
-    convert.size = 64;
-    Result<EnvImages> cube = convert_environment(*latlong, EnvLayout::cube, convert);
-    ASSERT_TRUE(cube) << cube.error().message;
+    convert.size = layout == EnvLayout::cube ? 64 : 128;
+    Result<EnvImages> images = convert_environment(*latlong, layout, convert);
+    EXPECT_TRUE(images) << images.error().message;
     SceneDesc desc;
     desc.width = 96;
     desc.height = 54;
     desc.camera = {{0, 1.2, 3}, {0, 0.3, 0}, {0, 1, 0}, 50};
     EnvironmentDesc env;
-    env.layout = EnvLayout::cube;
-    for (Image& face : cube->faces)
-        env.images.push_back({{}, std::make_shared<Image>(std::move(face)), "zebra cube face"});
+    env.layout = layout;
+    for (Image& face : images->faces)
+        env.images.push_back({{}, std::make_shared<Image>(std::move(face)), "zebra face"});
     desc.environment = env;
     ObjectDesc sphere;
     sphere.shape = SphereShape{{-0.6, 0.5, 0}, 0.5};
@@ -144,15 +102,32 @@ TEST(GpuScenes, CubeMapsMatchTheCpuRenderer) {
     plate.material.micro_roughness = 0.02f;
     desc.objects.push_back(plate);
     Result<RenderScene> scene = prepare_render_scene(desc);
-    ASSERT_TRUE(scene) << scene.error().message;
-    Result<GpuRenderer> gpu = GpuRenderer::create(*scene);
-    ASSERT_TRUE(gpu) << gpu.error().message;
-    for (GpuFilter f : {GpuFilter::point, GpuFilter::fa, GpuFilter::fa_rough}) {
-        RenderOptions options;
-        options.filter = *cpu_counterpart(f);
-        const double d = rmse(gpu_render(*gpu, f), render(*scene, options));
-        std::printf("cube map          %-9s GPU vs CPU RMSE %.2e\n", gpu_filter_name(f), d);
-        EXPECT_LT(d, gpu_cpu_tolerance(f)) << gpu_filter_name(f);
+    EXPECT_TRUE(scene) << scene.error().message;
+    return std::move(*scene);
+}
+
+// Footprint-assembly probes cross face edges, the sphere map's rim and the paraboloids' equator
+// on both paths (the GPU's cube probes by its seamless cube filtering, the others placed on the
+// sphere and their taps beyond an edge read by direction, as on the CPU). CPU trilinear reads a
+// cube's centre face only (envmap/environment_map.h), the GPU's is seamless, so trilinear is not
+// compared on the cube. (The lat-long layout is the demo scenes'.)
+TEST(GpuScenes, EveryEnvironmentLayoutMatchesTheCpuRenderer) {
+    FOOTPRINT_GPU_DEVICE_OR_SKIP();
+    for (EnvLayout layout : {EnvLayout::cube, EnvLayout::sphere, EnvLayout::paraboloid}) {
+        const RenderScene scene = zebra_mirrors(layout);
+        Result<GpuRenderer> gpu = GpuRenderer::create(scene);
+        ASSERT_TRUE(gpu) << gpu.error().message;
+        for (GpuFilter f :
+             {GpuFilter::point, GpuFilter::trilinear, GpuFilter::fa, GpuFilter::fa_rough}) {
+            if (layout == EnvLayout::cube && f == GpuFilter::trilinear) continue;
+            RenderOptions options;
+            options.filter = *cpu_counterpart(f);
+            const double d = rmse(gpu_render(*gpu, f), render(scene, options));
+            std::printf("%-10s %-9s GPU vs CPU RMSE %.2e\n", env_layout_name(layout),
+                        gpu_filter_name(f), d);
+            EXPECT_LT(d, gpu_cpu_tolerance(f))
+                << env_layout_name(layout) << " " << gpu_filter_name(f);
+        }
     }
 }
 

@@ -73,13 +73,17 @@ const std::string& GpuDevice::description() const {
 struct GpuRenderer::Impl {
     const RenderScene* scene = nullptr;
     gpu::GpuScene gpu;
-    gpu::Program program;
+    gpu::Program program, mesh_program;  // the shading pass; the meshes' raster pass
     gpu::VertexArray vertex_array;
     gpu::Buffer objects, lights;
     // The offscreen target of render(), resized on demand.
     gpu::Framebuffer framebuffer;
     gpu::Texture color;
     int target_width = 0, target_height = 0;
+    // The meshes' raster pass: the nearest triangle per pixel, resized on demand.
+    gpu::Framebuffer visibility;
+    gpu::Texture triangle_ids, depth;
+    int visibility_width = 0, visibility_height = 0;
     // Timestamps before and after a frame's draw (GL_TIMESTAMP, which every driver implements
     // alike; llvmpipe's GL_TIME_ELAPSED is not a duration), two frames' worth: draw() reads the
     // previous frame's, so that the CPU never waits on the GPU.
@@ -100,6 +104,8 @@ struct GpuRenderer::Impl {
                             const GpuRenderOptions& options);
     void bind_textures(GpuFilter filter) const;
     void ensure_target(int width, int height);
+    void ensure_visibility(int width, int height);
+    void draw_meshes(const CameraDesc& camera, int width, int height);
     void draw_pass(const CameraDesc& camera, int width, int height,
                    const GpuRenderOptions& options);
 };
@@ -112,7 +118,7 @@ int mode_code(GpuFilter filter) {
 
 int layout_code(const gpu::GpuScene& gpu) {
     if (!gpu.has_environment) return -1;
-    return gpu.layout == EnvLayout::cube ? 0 : 1;  // common.glsl's ENV_*
+    return static_cast<int>(gpu.layout);  // environment.glsl's ENV_* are in EnvLayout's order
 }
 
 void set_vec3(GLint location, Vec3d v) {
@@ -120,17 +126,26 @@ void set_vec3(GLint location, Vec3d v) {
                 static_cast<float>(v.z));
 }
 
+// render/camera.h's pinhole camera, at the origin (gpu_scene.h: camera-relative positions), and
+// the meshes' offset from it, as the uniforms of the program in use.
+void set_camera_uniforms(GLuint program, const CameraDesc& camera, int width, int height,
+                         const gpu::GpuScene& gpu) {
+    auto location = [&](const char* name) { return glGetUniformLocation(program, name); };
+    const PinholeCamera pinhole(camera, width, height);
+    set_vec3(location("u_camera_forward"), pinhole.forward());
+    set_vec3(location("u_camera_right"), pinhole.right());
+    set_vec3(location("u_camera_up"), pinhole.up());
+    glUniform1f(location("u_pixel_angle"), static_cast<float>(pinhole.pixel_angle()));
+    glUniform2i(location("u_size"), width, height);
+    set_vec3(location("u_mesh_offset"), gpu.meshes.anchor - camera.position);
+}
+
 }  // namespace
 
 void GpuRenderer::Impl::set_frame_uniforms(const CameraDesc& camera, int width, int height,
                                            const GpuRenderOptions& options) {
-    // render/camera.h's pinhole camera, at the origin (gpu_scene.h: camera-relative positions).
-    const PinholeCamera pinhole(camera, width, height);
-    set_vec3(uniform("u_camera_forward"), pinhole.forward());
-    set_vec3(uniform("u_camera_right"), pinhole.right());
-    set_vec3(uniform("u_camera_up"), pinhole.up());
-    glUniform1f(uniform("u_pixel_angle"), static_cast<float>(pinhole.pixel_angle()));
-    glUniform2i(uniform("u_size"), width, height);
+    set_camera_uniforms(program.get(), camera, width, height, gpu);
+    glUniform1i(uniform("u_mesh_triangles"), gpu.meshes.triangle_count);
     glUniform1i(uniform("u_mode"), mode_code(options.filter));
     glUniform1i(uniform("u_max_probes"), std::clamp(options.max_probes, 1, kMaxProbeCount));
     glUniform1f(uniform("u_kappa"), options.kappa);
@@ -170,15 +185,17 @@ void GpuRenderer::Impl::bind_textures(GpuFilter filter) const {
                     static_cast<float>(map.width), static_cast<float>(map.height),
                     static_cast<float>(map.levels - 1), static_cast<float>(map.layers));
     };
-    for (std::size_t i = 0; i < gpu.color_maps.size(); ++i)
-        bind(gpu::kColorUnit + static_cast<int>(i), gpu.color_maps[i]);
-    for (std::size_t i = 0; i < gpu.bump_maps.size(); ++i)
-        bind(gpu::kBumpUnit + static_cast<int>(i), gpu.bump_maps[i]);
-    if (gpu.latlong.texture) bind(gpu::kLatlongUnit, gpu.latlong);
+    for (std::size_t i = 0; i < gpu.material_maps.size(); ++i)
+        bind(static_cast<int>(i), gpu.material_maps[i]);
+    if (gpu.env_map.texture) bind(gpu::kEnvUnit, gpu.env_map);
     if (gpu.caps.texture) bind(gpu::kCapsUnit, gpu.caps);
     if (gpu.cube) {
         glBindTextureUnit(gpu::kCubeUnit, gpu.cube.get());
         glBindSampler(gpu::kCubeUnit, gpu.cube_sampler.get());
+    }
+    if (gpu.meshes.triangle_count > 0) {
+        glBindTextureUnit(gpu::kVisibilityUnit, triangle_ids.get());
+        glBindSampler(gpu::kVisibilityUnit, 0);
     }
 }
 
@@ -194,8 +211,57 @@ void GpuRenderer::Impl::ensure_target(int width, int height) {
     target_height = height;
 }
 
+void GpuRenderer::Impl::ensure_visibility(int width, int height) {
+    if (width == visibility_width && height == visibility_height) return;
+    triangle_ids = gpu::create_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(triangle_ids.get(), 1, GL_R32UI, width, height);
+    // An integer texture is complete only with nearest filtering (texelFetch reads it).
+    glTextureParameteri(triangle_ids.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(triangle_ids.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    depth = gpu::create_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(depth.get(), 1, GL_DEPTH_COMPONENT32F, width, height);
+    GLuint name = 0;
+    glCreateFramebuffers(1, &name);
+    visibility = gpu::Framebuffer(name);
+    glNamedFramebufferTexture(name, GL_COLOR_ATTACHMENT0, triangle_ids.get(), 0);
+    glNamedFramebufferTexture(name, GL_DEPTH_ATTACHMENT, depth.get(), 0);
+    visibility_width = width;
+    visibility_height = height;
+}
+
+// The meshes' raster pass (mesh.vert, visibility.frag): the nearest triangle at each pixel centre,
+// with reversed depth; it leaves the depth state as it found it (off, GL's default clip range).
+void GpuRenderer::Impl::draw_meshes(const CameraDesc& camera, int width, int height) {
+    ensure_visibility(width, height);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, visibility.get());
+    glViewport(0, 0, width, height);
+    const GLuint no_triangle[4] = {0, 0, 0, 0};
+    const GLfloat farthest = 0;
+    glDepthMask(GL_TRUE);
+    glClearNamedFramebufferuiv(visibility.get(), GL_COLOR, 0, no_triangle);
+    glClearNamedFramebufferfv(visibility.get(), GL_DEPTH, 0, &farthest);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glUseProgram(mesh_program.get());
+    set_camera_uniforms(mesh_program.get(), camera, width, height, gpu);
+    glBindVertexArray(gpu.meshes.vertex_array.get());
+    glDrawElements(GL_TRIANGLES, 3 * gpu.meshes.triangle_count, GL_UNSIGNED_INT, nullptr);
+    glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_DEPTH_TEST);
+}
+
 void GpuRenderer::Impl::draw_pass(const CameraDesc& camera, int width, int height,
                                   const GpuRenderOptions& options) {
+    if (gpu.meshes.triangle_count > 0) {
+        GLint target = 0;
+        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
+        draw_meshes(camera, width, height);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(target));
+    }
     glUseProgram(program.get());
     set_frame_uniforms(camera, width, height, options);
     bind_textures(options.filter);
@@ -203,6 +269,9 @@ void GpuRenderer::Impl::draw_pass(const CameraDesc& camera, int width, int heigh
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, gpu.material_buffer.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, lights.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, gpu.gaussian_spacing_buffer.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, gpu.meshes.vertices.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, gpu.meshes.triangles.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, gpu.meshes.parts.get());
     glBindVertexArray(vertex_array.get());
     glViewport(0, 0, width, height);
     glDisable(GL_DEPTH_TEST);
@@ -217,7 +286,7 @@ GpuRenderer::~GpuRenderer() = default;
 
 namespace {
 
-// The sampler uniforms point at their texture units once (gpu_scene.h's kColorUnit …).
+// The sampler uniforms point at their texture units once (gpu_scene.h's kMaterialUnits …).
 void assign_units(GLuint program) {
     auto set = [&](const std::string& name, int unit) {
         const GLint location = glGetUniformLocation(program, name.c_str());
@@ -226,6 +295,7 @@ void assign_units(GLuint program) {
     for (int unit = 0; unit <= gpu::kCapsUnit; ++unit)
         set("u_maps[" + std::to_string(unit) + "]", unit);
     set("u_env_cube", gpu::kCubeUnit);
+    set("u_visibility", gpu::kVisibilityUnit);
 }
 
 }  // namespace
@@ -243,6 +313,12 @@ Result<GpuRenderer> GpuRenderer::create(const RenderScene& scene) {
     if (!program) return program.error();
     impl->program = std::move(*program);
     assign_units(impl->program.get());
+    if (impl->gpu.meshes.triangle_count > 0) {
+        Result<gpu::Program> mesh_program =
+            gpu::compile_graphics_program({kMeshVert}, {kVisibilityFrag});
+        if (!mesh_program) return mesh_program.error();
+        impl->mesh_program = std::move(*mesh_program);
+    }
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
     impl->vertex_array = gpu::VertexArray(vao);

@@ -12,13 +12,16 @@
 //                glGenerateMipmap; cube maps as cube textures with seamless filtering) — and its
 //                frames, rendered to an image or into the current framebuffer.
 //
-// Every per-pixel step runs in the fragment shader (gpu/shaders/, one file per module of the CPU
-// pipeline, README "Architecture"): the camera ray; the nearest hit, analytic shapes ray-cast over
-// a full-screen triangle; the exact ray differentials transferred to the hit (not screen-space
-// derivatives: they break at silhouettes and (u, v) wraps); the texture footprint; footprint
-// assembly by Rule B with Gaussian weights; the bump + roughness lookup by moments; the environment
-// footprint K = D Dᵀ + κ² K3 and its lookup (lat-long with polar caps, cube); roughness-aware
-// Blinn-Phong; Fresnel. Nothing per pixel is computed on the CPU.
+// Every per-pixel step runs on the GPU (gpu/shaders/, one file per module of the CPU pipeline,
+// README "Architecture"): the camera ray; the nearest hit — triangle meshes rasterised into a
+// buffer of triangle ids, then the pixel's ray intersected with its triangle, and the analytic
+// shapes (plane, sphere, cylinder, paraboloid, torus) ray-cast over a full-screen triangle; the
+// exact ray differentials transferred to the hit (not screen-space derivatives: they break at
+// silhouettes and (u, v) wraps); the texture footprint; footprint assembly by Rule B with
+// Gaussian weights; the bump + roughness lookup by moments (in the mesh's tangent frame where a
+// glTF part has one); the environment footprint K = D Dᵀ + κ² K3 and its lookup in each layout
+// (lat-long with polar caps, cube, sphere, dual paraboloid); roughness-aware Blinn-Phong; Fresnel.
+// Nothing per pixel is computed on the CPU.
 //
 // Filter modes (GpuFilter; the CLI's --filter names with --device gpu):
 //   point      level-0 bilinear lookups, no footprint: the CPU's `bilinear`
@@ -29,8 +32,9 @@
 //              at the driver's maximum anisotropy; trilinear on cube maps), no roughness: the
 //              baseline every real-time engine ships
 //
-// Not yet on the GPU (an Error names what the scene uses): triangle meshes, the torus, sphere and
-// paraboloid environment maps, more than 8 colour or 8 bump maps in a scene.
+// Limits: a scene's colour and bump maps may come in at most 16 different shapes (size, level count
+// and wrap; maps of one shape share an array texture, however many there are) — beyond that an
+// Error names the object.
 // Determinism: a frame depends only on the scene, the camera and the options; the same frame
 // twice gives identical pixels.
 #pragma once
@@ -91,7 +95,7 @@ struct GpuFrameStats {
 class GpuRenderer {
   public:
     // Uploads `scene` (which must outlive the renderer) on the context current on this thread.
-    // Errors name what the GPU path does not take yet (above) or what the driver refused.
+    // Errors name a scene beyond the limits above or what the driver refused.
     static Result<GpuRenderer> create(const RenderScene& scene);
     GpuRenderer(GpuRenderer&&) noexcept;
     GpuRenderer& operator=(GpuRenderer&&) noexcept;

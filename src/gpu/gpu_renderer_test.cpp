@@ -140,20 +140,6 @@ TEST(GpuRenderer, OneByOneAndOddSizesMatchTheCpu) {
     }
 }
 
-TEST(GpuRenderer, RefusesWhatItDoesNotDrawYetNamingTheObject) {
-    FOOTPRINT_GPU_DEVICE_OR_SKIP();
-    SceneDesc desc = mirror_plane_scene(8, 8);
-    ObjectDesc torus;
-    torus.name = "ring";
-    torus.shape = TorusShape{};
-    desc.objects.push_back(torus);
-    Result<RenderScene> scene = prepare_render_scene(desc);
-    ASSERT_TRUE(scene) << scene.error().message;
-    Result<GpuRenderer> renderer = GpuRenderer::create(*scene);
-    ASSERT_FALSE(renderer);
-    EXPECT_EQ(renderer.error().message, "objects[1] (ring): the torus is not on the GPU yet");
-}
-
 TEST(GpuRenderer, RefusesImageSizesTheGpuCannotHold) {
     FOOTPRINT_GPU_DEVICE_OR_SKIP();
     Result<RenderScene> scene = prepare_render_scene(mirror_plane_scene(8, 8));

@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
+#include <optional>
+#include <span>
 #include <variant>
 
+#include "scene/mesh.h"
 #include "scene/shapes.h"
 #include "texture/footprint_assembly.h"
 
@@ -41,28 +45,25 @@ float max_anisotropy() {
     return value;
 }
 
-// The texels of one level of `layers` pyramids (or of one pyramid's channels split into layers of
-// four), as RGBA layers one after the other: channel c of layer k is the pyramid's channel 4k + c
-// (alpha 1 where an RGB map has none).
+// The texels of one level of some pyramids, as RGBA layers one after the other: each image gives
+// `layers` layers, channel c of its layer k being the image's channel 4k + c (alpha 1 where an
+// RGB map has none).
 std::vector<float> rgba_layers(const std::vector<Image>& images, int layers) {
-    const Image& first = images[0];
-    const std::size_t texels = first.pixel_count();
-    std::vector<float> out(texels * 4 * static_cast<std::size_t>(layers), 0.0f);
-    for (int k = 0; k < layers; ++k) {
-        const Image& image = images.size() == 1 ? first : images[static_cast<std::size_t>(k)];
-        const int base = images.size() == 1 ? 4 * k : 0;
-        for (std::size_t i = 0; i < texels; ++i) {
-            float* o = &out[(static_cast<std::size_t>(k) * texels + i) * 4];
-            o[3] = 1.0f;
-            for (int c = 0; c < 4 && base + c < image.channels; ++c)
-                o[c] = image.pixels[i * static_cast<std::size_t>(image.channels) + base + c];
-        }
-    }
+    const std::size_t texels = images[0].pixel_count();
+    std::vector<float> out(texels * 4 * images.size() * static_cast<std::size_t>(layers), 0.0f);
+    float* o = out.data();
+    for (const Image& image : images)
+        for (int k = 0; k < layers; ++k)
+            for (std::size_t i = 0; i < texels; ++i, o += 4) {
+                o[3] = 1.0f;
+                for (int c = 0; c < 4 && 4 * k + c < image.channels; ++c)
+                    o[c] = image.pixels[i * static_cast<std::size_t>(image.channels) + 4 * k + c];
+            }
     return out;
 }
 
-// A 2D array texture holding `pyramids` (one per layer), or one pyramid's channels in `layers`
-// layers of four; every level the pyramid's own.
+// A 2D array texture holding `pyramids` of one shape, each as `layers` layers of four channels;
+// every level the pyramids' own.
 MapTexture upload_maps(const std::vector<const MipPyramid*>& pyramids, int layers,
                        float anisotropy) {
     const MipPyramid& p = *pyramids[0];
@@ -70,23 +71,75 @@ MapTexture upload_maps(const std::vector<const MipPyramid*>& pyramids, int layer
     map.width = p.width(0);
     map.height = p.height(0);
     map.levels = p.level_count();
-    map.layers = layers;
+    map.layers = layers * static_cast<int>(pyramids.size());
     map.texture = create_texture(GL_TEXTURE_2D_ARRAY);
     glTextureStorage3D(map.texture.get(), p.level_count(), GL_RGBA32F, p.width(0), p.height(0),
-                       layers);
+                       map.layers);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     for (int l = 0; l < p.level_count(); ++l) {
         std::vector<Image> images;
         for (const MipPyramid* q : pyramids) images.push_back(q->level_image(l));
         const std::vector<float> texels = rgba_layers(images, layers);
-        glTextureSubImage3D(map.texture.get(), l, 0, 0, 0, p.width(l), p.height(l), layers, GL_RGBA,
-                            GL_FLOAT, texels.data());
+        glTextureSubImage3D(map.texture.get(), l, 0, 0, 0, p.width(l), p.height(l), map.layers,
+                            GL_RGBA, GL_FLOAT, texels.data());
     }
     const GLenum s = gl_wrap(p.wrap_s()), t = gl_wrap(p.wrap_t());
     map.trilinear = make_sampler(s, t, 1);
     map.anisotropic = make_sampler(s, t, anisotropy);
     return map;
 }
+
+// The materials' maps, grouped by shape (size, levels, wrap, layers per map) into the array
+// textures of units 0 … kMaterialUnits − 1.
+class MapPool {
+  public:
+    // The place of `pyramid` as `layers` layers; none once the maps need more arrays than there
+    // are units.
+    std::optional<MapRef> add(const MipPyramid& pyramid, int layers) {
+        for (std::size_t g = 0; g < groups_.size(); ++g) {
+            Group& group = groups_[g];
+            for (std::size_t i = 0; i < group.maps.size(); ++i)
+                if (group.maps[i] == &pyramid) return ref(g, i);
+            if (same_shape(*group.maps[0], pyramid) && group.layers == layers &&
+                (static_cast<int>(group.maps.size()) + 1) * layers <= max_layers_) {
+                group.maps.push_back(&pyramid);
+                return ref(g, group.maps.size() - 1);
+            }
+        }
+        if (groups_.size() >= static_cast<std::size_t>(kMaterialUnits)) return std::nullopt;
+        groups_.push_back({{&pyramid}, layers});
+        return ref(groups_.size() - 1, 0);
+    }
+
+    std::vector<MapTexture> upload(float anisotropy) const {
+        std::vector<MapTexture> maps;
+        for (const Group& group : groups_)
+            maps.push_back(upload_maps(group.maps, group.layers, anisotropy));
+        return maps;
+    }
+
+  private:
+    struct Group {
+        std::vector<const MipPyramid*> maps;
+        int layers;
+    };
+
+    static bool same_shape(const MipPyramid& a, const MipPyramid& b) {
+        return a.width(0) == b.width(0) && a.height(0) == b.height(0) &&
+               a.level_count() == b.level_count() && a.wrap_s() == b.wrap_s() &&
+               a.wrap_t() == b.wrap_t();
+    }
+    MapRef ref(std::size_t group, std::size_t index) const {
+        return {static_cast<int>(group), static_cast<int>(index) * groups_[group].layers};
+    }
+
+    std::vector<Group> groups_;
+    int max_layers_ = [] {
+        GLint value = 256;
+        glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &value);
+        return static_cast<int>(value);
+    }();
+};
 
 Texture upload_cube(const EnvironmentMap& map) {
     const MipPyramid& face0 = map.face(0);
@@ -107,25 +160,22 @@ std::string object_name(const SceneDesc& scene, int i) {
     return "objects[" + std::to_string(i) + "]" + (name.empty() ? "" : " (" + name + ")");
 }
 
-Status upload_environment(const RenderEnvironment& env, GpuScene& gpu, float anisotropy) {
+void upload_environment(const RenderEnvironment& env, GpuScene& gpu, float anisotropy) {
     const EnvironmentMap& map = env.map;
     gpu.has_environment = true;
     gpu.layout = map.layout();
-    if (map.layout() == EnvLayout::latlong) {
-        gpu.latlong = upload_maps({&map.face(0)}, 1, anisotropy);
-        if (map.polar_cap(0)) {
-            gpu.caps = upload_maps({map.polar_cap(0), map.polar_cap(1)}, 2, 1);
-            gpu.has_caps = true;
-        }
-        return {};
-    }
     if (map.layout() == EnvLayout::cube) {
         gpu.cube = upload_cube(map);
         gpu.cube_sampler = make_sampler(GL_CLAMP_TO_EDGE, GL_CLAMP_TO_EDGE, 1);
-        return {};
+        return;
     }
-    return Error{std::string("environment: the ") + env_layout_name(map.layout()) +
-                 " layout is not on the GPU yet (cube and latlong are; `footprint env` converts)"};
+    std::vector<const MipPyramid*> faces;
+    for (int f = 0; f < map.face_count(); ++f) faces.push_back(&map.face(f));
+    gpu.env_map = upload_maps(faces, 1, anisotropy);
+    if (map.polar_cap(0)) {
+        gpu.caps = upload_maps({map.polar_cap(0), map.polar_cap(1)}, 1, 1);
+        gpu.has_caps = true;
+    }
 }
 
 float bump_frame_code(BumpFrame frame) {
@@ -140,52 +190,46 @@ float bump_frame_code(BumpFrame frame) {
     return 2;
 }
 
-Result<MaterialRecord> material_record(const RenderMaterial& m, GpuScene& gpu,
-                                       const std::string& name, float anisotropy) {
+Result<MaterialRecord> material_record(const RenderMaterial& m, MapPool& pool,
+                                       const std::string& name) {
     const MaterialDesc& d = m.desc;
     MaterialRecord r{};
-    float color_index = -1, bump_index = -1;
+    auto place = [&](const MipPyramid& pyramid, int layers) -> Result<MapRef> {
+        if (std::optional<MapRef> ref = pool.add(pyramid, layers)) return *ref;
+        return Error{name + ": the scene's maps come in more than " +
+                     std::to_string(kMaterialUnits) +
+                     " different sizes (or wrap modes); the GPU path takes that many"};
+    };
+    MapRef color, bump;
     if (m.base_color_map) {
-        if (gpu.color_maps.size() >= static_cast<std::size_t>(kMaxMaps))
-            return Error{name + ": more than " + std::to_string(kMaxMaps) +
-                         " base colour maps in one scene are not on the GPU yet"};
-        color_index = static_cast<float>(gpu.color_maps.size());
-        gpu.color_maps.push_back(upload_maps({m.base_color_map.get()}, 1, anisotropy));
+        Result<MapRef> ref = place(*m.base_color_map, 1);
+        if (!ref) return ref.error();
+        color = *ref;
     }
     Vec2 offset;
     if (m.bump) {
-        if (gpu.bump_maps.size() >= static_cast<std::size_t>(kMaxMaps))
-            return Error{name + ": more than " + std::to_string(kMaxMaps) +
-                         " bump maps in one scene are not on the GPU yet"};
-        bump_index = static_cast<float>(gpu.bump_maps.size());
-        gpu.bump_maps.push_back(upload_maps({&m.bump->moments()}, 2, anisotropy));
+        Result<MapRef> ref = place(m.bump->moments(), 2);
+        if (!ref) return ref.error();
+        bump = *ref;
         offset = m.bump->slope_offset();
     }
     const Vec3d main = d.bump.main_direction;
     const float main_direction[4] = {static_cast<float>(main.x), static_cast<float>(main.y),
                                      static_cast<float>(main.z), offset.x};
-    const float base[4] = {d.base_color.x, d.base_color.y, d.base_color.z, color_index};
+    const float base[4] = {d.base_color.x, d.base_color.y, d.base_color.z,
+                           m.frame_from_mesh_tangents ? 1.0f : 0.0f};
     const float weights[4] = {d.diffuse, d.specular, d.shininess, d.mirror};
-    const float bump[4] = {d.fresnel_f0, bump_index, bump_frame_code(d.bump.frame),
-                           d.micro_roughness};
+    const float bump_info[4] = {d.fresnel_f0, 0, bump_frame_code(d.bump.frame), d.micro_roughness};
     const float roughness[4] = {m.micro_roughness.xx, m.micro_roughness.xy, m.micro_roughness.yy,
                                 offset.y};
+    const int maps[4] = {color.unit, color.layer, bump.unit, bump.layer};
     std::copy_n(base, 4, r.base_color);
     std::copy_n(weights, 4, r.weights);
-    std::copy_n(bump, 4, r.bump);
+    std::copy_n(bump_info, 4, r.bump);
     std::copy_n(main_direction, 4, r.main_direction);
     std::copy_n(roughness, 4, r.roughness);
+    std::copy_n(maps, 4, r.maps);
     return r;
-}
-
-// What the GPU path does not draw yet, as an Error naming the object.
-Status check_shape(const SceneDesc& scene, int i) {
-    const ShapeDesc& shape = scene.objects[static_cast<std::size_t>(i)].shape;
-    if (std::holds_alternative<MeshShape>(shape))
-        return Error{object_name(scene, i) + ": triangle meshes are not on the GPU yet"};
-    if (std::holds_alternative<TorusShape>(shape))
-        return Error{object_name(scene, i) + ": the torus is not on the GPU yet"};
-    return {};
 }
 
 Buffer storage_buffer(const void* data, std::size_t bytes) {
@@ -197,29 +241,116 @@ Buffer storage_buffer(const void* data, std::size_t bytes) {
     return buffer;
 }
 
+template <class T>
+Buffer storage_buffer(const std::vector<T>& records) {
+    return storage_buffer(records.data(), records.size() * sizeof(T));
+}
+
+void store(float* out, Vec3d v, float w = 0) {
+    out[0] = static_cast<float>(v.x);
+    out[1] = static_cast<float>(v.y);
+    out[2] = static_cast<float>(v.z);
+    out[3] = w;
+}
+
+// The centre of the bounding box of every mesh vertex (the origin without meshes).
+Vec3d mesh_anchor(const RenderScene& scene) {
+    const double inf = std::numeric_limits<double>::infinity();
+    Vec3d lo{inf, inf, inf}, hi{-inf, -inf, -inf};
+    for (int i = 0; i < static_cast<int>(scene.desc().objects.size()); ++i)
+        for (const TriangleMesh& part : scene.mesh_parts(i))
+            for (const Vec3d& p : part.positions) {
+                lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+                hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+            }
+    return lo.x <= hi.x ? 0.5 * (lo + hi) : Vec3d{0, 0, 0};
+}
+
+// The GPU's copy of one mesh part's vertices, relative to `anchor`.
+void append_vertices(const TriangleMesh& part, Vec3d anchor,
+                     std::vector<MeshVertexRecord>& vertices) {
+    for (std::size_t v = 0; v < part.positions.size(); ++v) {
+        MeshVertexRecord r{};
+        store(r.position, part.positions[v] - anchor);
+        if (part.has_normals()) store(r.normal, part.normals[v]);
+        if (part.has_uvs()) store(r.uv, {part.uvs[v].x, part.uvs[v].y, 0});
+        if (part.has_tangents())
+            store(r.tangent, part.tangents[v].xyz, static_cast<float>(part.tangents[v].w));
+        vertices.push_back(r);
+    }
+}
+
+// Every part of every mesh into gpu.meshes (gpu_scene.h), its material appended to gpu.materials.
+Status upload_meshes(const RenderScene& scene, MapPool& pool, GpuScene& gpu) {
+    GpuMeshes& meshes = gpu.meshes;
+    meshes.anchor = mesh_anchor(scene);
+    std::vector<MeshVertexRecord> vertices;
+    std::vector<std::uint32_t> indices;
+    std::vector<std::array<std::uint32_t, 4>> triangles;
+    std::vector<MeshPartRecord> parts;
+    const SceneDesc& desc = scene.desc();
+    for (int i = 0; i < static_cast<int>(desc.objects.size()); ++i) {
+        const std::span<const TriangleMesh> object_parts = scene.mesh_parts(i);
+        for (std::size_t k = 0; k < object_parts.size(); ++k) {
+            const TriangleMesh& part = object_parts[k];
+            Result<MaterialRecord> record =
+                material_record(scene.mesh_part_material(i, static_cast<int>(k)), pool,
+                                object_name(desc, i) + " part '" + part.name + "'");
+            if (!record) return record.error();
+            const auto part_index = static_cast<std::uint32_t>(parts.size());
+            parts.push_back({{static_cast<int>(gpu.materials.size()), part.has_normals() ? 1 : 0,
+                              part.has_uvs() ? 1 : 0, part.has_tangents() ? 1 : 0}});
+            gpu.materials.push_back(*record);
+            const auto base = static_cast<std::uint32_t>(vertices.size());
+            append_vertices(part, meshes.anchor, vertices);
+            for (const auto& tri : part.triangles) {
+                for (std::uint32_t v : tri) indices.push_back(base + v);
+                triangles.push_back({base + tri[0], base + tri[1], base + tri[2], part_index});
+            }
+        }
+    }
+    meshes.triangle_count = static_cast<int>(triangles.size());
+    meshes.vertices = storage_buffer(vertices);
+    meshes.indices = storage_buffer(indices);
+    meshes.triangles = storage_buffer(triangles);
+    meshes.parts = storage_buffer(parts);
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    meshes.vertex_array = VertexArray(vao);
+    glVertexArrayVertexBuffer(vao, 0, meshes.vertices.get(), 0, sizeof(MeshVertexRecord));
+    glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao, 0, 0);
+    glEnableVertexArrayAttrib(vao, 0);
+    glVertexArrayElementBuffer(vao, meshes.indices.get());
+    return {};
+}
+
 }  // namespace
 
 Result<GpuScene> upload_scene(const RenderScene& scene) {
     GpuScene gpu;
+    MapPool pool;
     const float anisotropy = max_anisotropy();
     const SceneDesc& desc = scene.desc();
     if (const RenderEnvironment* env = scene.environment())
-        if (Status s = upload_environment(*env, gpu, anisotropy); !s) return s.error();
+        upload_environment(*env, gpu, anisotropy);
     for (int i = 0; i < static_cast<int>(desc.objects.size()); ++i) {
-        if (Status s = check_shape(desc, i); !s) return s.error();
-        // An invalid shape never hits (scene/shapes.h): it is left out.
-        if (!evaluate_analytic(desc.objects[static_cast<std::size_t>(i)].shape, {0.5, 0.5})) {
+        // Meshes are drawn by upload_meshes()'s buffers; an invalid shape never hits
+        // (scene/shapes.h): both are left out of the analytic objects.
+        const ShapeDesc& shape = desc.objects[static_cast<std::size_t>(i)].shape;
+        if (std::holds_alternative<MeshShape>(shape) || !evaluate_analytic(shape, {0.5, 0.5})) {
             gpu.object_material.push_back(-1);
             continue;
         }
         Result<MaterialRecord> record =
-            material_record(*scene.analytic_material(i), gpu, object_name(desc, i), anisotropy);
+            material_record(*scene.analytic_material(i), pool, object_name(desc, i));
         if (!record) return record.error();
         gpu.object_material.push_back(static_cast<int>(gpu.materials.size()));
         gpu.materials.push_back(*record);
     }
-    gpu.material_buffer =
-        storage_buffer(gpu.materials.data(), gpu.materials.size() * sizeof(MaterialRecord));
+    if (Status s = upload_meshes(scene, pool, gpu); !s) return s.error();
+    gpu.material_maps = pool.upload(anisotropy);
+    gpu.material_buffer = storage_buffer(gpu.materials);
     std::vector<float> spacing(kMaxProbeCount + 1);
     for (int n = 0; n <= kMaxProbeCount; ++n)
         spacing[static_cast<std::size_t>(n)] = gaussian_spacing_factor(n);
@@ -229,13 +360,6 @@ Result<GpuScene> upload_scene(const RenderScene& scene) {
 }
 
 namespace {
-
-void store(float* out, Vec3d v, float w = 0) {
-    out[0] = static_cast<float>(v.x);
-    out[1] = static_cast<float>(v.y);
-    out[2] = static_cast<float>(v.z);
-    out[3] = w;
-}
 
 void store_axes(ObjectRecord& r, const ShapeAxes& a) {
     store(r.axis_u, a.u);
@@ -276,8 +400,13 @@ ObjectRecord object_record(const ShapeDesc& shape, Vec3d eye) {
             store_axes(r, a);
             store(r.params, {s.focal_length, s.radius, 0});
         }
-        void operator()(const TorusShape&) const {}  // refused by upload_scene()
-        void operator()(const MeshShape&) const {}
+        void operator()(const TorusShape& s) const {
+            r.info[0] = 4;
+            store(r.origin, s.center - eye);
+            store_axes(r, *shape_axes(s.axis));
+            store(r.params, {s.major_radius, s.minor_radius, 0});
+        }
+        void operator()(const MeshShape&) const {}  // drawn from GpuMeshes
     };
     std::visit(Visitor{r, eye}, shape);
     return r;

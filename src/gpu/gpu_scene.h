@@ -14,19 +14,28 @@
 namespace footprint::gpu {
 
 // The texture units of the shaders' samplers: u_maps[i] on unit i (gpu/shaders/filtering.glsl).
-constexpr int kMaxMaps = 8;  // colour and bump maps each (gpu/shaders/shading.glsl)
-constexpr int kColorUnit = 0;
-constexpr int kBumpUnit = kColorUnit + kMaxMaps;
-constexpr int kLatlongUnit = kBumpUnit + kMaxMaps;
-constexpr int kCapsUnit = kLatlongUnit + 1;
+// The materials' colour and bump maps share units 0 … kMaterialUnits − 1: maps of one size, level
+// count and wrap are the layers of one array texture, so that a scene may have any number of
+// maps in up to kMaterialUnits different shapes.
+constexpr int kMaterialUnits = 16;
+constexpr int kEnvUnit = kMaterialUnits;  // a lat-long, sphere or paraboloid map (faces: layers)
+constexpr int kCapsUnit = kEnvUnit + 1;
 constexpr int kCubeUnit = kCapsUnit + 1;
+constexpr int kVisibilityUnit = kCubeUnit + 1;  // the mesh pass's triangle ids (render.frag)
 
-// A 2D map and the two samplers a frame binds with it: plain trilinear (every mode but hw-aniso)
-// and anisotropic (hw-aniso).
+// An array texture and the two samplers a frame binds with it: plain trilinear (every mode but
+// hw-aniso) and anisotropic (hw-aniso).
 struct MapTexture {
     Texture texture;
     Sampler trilinear, anisotropic;
     int width = 0, height = 0, levels = 0, layers = 0;  // level 0's size; the shaders' u_map_info
+};
+
+// Where a material's map lives: the unit of its array texture and its first layer (a colour map
+// has one layer, a bump map's moments two).
+struct MapRef {
+    int unit = -1;  // −1: no map
+    int layer = 0;
 };
 
 struct ObjectRecord {  // common.glsl's Object
@@ -35,26 +44,46 @@ struct ObjectRecord {  // common.glsl's Object
 };
 struct MaterialRecord {  // common.glsl's Material
     float base_color[4], weights[4], bump[4], main_direction[4], roughness[4];
+    int maps[4];
 };
 struct LightRecord {  // common.glsl's Light
     float direction[4], position[4], color[4];
 };
+struct MeshVertexRecord {  // geometry.glsl's MeshVertex
+    float position[4];     // relative to GpuMeshes::anchor
+    float normal[4], uv[4], tangent[4];
+};
+struct MeshPartRecord {  // geometry.glsl's MeshPart
+    int info[4];         // material record, has normals, has uvs, has tangents
+};
+
+// Every triangle of the scene's meshes, in one set of buffers: the vertices (the raster pass's
+// vertex buffer and the shading pass's storage buffer alike), the triangles as indices (the
+// element buffer) and as (i0, i1, i2, part) records, and the parts.
+struct GpuMeshes {
+    int triangle_count = 0;
+    Vec3d anchor;  // the point the vertex positions are relative to (in float)
+    Buffer vertices, indices, triangles, parts;
+    VertexArray vertex_array;
+};
 
 struct GpuScene {
-    std::vector<MapTexture> color_maps, bump_maps;
+    std::vector<MapTexture> material_maps;  // on units 0, 1, …
     std::vector<MaterialRecord> materials;
     std::vector<int> object_material;  // per scene object: its record, −1 for none (invalid shape)
     bool has_environment = false;
     EnvLayout layout = EnvLayout::latlong;
-    MapTexture latlong, caps;  // lat-long: the map and its polar caps (layer 0 +Y, 1 −Y)
+    MapTexture env_map;  // lat-long, sphere, paraboloid (layer 0 front, 1 back)
+    MapTexture caps;     // lat-long: the polar caps (layer 0 +Y, 1 −Y)
     bool has_caps = false;
     Texture cube;
     Sampler cube_sampler;
     Buffer material_buffer, gaussian_spacing_buffer;
+    GpuMeshes meshes;
 };
 
-// Uploads every pyramid and material; an Error names an object, map or layout the GPU path does
-// not take yet (gpu/gpu_renderer.h).
+// Uploads every pyramid, material and mesh; an Error names the object whose maps need more array
+// textures than there are units (gpu/gpu_renderer.h).
 Result<GpuScene> upload_scene(const RenderScene& scene);
 
 // The scene's objects and lights relative to the camera position (the shaders work in float

@@ -14,5 +14,7 @@ extern const std::string_view kEnvironmentGlsl;
 extern const std::string_view kShadingGlsl;
 extern const std::string_view kRenderFrag;
 extern const std::string_view kFullscreenVert;
+extern const std::string_view kMeshVert;
+extern const std::string_view kVisibilityFrag;
 
 }  // namespace footprint::gpu::shaders

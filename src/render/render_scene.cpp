@@ -247,6 +247,10 @@ Result<RenderScene> prepare_render_scene(const SceneDesc& desc) {
     return scene;
 }
 
+std::span<const TriangleMesh> RenderScene::mesh_parts(int object) const {
+    return meshes_[static_cast<std::size_t>(object)];
+}
+
 std::optional<SceneHit> RenderScene::intersect(const Ray& ray, double t_min, double t_max) const {
     std::optional<SceneHit> nearest;
     for (int i = 0; i < static_cast<int>(desc_.objects.size()); ++i) {

@@ -20,6 +20,7 @@
 
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "bump/bump_pyramid.h"
@@ -76,6 +77,14 @@ class RenderScene {
     const RenderMaterial* analytic_material(int object) const {
         const int m = object_material_[static_cast<std::size_t>(object)];
         return m < 0 ? nullptr : &materials_[static_cast<std::size_t>(m)];
+    }
+    // The parts of mesh object `object` (scene/mesh.h, in world space), each with its material;
+    // no parts for an analytic object.
+    std::span<const TriangleMesh> mesh_parts(int object) const;
+    const RenderMaterial& mesh_part_material(int object, int part) const {
+        const auto i = static_cast<std::size_t>(object);
+        return materials_[static_cast<std::size_t>(
+            mesh_part_material_[i][static_cast<std::size_t>(part)])];
     }
 
     // The nearest hit along the ray with t in (t_min, t_max), over all objects. Thread-safe.

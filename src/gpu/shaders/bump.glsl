@@ -93,6 +93,14 @@ Frame natural_frame(vec3 pu, vec3 pv, vec3 n, bool normalized) {
 
 // The frame of a material's bump map at a hit (render/bump_frame.cpp).
 Frame bump_frame(Material m, Hit hit) {
+    if (m.base_color.w > 0.0 && hit.tangent.w != 0.0) {
+        // glTF: e1 = the tangent made orthogonal to n, e2 = sign·(n × e1) (up the image).
+        vec3 t = hit.tangent.xyz, e1 = t - dot(t, hit.n) * hit.n;
+        if (dot(e1, e1) > 0.0) {
+            e1 = normalize(e1);
+            return Frame(e1, hit.tangent.w * cross(hit.n, e1), 1.0);
+        }
+    }
     int kind = int(m.bump.z);
     if (kind == 0) return natural_frame(hit.dpdu, hit.dpdv, hit.n, false);
     if (kind == 1) return natural_frame(hit.dpdu, hit.dpdv, hit.n, true);

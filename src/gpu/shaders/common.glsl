@@ -19,26 +19,32 @@ const int SHAPE_PLANE = 0;
 const int SHAPE_SPHERE = 1;
 const int SHAPE_CYLINDER = 2;
 const int SHAPE_PARABOLOID = 3;
+const int SHAPE_TORUS = 4;
+
+bool is_finite(float x) {
+    return !isnan(x) && !isinf(x);
+}
 
 // An analytic object, in camera-relative world coordinates (the camera at the origin, so that
 // float keeps the hit points' differences; the CPU renderer works in double).
 struct Object {
-    vec4 origin;  // plane and sphere centre, cylinder centre, paraboloid vertex
+    vec4 origin;  // plane, sphere, cylinder and torus centre, paraboloid vertex
     vec4 axis_u;  // scene/shapes.h's ShapeAxes (u, v, axis)
     vec4 axis_v;
     vec4 axis;
     vec4 params;  // plane: size x, size y, uv_scale; sphere: radius; cylinder: radius, height;
-                  // paraboloid: focal length, aperture radius
+                  // paraboloid: focal length, aperture radius; torus: major, minor radius
     ivec4 info;   // shape type, material, infinite plane, unused
 };
 
 struct Material {
-    vec4 base_color;  // rgb, and the base colour map's index (−1: none) in w
+    vec4 base_color;  // rgb; w = 1: the bump frame is the mesh's tangents where it has them
     vec4 weights;     // diffuse, specular, shininess, mirror
-    vec4 bump;        // fresnel F0, bump map index (−1: none), frame (0 natural, 1 normalized,
-                      // 2 main direction), micro-roughness σ
+    vec4 bump;        // fresnel F0, unused, frame (0 natural, 1 normalized, 2 main direction),
+                      // micro-roughness σ
     vec4 main_direction;  // xyz; zero: ∂p/∂v; w: the bump map's mean slope b1
     vec4 roughness;       // micro-roughness K_0 = (xx, xy, yy) in xyz; w: mean slope b2
+    ivec4 maps;  // the base colour map's u_maps index (−1: none) and layer, the bump map's
 };
 
 struct Light {

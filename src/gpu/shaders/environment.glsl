@@ -1,20 +1,25 @@
 // gpu/shaders/environment.glsl — environment maps filtered per pixel (envmap/, spec §2–3): the
 // layouts' coordinates and Jacobians, the footprint K = D Dᵀ + κ² K3 and its anisotropic lookup.
 //
-// Layouts: a lat-long map (map MAP_LATLONG, s repeating, t clamped) with its two polar caps (map
-// MAP_CAPS, layer 0 = +Y, 1 = −Y), or a cube map (a samplerCube with seamless filtering, the
-// hardware's own re-projection of a probe onto the face that owns its direction, spec §3.1).
+// Layouts: a cube map (a samplerCube with seamless filtering, the hardware's own re-projection of
+// a probe onto the face that owns its direction, spec §3.1); or map MAP_ENV, its faces as layers:
+// a lat-long map (s repeating, t clamped) with its two polar caps (map MAP_CAPS, layer 0 = +Y,
+// 1 = −Y), a sphere map, or a dual paraboloid (layer 0 the front, 1 the back). Taps of those that
+// fall beyond a level's edge are read where their direction lies (envmap/env_sampling.h), where
+// the hardware would clamp.
 
 const int ENV_NONE = -1;
 const int ENV_CUBE = 0;  // envmap/env_layout.h's EnvLayout order
 const int ENV_LATLONG = 1;
+const int ENV_SPHERE = 2;
+const int ENV_PARABOLOID = 3;
 
 uniform int u_env_layout;
 uniform mat3 u_env_rotation;   // A: world → map
 uniform vec2 u_env_texel_scale;  // S = (W0, H0) of level 0 (a cube face's size for both)
 uniform int u_env_caps;        // 1: the lat-long map has polar caps
 uniform vec3 u_env_mean;       // the map's mean colour (ambient light)
-uniform samplerCube u_env_cube;  // the lat-long map and its caps are u_maps[MAP_LATLONG], [MAP_CAPS]
+uniform samplerCube u_env_cube;  // the lat-long map and its caps are u_maps[MAP_ENV], [MAP_CAPS]
 
 // Where a direction lands on the map and the Jacobian J_P = ∂(s,t)/∂r there (rows ds, dt).
 struct EnvPoint {
@@ -73,8 +78,77 @@ vec3 cube_direction(int face, vec2 st) {
     return major + (2.0 * st.x - 1.0) * gs + (2.0 * st.y - 1.0) * gt;
 }
 
+// ---- Sphere map (§3.2), +Y up the image: (s, t) = ½(a + 1, 1 − b), (a, b) = (r_x, r_y)/m,
+// m = √(2|r|(r_z + |r|)), written without cancellation on the far side; the rim direction −Z is
+// singular (a zero Jacobian).
+EnvPoint sphere_point(vec3 r) {
+    float p = length(r), h = length(r.xy), m, c;
+    if (r.z >= 0.0) {
+        float w = r.z + p;
+        m = sqrt(2.0 * p * w);
+        c = sqrt(w / (2.0 * p));
+    } else {
+        m = h * sqrt(2.0 * p / (p - r.z));
+        c = h / sqrt(2.0 * p * (p - r.z));
+    }
+    if (m == 0.0) return EnvPoint(0, vec2(1.0, 0.5), vec3(0), vec3(0));
+    float a = clamp(r.x / m, -1.0, 1.0), b = clamp(r.y / m, -1.0, 1.0);
+    vec3 grad_m = vec3(a, b, c) + (c / p) * r;
+    float k = 0.5 / m;
+    return EnvPoint(0, 0.5 * vec2(a + 1.0, 1.0 - b), k * (vec3(1, 0, 0) - a * grad_m),
+                    -k * (vec3(0, 1, 0) - b * grad_m));
+}
+
+// Beyond the rim (ρ > 1) the map folds back through it: ρ → 2 − ρ, the azimuth + π.
+vec3 sphere_direction(vec2 st) {
+    float a = 2.0 * st.x - 1.0, b = 1.0 - 2.0 * st.y;
+    float rho = length(vec2(a, b));
+    if (!(rho < 2.0)) return vec3(0, 0, -1);
+    if (rho > 1.0) {
+        float k = -(2.0 - rho) / rho;
+        a *= k;
+        b *= k;
+        rho = 2.0 - rho;
+    }
+    float nz = sqrt(max(0.0, (1.0 - rho) * (1.0 + rho)));
+    return vec3(2.0 * a * nz, 2.0 * b * nz, 1.0 - 2.0 * rho * rho);
+}
+
+// ---- Dual paraboloid (§3.3): face 0 for r_z ≥ 0, (x, y) = (r_x, r_y)/(|r| + |r_z|).
+EnvPoint paraboloid_point(vec3 r) {
+    float pr = length(r), sign = r.z >= 0.0 ? 1.0 : -1.0;
+    float delta = pr + abs(r.z);
+    float x = r.x / delta, y = r.y / delta;
+    vec3 g = r / pr + vec3(0, 0, sign);
+    float k = 0.5 / delta;
+    return EnvPoint(r.z >= 0.0 ? 0 : 1, 0.5 * vec2(x + 1.0, 1.0 - y),
+                    k * (vec3(1, 0, 0) - x * g), -k * (vec3(0, 1, 0) - y * g));
+}
+
+// Beyond the disk (x² + y² > 1): the other hemisphere.
+vec3 paraboloid_direction(int face, vec2 st) {
+    float x = 2.0 * st.x - 1.0, y = 1.0 - 2.0 * st.y, sign = face == 0 ? 1.0 : -1.0;
+    float k = x * x + y * y;
+    if (isinf(k)) return vec3(0, 0, -sign);
+    return vec3(2.0 * x, 2.0 * y, sign * (1.0 - k)) / (1.0 + k);
+}
+
 EnvPoint env_point(vec3 r) {
-    return u_env_layout == ENV_CUBE ? cube_point_on(cube_face(r), r) : latlong_point(r);
+    switch (u_env_layout) {
+        case ENV_CUBE: return cube_point_on(cube_face(r), r);
+        case ENV_SPHERE: return sphere_point(r);
+        case ENV_PARABOLOID: return paraboloid_point(r);
+        default: return latlong_point(r);
+    }
+}
+
+vec3 env_direction(int face, vec2 st) {
+    switch (u_env_layout) {
+        case ENV_CUBE: return cube_direction(face, st);
+        case ENV_SPHERE: return sphere_direction(st);
+        case ENV_PARABOLOID: return paraboloid_direction(face, st);
+        default: return latlong_direction(st);
+    }
 }
 
 // G x = S J_P x: the map motion, in level-0 texels, of a change x of the (map-space) direction.
@@ -111,7 +185,7 @@ void set_isotropic(inout EnvFootprint f, float tp) {
 // K for a direction r with spread ∂r/∂x, ∂r/∂y and the roughness columns rough1, rough2 (zero for
 // form (a)): D = G [∂r/∂x, ∂r/∂y], K3 = (G rough1)(G rough1)ᵀ + (G rough2)(G rough2)ᵀ. Towards a
 // lat-long pole (where the footprint, to 2σ, reaches it) the footprint is isotropic with
-// T_p = (H0/π)·θ_fp (§3.4).
+// T_p = (H0/π)·θ_fp (§3.4); at the sphere map's singular rim direction, T_p = (W0/4)·θ_fp (§3.2).
 EnvFootprint footprint_of_spread(vec3 r, vec3 dr_dx, vec3 dr_dy, vec3 rough1, vec3 rough2) {
     EnvFootprint f;
     f.fallback = false;
@@ -121,6 +195,12 @@ EnvFootprint footprint_of_spread(vec3 r, vec3 dr_dx, vec3 dr_dy, vec3 rough1, ve
     f.map_dr_dy = u_env_rotation * dr_dy;
     f.map_rough1 = u_kappa * (u_env_rotation * rough1);
     f.map_rough2 = u_kappa * (u_env_rotation * rough2);
+    if (u_env_layout == ENV_SPHERE && f.point.ds == vec3(0) && f.point.dt == vec3(0)) {
+        float theta = (largest_tangent_singular_value(r, dr_dx, dr_dy) +
+                       u_kappa * largest_tangent_singular_value(r, rough1, rough2)) / length(r);
+        set_isotropic(f, 0.25 * u_env_texel_scale.x * theta);
+        return f;
+    }
     if (u_env_layout == ENV_LATLONG) {
         vec3 m = f.map_direction;
         float spread = sqrt(dot(dr_dx, dr_dx) + dot(dr_dy, dr_dy)) +
@@ -192,62 +272,79 @@ EnvFootprint reflection_footprint(vec3 v, vec3 dv_dx, vec3 dv_dy, vec3 n, vec3 d
 
 // ---- Lookups.
 
-// One trilinear probe of the map at a map-space direction (cube) or (s, t) (lat-long).
+// One trilinear probe of the cube map at a map-space direction.
 vec4 env_probe_direction(vec3 direction, float lod) {
     return textureLod(u_env_cube, direction, lod);
 }
-// A lat-long probe's bilinear sample of one level, its taps beyond a pole read over the pole:
-// row −1 − k is row k half a turn around, x + W/2 (envmap/env_sampling.h), where the hardware
-// would clamp to the edge row.
-vec4 latlong_level_over_pole(vec2 st, int level) {
-    ivec2 size = max(ivec2(map_size(MAP_LATLONG)) >> level, ivec2(1));
-    vec2 x = st * vec2(size) - 0.5;
-    ivec2 i0 = ivec2(floor(x));
-    vec2 f = x - vec2(i0);
-    vec4 taps[4];
-    for (int k = 0; k < 4; ++k) {
-        ivec2 i = i0 + ivec2(k & 1, k >> 1);
+
+ivec2 env_level_size(int level) {
+    return max(ivec2(map_size(MAP_ENV)) >> level, ivec2(1));
+}
+
+// Texel i of a level of face `face` of MAP_ENV, where i may lie beyond the level's edge
+// (envmap/env_sampling.h's env_texel): over a lat-long pole, row −1 − k is row k half a turn
+// around (x + W/2) and the seam wraps; beyond a sphere or paraboloid image's edge, the texel its
+// centre's direction lands in.
+vec4 env_texel(int face, ivec2 i, int level) {
+    ivec2 size = env_level_size(level);
+    if (u_env_layout == ENV_LATLONG) {
         if (i.y < 0 || i.y >= size.y) {
             i.y = i.y < 0 ? -1 - i.y : 2 * size.y - 1 - i.y;
             i.x += size.x / 2;
         }
         i.x = ((i.x % size.x) + size.x) % size.x;
-        taps[k] = texelFetch(u_maps[MAP_LATLONG], ivec3(i.x, clamp(i.y, 0, size.y - 1), 0), level);
+    } else if (any(lessThan(i, ivec2(0))) || any(greaterThanEqual(i, size))) {
+        EnvPoint p = env_point(env_direction(face, (vec2(i) + 0.5) / vec2(size)));
+        face = p.face;
+        i = ivec2(p.st * vec2(size));
     }
+    return texelFetch(u_maps[MAP_ENV], ivec3(clamp(i, ivec2(0), size - 1), face), level);
+}
+
+// A bilinear sample of one level, its taps read by env_texel().
+vec4 env_level_beyond_edge(int face, vec2 st, int level) {
+    vec2 x = st * vec2(env_level_size(level)) - 0.5;
+    ivec2 i0 = ivec2(floor(x));
+    vec2 f = x - vec2(i0);
+    vec4 taps[4];
+    for (int k = 0; k < 4; ++k) taps[k] = env_texel(face, i0 + ivec2(k & 1, k >> 1), level);
     return mix(mix(taps[0], taps[1], f.x), mix(taps[2], taps[3], f.x), f.y);
 }
 
-// Whether a bilinear sample at t on a level of `height` rows reaches beyond a pole.
-bool crosses_pole(float t, int height) {
-    float y = t * float(height) - 0.5;
-    return y < 0.0 || y > float(height - 1);
+// Whether a bilinear sample at st on a level has taps beyond its edges (the lat-long map's s
+// wraps in the sampler: only t counts there).
+bool taps_beyond_edge(vec2 st, int level) {
+    ivec2 size = env_level_size(level);
+    vec2 x = st * vec2(size) - 0.5;
+    bool t_out = x.y < 0.0 || x.y > float(size.y - 1);
+    return u_env_layout == ENV_LATLONG ? t_out : t_out || x.x < 0.0 || x.x > float(size.x - 1);
 }
 
-// One trilinear probe of the lat-long map: the hardware's, or, where its taps reach over a pole,
-// the same two levels sampled over the pole.
-vec4 env_probe_latlong(vec2 st, float lod) {
-    int max_level = map_max_level(MAP_LATLONG);
+// One trilinear probe of MAP_ENV: the hardware's, or, where its taps reach beyond an edge, the
+// same two levels read by env_level_beyond_edge().
+vec4 env_probe_2d(int face, vec2 st, float lod) {
+    int max_level = map_max_level(MAP_ENV);
     int l0 = min(int(lod), max_level);
     float w = l0 < max_level ? lod - float(l0) : 0.0;
-    int h0 = max(int(map_size(MAP_LATLONG).y) >> l0, 1), h1 = max(h0 >> 1, 1);
-    if (!crosses_pole(st.y, h0) && !(w > 0.0 && crosses_pole(st.y, h1)))
-        return sample_lod(MAP_LATLONG, vec3(st, 0), lod);
-    vec4 fine = latlong_level_over_pole(st, l0);
-    return w > 0.0 ? mix(fine, latlong_level_over_pole(st, l0 + 1), w) : fine;
+    if (!taps_beyond_edge(st, l0) && !(w > 0.0 && taps_beyond_edge(st, l0 + 1)))
+        return sample_lod(MAP_ENV, vec3(st, face), lod);
+    vec4 fine = env_level_beyond_edge(face, st, l0);
+    return w > 0.0 ? mix(fine, env_level_beyond_edge(face, st, l0 + 1), w) : fine;
 }
 
 // A point sample (level-0 bilinear) in world direction r: the `point` mode.
 vec3 env_point_sample(vec3 r) {
     vec3 m = u_env_rotation * r;
     if (u_env_layout == ENV_CUBE) return env_probe_direction(m, 0.0).rgb;
-    return env_probe_latlong(latlong_point(m).st, 0.0).rgb;
+    EnvPoint p = env_point(m);
+    return env_probe_2d(p.face, p.st, 0.0).rgb;
 }
 
 // The GPU's own anisotropic filter over the footprint's curvature term (no roughness).
 vec3 env_hardware(EnvFootprint f) {
     if (u_env_layout == ENV_CUBE)  // trilinear: cube maps get no anisotropy on most hardware
         return textureGrad(u_env_cube, f.map_direction, f.map_dr_dx, f.map_dr_dy).rgb;
-    return hardware_lookup(MAP_LATLONG, 1, f.point.st, f.d_dx, f.d_dy).a.rgb;
+    return hardware_lookup(MAP_ENV, f.point.face, 1, f.point.st, f.d_dx, f.d_dy).a.rgb;
 }
 
 // ---- Polar caps (envmap/polar_caps.h): a footprint centred within 30° of a pole whose probes
@@ -290,9 +387,9 @@ vec3 cap_lookup(CapFootprint c, int mode) {
     return assemble(MAP_CAPS, c.layer, 1, c.st, plan_probes(e, u_max_probes, max_level)).a.rgb;
 }
 
-// Lat-long probe placement on the sphere (environment_map.cpp's TangentProbes): an offset o in
-// level-0 texels is taken back to the tangent plane at r̂ through J_t⁻¹ and placed at the
-// direction r̂ + J_t⁻¹ o, so that the probes follow the great circle through r̂.
+// Probe placement on the sphere for the curved layouts (environment_map.cpp's TangentProbes): an
+// offset o in level-0 texels is taken back to the tangent plane at r̂ through J_t⁻¹ and placed at
+// the direction r̂ + J_t⁻¹ o, so that the probes follow the great circle through r̂.
 struct TangentProbes {
     bool valid;
     vec3 centre, e1, e2;
@@ -304,7 +401,7 @@ TangentProbes tangent_probes(vec3 direction) {
     t.centre = normalize(direction);
     t.e1 = normalize(cross(t.centre, abs(t.centre.x) < 0.6 ? vec3(1, 0, 0) : vec3(0, 1, 0)));
     t.e2 = cross(t.centre, t.e1);
-    EnvPoint p = latlong_point(t.centre);
+    EnvPoint p = env_point(t.centre);
     float j11 = u_env_texel_scale.x * dot(p.ds, t.e1), j12 = u_env_texel_scale.x * dot(p.ds, t.e2);
     float j21 = u_env_texel_scale.y * dot(p.dt, t.e1), j22 = u_env_texel_scale.y * dot(p.dt, t.e2);
     float det = j11 * j22 - j12 * j21;
@@ -313,56 +410,85 @@ TangentProbes tangent_probes(vec3 direction) {
     return t;
 }
 
-vec2 tangent_place(TangentProbes t, vec2 offset) {
+EnvPoint tangent_place(TangentProbes t, vec2 offset) {
     vec2 ab = t.inv * offset;
-    return latlong_point(t.centre + ab.x * t.e1 + ab.y * t.e2).st;
+    return env_point(t.centre + ab.x * t.e1 + ab.y * t.e2);
 }
 
-// The lat-long line of probes: its ends placed exactly, the probes between on the quadratic
-// through them and the centre (envmap/latlong_path.h), any that would cross a pole exactly.
-vec3 latlong_line(EnvFootprint f, Plan plan) {
-    TangentProbes tangent = tangent_probes(f.map_direction);
-    vec2 c = f.point.st;
-    vec2 h = vec2(0), q = vec2(0);
-    bool path = tangent.valid && plan.count > 2;
-    if (path) {
-        vec2 a = tangent_place(tangent, probe_offset(plan, plan.count - 1)) - c;
-        vec2 b = tangent_place(tangent, -probe_offset(plan, plan.count - 1)) - c;
+// How much the layout stretches a round footprint at the probes' centre: the anisotropy (≥ 1) of
+// the ellipse of J_t⁻¹'s columns (TangentProbes::distortion()).
+float tangent_distortion(TangentProbes t) {
+    Ellipse e = ellipse_of(footprint_matrix(t.inv[0], t.inv[1]));
+    float ratio = e.l1 / e.l2;
+    return is_finite(ratio) ? max(ratio, 1.0) : 1.0;
+}
+
+// Where a probe centre (s, t) of `face` lands that was not placed on the sphere: itself on the
+// face's valid region, else the face and (s, t) of its direction (environment_map.cpp's
+// place_probe): over a lat-long pole, back through the sphere map's rim, onto the other
+// paraboloid hemisphere.
+EnvPoint place_probe(int face, vec2 st) {
+    vec2 ab = 2.0 * st - 1.0;
+    bool outside = u_env_layout == ENV_LATLONG ? st.y < 0.0 || st.y > 1.0 : dot(ab, ab) > 1.0;
+    return outside ? env_point(env_direction(face, st)) : EnvPoint(face, st, vec3(0), vec3(0));
+}
+
+// How the probes of a line are placed. Cube: on the centre face's plane along r1, each handed to
+// the hardware as a direction, which puts it on the face that owns it. The curved layouts
+// (lat-long, sphere, paraboloid): on the sphere (tangent_place()), and on the lat-long map its ends
+// placed exactly and the probes between on the quadratic through them and the centre
+// (envmap/latlong_path.h), any that would cross a pole exactly.
+struct ProbeLine {
+    TangentProbes tangent;
+    bool path;  // the lat-long quadratic c + u (h + u q), u = −1 … 1
+    vec2 h, q;
+};
+
+ProbeLine probe_line(EnvFootprint f, Plan plan) {
+    ProbeLine line;
+    line.tangent.valid = false;
+    line.path = false;
+    line.h = line.q = vec2(0);
+    if (u_env_layout == ENV_CUBE) return line;
+    line.tangent = tangent_probes(f.map_direction);
+    line.path = u_env_layout == ENV_LATLONG && line.tangent.valid && plan.count > 2;
+    if (line.path) {
+        vec2 c = f.point.st;
+        vec2 a = tangent_place(line.tangent, probe_offset(plan, plan.count - 1)).st - c;
+        vec2 b = tangent_place(line.tangent, -probe_offset(plan, plan.count - 1)).st - c;
         a.x -= round(a.x);  // unwrapped across the seam
         b.x -= round(b.x);
-        h = 0.5 * (a - b);
-        q = 0.5 * (a + b);
+        line.h = 0.5 * (a - b);
+        line.q = 0.5 * (a + b);
     }
-    vec3 sum = vec3(0);
-    float weights = 0.0, half_count = 0.5 * float(plan.count - 1);
-    for (int i = 0; i < plan.count; ++i) {
-        vec2 st;
-        float u = (float(i) - half_count) / half_count;
-        vec2 on_path = c + u * (h + u * q);
-        if (path && on_path.y >= 0.0 && on_path.y <= 1.0) {
-            st = on_path;
-        } else if (tangent.valid) {
-            st = tangent_place(tangent, probe_offset(plan, i));
-        } else {
-            st = c + probe_offset(plan, i) / u_env_texel_scale;
-            if (st.y < 0.0 || st.y > 1.0) st = latlong_point(latlong_direction(st)).st;
-        }
-        float w = probe_weight(plan, i);
-        sum += w * env_probe_latlong(st, plan.lod).rgb;
-        weights += w;
-    }
-    return sum / weights;
+    return line;
 }
 
-// The cube line: probes on the centre face's plane along r1, each a direction the hardware
-// places on the face that owns it, all at the centre face's lod.
-vec3 cube_line(EnvFootprint f, Plan plan) {
+// Probe i of a line, at the plan's lod (the centre face's).
+vec4 line_probe(EnvFootprint f, Plan plan, ProbeLine line, int i) {
+    vec2 on_plane = f.point.st + probe_offset(plan, i) / u_env_texel_scale;
+    if (u_env_layout == ENV_CUBE)
+        return env_probe_direction(cube_direction(f.point.face, on_plane), plan.lod);
+    float half_count = 0.5 * float(plan.count - 1), u = (float(i) - half_count) / half_count;
+    vec2 on_path = f.point.st + u * (line.h + u * line.q);
+    EnvPoint p;
+    if (line.path && on_path.y >= 0.0 && on_path.y <= 1.0)
+        p = EnvPoint(0, on_path, vec3(0), vec3(0));
+    else if (line.tangent.valid)
+        p = tangent_place(line.tangent, probe_offset(plan, i));
+    else
+        p = place_probe(f.point.face, on_plane);
+    return env_probe_2d(p.face, p.st, plan.lod);
+}
+
+// C = Σ w_i probe_i / Σ w_i over the line (spec §2.9).
+vec3 env_line(EnvFootprint f, Plan plan) {
+    ProbeLine line = probe_line(f, plan);
     vec3 sum = vec3(0);
     float weights = 0.0;
     for (int i = 0; i < plan.count; ++i) {
-        vec2 st = f.point.st + probe_offset(plan, i) / u_env_texel_scale;
         float w = probe_weight(plan, i);
-        sum += w * env_probe_direction(cube_direction(f.point.face, st), plan.lod).rgb;
+        sum += w * line_probe(f, plan, line, i).rgb;
         weights += w;
     }
     return sum / weights;
@@ -378,18 +504,37 @@ vec3 env_lookup(EnvFootprint f, int mode, float latlong_trace) {
         if (cap.valid) return cap_lookup(cap, mode);
     }
     int max_level = u_env_layout == ENV_CUBE ? textureQueryLevels(u_env_cube) - 1
-                                             : map_max_level(MAP_LATLONG);
+                                             : map_max_level(MAP_ENV);
     Ellipse e = is_finite(f.k.x + f.k.y + f.k.z) ? ellipse_of(f.k) : Ellipse(0.0, 0.0, vec2(1, 0));
+    if (u_env_layout == ENV_SPHERE) {
+        // §3.2: towards the singular rim the anisotropy grows without bound; λ1 ≤ W/2.
+        e.l1 = min(e.l1, 0.5 * u_env_texel_scale.x);
+        e.l2 = min(e.l2, e.l1);
+    }
     float limit = 4.0 * max(u_env_texel_scale.x, u_env_texel_scale.y);
     e.l1 = min(e.l1, limit);
     e.l2 = min(e.l2, limit);
     Plan plan;
-    if (mode == MODE_TRILINEAR)
+    if (mode == MODE_TRILINEAR) {
         plan = Plan(1, vec2(0), clamp(log2(max(e.l1, 1e-30)), 0.0, float(max_level)), 0.0);
-    else
-        plan = plan_probes(e, u_max_probes, max_level);
+    } else {
+        // Towards the sphere map's rim the map adds up to 67:1 of its own anisotropy: a line
+        // there may take N_max × its distortion (environment_map.cpp's sphere_probe_limit).
+        int max_probes = u_max_probes;
+        if (u_env_layout == ENV_SPHERE) {
+            TangentProbes t = tangent_probes(f.map_direction);
+            if (t.valid)
+                max_probes = int(min(ceil(float(max(max_probes, 1)) * tangent_distortion(t)),
+                                     float(gaussian_spacing.length() - 1)));
+        }
+        plan = plan_probes(e, max_probes, max_level);
+    }
+    // Trilinear filters the centre face alone, its taps wrapped or clamped as the pyramid's
+    // (environment_map.cpp's general_lookup() → texture_lookup()).
+    if (mode == MODE_TRILINEAR && u_env_layout != ENV_CUBE)
+        return sample_lod(MAP_ENV, vec3(f.point.st, f.point.face), plan.lod).rgb;
     if (plan.count == 1)
         return u_env_layout == ENV_CUBE ? env_probe_direction(f.map_direction, plan.lod).rgb
-                                        : env_probe_latlong(f.point.st, plan.lod).rgb;
-    return u_env_layout == ENV_CUBE ? cube_line(f, plan) : latlong_line(f, plan);
+                                        : env_probe_2d(f.point.face, f.point.st, plan.lod).rgb;
+    return env_line(f, plan);
 }

@@ -1,9 +1,9 @@
 // gpu/shaders/filtering.glsl — texture footprints and footprint assembly (texture/texture_lookup.h,
 // texture/footprint_assembly.h, spec §2.7–2.9), each probe one hardware trilinear lookup.
 //
-// Every 2D map is a sampler2DArray (one layer for colours and lat-long maps, two for the bump
-// moments) in one array, u_maps, addressed by its index: the materials' colour maps, their bump
-// maps, the lat-long map and its polar caps (gpu/gpu_scene.h's units). GLSL indexes sampler arrays
+// Every 2D map is a sampler2DArray in one array, u_maps, addressed by its index: the materials'
+// maps (units 0 … 15, each an array of maps of one shape: one layer per colour map, two per bump
+// map's moments), the lat-long map and its polar caps (gpu/gpu_scene.h's units). GLSL indexes sampler arrays
 // only with dynamically uniform indices, and neighbouring pixels may show different materials, so
 // a probe reaches its map through a switch of constant indices: one filter loop for every map
 // (the compiler folds the switch where the index is a constant). The levels are the C++
@@ -11,7 +11,7 @@
 // hardware) are the one difference in the probes themselves.
 
 const int kMapCount = 18;
-const int MAP_LATLONG = 16;
+const int MAP_ENV = 16;
 const int MAP_CAPS = 17;
 uniform sampler2DArray u_maps[kMapCount];
 uniform vec4 u_map_info[kMapCount];  // level-0 width, height, max level, layers
@@ -97,10 +97,6 @@ vec3 footprint_matrix(vec2 d_dx, vec2 d_dy) {
                 d_dx.y * d_dx.y + d_dy.y * d_dy.y);
 }
 
-bool is_finite(float x) {
-    return !isnan(x) && !isinf(x);
-}
-
 // ---- Probe placement: Rule B with Gaussian weights (ProbeRule::gaussian, the CPU's default).
 struct Plan {
     int count;     // N
@@ -168,29 +164,32 @@ Texel assemble(int map, int first, int layers, vec2 st, Plan plan) {
 
 // The GPU's own anisotropic filter (hw-aniso) over D = (d_dx, d_dy) in level-0 texels: textureGrad
 // with the exact derivatives, through the sampler with the driver's maximum anisotropy.
-Texel hardware_lookup(int map, int layers, vec2 st, vec2 d_dx, vec2 d_dy) {
+Texel hardware_lookup(int map, int first, int layers, vec2 st, vec2 d_dx, vec2 d_dy) {
     vec2 size = map_size(map);
-    return Texel(sample_grad(map, vec3(st, 0), d_dx / size, d_dy / size),
-                 layers > 1 ? sample_grad(map, vec3(st, 1), d_dx / size, d_dy / size) : vec4(0));
+    return Texel(sample_grad(map, vec3(st, first), d_dx / size, d_dy / size),
+                 layers > 1 ? sample_grad(map, vec3(st, first + 1), d_dx / size, d_dy / size)
+                            : vec4(0));
 }
 
 // A filtered lookup of a 2D map in `mode` (texture/texture_lookup.h's coords overload):
-// st = (s, t), dst = (∂s/∂x, ∂t/∂x, ∂s/∂y, ∂t/∂y) in normalised units.
-Texel lookup_2d(int map, int layers, vec2 st, vec4 dst, int mode) {
-    if (mode == MODE_POINT) return probe(map, 0, layers, st, 0.0);
+// st = (s, t), dst = (∂s/∂x, ∂t/∂x, ∂s/∂y, ∂t/∂y) in normalised units; the map's layers `first`
+// … first + layers − 1.
+Texel lookup_2d(int map, int first, int layers, vec2 st, vec4 dst, int mode) {
+    if (mode == MODE_POINT) return probe(map, first, layers, st, 0.0);
     vec2 size = map_size(map);
-    if (mode == MODE_HW_ANISO) return hardware_lookup(map, layers, st, dst.xy * size, dst.zw * size);
+    if (mode == MODE_HW_ANISO)
+        return hardware_lookup(map, first, layers, st, dst.xy * size, dst.zw * size);
     int max_level = map_max_level(map);
     vec2 d_dx = dst.xy * size, d_dy = dst.zw * size;  // the columns of D, level-0 texels
     float len_x2 = dot(d_dx, d_dx), len_y2 = dot(d_dy, d_dy);
     if (!is_finite(len_x2 + len_y2) || len_x2 + len_y2 <= 1.0)  // magnification, or no footprint
-        return probe(map, 0, layers, st, 0.0);
+        return probe(map, first, layers, st, 0.0);
     if (mode == MODE_TRILINEAR)  // GL's rule: ρ = max(|∂(X,Y)/∂x|, |∂(X,Y)/∂y|)
-        return probe(map, 0, layers, st,
+        return probe(map, first, layers, st,
                      clamp(0.5 * log2(max(len_x2, len_y2)), 0.0, float(max_level)));
     Ellipse e = ellipse_of(footprint_matrix(d_dx, d_dy));
     float limit = 4.0 * max(size.x, size.y);  // larger footprints read the coarsest levels
     e.l1 = min(e.l1, limit);
     e.l2 = min(e.l2, limit);
-    return assemble(map, 0, layers, st, plan_probes(e, u_max_probes, max_level));
+    return assemble(map, first, layers, st, plan_probes(e, u_max_probes, max_level));
 }

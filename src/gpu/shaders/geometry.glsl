@@ -17,8 +17,15 @@ struct Hit {
     float t;
     vec3 p, n, dpdu, dpdv, dndu, dndv;
     vec2 uv;
-    int object;
+    vec3 ng;       // the geometric normal: n on analytic shapes, the triangle's on a mesh
+    vec4 tangent;  // a mesh's interpolated tangent and the bitangent's sign in w (0: none)
+    int material;  // index into materials[]
 };
+
+// An analytic shape's hit (its normal is the geometric normal), its material set by the caller.
+Hit surface_hit(float t, vec3 p, vec3 n, vec3 dpdu, vec3 dpdv, vec3 dndu, vec3 dndv, vec2 uv) {
+    return Hit(t, p, n, dpdu, dpdv, dndu, dndv, uv, n, vec4(0), -1);
+}
 
 Ray camera_ray(vec2 pixel) {
     vec2 c = 0.5 * vec2(u_size);
@@ -73,8 +80,8 @@ bool hit_plane(Object o, Ray ray, float len, vec3 d, inout Hit hit) {
     if (o.info.z == 0 && (abs(local.x) > 0.5 * o.params.x || abs(local.y) > 0.5 * o.params.y))
         return false;
     float scale = o.params.z;
-    hit = Hit(t, p, n, o.axis_u.xyz / scale, o.axis_v.xyz / scale, vec3(0), vec3(0),
-              scale * local + 0.5, hit.object);
+    hit = surface_hit(t, p, n, o.axis_u.xyz / scale, o.axis_v.xyz / scale, vec3(0), vec3(0),
+              scale * local + 0.5);
     return true;
 }
 
@@ -94,8 +101,8 @@ bool hit_sphere(Object o, Ray ray, float len, vec3 d, inout Hit hit) {
         vec3 n = theta.y * e + theta.x * a;
         vec3 dpdu = (TWO_PI * radius * theta.y) * de;
         vec3 dpdv = (-PI * radius) * (theta.x * e - theta.y * a);
-        hit = Hit(t, p, n, dpdu, dpdv, dpdu / radius, dpdv / radius,
-                  vec2(azimuth_u(phi), 1.0 - atan(theta.y, theta.x) / PI), hit.object);
+        hit = surface_hit(t, p, n, dpdu, dpdv, dpdu / radius, dpdv / radius,
+                  vec2(azimuth_u(phi), 1.0 - atan(theta.y, theta.x) / PI));
         return true;
     }
     return false;
@@ -118,8 +125,8 @@ bool hit_cylinder(Object o, Ray ray, float len, vec3 d, inout Hit hit) {
         if (!(abs(along) <= 0.5 * height)) continue;
         vec2 phi = cos_sin(-dot(q, v), dot(q, u));
         vec3 e = radial(o, phi), de = radial_derivative(o, phi);
-        hit = Hit(t, p, e, (TWO_PI * radius) * de, height * a, TWO_PI * de, vec3(0),
-                  vec2(azimuth_u(phi), along / height + 0.5), hit.object);
+        hit = surface_hit(t, p, e, (TWO_PI * radius) * de, height * a, TWO_PI * de, vec3(0),
+                  vec2(azimuth_u(phi), along / height + 0.5));
         return true;
     }
     return false;
@@ -178,17 +185,236 @@ bool hit_paraboloid(Object o, Ray ray, float len, vec3 dir, inout Hit hit) {
         vec3 dpdv = two_r * (v + (y / (2.0 * fl)) * a);
         vec3 dndu = two_r * (-u / l - (x / (l * l)) * n);
         vec3 dndv = two_r * (-v / l - (y / (l * l)) * n);
-        hit = Hit(t, p, n, dpdu, dpdv, dndu, dndv, vec2(x / two_r + 0.5, y / two_r + 0.5),
-                  hit.object);
+        hit = surface_hit(t, p, n, dpdu, dpdv, dndu, dndv, vec2(x / two_r + 0.5, y / two_r + 0.5));
         return true;
     }
     return false;
 }
 
-// The nearest hit over all objects; false where the ray escapes.
-bool intersect_scene(Ray ray, out Hit hit) {
+// ---- Real roots of small polynomials Σ c[i] sⁱ (shapes.cpp's real_roots, with the recursion
+// over the derivatives unrolled: the roots of p‴ bracket those of p″, which bracket those of p′,
+// which bracket those of p; between neighbouring brackets p is monotonic).
+float poly_eval(float c[5], int n, float x) {
+    float r = c[n];
+    for (int i = n - 1; i >= 0; --i) r = r * x + c[i];
+    return r;
+}
+
+float[5] derivative(float c[5], int n) {
+    float d[5] = float[5](0.0, 0.0, 0.0, 0.0, 0.0);
+    for (int i = 0; i < n; ++i) d[i] = float(i + 1) * c[i + 1];
+    return d;
+}
+
+// The root in (a, b) of p, p(a) = fa and p(b) of the opposite sign: Newton steps, bisection
+// whenever they leave the bracket.
+float bracketed_root(float c[5], int n, float a, float b, float fa) {
+    float dc[5] = derivative(c, n);
+    float x = 0.5 * (a + b);
+    for (int it = 0; it < 100; ++it) {
+        float f = poly_eval(c, n, x);
+        if (f == 0.0) return x;
+        if ((f < 0.0) == (fa < 0.0)) {
+            a = x;
+            fa = f;
+        } else {
+            b = x;
+        }
+        float next = x - f / poly_eval(dc, n - 1, x);
+        if (!(next > a && next < b)) next = 0.5 * (a + b);  // also NaN
+        if (next == x || b - a <= 2.4e-7 * max(1.0, max(abs(a), abs(b)))) return next;
+        x = next;
+    }
+    return x;
+}
+
+// The roots of p (degree n) in [lo, hi], ascending, from the ascending roots `critical` of p′
+// there; returns their number.
+int roots_between(float c[5], int n, float lo, float hi, float critical[4], int k,
+                  out float roots[4]) {
+    float points[6];
+    points[0] = lo;
+    for (int i = 0; i < k; ++i) points[i + 1] = critical[i];
+    points[k + 1] = hi;
+    int count = 0;
+    float fa = poly_eval(c, n, lo);
+    if (fa == 0.0) roots[count++] = lo;
+    for (int j = 0; j <= k && count < n; ++j) {
+        float a = points[j], b = points[j + 1];
+        float fb = poly_eval(c, n, b);
+        if (fb == 0.0) {
+            if (count == 0 || roots[count - 1] != b) roots[count++] = b;
+        } else if (fa != 0.0 && (fa < 0.0) != (fb < 0.0)) {
+            roots[count++] = bracketed_root(c, n, a, b, fa);
+        }
+        fa = fb;
+    }
+    return count;
+}
+
+// The real roots of the quartic c (c[4] ≠ 0) in [lo, hi], ascending; returns their number.
+int quartic_roots(float c[5], float lo, float hi, out float roots[4]) {
+    float c3[5] = derivative(c, 4), c2[5] = derivative(c3, 3), c1[5] = derivative(c2, 2);
+    float r1[4], r2[4], r3[4];
+    float linear = -c1[0] / c1[1];
+    int k = 0;
+    if (linear >= lo && linear <= hi) r1[k++] = linear;
+    k = roots_between(c2, 2, lo, hi, r1, k, r2);
+    k = roots_between(c3, 3, lo, hi, r2, k, r3);
+    return roots_between(c, 4, lo, hi, r3, k, roots);
+}
+
+bool hit_torus(Object o, Ray ray, float len, vec3 dir, inout Hit hit) {
+    vec3 u = o.axis_u.xyz, v = o.axis_v.xyz, a = o.axis.xyz;
+    float big_r = o.params.x, small_r = o.params.y;
+    // shapes.cpp's form: the torus frame, lengths in units of B = R + r, the origin moved to the
+    // ray's point nearest the centre (τ0), so that the quartic's coefficients are O(1):
+    //   s⁴ + 4m s³ + (4m² + 2k − 4R² d⊥²) s² + (4mk − 8R² o⊥·d⊥) s + k² − 4R² o⊥² = 0.
+    float bound = big_r + small_r;
+    vec3 q0 = ray.origin - o.origin.xyz;
+    vec3 o0 = vec3(dot(q0, u), dot(q0, v), dot(q0, a));
+    vec3 d = vec3(dot(dir, u), dot(dir, v), dot(dir, a));
+    float tau0 = -dot(o0, d);
+    vec3 oc = (o0 + tau0 * d) / bound;
+    float oo = dot(oc, oc);
+    if (!(oo <= 1.0 + 1e-6)) return false;  // misses the bounding sphere
+    float half_chord = sqrt(max(0.0, 1.0 - oo)) * (1.0 + 1e-6) + 1e-6;
+    float s_lo = max(-half_chord, -tau0 / bound);
+    float s_hi = min(half_chord, (min(hit.t, 1e30) * len - tau0) / bound);
+    if (!(s_lo <= s_hi)) return false;
+    float big = big_r / bound, small = small_r / bound, big2 = big * big;
+    float m = dot(oc, d), k = oo + (big - small) * (big + small);
+    float d_perp2 = d.x * d.x + d.y * d.y, od_perp = oc.x * d.x + oc.y * d.y,
+          o_perp2 = oc.x * oc.x + oc.y * oc.y;
+    float c[5] = float[5](k * k - 4.0 * big2 * o_perp2, 4.0 * m * k - 8.0 * big2 * od_perp,
+                          4.0 * m * m + 2.0 * k - 4.0 * big2 * d_perp2, 4.0 * m, 1.0);
+    float roots[4];
+    int count = quartic_roots(c, s_lo, s_hi, roots);
+    for (int i = 0; i < count; ++i) {
+        float t = (tau0 + bound * roots[i]) / len;
+        if (!(t > 0.0 && t < hit.t)) continue;
+        vec3 p = ray.origin + t * ray.direction;
+        vec3 q = p - o.origin.xyz;
+        vec2 phi = cos_sin(-dot(q, v), dot(q, u));
+        float rho = length(vec2(dot(q, u), dot(q, v)));
+        vec2 theta = cos_sin(rho - big_r, dot(q, a));
+        float tv = atan(theta.y, theta.x) / TWO_PI;
+        if (tv < 0.0) tv += 1.0;
+        vec3 e = radial(o, phi), de = radial_derivative(o, phi);
+        vec3 n = theta.x * e + theta.y * a;
+        vec3 dn_dtheta = -theta.y * e + theta.x * a;
+        hit = surface_hit(t, p, n, (TWO_PI * (big_r + small_r * theta.x)) * de,
+                          (TWO_PI * small_r) * dn_dtheta, (TWO_PI * theta.x) * de,
+                          TWO_PI * dn_dtheta, vec2(azimuth_u(phi), tv));
+        return true;
+    }
+    return false;
+}
+
+// ---- Triangle meshes: the raster pass (mesh.vert, visibility.frag) finds each pixel's nearest
+// triangle; the ray is intersected with that triangle here, for the exact hit and differentials
+// (scene/mesh_accel.h's mesh_surface_hit).
+struct MeshVertex {
+    vec4 position;  // relative to the mesh anchor: + u_mesh_offset = camera-relative
+    vec4 normal;    // zero where the part has none
+    vec4 uv;        // (u, v), v up
+    vec4 tangent;   // xyz, and the bitangent's sign in w
+};
+struct MeshPart {
+    ivec4 info;  // material, has normals, has uvs, has tangents
+};
+layout(std430, binding = 4) readonly buffer MeshVertices { MeshVertex mesh_vertices[]; };
+layout(std430, binding = 5) readonly buffer MeshTriangles { uvec4 mesh_triangles[]; };
+layout(std430, binding = 6) readonly buffer MeshParts { MeshPart mesh_parts[]; };
+uniform vec3 u_mesh_offset;  // the mesh anchor − the camera position
+uniform usampler2D u_visibility;  // per pixel: 1 + the nearest triangle, 0 for none
+uniform int u_mesh_triangles;     // how many there are (0: no meshes, u_visibility unbound)
+
+// ∂b/∂(u, v) of a triangle with UV edges e1, e2: (∂b1/∂u, ∂b2/∂u, ∂b1/∂v, ∂b2/∂v); the identity
+// (derivatives with respect to (b1, b2)) where the UV map is singular.
+vec4 barycentric_derivatives(vec2 e1, vec2 e2) {
+    float det = e1.x * e2.y - e1.y * e2.x;
+    if (!(abs(det) > 1e-12 * (dot(e1, e1) + dot(e2, e2))) || !is_finite(det))
+        return vec4(1, 0, 0, 1);
+    return vec4(e2.y, -e1.y, -e2.x, e1.x) / det;
+}
+
+// The differential geometry at barycentrics b of triangle `triangle` (mesh_surface_hit).
+Hit mesh_hit(int triangle, float t, vec2 b, Ray ray) {
+    uvec4 tri = mesh_triangles[triangle];
+    MeshVertex v0 = mesh_vertices[tri.x], v1 = mesh_vertices[tri.y], v2 = mesh_vertices[tri.z];
+    ivec4 part = mesh_parts[tri.w].info;
+    float b0 = 1.0 - b.x - b.y;
+    vec3 p0 = v0.position.xyz + u_mesh_offset, p1 = v1.position.xyz + u_mesh_offset,
+         p2 = v2.position.xyz + u_mesh_offset;
+    vec3 dp1 = p1 - p0, dp2 = p2 - p0;
+    Hit hit;
+    hit.t = t;
+    hit.p = b0 * p0 + b.x * p1 + b.y * p2;
+    hit.material = part.x;
+    vec4 db = vec4(1, 0, 0, 1);
+    hit.uv = b;
+    if (part.z != 0) {
+        hit.uv = b0 * v0.uv.xy + b.x * v1.uv.xy + b.y * v2.uv.xy;
+        db = barycentric_derivatives(v1.uv.xy - v0.uv.xy, v2.uv.xy - v0.uv.xy);
+    }
+    hit.dpdu = db.x * dp1 + db.y * dp2;
+    hit.dpdv = db.z * dp1 + db.w * dp2;
+    vec3 ng = cross(dp1, dp2);
+    ng = dot(ng, ng) > 0.0 ? normalize(ng) : vec3(0);
+    bool shading = false;
+    hit.dndu = hit.dndv = vec3(0);
+    if (part.y != 0) {
+        vec3 nn = b0 * v0.normal.xyz + b.x * v1.normal.xyz + b.y * v2.normal.xyz;
+        float len = length(nn);
+        if (len > 0.0 && is_finite(len)) {
+            shading = true;
+            hit.n = nn / len;
+            vec3 dn1 = v1.normal.xyz - v0.normal.xyz, dn2 = v2.normal.xyz - v0.normal.xyz;
+            vec3 dndu = db.x * dn1 + db.y * dn2, dndv = db.z * dn1 + db.w * dn2;
+            hit.dndu = (dndu - dot(hit.n, dndu) * hit.n) / len;
+            hit.dndv = (dndv - dot(hit.n, dndv) * hit.n) / len;
+        }
+    }
+    if (ng == vec3(0)) ng = shading ? hit.n : -normalize(ray.direction);  // degenerate
+    if (!shading) hit.n = ng;
+    else if (dot(ng, hit.n) < 0.0) ng = -ng;
+    hit.ng = ng;
+    hit.tangent = vec4(0);
+    if (part.w != 0) {
+        vec3 tt = b0 * v0.tangent.xyz + b.x * v1.tangent.xyz + b.y * v2.tangent.xyz;
+        if (dot(tt, tt) > 0.0) hit.tangent = vec4(normalize(tt), v0.tangent.w < 0.0 ? -1.0 : 1.0);
+    }
+    return hit;
+}
+
+// The ray against the triangle the raster pass found at this pixel (Möller–Trumbore, its
+// barycentrics kept inside the triangle, which the rasteriser says the pixel centre is in).
+bool hit_triangle(int triangle, Ray ray, inout Hit hit) {
+    uvec4 tri = mesh_triangles[triangle];
+    vec3 p0 = mesh_vertices[tri.x].position.xyz + u_mesh_offset;
+    vec3 e1 = mesh_vertices[tri.y].position.xyz + u_mesh_offset - p0;
+    vec3 e2 = mesh_vertices[tri.z].position.xyz + u_mesh_offset - p0;
+    vec3 pv = cross(ray.direction, e2);
+    float det = dot(e1, pv);
+    if (det == 0.0) return false;
+    vec3 tv = ray.origin - p0, qv = cross(tv, e1);
+    float t = dot(e2, qv) / det;
+    if (!(t > 0.0 && t < hit.t)) return false;
+    float b1 = clamp(dot(tv, pv) / det, 0.0, 1.0);
+    float b2 = clamp(dot(ray.direction, qv) / det, 0.0, 1.0 - b1);
+    hit = mesh_hit(triangle, t, vec2(b1, b2), ray);
+    return true;
+}
+
+// The nearest hit over all objects at pixel `pixel`; false where the ray escapes.
+bool intersect_scene(Ray ray, ivec2 pixel, out Hit hit) {
     hit.t = FLT_MAX;
-    hit.object = -1;
+    hit.material = -1;
+    if (u_mesh_triangles > 0) {
+        uint id = texelFetch(u_visibility, pixel, 0).r;
+        if (id > 0u && id <= uint(u_mesh_triangles)) hit_triangle(int(id - 1u), ray, hit);
+    }
     float len = length(ray.direction);
     vec3 d = ray.direction / len;
     for (int i = 0; i < u_object_count; ++i) {
@@ -199,10 +425,11 @@ bool intersect_scene(Ray ray, out Hit hit) {
             case SHAPE_SPHERE: found = hit_sphere(o, ray, len, d, hit); break;
             case SHAPE_CYLINDER: found = hit_cylinder(o, ray, len, d, hit); break;
             case SHAPE_PARABOLOID: found = hit_paraboloid(o, ray, len, d, hit); break;
+            case SHAPE_TORUS: found = hit_torus(o, ray, len, d, hit); break;
         }
-        if (found) hit.object = i;
+        if (found) hit.material = o.info.y;
     }
-    return hit.object >= 0;
+    return hit.material >= 0;
 }
 
 // ---- Ray differentials (scene/ray_differentials.h): the pinhole camera has ∂o = 0 and
@@ -228,7 +455,7 @@ vec2 solve_tangent(vec3 pu, vec3 pv, vec3 w) {
 Differentials surface_differentials(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
     Differentials out_d;
     out_d.valid = false;
-    vec3 ng = normalize(hit.n);
+    vec3 ng = normalize(hit.ng);
     float cosine = dot(ray.direction, ng);
     if (!(abs(cosine) / length(ray.direction) >= 1e-8)) return out_d;
     vec3 moved_x = hit.t * dddx, moved_y = hit.t * dddy;

@@ -9,7 +9,7 @@ void main() {
     Ray ray = camera_ray(pixel);
     vec3 dddx = u_pixel_angle * u_camera_right, dddy = -u_pixel_angle * u_camera_up;
     Hit hit;
-    vec3 color = intersect_scene(ray, hit) ? shade_hit(ray, dddx, dddy, hit)
+    vec3 color = intersect_scene(ray, ivec2(pixel), hit) ? shade_hit(ray, dddx, dddy, hit)
                                            : background(ray, dddx, dddy);
     // Non-finite samples never reach a pixel (render/renderer.h): written as 0.
     if (!is_finite(color.r + color.g + color.b)) color = vec3(0);

@@ -43,12 +43,9 @@ void tangent_basis(vec3 n, out vec3 u, out vec3 v) {
     v = cross(n, u);
 }
 
-// ---- Material maps: colour map i is u_maps[i], bump map i is u_maps[kMaxMaps + i].
-const int kMaxMaps = 8;
-
 // ---- One hit, shaded (render/renderer.cpp's shade_hit()).
 vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
-    Material material = materials[objects[hit.object].info.y];
+    Material material = materials[hit.material];
     int mode = u_mode;
     bool filtered = mode != MODE_POINT;
     bool rough_mode = mode == MODE_FA_ROUGH;
@@ -65,21 +62,21 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
     vec4 dst = vec4(diff.duvdx.x, -diff.duvdx.y, diff.duvdy.x, -diff.duvdy.y);
 
     vec3 base = material.base_color.rgb;
-    int color_map = int(material.base_color.w);
-    if (color_map >= 0) base *= lookup_2d(color_map, 1, st, dst, mode).a.rgb;
+    if (material.maps.x >= 0)
+        base *= lookup_2d(material.maps.x, material.maps.y, 1, st, dst, mode).a.rgb;
 
     // Bump: the mean slope b and roughness K_b of the filtered region (spec §5.4).
     vec2 slope = vec2(0);
     vec3 k_b = material.roughness.xyz;
-    int bump_map = int(material.bump.y);
-    if (bump_map >= 0) {
-        SlopeStats stats = from_moments(lookup_2d(kMaxMaps + bump_map, 2, st, dst, mode),
+    bool bump_map = material.maps.z >= 0;
+    if (bump_map) {
+        SlopeStats stats = from_moments(lookup_2d(material.maps.z, material.maps.w, 2, st, dst, mode),
                                         vec2(material.main_direction.w, material.roughness.w));
         slope = stats.mean;
         k_b = stats.k;
     }
     if (!rough_mode) k_b = vec3(0);
-    bool bumped = bump_map >= 0 || material.bump.w > 0.0;
+    bool bumped = bump_map || material.bump.w > 0.0;
     Frame frame = Frame(vec3(1, 0, 0), vec3(0, 1, 0), 1.0);
     if (bumped) frame = bump_frame(material, hit);
     vec2 b_t = frame.slope_sign * slope;
@@ -87,7 +84,7 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
     // Face the viewer (a surface seen from behind is shaded as its mirror image).
     vec3 n = hit.n, dndx = diff.dndx, dndy = diff.dndy;
     vec3 v = ray.origin - hit.p, v_hat = normalize(v);
-    if (dot(hit.n, v) < 0.0) {
+    if (dot(hit.ng, v) < 0.0) {
         n = -n;
         dndx = -dndx;
         dndy = -dndy;
