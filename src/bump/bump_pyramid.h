@@ -26,12 +26,12 @@
 // region, weighted by the filter's kernel.
 #pragma once
 
-#include "bump/roughness.h"
-#include "core/result.h"
-#include "image/image.h"
-#include "math/footprint_ellipse.h"
-#include "texture/mip_pyramid.h"
-#include "texture/texture_lookup.h"
+#include <footprint/bump/roughness.h>
+#include <footprint/core/result.h>
+#include <footprint/image/image.h>
+#include <footprint/math/footprint_ellipse.h>
+#include <footprint/texture/mip_pyramid.h>
+#include <footprint/texture/texture_lookup.h>
 
 namespace footprint {
 

@@ -40,8 +40,8 @@
 //     uses b = 0, with a non-finite n returns the zero vector.
 #pragma once
 
-#include "math/vec.h"
-#include "math/vec3.h"
+#include <footprint/math/vec.h>
+#include <footprint/math/vec3.h>
 
 namespace footprint {
 

@@ -7,7 +7,7 @@
 // filtering blends second moments (bump_pyramid.h), never d1, d2, d3 or l1 (§5.4, [R3]).
 #pragma once
 
-#include "math/footprint_ellipse.h"
+#include <footprint/math/footprint_ellipse.h>
 
 namespace footprint {
 

@@ -52,9 +52,9 @@
 
 #include <filesystem>
 
-#include "core/result.h"
-#include "image/image.h"
-#include "math/vec.h"
+#include <footprint/core/result.h>
+#include <footprint/image/image.h>
+#include <footprint/math/vec.h>
 
 namespace footprint {
 

@@ -34,11 +34,11 @@
 
 #include <functional>
 
-#include "core/result.h"
-#include "envmap/env_image_io.h"
-#include "envmap/env_layout.h"
-#include "envmap/environment_map.h"
-#include "texture/texture_lookup.h"
+#include <footprint/core/result.h>
+#include <footprint/envmap/env_image_io.h>
+#include <footprint/envmap/env_layout.h>
+#include <footprint/envmap/environment_map.h>
+#include <footprint/texture/texture_lookup.h>
 
 namespace footprint {
 

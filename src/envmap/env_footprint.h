@@ -43,11 +43,11 @@
 // non-finite input gives a zero footprint in direction v_r = −v (or +z if v is unusable).
 #pragma once
 
-#include "bump/roughness.h"
-#include "envmap/env_layout.h"
-#include "math/footprint_ellipse.h"
-#include "math/mat3.h"
-#include "math/vec3.h"
+#include <footprint/bump/roughness.h>
+#include <footprint/envmap/env_layout.h>
+#include <footprint/math/footprint_ellipse.h>
+#include <footprint/math/mat3.h>
+#include <footprint/math/vec3.h>
 
 namespace footprint {
 

@@ -72,11 +72,11 @@
 #include <string_view>
 #include <vector>
 
-#include "core/result.h"
-#include "envmap/env_layout.h"
-#include "envmap/environment_map.h"
-#include "image/image.h"
-#include "image/image_io.h"
+#include <footprint/core/result.h>
+#include <footprint/envmap/env_layout.h>
+#include <footprint/envmap/environment_map.h>
+#include <footprint/image/image.h>
+#include <footprint/image/image_io.h>
 
 namespace footprint {
 

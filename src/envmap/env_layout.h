@@ -114,8 +114,8 @@
 #include <optional>
 #include <string_view>
 
-#include "math/vec.h"
-#include "math/vec3.h"
+#include <footprint/math/vec.h>
+#include <footprint/math/vec3.h>
 
 namespace footprint {
 

@@ -43,8 +43,8 @@
 // tests, benchmark error figures and reference renders; thread-safe (reads the map only).
 #pragma once
 
-#include "envmap/environment_map.h"
-#include "math/vec3.h"
+#include <footprint/envmap/environment_map.h>
+#include <footprint/math/vec3.h>
 
 namespace footprint {
 

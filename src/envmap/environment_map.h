@@ -44,12 +44,12 @@
 #include <optional>
 #include <span>
 
-#include "core/result.h"
-#include "envmap/env_footprint.h"
-#include "envmap/env_layout.h"
-#include "image/image.h"
-#include "texture/mip_pyramid.h"
-#include "texture/texture_lookup.h"
+#include <footprint/core/result.h>
+#include <footprint/envmap/env_footprint.h>
+#include <footprint/envmap/env_layout.h>
+#include <footprint/image/image.h>
+#include <footprint/texture/mip_pyramid.h>
+#include <footprint/texture/texture_lookup.h>
 
 namespace footprint {
 

@@ -45,9 +45,9 @@
 #include <string>
 #include <string_view>
 
-#include "core/result.h"
-#include "image/image.h"
-#include "render/render_scene.h"
+#include <footprint/core/result.h>
+#include <footprint/image/image.h>
+#include <footprint/render/render_scene.h>
 
 namespace footprint {
 

@@ -73,8 +73,8 @@
 #include <string_view>
 #include <vector>
 
-#include "core/result.h"
-#include "image/image.h"
+#include <footprint/core/result.h>
+#include <footprint/image/image.h>
 
 namespace footprint {
 

@@ -22,7 +22,7 @@
 // assembly (Rule B) and EWA implement and what the tests check.
 #pragma once
 
-#include "math/vec.h"
+#include <footprint/math/vec.h>
 
 namespace footprint {
 

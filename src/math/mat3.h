@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "math/vec3.h"
+#include <footprint/math/vec3.h>
 
 namespace footprint {
 

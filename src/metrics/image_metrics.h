@@ -47,8 +47,8 @@
 #include <string>
 #include <vector>
 
-#include "core/result.h"
-#include "image/image.h"
+#include <footprint/core/result.h>
+#include <footprint/image/image.h>
 
 namespace footprint {
 

@@ -9,8 +9,8 @@
 // step are the constants ∂d/∂x = a r, ∂d/∂y = −a u, and ∂o/∂x = ∂o/∂y = 0.
 #pragma once
 
-#include "scene/ray_differentials.h"
-#include "scene/scene.h"
+#include <footprint/scene/ray_differentials.h>
+#include <footprint/scene/scene.h>
 
 namespace footprint {
 

@@ -23,13 +23,13 @@
 #include <span>
 #include <vector>
 
-#include "bump/bump_pyramid.h"
-#include "core/result.h"
-#include "envmap/environment_map.h"
-#include "math/mat3.h"
-#include "scene/scene.h"
-#include "scene/surface.h"
-#include "texture/mip_pyramid.h"
+#include <footprint/bump/bump_pyramid.h>
+#include <footprint/core/result.h>
+#include <footprint/envmap/environment_map.h>
+#include <footprint/math/mat3.h>
+#include <footprint/scene/scene.h>
+#include <footprint/scene/surface.h>
+#include <footprint/texture/mip_pyramid.h>
 
 namespace footprint {
 

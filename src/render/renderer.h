@@ -52,8 +52,8 @@
 #include <span>
 #include <string_view>
 
-#include "image/image.h"
-#include "render/render_scene.h"
+#include <footprint/image/image.h>
+#include <footprint/render/render_scene.h>
 
 namespace footprint {
 

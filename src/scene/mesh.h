@@ -60,11 +60,11 @@
 #include <string>
 #include <vector>
 
-#include "core/result.h"
-#include "image/image.h"
-#include "math/vec.h"
-#include "math/vec3.h"
-#include "scene/scene.h"
+#include <footprint/core/result.h>
+#include <footprint/image/image.h>
+#include <footprint/math/vec.h>
+#include <footprint/math/vec3.h>
+#include <footprint/scene/scene.h>
 
 namespace footprint {
 

@@ -24,9 +24,9 @@
 //     derivative 0; both zero: ∂(u, v) = 0 (∂p is still exact and valid = true).
 #pragma once
 
-#include "math/vec.h"
-#include "math/vec3.h"
-#include "scene/surface.h"
+#include <footprint/math/vec.h>
+#include <footprint/math/vec3.h>
+#include <footprint/scene/surface.h>
 
 namespace footprint {
 

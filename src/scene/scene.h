@@ -14,12 +14,12 @@
 #include <variant>
 #include <vector>
 
-#include "bump/slope_map.h"
-#include "envmap/env_layout.h"
-#include "image/image.h"
-#include "image/image_io.h"
-#include "math/vec.h"
-#include "math/vec3.h"
+#include <footprint/bump/slope_map.h>
+#include <footprint/envmap/env_layout.h>
+#include <footprint/image/image.h>
+#include <footprint/image/image_io.h>
+#include <footprint/math/vec.h>
+#include <footprint/math/vec3.h>
 
 namespace footprint {
 

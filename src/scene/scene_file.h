@@ -47,8 +47,8 @@
 #include <filesystem>
 #include <string_view>
 
-#include "core/result.h"
-#include "scene/scene.h"
+#include <footprint/core/result.h>
+#include <footprint/scene/scene.h>
 
 namespace footprint {
 

@@ -75,10 +75,10 @@
 
 #include <optional>
 
-#include "math/vec.h"
-#include "math/vec3.h"
-#include "scene/scene.h"
-#include "scene/surface.h"
+#include <footprint/math/vec.h>
+#include <footprint/math/vec3.h>
+#include <footprint/scene/scene.h>
+#include <footprint/scene/surface.h>
 
 namespace footprint {
 

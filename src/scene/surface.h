@@ -6,8 +6,8 @@
 // a grazing angle far from the origin float loses them.
 #pragma once
 
-#include "math/vec.h"
-#include "math/vec3.h"
+#include <footprint/math/vec.h>
+#include <footprint/math/vec3.h>
 
 namespace footprint {
 

@@ -40,8 +40,8 @@
 
 #include <array>
 
-#include "math/footprint_ellipse.h"
-#include "math/vec.h"
+#include <footprint/math/footprint_ellipse.h>
+#include <footprint/math/vec.h>
 
 namespace footprint {
 

@@ -21,7 +21,7 @@
 
 #include <cmath>
 
-#include "math/footprint_ellipse.h"
+#include <footprint/math/footprint_ellipse.h>
 
 namespace footprint {
 

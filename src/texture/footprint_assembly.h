@@ -22,8 +22,8 @@
 // log2(λ1/N).
 #pragma once
 
-#include "math/footprint_ellipse.h"
-#include "texture/texture_lookup.h"
+#include <footprint/math/footprint_ellipse.h>
+#include <footprint/texture/texture_lookup.h>
 
 namespace footprint {
 

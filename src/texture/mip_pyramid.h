@@ -30,11 +30,11 @@
 #include <memory>
 #include <vector>
 
-#include "core/result.h"
-#include "image/image.h"
-#include "math/vec.h"
-#include "texture/texel_storage.h"
-#include "texture/wrap.h"
+#include <footprint/core/result.h>
+#include <footprint/image/image.h>
+#include <footprint/math/vec.h>
+#include <footprint/texture/texel_storage.h>
+#include <footprint/texture/wrap.h>
 
 namespace footprint {
 

@@ -12,9 +12,9 @@
 // slow — O(area) bilinear taps — and meant for tests, benchmarks' error figures and references.
 #pragma once
 
-#include "image/image.h"
-#include "math/footprint_ellipse.h"
-#include "texture/wrap.h"
+#include <footprint/image/image.h>
+#include <footprint/math/footprint_ellipse.h>
+#include <footprint/texture/wrap.h>
 
 namespace footprint {
 

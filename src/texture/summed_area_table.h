@@ -15,8 +15,8 @@
 
 #include <vector>
 
-#include "image/image.h"
-#include "texture/wrap.h"
+#include <footprint/image/image.h>
+#include <footprint/texture/wrap.h>
 
 namespace footprint {
 

@@ -38,8 +38,8 @@
 #include <span>
 #include <string_view>
 
-#include "math/footprint_ellipse.h"
-#include "texture/mip_pyramid.h"
+#include <footprint/math/footprint_ellipse.h>
+#include <footprint/texture/mip_pyramid.h>
 
 namespace footprint {
 

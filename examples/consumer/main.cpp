@@ -1,0 +1,62 @@
+// A renderer's first lookups through the installed footprint package: a filtered texture lookup
+// and a filtered environment lookup. Exits with 1 if a result is not what the maths says.
+#include <footprint/footprint.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+namespace {
+
+bool near(float value, float expected, float tolerance, const char* what) {
+    const bool ok = std::fabs(value - expected) <= tolerance;
+    std::printf("%-44s %.4f (expected %.4f ± %.4f) %s\n", what, value, expected, tolerance,
+                ok ? "ok" : "WRONG");
+    return ok;
+}
+
+}  // namespace
+
+int main() {
+    std::printf("footprint %s (headers %s)\n", footprint::version(), FOOTPRINT_VERSION_STRING);
+    bool ok = std::strcmp(footprint::version(), FOOTPRINT_VERSION_STRING) == 0;
+
+    // A texture: a black-and-white checkerboard of 8 × 8 squares, 256² texels.
+    footprint::Image checker(256, 256, 1);
+    for (int y = 0; y < 256; ++y)
+        for (int x = 0; x < 256; ++x) checker.at(x, y, 0) = ((x / 32 + y / 32) % 2) ? 1.0f : 0.0f;
+    const footprint::MipPyramid pyramid = footprint::MipPyramid::build(checker);
+    footprint::LookupOptions options;  // footprint assembly
+    float texel = 0;
+    // A pixel that covers a little of one white square: the square's colour.
+    footprint::TextureCoords inside{0.125f + 1 / 16.0f, 1 / 16.0f, 0.01f, 0, 0, 0.01f};
+    footprint::texture_lookup(pyramid, inside, options, &texel);
+    ok &= near(texel, 1.0f, 1e-3f, "texture: inside a white square");
+    // A grazing pixel, 16 squares long and a tenth of one wide: half white.
+    footprint::TextureCoords grazing{0.5f, 0.5f, 2.0f, 0, 0, 0.0125f};
+    footprint::texture_lookup(pyramid, grazing, options, &texel);
+    ok &= near(texel, 0.5f, 0.05f, "texture: a footprint across 16 squares");
+
+    // An environment: a lat-long sky whose brightness is the direction's height y (1 at the
+    // zenith, −1 at the nadir), 512 × 256.
+    footprint::Image sky(512, 256, 3);
+    for (int y = 0; y < 256; ++y)
+        for (int x = 0; x < 512; ++x)
+            for (int c = 0; c < 3; ++c)
+                sky.at(x, y, c) = std::cos(3.14159265f * (static_cast<float>(y) + 0.5f) / 256);
+    footprint::Result<footprint::EnvironmentMap> map = footprint::EnvironmentMap::from_latlong(sky);
+    if (!map) {
+        std::printf("environment: %s\n", map.error().message.c_str());
+        return 1;
+    }
+    float colour[3] = {0, 0, 0};
+    // A narrow ray a little above the horizon: y = sin 0.3.
+    const footprint::Vec3 r{0, std::sin(0.3f), -std::cos(0.3f)};
+    const footprint::Vec3 spread_x{0.001f, 0, 0}, spread_y{0, 0.001f, 0.0003f};
+    footprint::environment_lookup(*map, r, spread_x, spread_y, footprint::EnvLookupOptions{},
+                                  colour);
+    ok &= near(colour[0], std::sin(0.3f), 2e-3f, "environment: 0.3 rad above the horizon");
+
+    std::printf("%s\n", ok ? "all lookups as expected" : "SOME LOOKUPS WRONG");
+    return ok ? 0 : 1;
+}
