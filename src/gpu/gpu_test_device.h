@@ -13,9 +13,14 @@
 
 namespace footprint::test {
 
+// Whether this process made its device (tests/test_main.cpp ends such a process without the
+// sanitizer build's leak check).
+inline bool gpu_device_created = false;
+
 // One device per test process (a context is cheap, but every test needs one current).
 inline GpuDevice* gpu_device_or_null(std::string* why) {
     static Result<GpuDevice> device = GpuDevice::headless();
+    gpu_device_created = device.ok();
     if (device) return &*device;
     *why = device.error().message;
     return nullptr;
