@@ -327,6 +327,8 @@ struct EncodedPixels {
 // written by write_temporary. Returns the cause on failure.
 Result<std::vector<unsigned char>> encode_with_oiio(const fs::path& file, FileKind kind,
                                                     const EncodedPixels& pixels) {
+    std::vector<unsigned char> bytes;  // the memory outlives the writer (encode_levels())
+    OIIO::Filesystem::IOVecOutput memory(bytes);
     auto out = OIIO::ImageOutput::create(file.string());
     if (!out) {
         return Error{
@@ -336,8 +338,6 @@ Result<std::vector<unsigned char>> encode_with_oiio(const fs::path& file, FileKi
         return Error{std::string("OpenImageIO's ") + out->format_name() +
                      " writer cannot encode into memory"};
     }
-    std::vector<unsigned char> bytes;
-    OIIO::Filesystem::IOVecOutput memory(bytes);
     out->set_ioproxy(&memory);
     const int channels = pixels.channels;
     OIIO::ImageSpec spec(pixels.width, pixels.height, channels, pixels.file_format);
@@ -437,10 +437,12 @@ bool is_srgb_encoded(const fs::path& file) {
     return srgb;
 }
 
-Result<Image> load_image(const fs::path& file, const ImageLoadOptions& options) {
+namespace {
+
+// `file` opened for reading, its first subimage current; the error names the file.
+Result<std::unique_ptr<OIIO::ImageInput>> open_image(const fs::path& file) {
     if (auto error = check_readable(file)) return *error;
     if (auto cause = check_png_structure(file)) return read_error(file, *cause);
-
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);  // keep straight alpha as stored
     auto in = OIIO::ImageInput::open(file.string(), &config);
@@ -449,12 +451,19 @@ Result<Image> load_image(const fs::path& file, const ImageLoadOptions& options) 
                           with_oiio_message("unknown format, or the file is corrupt or truncated",
                                             OIIO::geterror()));
     }
-    const OIIO::ImageSpec spec = in->spec();
+    return in;
+}
+
+// MIP level `level` of the open file's first subimage, checked, read and decoded; `where` leads
+// the cause in messages ("MIP level 3: ", or nothing for an image's only level).
+Result<Image> read_level(OIIO::ImageInput& in, int level, const fs::path& file,
+                         const ImageLoadOptions& options, const std::string& where) {
     const auto fail = [&](const std::string& cause) {
-        (void)in->geterror();  // drop pending messages so OpenImageIO does not print them
-        in->close();
-        return read_error(file, cause);
+        (void)in.geterror();  // drop pending messages so OpenImageIO does not print them
+        return read_error(file, where + cause);
     };
+    if (!in.seek_subimage(0, level)) return fail("the file has no such MIP level");
+    const OIIO::ImageSpec spec = in.spec();
     if (spec.deep) return fail("deep images are not supported");
     if (spec.width <= 0 || spec.height <= 0 || spec.depth <= 0) {
         return fail("the image has zero size (" + std::to_string(spec.width) + " x " +
@@ -480,17 +489,11 @@ Result<Image> load_image(const fs::path& file, const ImageLoadOptions& options) 
         return fail("not enough memory for " + std::to_string(spec.width) + " x " +
                     std::to_string(spec.height) + " pixels");
     }
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data())) {
-        std::string cause = with_oiio_message("the file is truncated or corrupt", in->geterror());
-        in->close();
-        return read_error(file, cause);
+    if (!in.read_image(0, level, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()) ||
+        in.has_error()) {
+        return read_error(
+            file, where + with_oiio_message("the file is truncated or corrupt", in.geterror()));
     }
-    if (in->has_error()) {
-        std::string cause = with_oiio_message("the file is truncated or corrupt", in->geterror());
-        in->close();
-        return read_error(file, cause);
-    }
-    in->close();
     if (auto error = handle_non_finite(image, file, options)) return *error;
 
     bool decode = false;
@@ -513,6 +516,36 @@ Result<Image> load_image(const fs::path& file, const ImageLoadOptions& options) 
         decode_srgb(image, spec.format, alpha);
     }
     return image;
+}
+
+}  // namespace
+
+Result<Image> load_image(const fs::path& file, const ImageLoadOptions& options) {
+    Result<std::unique_ptr<OIIO::ImageInput>> in = open_image(file);
+    if (!in) return in.error();
+    Result<Image> image = read_level(**in, 0, file, options, "");
+    (*in)->close();
+    return image;
+}
+
+Result<std::vector<Image>> load_image_levels(const fs::path& file,
+                                             const ImageLoadOptions& options) {
+    Result<std::unique_ptr<OIIO::ImageInput>> in = open_image(file);
+    if (!in) return in.error();
+    std::vector<Image> levels;
+    for (int level = 0; level == 0 || (*in)->seek_subimage(0, level); ++level) {
+        const std::string where =
+            level == 0 ? std::string() : "MIP level " + std::to_string(level) + ": ";
+        Result<Image> image = read_level(**in, level, file, options, where);
+        if (!image) {
+            (*in)->close();
+            return image.error();
+        }
+        levels.push_back(std::move(*image));
+    }
+    (void)(*in)->geterror();  // the failed seek past the last level
+    (*in)->close();
+    return levels;
 }
 
 namespace {
@@ -715,6 +748,90 @@ Status write_file_atomically(const fs::path& file, std::string_view bytes) {
     Result<fs::path> tmp = write_temporary(file, bytes);
     if (!tmp) return write_error(file, tmp.error().message);
     return rename_all({*tmp}, {file});
+}
+
+namespace {
+
+// Why `levels` are not a MIP chain that save_image_levels can write, or nullopt.
+std::optional<std::string> levels_problem(const std::vector<Image>& levels) {
+    if (levels.empty()) return std::string("no levels given");
+    for (std::size_t l = 0; l < levels.size(); ++l) {
+        const std::string level = "MIP level " + std::to_string(l) + ": ";
+        if (auto problem = image_problem(levels[l])) return level + *problem;
+        if (levels[l].channels != levels[0].channels)
+            return level + "it has " + std::to_string(levels[l].channels) +
+                   " channels, level 0 has " + std::to_string(levels[0].channels);
+        if (l == 0) continue;
+        const int w = std::max(1, levels[l - 1].width / 2),
+                  h = std::max(1, levels[l - 1].height / 2);
+        if (levels[l].width != w || levels[l].height != h)
+            return level + "it is " + std::to_string(levels[l].width) + " x " +
+                   std::to_string(levels[l].height) + ", not " + std::to_string(w) + " x " +
+                   std::to_string(h);
+    }
+    const Image& last = levels.back();
+    if (last.width != 1 || last.height != 1)
+        return "the levels stop at " + std::to_string(last.width) + " x " +
+               std::to_string(last.height) + ", not 1 x 1";
+    return std::nullopt;
+}
+
+// The levels as one tiled, MIP-mapped OpenEXR file of floats, in memory.
+Result<std::vector<unsigned char>> encode_levels(const std::vector<Image>& levels,
+                                                 const fs::path& file,
+                                                 const LevelsSaveOptions& options) {
+    // The memory outlives the writer, whose OpenEXR file may still reach it when destroyed.
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput memory(bytes);
+    auto out = OIIO::ImageOutput::create("levels.exr");
+    if (!out || !out->supports("mipmap") || !out->supports("ioproxy"))
+        return Error{with_oiio_message("OpenImageIO cannot write MIP-mapped OpenEXR into memory",
+                                       OIIO::geterror())};
+    out->set_ioproxy(&memory);
+    static const std::vector<std::string> kNames[4] = {
+        {"Y"}, {"Y", "A"}, {"R", "G", "B"}, {"R", "G", "B", "A"}};
+    const int channels = levels[0].channels;
+    for (std::size_t l = 0; l < levels.size(); ++l) {
+        OIIO::ImageSpec spec(levels[l].width, levels[l].height, channels, OIIO::TypeDesc::FLOAT);
+        spec.channelnames = kNames[channels - 1];
+        spec.alpha_channel = (channels == 2 || channels == 4) ? channels - 1 : -1;
+        spec.tile_width = spec.tile_height = options.tile_size;
+        // A MIP-mapped texture as maketx writes one (OpenImageIO's OpenEXR writer makes a
+        // "Plain Texture" of tiles a MIPMAP_LEVELS file), levels rounded down: max(1, ⌊W/2⌋).
+        spec.attribute("textureformat", "Plain Texture");
+        spec.attribute("openexr:levelmode", 1);
+        spec.attribute("openexr:roundingmode", 0);
+        spec.attribute("oiio:ColorSpace", "Linear");
+        spec.attribute("DateTime", "");  // the same levels give the same bytes
+        if (!options.wrap_modes.empty()) spec.attribute("wrapmodes", options.wrap_modes);
+        const auto mode = l == 0 ? OIIO::ImageOutput::Create : OIIO::ImageOutput::AppendMIPLevel;
+        if (!out->open(file.string(), spec, mode) ||
+            !out->write_image(OIIO::TypeDesc::FLOAT, levels[l].pixels.data())) {
+            std::string cause = with_oiio_message(
+                "encoding MIP level " + std::to_string(l) + " failed", out->geterror());
+            out->close();
+            return Error{cause};
+        }
+    }
+    if (!out->close())
+        return Error{with_oiio_message("finishing the encoding failed", out->geterror())};
+    return bytes;
+}
+
+}  // namespace
+
+Status save_image_levels(const std::vector<Image>& levels, const fs::path& file,
+                         const LevelsSaveOptions& options) {
+    if (kind_of(file) != FileKind::exr)
+        return write_error(file, "MIP levels are written as OpenEXR; name the file .exr");
+    if (auto problem = levels_problem(levels)) return write_error(file, *problem);
+    if (!(options.tile_size >= 16 && options.tile_size <= 1024))
+        return write_error(
+            file, "tile size " + std::to_string(options.tile_size) + " is outside 16 to 1024");
+    Result<std::vector<unsigned char>> bytes = encode_levels(levels, file, options);
+    if (!bytes) return write_error(file, bytes.error().message);
+    return write_file_atomically(
+        file, std::string_view(reinterpret_cast<const char*>(bytes->data()), bytes->size()));
 }
 
 namespace detail {

@@ -100,6 +100,27 @@ struct ImageLoadOptions {
 // Reads `file` (any format OpenImageIO reads) into a linear-light float Image with 1–4 channels.
 Result<Image> load_image(const std::filesystem::path& file, const ImageLoadOptions& options = {});
 
+// Every MIP level `file` stores (those of its first subimage: OpenImageIO maketx's .tx files,
+// tiled MIP-mapped OpenEXR and TIFF), level 0 first, each read and decoded as load_image reads an
+// image; a file without MIP levels gives its one image. Errors are load_image's, with the level
+// where one is bad ("… MIP level 3: …").
+Result<std::vector<Image>> load_image_levels(const std::filesystem::path& file,
+                                             const ImageLoadOptions& options = {});
+
+struct LevelsSaveOptions {
+    // OpenImageIO's "wrapmodes" attribute, which maketx writes and texture systems read:
+    // "periodic,clamp" (s, then t; black, clamp, periodic, mirror). Empty: none written.
+    std::string wrap_modes;
+    int tile_size = 64;  // tiles of tile_size² texels, 16 to 1024
+};
+
+// Writes `levels` as one tiled, MIP-mapped OpenEXR file of 32-bit floats (linear, as stored),
+// atomically as save_image: level 0 first, each level max(1, ⌊W/2⌋) × max(1, ⌊H/2⌋) of the one
+// before down to 1×1 (OpenEXR's round-down chain, MipPyramid's level sizes), 1–4 channels alike.
+// Errors name the file and, where the levels are wrong, the level.
+Status save_image_levels(const std::vector<Image>& levels, const std::filesystem::path& file,
+                         const LevelsSaveOptions& options = {});
+
 struct ImageSaveOptions {
     // automatic: sRGB for .png .jpg .jpeg .tif .tiff, linear for .exr .hdr. srgb / linear force
     // the encoding for any format.

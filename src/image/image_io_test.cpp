@@ -153,6 +153,80 @@ TEST_F(ImageIo, ExrFloatRoundTripIsBitExact) {
     }
 }
 
+// ---- MIP levels --------------------------------------------------------------------------------
+
+// Random levels of OpenEXR's round-down chain from width × height to 1 × 1.
+std::vector<Image> mip_chain(int width, int height, int channels) {
+    std::vector<Image> levels;
+    for (int w = width, h = height;; w = std::max(1, w / 2), h = std::max(1, h / 2)) {
+        levels.push_back(
+            make_image(w, h, channels, -2.0f, 30.0f, static_cast<unsigned>(levels.size() + 10)));
+        if (w == 1 && h == 1) return levels;
+    }
+}
+
+TEST_F(ImageIo, MipLevelsRoundTripBitExactAsOneTiledExr) {
+    for (int channels : {1, 2, 3, 4}) {
+        const std::vector<Image> levels = mip_chain(37, 20, channels);
+        ASSERT_EQ(levels.size(), 6u);  // 37×20, 18×10, 9×5, 4×2, 2×1, 1×1
+        const fs::path file = path("levels" + std::to_string(channels) + ".exr");
+        LevelsSaveOptions options;
+        options.wrap_modes = "periodic,clamp";
+        options.tile_size = 16;
+        ASSERT_TRUE(save_image_levels(levels, file, options).ok());
+        const Result<std::vector<Image>> loaded = load_image_levels(file);
+        ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+        ASSERT_EQ(loaded->size(), levels.size());
+        for (std::size_t l = 0; l < levels.size(); ++l) {
+            expect_same_shape((*loaded)[l], levels[l]);
+            EXPECT_EQ((*loaded)[l].pixels, levels[l].pixels)
+                << channels << " channels, level " << l;
+        }
+        // What a texture system reads: 16 × 16 tiles, MIP-mapped, the wrap modes.
+        auto in = OIIO::ImageInput::open(file.string());
+        ASSERT_TRUE(in);
+        EXPECT_EQ(in->spec().tile_width, 16);
+        EXPECT_EQ(in->spec().get_string_attribute("wrapmodes"), "periodic,clamp");
+        in->close();
+    }
+}
+
+TEST_F(ImageIo, AFileWithoutMipLevelsIsItsOneLevel) {
+    const Image image = make_image(9, 4, 3, 0.0f, 1.0f);
+    ASSERT_TRUE(save_image(image, path("plain.png")).ok());
+    const Result<std::vector<Image>> levels = load_image_levels(path("plain.png"));
+    ASSERT_TRUE(levels.ok()) << levels.error().message;
+    ASSERT_EQ(levels->size(), 1u);
+    EXPECT_EQ((*levels)[0].pixels, load_image(path("plain.png"))->pixels);
+}
+
+TEST_F(ImageIo, WrongMipChainsAreRefusedNamingTheLevelAndLeaveNothing) {
+    const fs::path file = path("bad.exr");
+    std::vector<Image> levels = mip_chain(37, 20, 3);
+    levels[2] = make_image(5, 5, 3, 0.0f, 1.0f);
+    Status s = save_image_levels(levels, file);
+    ASSERT_FALSE(s.ok());
+    EXPECT_EQ(s.error().message,
+              "cannot write " + quoted(file) + ": MIP level 2: it is 5 x 5, not 9 x 5");
+    levels = mip_chain(37, 20, 3);
+    levels.pop_back();
+    s = save_image_levels(levels, file);
+    ASSERT_FALSE(s.ok());
+    EXPECT_EQ(s.error().message,
+              "cannot write " + quoted(file) + ": the levels stop at 2 x 1, not 1 x 1");
+    levels = mip_chain(37, 20, 3);
+    levels[1] = make_image(18, 10, 4, 0.0f, 1.0f);
+    s = save_image_levels(levels, file);
+    ASSERT_FALSE(s.ok());
+    EXPECT_EQ(s.error().message,
+              "cannot write " + quoted(file) + ": MIP level 1: it has 4 channels, level 0 has 3");
+    s = save_image_levels(mip_chain(4, 4, 3), path("levels.png"));
+    ASSERT_FALSE(s.ok());
+    EXPECT_EQ(s.error().message, "cannot write " + quoted(path("levels.png")) +
+                                     ": MIP levels are written as OpenEXR; name the file .exr");
+    EXPECT_TRUE(entries().empty());
+}
+
 TEST_F(ImageIo, ExrHalfRoundTripWithinHalfPrecision) {
     const Image image = make_image(6, 4, 4, -8.0f, 1000.0f);
     const fs::path file = path("half.exr");
@@ -712,6 +786,15 @@ TEST_F(ImageIo, FailedWriteIsAnErrorAndLeavesNothingInEveryFormat) {
         }
         EXPECT_TRUE(entries().empty()) << ext;
     }
+}
+
+TEST_F(ImageIo, FailedMipLevelsWriteIsAnErrorAndLeavesNothing) {
+    const fs::path file = path("levels.exr");
+    {
+        FailingWrites failing(half_then_full_disk);
+        expect_full_disk_error(save_image_levels(mip_chain(64, 32, 3), file), file);
+    }
+    EXPECT_TRUE(entries().empty());
 }
 
 TEST_F(ImageIo, FailedWriteLeavesTheExistingTargetUntouched) {

@@ -1,5 +1,8 @@
 #include "texture/mip_pyramid.h"
+#include "core/test_temp_dir.h"
+#include "image/image_io.h"
 #include "image/test_images.h"
+#include "texture/texture_lookup.h"
 
 #include <gtest/gtest.h>
 
@@ -177,6 +180,32 @@ TEST(MipPyramid, FromLevelsValidatesTheChain) {
     levels.pop_back();
     EXPECT_FALSE(MipPyramid::from_levels(levels).ok());
     EXPECT_FALSE(MipPyramid::from_levels({}).ok());
+}
+
+// A pyramid's levels written as a MIP-mapped file and read back (image/image_io.h) are the same
+// pyramid: every texel, and so every lookup, bit for bit — what a texture cache of stored levels
+// relies on.
+TEST(MipPyramid, ItsLevelsThroughAMipMappedFileAreTheSamePyramid) {
+    const MipPyramid built = MipPyramid::build(random_image(45, 23, 3, 5));
+    std::vector<Image> levels;
+    for (int l = 0; l < built.level_count(); ++l) levels.push_back(built.level_image(l));
+    test::TempDir dir;
+    ASSERT_TRUE(save_image_levels(levels, dir / "pyramid.exr").ok());
+    const Result<std::vector<Image>> read = load_image_levels(dir / "pyramid.exr");
+    ASSERT_TRUE(read.ok()) << read.error().message;
+    const Result<MipPyramid> loaded = MipPyramid::from_levels(*read);
+    ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+    ASSERT_EQ(loaded->level_count(), built.level_count());
+    for (int l = 0; l < built.level_count(); ++l)
+        EXPECT_EQ(loaded->level_image(l).pixels, built.level_image(l).pixels) << l;
+    LookupOptions options;
+    for (float d : {0.001f, 0.03f, 0.4f}) {
+        const TextureCoords c{0.37f, 0.81f, d, 0.2f * d, -0.1f * d, 0.5f * d};
+        float a[4], b[4];
+        texture_lookup(built, c, options, a);
+        texture_lookup(*loaded, c, options, b);
+        EXPECT_EQ(std::vector<float>(a, a + 3), std::vector<float>(b, b + 3)) << d;
+    }
 }
 
 TEST(WrapMode, IndicesAndParsing) {
