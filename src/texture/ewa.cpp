@@ -7,6 +7,7 @@
 
 #include "texture/filters.h"
 #include "texture/sampling.h"
+#include "texture/tiled_texels.h"
 
 namespace footprint {
 
@@ -26,8 +27,8 @@ namespace detail {
 namespace {
 
 // Σ w(ξ)·texel over one level, added into acc[] (weighted by level_weight) and the weight sum.
-template <int S>
-void accumulate_ewa_level(const MipPyramid& pyramid, int l, float s, float t,
+template <int S, class Texels>
+void accumulate_ewa_level(const Texels& pyramid, int l, float s, float t,
                           const FootprintEllipse& footprint, float level_weight, double* acc) {
     const MipPyramid::LevelView& level = pyramid.level(l);
     const float tx = static_cast<float>(pyramid.width(0)) / static_cast<float>(level.width);
@@ -67,14 +68,13 @@ void accumulate_ewa_level(const MipPyramid& pyramid, int l, float s, float t,
             const float w = std::exp(-0.5f * r2) - edge_weight;
             const int wx =
                 x >= 0 && x < level.width ? x : wrap_index(x, level.width, pyramid.wrap_s());
-            const float* texel = level.texel(wx, wy);
+            const float* texel = level_texel(pyramid, l, wx, wy);
             for (int k = 0; k < S; ++k) sum[k] += w * texel[k];
             weight_sum += w;
         }
     }
     if (weight_sum <= 0) {  // the ellipse missed every texel centre: fall back to bilinear
-        const Texel<S> bilinear =
-            sample_bilinear<S>(level, pyramid.wrap_s(), pyramid.wrap_t(), s, t);
+        const Texel<S> bilinear = sample_bilinear<S>(pyramid, l, s, t);
         for (int k = 0; k < S; ++k)
             acc[k] += level_weight * bilinear.v[k];  // (double accumulators)
         return;
@@ -84,7 +84,8 @@ void accumulate_ewa_level(const MipPyramid& pyramid, int l, float s, float t,
 
 }  // namespace
 
-void filter_ewa(const MipPyramid& pyramid, float s, float t, const FootprintEllipse& footprint,
+template <class Texels>
+void filter_ewa(const Texels& pyramid, float s, float t, const FootprintEllipse& footprint,
                 const LookupOptions& options, float* out) {
     FootprintEllipse e = footprint;
     if (e.major_radius <= 1.0f) {  // magnification: reconstruct, don't blur
@@ -109,6 +110,11 @@ void filter_ewa(const MipPyramid& pyramid, float s, float t, const FootprintElli
         for (int k = 0; k < pyramid.channels(); ++k) out[k] = static_cast<float>(acc[k]);
     });
 }
+
+template void filter_ewa(const MipPyramid&, float, float, const FootprintEllipse&,
+                         const LookupOptions&, float*);
+template void filter_ewa(const TiledTexels&, float, float, const FootprintEllipse&,
+                         const LookupOptions&, float*);
 
 }  // namespace detail
 }  // namespace footprint

@@ -11,8 +11,10 @@
 
 namespace footprint::detail {
 
-// Footprint assembly, spec §2.8 (footprint_assembly.h). Writes pyramid.channels() floats.
-void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
+// Footprint assembly, spec §2.8 (footprint_assembly.h), on a MipPyramid or TiledTexels
+// (tiled_texels.h). Writes pyramid.channels() floats.
+template <class Texels>
+void filter_footprint_assembly(const Texels& pyramid, float s, float t,
                                const FootprintEllipse& footprint, const LookupOptions& options,
                                float* out);
 
@@ -76,8 +78,9 @@ class RequestedReads {
     std::size_t probe_count_ = 0, line_count_ = 0;
 };
 
-// EWA (ewa.h).
-void filter_ewa(const MipPyramid& pyramid, float s, float t, const FootprintEllipse& footprint,
+// EWA (ewa.h), on a MipPyramid or TiledTexels.
+template <class Texels>
+void filter_ewa(const Texels& pyramid, float s, float t, const FootprintEllipse& footprint,
                 const LookupOptions& options, float* out);
 
 }  // namespace footprint::detail

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <type_traits>
 
 #include "math/fast_log2.h"
 #include "math/footprint_ellipse_lanes.h"
@@ -10,6 +11,7 @@
 
 #include "texture/filters.h"
 #include "texture/sampling.h"
+#include "texture/tiled_texels.h"
 
 namespace footprint {
 
@@ -316,15 +318,18 @@ namespace detail {
 namespace {
 
 // The plan of a footprint on `pyramid`.
-inline ProbePlan plan_for(const MipPyramid& pyramid, const FootprintEllipse& footprint,
+template <class Texels>
+inline ProbePlan plan_for(const Texels& pyramid, const FootprintEllipse& footprint,
                           const LookupOptions& options) {
     return plan_probes(footprint, options.probe_rule, options.max_probes, pyramid.max_level(),
                        options.lod_bias, options.isotropic_ratio);
 }
 
 // filter_footprint_assembly(), or given `probe` and `line`, request_footprint_assembly(), of a
-// footprint planned (plan_for()).
-inline Requested assemble(const MipPyramid& pyramid, float s, float t, const ProbePlan& plan,
+// footprint planned (plan_for()), on a MipPyramid or TiledTexels (which has no fast paths: its
+// taps are wherever its tiles are).
+template <class Texels>
+inline Requested assemble(const Texels& pyramid, float s, float t, const ProbePlan& plan,
                           const LookupOptions& options, float* out, RequestedProbe* probe,
                           RequestedLine<kRequestedLineProbes>* line) {
     // Offsets are in level-0 texels; divide by S = diag(W0, H0) for normalised units (spec §2.9).
@@ -354,17 +359,23 @@ inline Requested assemble(const MipPyramid& pyramid, float s, float t, const Pro
         const float k = first + static_cast<float>(i);
         return Vec2{s + k * du, t + k * dv};
     };
-    if (line && plan.count <= kRequestedLineProbes) {
-        bool requested = false;
-        dispatch_stride(pyramid.stride(), [&]<int S>() {
-            requested = line->template request<S>(pyramid, plan.count, weights, levels, position(0),
-                                                  position(plan.count - 1), position);
-        });
-        if (requested) return Requested::line;
+    constexpr bool in_memory = std::is_same_v<Texels, MipPyramid>;
+    if constexpr (in_memory) {
+        if (line && plan.count <= kRequestedLineProbes) {
+            bool requested = false;
+            dispatch_stride(pyramid.stride(), [&]<int S>() {
+                requested =
+                    line->template request<S>(pyramid, plan.count, weights, levels, position(0),
+                                              position(plan.count - 1), position);
+            });
+            if (requested) return Requested::line;
+        }
+        // A line whose ends' taps lie on the levels needs no wrapping.
+        if (blend_probe_line_inside(pyramid, plan.count, weights, levels, position, out))
+            return Requested::done;
+    } else if (blend_probe_line_in_tiles(pyramid, plan.count, weights, levels, position, out)) {
+        return Requested::done;  // in one tile per level: no tile lookup per tap
     }
-    // A line whose ends' taps lie on the levels needs no wrapping.
-    if (blend_probe_line_inside(pyramid, plan.count, weights, levels, position, out))
-        return Requested::done;
     dispatch_stride(pyramid.stride(), [&]<int S>() {
         const Texel<S> result =
             blend_probe_line<S>(plan.count, weights, levels, pyramid.stride(), [&](int i) {
@@ -378,11 +389,16 @@ inline Requested assemble(const MipPyramid& pyramid, float s, float t, const Pro
 
 }  // namespace
 
-void filter_footprint_assembly(const MipPyramid& pyramid, float s, float t,
+template <class Texels>
+void filter_footprint_assembly(const Texels& pyramid, float s, float t,
                                const FootprintEllipse& footprint, const LookupOptions& options,
                                float* out) {
     assemble(pyramid, s, t, plan_for(pyramid, footprint, options), options, out, nullptr, nullptr);
 }
+template void filter_footprint_assembly(const MipPyramid&, float, float, const FootprintEllipse&,
+                                        const LookupOptions&, float*);
+template void filter_footprint_assembly(const TiledTexels&, float, float, const FootprintEllipse&,
+                                        const LookupOptions&, float*);
 
 Requested request_footprint_assembly(const MipPyramid& pyramid, float s, float t,
                                      const FootprintEllipse& footprint,

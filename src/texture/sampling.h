@@ -166,6 +166,16 @@ inline Texel<S> sample_bilinear(const MipPyramid::LevelView& level, WrapMode wra
     return blend_taps<S>(wrapped_taps(level, wrap_s, wrap_t, bilinear_position(level, s, t)));
 }
 
+// The texel-source functions the filters call on a MipPyramid (tiled_texels.h has TiledTexels'):
+// a bilinear sample of level l at (s, t), and texel (x, y) of level l.
+template <int S>
+inline Texel<S> sample_bilinear(const MipPyramid& pyramid, int l, float s, float t) {
+    return sample_bilinear<S>(pyramid.level(l), pyramid.wrap_s(), pyramid.wrap_t(), s, t);
+}
+inline const float* level_texel(const MipPyramid& pyramid, int l, int x, int y) {
+    return pyramid.texel(l, x, y);
+}
+
 // Blend weight of the finer level's successor at fractional lod L + w.
 inline float lod_blend_weight(float w, LodBlend blend) {
     // Spec §2.8: linear blending gives variance 4^L(1+3w)/4; w' = (4^w − 1)/3 gives 4^{L+w}/4.
@@ -190,11 +200,12 @@ struct ProbeTaps {
     BilinearTaps fine, coarse;  // coarse: only when levels.w > 0
 };
 
-// The taps of a trilinear probe at (s, t) on `pyramid`'s levels: both levels positioned at once
-// (bilinear_positions), each level's taps addressed by taps_on(view, level, position) — wrapped at
-// a texture's edges, or read across an environment map's faces.
-template <class TapsOn>
-inline ProbeTaps trilinear_taps(const MipPyramid& pyramid, float s, float t, TrilinearLevels levels,
+// The taps of a trilinear probe at (s, t) on `pyramid`'s levels (a MipPyramid, or TiledTexels):
+// both levels positioned at once (bilinear_positions), each level's taps addressed by
+// taps_on(view, level, position) — wrapped at a texture's edges, or read across an environment
+// map's faces.
+template <class Levels, class TapsOn>
+inline ProbeTaps trilinear_taps(const Levels& pyramid, float s, float t, TrilinearLevels levels,
                                 TapsOn&& taps_on) {
     const MipPyramid::LevelView& fine = pyramid.level(levels.l0);
     if (levels.w == 0.0f) return {taps_on(fine, levels.l0, bilinear_position(fine, s, t)), {}};
@@ -240,9 +251,9 @@ struct RequestedProbe {
     }
 };
 
-// Trilinear probe at a fractional level lod ∈ [0, max_level].
-template <int S>
-inline Texel<S> sample_trilinear(const MipPyramid& pyramid, float s, float t, float lod,
+// Trilinear probe at a fractional level lod ∈ [0, max_level] of a MipPyramid or TiledTexels.
+template <int S, class Texels>
+inline Texel<S> sample_trilinear(const Texels& pyramid, float s, float t, float lod,
                                  LodBlend blend) {
     const TrilinearLevels levels = trilinear_levels(lod, pyramid.max_level(), blend);
     return blend_probe<S>(probe_taps(pyramid, s, t, levels), levels);
@@ -536,11 +547,11 @@ inline bool blend_probe_line_inside(const MipPyramid& pyramid, int count, const 
 }
 
 // A bilinear sample of level 0 at reduced (s, t), written to out: the magnification and
-// no-MIP path of every filter.
-inline void lookup_level0_bilinear(const MipPyramid& pyramid, float s, float t, float* out) {
+// no-MIP path of every filter (on a MipPyramid or TiledTexels, tiled_texels.h).
+template <class Texels>
+inline void lookup_level0_bilinear(const Texels& pyramid, float s, float t, float* out) {
     dispatch_stride(pyramid.stride(), [&]<int S>() {
-        store(sample_bilinear<S>(pyramid.level(0), pyramid.wrap_s(), pyramid.wrap_t(), s, t),
-              pyramid.channels(), out);
+        store(sample_bilinear<S>(pyramid, 0, s, t), pyramid.channels(), out);
     });
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "math/fast_log2.h"
 
@@ -10,6 +11,7 @@
 #include "texture/sampling.h"
 #include "texture/summed_area_table.h"
 #include "texture/texture_lookup_route.h"
+#include "texture/tiled_texels.h"
 
 namespace footprint {
 
@@ -64,41 +66,6 @@ FootprintEllipse footprint_of(const MipPyramid& pyramid, const TextureCoords& c)
     return make_footprint_ellipse(Vec2{c.dsdx * w0, c.dtdx * h0}, Vec2{c.dsdy * w0, c.dtdy * h0});
 }
 
-namespace texture_route {
-
-FootprintEllipse bounded(const MipPyramid& pyramid, FootprintEllipse e) {
-    const float limit = 4.0f * static_cast<float>(std::max(pyramid.width(0), pyramid.height(0)));
-    if (!e.matrix.is_finite() || !std::isfinite(e.major_radius) || !std::isfinite(e.minor_radius) ||
-        !is_finite(e.major_axis))
-        return FootprintEllipse{};  // non-finite derivatives: a point sample
-    if (e.major_radius > limit || e.minor_radius > limit) {
-        e.major_radius = std::min(e.major_radius, limit);
-        e.minor_radius = std::min(e.minor_radius, limit);
-        e.matrix = e.from_axes();
-    }
-    return e;
-}
-
-void lookup_nearest(const MipPyramid& pyramid, float s, float t, float* out) {
-    const MipPyramid::LevelView& level = pyramid.level(0);
-    const int x = wrap_index(static_cast<int>(std::floor(s * static_cast<float>(level.width))),
-                             level.width, pyramid.wrap_s());
-    const int y = wrap_index(static_cast<int>(std::floor(t * static_cast<float>(level.height))),
-                             level.height, pyramid.wrap_t());
-    const float* texel = level.texel(x, y);
-    for (int c = 0; c < pyramid.channels(); ++c) out[c] = texel[c];
-}
-
-void lookup_trilinear(const MipPyramid& pyramid, float s, float t, float lod, LodBlend blend,
-                      float* out) {
-    detail::dispatch_stride(pyramid.stride(), [&]<int S>() {
-        detail::store(detail::sample_trilinear<S>(pyramid, s, t, lod, blend), pyramid.channels(),
-                      out);
-    });
-}
-
-}  // namespace texture_route
-
 namespace {
 
 void lookup_summed_area(const MipPyramid& pyramid, float s, float t, const FootprintEllipse& e,
@@ -119,29 +86,33 @@ void lookup_summed_area(const MipPyramid& pyramid, float s, float t, const Footp
 
 }  // namespace
 
-void texture_lookup(const MipPyramid& pyramid, float s, float t, const FootprintEllipse& footprint,
+namespace texture_route {
+
+template <class Texels>
+void lookup_ellipse(const Texels& pyramid, float s, float t, const FootprintEllipse& footprint,
                     const LookupOptions& options, float* out) {
     if (!std::isfinite(s) || !std::isfinite(t)) {  // nowhere in particular: the texture mean
-        std::copy_n(pyramid.texel(pyramid.max_level(), 0, 0), pyramid.channels(), out);
+        std::copy_n(detail::level_texel(pyramid, pyramid.max_level(), 0, 0), pyramid.channels(),
+                    out);
         return;
     }
     s = reduce_coordinate(s, pyramid.wrap_s());
     t = reduce_coordinate(t, pyramid.wrap_t());
-    const FootprintEllipse e = texture_route::bounded(pyramid, footprint);
+    const FootprintEllipse e = bounded(pyramid, footprint);
     const float max_level = static_cast<float>(pyramid.max_level());
 
     switch (options.filter) {
         case TextureFilter::nearest:
-            texture_route::lookup_nearest(pyramid, s, t, out);
+            lookup_nearest(pyramid, s, t, out);
             return;
         case TextureFilter::bilinear:
-            texture_route::lookup_trilinear(pyramid, s, t, 0.0f, LodBlend::linear, out);
+            lookup_trilinear(pyramid, s, t, 0.0f, LodBlend::linear, out);
             return;
         case TextureFilter::trilinear: {
             // Isotropic: ρ = λ1 for an ellipse (the coords overload uses GL's column lengths).
             const float lod = fast_log2(std::max(e.major_radius, 1e-30f)) + options.lod_bias;
-            texture_route::lookup_trilinear(pyramid, s, t, std::clamp(lod, 0.0f, max_level),
-                                            LodBlend::linear, out);
+            lookup_trilinear(pyramid, s, t, std::clamp(lod, 0.0f, max_level), LodBlend::linear,
+                             out);
             return;
         }
         case TextureFilter::footprint_assembly:
@@ -151,14 +122,40 @@ void texture_lookup(const MipPyramid& pyramid, float s, float t, const Footprint
             detail::filter_ewa(pyramid, s, t, e, options, out);
             return;
         case TextureFilter::summed_area:
-            lookup_summed_area(pyramid, s, t, e, out);
+            if constexpr (std::is_same_v<Texels, MipPyramid>) {
+                lookup_summed_area(pyramid, s, t, e, out);
+            } else {  // a tiled pyramid has no SAT: lookup_summed_area()'s fallback
+                lookup_trilinear(pyramid, s, t, std::log2(std::max(e.major_radius, 1.0f)),
+                                 LodBlend::linear, out);
+            }
             return;
     }
+}
+
+template void lookup_ellipse(const MipPyramid&, float, float, const FootprintEllipse&,
+                             const LookupOptions&, float*);
+template void lookup_ellipse(const detail::TiledTexels&, float, float, const FootprintEllipse&,
+                             const LookupOptions&, float*);
+
+}  // namespace texture_route
+
+void texture_lookup(const MipPyramid& pyramid, float s, float t, const FootprintEllipse& footprint,
+                    const LookupOptions& options, float* out) {
+    texture_route::lookup_ellipse(pyramid, s, t, footprint, options, out);
 }
 
 void texture_lookup(const MipPyramid& pyramid, const TextureCoords& c, const LookupOptions& options,
                     float* out) {
     texture_route::route_lookup(pyramid, c, options, out, nullptr);
 }
+
+namespace detail {
+
+void texture_lookup(const TiledTexels& texels, const TextureCoords& c, const LookupOptions& options,
+                    float* out) {
+    texture_route::route_lookup(texels, c, options, out, nullptr);
+}
+
+}  // namespace detail
 
 }  // namespace footprint

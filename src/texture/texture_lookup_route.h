@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "math/fast_log2.h"
 #include "math/footprint_ellipse.h"
@@ -12,19 +13,54 @@
 #include "texture/footprint_assembly.h"
 #include "texture/sampling.h"
 #include "texture/texture_lookup.h"
+#include "texture/tiled_texels.h"
 
 namespace footprint::texture_route {
 
+// Each function here reads a MipPyramid or TiledTexels (tiled_texels.h), `Texels`, alike.
+
 // Footprints beyond a few texture sizes all read the coarsest level; bounding them keeps every
 // loop finite and every float in range.
-FootprintEllipse bounded(const MipPyramid& pyramid, FootprintEllipse e);
+template <class Texels>
+FootprintEllipse bounded(const Texels& pyramid, FootprintEllipse e) {
+    const float limit = 4.0f * static_cast<float>(std::max(pyramid.width(0), pyramid.height(0)));
+    if (!e.matrix.is_finite() || !std::isfinite(e.major_radius) || !std::isfinite(e.minor_radius) ||
+        !is_finite(e.major_axis))
+        return FootprintEllipse{};  // non-finite derivatives: a point sample
+    if (e.major_radius > limit || e.minor_radius > limit) {
+        e.major_radius = std::min(e.major_radius, limit);
+        e.minor_radius = std::min(e.minor_radius, limit);
+        e.matrix = e.from_axes();
+    }
+    return e;
+}
 
 // The nearest level-0 texel of reduced (s, t).
-void lookup_nearest(const MipPyramid& pyramid, float s, float t, float* out);
+template <class Texels>
+void lookup_nearest(const Texels& pyramid, float s, float t, float* out) {
+    const int w = pyramid.width(0), h = pyramid.height(0);
+    const int x =
+        wrap_index(static_cast<int>(std::floor(s * static_cast<float>(w))), w, pyramid.wrap_s());
+    const int y =
+        wrap_index(static_cast<int>(std::floor(t * static_cast<float>(h))), h, pyramid.wrap_t());
+    const float* texel = detail::level_texel(pyramid, 0, x, y);
+    for (int c = 0; c < pyramid.channels(); ++c) out[c] = texel[c];
+}
 
 // One trilinear probe at reduced (s, t).
-void lookup_trilinear(const MipPyramid& pyramid, float s, float t, float lod, LodBlend blend,
-                      float* out);
+template <class Texels>
+void lookup_trilinear(const Texels& pyramid, float s, float t, float lod, LodBlend blend,
+                      float* out) {
+    detail::dispatch_stride(pyramid.stride(), [&]<int S>() {
+        detail::store(detail::sample_trilinear<S>(pyramid, s, t, lod, blend), pyramid.channels(),
+                      out);
+    });
+}
+
+// texture_lookup(pyramid, s, t, footprint, options, out) of either source (texture_lookup.cpp).
+template <class Texels>
+void lookup_ellipse(const Texels& pyramid, float s, float t, const FootprintEllipse& footprint,
+                    const LookupOptions& options, float* out);
 
 // The lookups a batch requests now and reads later (texture_lookup_batch()).
 struct Requests {
@@ -36,9 +72,9 @@ struct Requests {
 // batch), a lookup that is one bilinear or trilinear probe — magnification, the GL rule, a
 // near-isotropic footprint — requested into requests.probe, and a short footprint-assembly line
 // into requests.line, for the caller to read (bit for bit what is done into out without them).
-inline detail::Requested route_lookup(const MipPyramid& pyramid, const TextureCoords& c,
-                                      const LookupOptions& options, float* out,
-                                      const Requests* requests) {
+template <class Texels>
+detail::Requested route_lookup(const Texels& pyramid, const TextureCoords& c,
+                               const LookupOptions& options, float* out, const Requests* requests) {
     using detail::Requested;
     // One trilinear probe at reduced (s, t): lookup_trilinear(), or requested.
     auto trilinear = [&](float s, float t, float lod, LodBlend blend) {
@@ -53,7 +89,7 @@ inline detail::Requested route_lookup(const MipPyramid& pyramid, const TextureCo
         return Requested::probe;
     };
     if (!std::isfinite(c.s) || !std::isfinite(c.t)) {  // the ellipse overload returns the mean
-        texture_lookup(pyramid, c.s, c.t, FootprintEllipse{}, options, out);
+        lookup_ellipse(pyramid, c.s, c.t, FootprintEllipse{}, options, out);
         return Requested::done;
     }
     const float w0 = static_cast<float>(pyramid.width(0)),
@@ -83,7 +119,7 @@ inline detail::Requested route_lookup(const MipPyramid& pyramid, const TextureCo
         std::isfinite(c.dsdy) && std::isfinite(c.dtdy)) {
         // Finite derivatives whose footprint overflows float: larger than any texture.
         constexpr float kHuge = 1e30f;
-        texture_lookup(pyramid, c.s, c.t, make_footprint_ellipse(kHuge, kHuge, 0.0f), options, out);
+        lookup_ellipse(pyramid, c.s, c.t, make_footprint_ellipse(kHuge, kHuge, 0.0f), options, out);
         return Requested::done;
     }
     if (options.filter == TextureFilter::trilinear && std::isfinite(len_x2 + len_y2)) {
@@ -100,16 +136,18 @@ inline detail::Requested route_lookup(const MipPyramid& pyramid, const TextureCo
         return trilinear(reduce_coordinate(c.s, pyramid.wrap_s()),
                          reduce_coordinate(c.t, pyramid.wrap_t()), lod,
                          single_probe_blend(options.lod_blend));
-    if (requests && options.filter == TextureFilter::footprint_assembly) {
-        // The ellipse overload's footprint assembly ((s, t) reduced, the footprint bounded),
-        // requested.
-        return detail::request_footprint_assembly(
-            pyramid, reduce_coordinate(c.s, pyramid.wrap_s()),
-            reduce_coordinate(c.t, pyramid.wrap_t()),
-            bounded(pyramid, make_footprint_ellipse(d_dx, d_dy)), options, out, requests->probe,
-            requests->line);
+    if constexpr (std::is_same_v<Texels, MipPyramid>) {
+        if (requests && options.filter == TextureFilter::footprint_assembly) {
+            // The ellipse overload's footprint assembly ((s, t) reduced, the footprint bounded),
+            // requested.
+            return detail::request_footprint_assembly(
+                pyramid, reduce_coordinate(c.s, pyramid.wrap_s()),
+                reduce_coordinate(c.t, pyramid.wrap_t()),
+                bounded(pyramid, make_footprint_ellipse(d_dx, d_dy)), options, out, requests->probe,
+                requests->line);
+        }
     }
-    texture_lookup(pyramid, c.s, c.t, make_footprint_ellipse(d_dx, d_dy), options, out);
+    lookup_ellipse(pyramid, c.s, c.t, make_footprint_ellipse(d_dx, d_dy), options, out);
     return Requested::done;
 }
 
