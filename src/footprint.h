@@ -35,6 +35,7 @@
 #include <footprint/envmap/env_layout.h>
 #include <footprint/envmap/env_reference.h>
 #include <footprint/envmap/environment_map.h>
+#include <footprint/texture_system.h>
 
 #include <footprint/scene/mesh.h>
 #include <footprint/scene/ray_differentials.h>

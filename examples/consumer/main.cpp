@@ -1,10 +1,13 @@
-// A renderer's first lookups through the installed footprint package: a filtered texture lookup
-// and a filtered environment lookup. Exits with 1 if a result is not what the maths says.
+// A renderer's first lookups through the installed footprint package: a filtered texture lookup,
+// a filtered environment lookup and a texture-system lookup of a file by name. Exits with 1 if a
+// result is not what the maths says.
 #include <footprint/footprint.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
+#include <string>
 
 namespace {
 
@@ -56,6 +59,31 @@ int main() {
     footprint::environment_lookup(*map, r, spread_x, spread_y, footprint::EnvLookupOptions{},
                                   colour);
     ok &= near(colour[0], std::sin(0.3f), 2e-3f, "environment: 0.3 rad above the horizon");
+
+    // The texture system: the checkerboard written as a file, looked up by name through the cache.
+    const std::filesystem::path file =
+        std::filesystem::temp_directory_path() / "footprint-consumer-checker.exr";
+    if (footprint::Status saved = footprint::save_image(checker, file); !saved) {
+        std::printf("texture system: %s\n", saved.error().message.c_str());
+        return 1;
+    }
+    footprint::TextureSystemOptions ts_options;
+    ts_options.max_memory_mb = 16;
+    footprint::Result<std::unique_ptr<footprint::TextureSystem>> made =
+        footprint::TextureSystem::create(ts_options);
+    if (!made) {
+        std::printf("texture system: %s\n", made.error().message.c_str());
+        return 1;
+    }
+    std::unique_ptr<footprint::TextureSystem> ts = std::move(*made);
+    float by_name = 0;
+    footprint::Status looked_up = ts->texture(file.string(), grazing, options, {&by_name, 1});
+    std::filesystem::remove(file);
+    if (!looked_up) {
+        std::printf("texture system: %s\n", looked_up.error().message.c_str());
+        return 1;
+    }
+    ok &= near(by_name, texel, 0.0f, "texture system: the same grazing lookup");
 
     std::printf("%s\n", ok ? "all lookups as expected" : "SOME LOOKUPS WRONG");
     return ok ? 0 : 1;

@@ -1,0 +1,214 @@
+#include "texsys/texture_file.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <sstream>
+#include <vector>
+
+#include "image/color.h"
+#include "image/image_io.h"
+
+namespace footprint {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+Error cannot_read(const std::string& file, const std::string& why) {
+    return Error{"cannot read '" + file + "': " + why};
+}
+
+// OpenImageIO's "wrapmodes" ("periodic,clamp", or one mode for both axes); black, which footprint
+// does not have, is read as clamp.
+std::optional<WrapMode> parse_oiio_wrap(std::string_view mode) {
+    if (mode == "periodic") return WrapMode::repeat;
+    if (mode == "clamp" || mode == "black") return WrapMode::clamp;
+    if (mode == "mirror") return WrapMode::mirror;
+    return std::nullopt;
+}
+void read_wrap_modes(const OIIO::ImageSpec& spec, WrapMode fallback, TextureInfo& info) {
+    info.wrap_s = info.wrap_t = fallback;
+    const std::string modes = spec.get_string_attribute("wrapmodes");
+    const std::size_t comma = modes.find(',');
+    const std::string_view s = std::string_view(modes).substr(0, comma);
+    const std::string_view t =
+        comma == std::string::npos ? s : std::string_view(modes).substr(comma + 1);
+    if (auto mode = parse_oiio_wrap(s)) info.wrap_s = *mode;
+    if (auto mode = parse_oiio_wrap(t)) info.wrap_t = *mode;
+}
+
+std::string wrap_attribute(WrapMode mode) {
+    return mode == WrapMode::repeat ? "periodic" : mode == WrapMode::clamp ? "clamp" : "mirror";
+}
+
+// The file in options.cache_dir that holds the pyramid built for `file`: named by the source's
+// absolute path, size and modification time and by what shapes the pyramid.
+fs::path cached_pyramid(const fs::path& file, const TextureSystemOptions& options,
+                        const TextureInfo& info) {
+    std::error_code ec;
+    const fs::path absolute = fs::absolute(file, ec);
+    const auto size = fs::file_size(file, ec);
+    const auto modified = fs::last_write_time(file, ec).time_since_epoch().count();
+    std::ostringstream key;
+    key << absolute.string() << '|' << size << '|' << modified << '|' << options.tile_size << '|'
+        << static_cast<int>(options.downsample) << '|' << static_cast<int>(info.wrap_s) << '|'
+        << static_cast<int>(info.wrap_t);
+    std::ostringstream name;
+    name << file.stem().string() << '-' << std::hex << std::hash<std::string>{}(key.str())
+         << ".exr";
+    return options.cache_dir / name.str();
+}
+
+}  // namespace
+
+void TextureHandle::open(const TextureSystemOptions& options,
+                         std::atomic<std::size_t>& bytes_in_memory) {
+    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(name);
+    if (!in) {  // load_image() names the cause best (no such file, a directory, …)
+        Result<Image> image = load_image(name);
+        error = image ? cannot_read(name, OIIO::geterror()) : image.error();
+        return;
+    }
+    const OIIO::ImageSpec spec = in->spec();
+    read_wrap_modes(spec, options.default_wrap, info);
+    int levels = 1;
+    while (in->seek_subimage(0, levels)) ++levels;
+    // Stored levels: tiled, and every level MipPyramid's size, down to 1×1.
+    bool stored = spec.tile_width > 0 && spec.nchannels >= 1 && spec.nchannels <= 4;
+    for (int l = 0; stored && l < levels; ++l) {
+        stored = in->seek_subimage(0, l) && in->spec().width == std::max(1, spec.width >> l) &&
+                 in->spec().height == std::max(1, spec.height >> l);
+    }
+    stored = stored && std::max(spec.width >> (levels - 1), spec.height >> (levels - 1)) == 1;
+    in.reset();
+    if (stored) {
+        open_stored(name, options);
+        return;
+    }
+    Result<Image> image = load_image(name);
+    if (!image) {
+        error = image.error();
+        return;
+    }
+    MipPyramidOptions pyramid_options;
+    pyramid_options.wrap_s = info.wrap_s;
+    pyramid_options.wrap_t = info.wrap_t;
+    pyramid_options.downsample = options.downsample;
+    MipPyramid built = MipPyramid::build(*image, pyramid_options);
+    if (!options.cache_dir.empty()) {
+        const fs::path cached = cached_pyramid(name, options, info);
+        std::error_code ec;
+        if (!fs::exists(cached, ec)) {
+            std::vector<Image> level_images;
+            for (int l = 0; l < built.level_count(); ++l)
+                level_images.push_back(built.level_image(l));
+            LevelsSaveOptions save;
+            save.wrap_modes = wrap_attribute(info.wrap_s) + "," + wrap_attribute(info.wrap_t);
+            save.tile_size = std::clamp(options.tile_size, 16, 1024);
+            if (Status saved = save_image_levels(level_images, cached, save); !saved) {
+                error = Error{"cannot cache the MIP levels of '" + name +
+                              "': " + saved.error().message};
+                return;
+            }
+        }
+        open_stored(cached.string(), options);
+        return;
+    }
+    info = {built.width(0), built.height(0), built.channels(), built.level_count(),
+            false,          info.wrap_s,     info.wrap_t};
+    std::size_t texels = 0;
+    for (int l = 0; l < built.level_count(); ++l)
+        texels += static_cast<std::size_t>(built.width(l)) * built.height(l);
+    bytes_in_memory += texels * built.stride() * sizeof(float);
+    pyramid = std::make_unique<MipPyramid>(std::move(built));
+}
+
+void TextureHandle::open_stored(const std::string& file, const TextureSystemOptions& options) {
+    input_ = OIIO::ImageInput::open(file);
+    if (!input_) {
+        error = cannot_read(file, OIIO::geterror());
+        return;
+    }
+    const OIIO::ImageSpec& spec = input_->spec();
+    const WrapMode wrap_s = info.wrap_s, wrap_t = info.wrap_t;
+    read_wrap_modes(spec, options.default_wrap, info);
+    if (file != name) info.wrap_s = wrap_s, info.wrap_t = wrap_t;  // the cache's are the source's
+    info.width = spec.width;
+    info.height = spec.height;
+    info.channels = spec.nchannels;
+    info.tiled = true;
+    file_tile_width_ = spec.tile_width;
+    file_tile_height_ = spec.tile_height;
+    alpha_ = spec.nchannels == 2 || spec.nchannels == 4 ? spec.nchannels - 1 : -1;
+    srgb_ = is_srgb_encoded(file);
+    std::vector<int> widths, heights;
+    for (int w = spec.width, h = spec.height;; w = std::max(1, w / 2), h = std::max(1, h / 2)) {
+        widths.push_back(w);
+        heights.push_back(h);
+        if (w == 1 && h == 1) break;
+    }
+    info.levels = static_cast<int>(widths.size());
+    shape = detail::TiledShape(std::move(widths), std::move(heights), spec.nchannels,
+                               std::countr_zero(static_cast<unsigned>(options.tile_size)),
+                               info.wrap_s, info.wrap_t);
+}
+
+std::size_t TextureHandle::tile_floats(int l, int tx, int ty) const {
+    const int size = 1 << shape.tile_log2;
+    const int w = std::min(size, shape.levels[l].width - tx * size);
+    const int h = std::min(size, shape.levels[l].height - ty * size);
+    return static_cast<std::size_t>(w) * h * texel_stride(shape.channels);
+}
+
+void TextureHandle::read_tile(int l, int tx, int ty, float* texels) {
+    const int size = 1 << shape.tile_log2, channels = shape.channels;
+    const int stride = texel_stride(channels);
+    const int x0 = tx * size, y0 = ty * size;
+    const int level_width = shape.levels[l].width, level_height = shape.levels[l].height;
+    const int w = std::min(size, level_width - x0), h = std::min(size, level_height - y0);
+    std::fill_n(texels, static_cast<std::size_t>(w) * h * stride, 0.0f);
+    // The file's tiles that cover this one (OpenImageIO reads whole tiles).
+    const int xb = x0 / file_tile_width_ * file_tile_width_;
+    const int yb = y0 / file_tile_height_ * file_tile_height_;
+    const int xe = std::min(level_width,
+                            (x0 + w + file_tile_width_ - 1) / file_tile_width_ * file_tile_width_);
+    const int ye = std::min(
+        level_height, (y0 + h + file_tile_height_ - 1) / file_tile_height_ * file_tile_height_);
+    std::vector<float> read(static_cast<std::size_t>(xe - xb) * (ye - yb) * channels);
+    bool ok;
+    std::string why;
+    {
+        std::lock_guard lock(read_mutex_);
+        ok = input_->read_tiles(0, l, xb, xe, yb, ye, 0, 1, 0, channels, OIIO::TypeDesc::FLOAT,
+                                read.data());
+        if (!ok) why = input_->geterror();
+    }
+    if (!ok) {
+        fail_read("MIP level " + std::to_string(l) + " tile (" + std::to_string(tx) + ", " +
+                  std::to_string(ty) + "): " + why);
+        return;
+    }
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const float* from =
+                &read[(static_cast<std::size_t>(y0 + y - yb) * (xe - xb) + (x0 + x - xb)) *
+                      channels];
+            float* to = &texels[(static_cast<std::size_t>(y) * w + x) * stride];
+            for (int c = 0; c < channels; ++c) {
+                const float v = srgb_ && c != alpha_ ? srgb_to_linear(from[c]) : from[c];
+                to[c] = std::isfinite(v) ? v : 0.0f;  // as the filters' no-NaN promise needs
+            }
+        }
+    }
+}
+
+void TextureHandle::fail_read(const std::string& why) {
+    std::lock_guard lock(read_error_mutex);
+    if (!read_error) read_error = cannot_read(name, why);
+    read_failed = true;
+}
+
+}  // namespace footprint

@@ -1,0 +1,70 @@
+// texsys/texture_file.h — one texture file of a TextureSystem: what is known of it once opened,
+// and how its tiles are read (private to the texture system).
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include <OpenImageIO/imageio.h>
+
+#include "core/result.h"
+#include "texture/mip_pyramid.h"
+#include "texture/tiled_texels.h"
+#include "texture_system.h"
+
+namespace footprint {
+
+class TextureHandle {
+  public:
+    TextureHandle(std::string name, std::uint32_t id) : name(std::move(name)), id(id) {}
+
+    // Opens the file: its header for stored levels, else the image, whose pyramid is built (and,
+    // with options.cache_dir, written there and opened as stored). Sets `error` on failure.
+    // `bytes_in_memory` counts a pyramid kept in memory.
+    void open(const TextureSystemOptions& options, std::atomic<std::size_t>& bytes_in_memory);
+
+    // Reads tile (tx, ty) of level l into `texels` (TiledTexels' layout: row-major, stride floats
+    // per texel). A failed read gives zeros and sets read_error.
+    void read_tile(int l, int tx, int ty, float* texels);
+    // The floats of tile (tx, ty) of level l.
+    std::size_t tile_floats(int l, int tx, int ty) const;
+
+    const std::string name;
+    const std::uint32_t id;
+    std::once_flag opened;
+    std::optional<Error> error;  // set by open(): the file cannot be looked up
+    std::atomic<bool> error_reported{false};
+    TextureInfo info;
+
+    // Tiled (info.tiled): the levels' shape, read through `input`.
+    detail::TiledShape shape;
+    // Otherwise: the pyramid, in memory.
+    std::unique_ptr<MipPyramid> pyramid;
+
+    // A read that failed after the file opened (a truncated tile): the file's error from then on.
+    std::atomic<bool> read_failed{false};
+    std::mutex read_error_mutex;
+    std::optional<Error> read_error;
+
+    // A UDIM set (the name holds "<UDIM>"): its files by tile number, opened on first use.
+    bool udim = false;
+    std::mutex udim_mutex;
+    std::map<int, TextureHandle*> udim_tiles;
+
+  private:
+    void open_stored(const std::string& file, const TextureSystemOptions& options);
+    void fail_read(const std::string& why);
+
+    std::mutex read_mutex_;  // one read at a time through input_
+    std::unique_ptr<OIIO::ImageInput> input_;
+    int file_tile_width_ = 0, file_tile_height_ = 0;
+    bool srgb_ = false;  // decode the colour channels (not alpha) from sRGB
+    int alpha_ = -1;     // the alpha channel, or −1
+};
+
+}  // namespace footprint

@@ -1,0 +1,308 @@
+#include "texture_system.h"
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cmath>
+#include <filesystem>
+#include <shared_mutex>
+#include <unordered_map>
+
+#include "bump/slope_map.h"
+#include "envmap/env_image_io.h"
+#include "texsys/texture_file.h"
+#include "texsys/tile_cache.h"
+#include "texture/tiled_texels.h"
+
+namespace footprint {
+
+namespace {
+
+// The tiles of one lookup on one file: the thread's micro-cache first, then the shared cache.
+// Every tile asked for stays pinned (in ThreadTiles::recent) until the lookup ends, when all but
+// the last kMicroCacheTiles are let go.
+class LookupTiles final : public detail::TileSource {
+  public:
+    LookupTiles(texsys::TileCache& cache, texsys::ThreadTiles& thread, TextureHandle& file)
+        : cache_(cache), thread_(thread), file_(file) {}
+    ~LookupTiles() {
+        auto& recent = thread_.recent;
+        const std::size_t keep = TextureSystem::kMicroCacheTiles;
+        if (recent.size() > keep) recent.erase(recent.begin(), recent.end() - keep);
+    }
+    LookupTiles(const LookupTiles&) = delete;
+    LookupTiles& operator=(const LookupTiles&) = delete;
+
+    const float* tile(int level, int tx, int ty) const override {
+        const texsys::TileKey key{file_.id, static_cast<std::uint32_t>(level),
+                                  static_cast<std::uint32_t>(tx), static_cast<std::uint32_t>(ty)};
+        auto& recent = thread_.recent;
+        for (auto it = recent.rbegin(); it != recent.rend(); ++it)
+            if (it->first == key) return it->second->texels.get();
+        texsys::TilePtr tile =
+            cache_.get(key, file_.tile_floats(level, tx, ty),
+                       [&](float* texels) { file_.read_tile(level, tx, ty, texels); });
+        recent.emplace_back(key, std::move(tile));
+        return recent.back().second->texels.get();
+    }
+
+  private:
+    texsys::TileCache& cache_;
+    texsys::ThreadTiles& thread_;
+    TextureHandle& file_;
+};
+
+// A file held whole (environment and bump maps), opened once.
+template <class T>
+struct WholeFile {
+    std::once_flag opened;
+    std::optional<T> value;
+    std::optional<Error> error;
+    std::atomic<bool> error_reported{false};
+};
+
+// A name → entry table that many threads read and a few add to.
+template <class Entry>
+class FileTable {
+  public:
+    // The entry of `name` and whether it was just added.
+    std::pair<Entry*, bool> find_or_add(std::string_view name,
+                                        const std::function<std::unique_ptr<Entry>()>& make) {
+        {
+            std::shared_lock lock(mutex_);
+            if (auto it = entries_.find(std::string(name)); it != entries_.end())
+                return {it->second.get(), false};
+        }
+        std::unique_lock lock(mutex_);
+        auto [it, added] = entries_.try_emplace(std::string(name));
+        if (added) it->second = make();
+        return {it->second.get(), added};
+    }
+    std::size_t size() const {
+        std::shared_lock lock(mutex_);
+        return entries_.size();
+    }
+
+  private:
+    mutable std::shared_mutex mutex_;
+    std::unordered_map<std::string, std::unique_ptr<Entry>> entries_;
+};
+
+std::atomic<std::uint64_t> next_system_id{1};
+
+constexpr std::string_view kUdim = "<UDIM>";
+
+class TextureSystemImpl final : public TextureSystem {
+  public:
+    explicit TextureSystemImpl(const TextureSystemOptions& options)
+        : options_(options), cache_(options.max_memory_mb << 20) {}
+
+    TextureHandle* handle(std::string_view name) override {
+        auto [file, added] = files_.find_or_add(name, [&] {
+            return std::make_unique<TextureHandle>(std::string(name), next_file_id_++);
+        });
+        std::call_once(file->opened, [&] {
+            if (name.find(kUdim) != std::string_view::npos) {
+                file->udim = true;
+            } else {
+                file->open(options_, bytes_in_memory_);
+            }
+        });
+        return file;
+    }
+
+    Result<TextureInfo> info(TextureHandle* file) override {
+        if (file->udim) file = udim_tile(file, 1001);
+        if (file->error) return *file->error;
+        return file->info;
+    }
+
+    Status texture(TextureHandle* file, const TextureCoords& coords, const LookupOptions& options,
+                   std::span<float> out, std::span<const float> missing) override {
+        TextureCoords c = coords;
+        if (file->udim) {
+            const float u = std::floor(c.s), v = std::floor(c.t);
+            if (!(u >= 0 && u < 10 && v >= 0 && v < 1000))
+                return missing_or(Error{"no UDIM tile of '" + file->name + "' at (" +
+                                        std::to_string(c.s) + ", " + std::to_string(c.t) + ")"},
+                                  file->error_reported, out, missing);
+            file = udim_tile(file, 1001 + static_cast<int>(u) + 10 * static_cast<int>(v));
+            c.s -= u;
+            c.t -= v;
+        }
+        if (file->error) return missing_or(*file->error, file->error_reported, out, missing);
+        float result[MipPyramid::kMaxChannels];
+        if (file->pyramid) {
+            texture_lookup(*file->pyramid, c, options, result);
+        } else {
+            const LookupTiles tiles(cache_, texsys::thread_tiles(id_), *file);
+            const detail::TiledTexels texels(file->shape, tiles);
+            detail::texture_lookup(texels, c, options, result);
+        }
+        if (file->read_failed) {
+            std::lock_guard lock(file->read_error_mutex);
+            return missing_or(*file->read_error, file->error_reported, out, missing);
+        }
+        write_channels(result, file->info.channels, out);
+        return {};
+    }
+
+    Status environment(std::string_view name, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
+                       const EnvLookupOptions& options, std::span<float> out,
+                       std::span<const float> missing) override {
+        WholeFile<EnvironmentMap>& env = environment_file(name);
+        if (env.error) return missing_or(*env.error, env.error_reported, out, missing);
+        float result[MipPyramid::kMaxChannels];
+        environment_lookup(*env.value, r, dr_dx, dr_dy, options, result);
+        write_channels(result, env.value->channels(), out);
+        return {};
+    }
+
+    Status environment(std::string_view name, const EnvFootprint& footprint,
+                       const LookupOptions& options, std::span<float> out,
+                       std::span<const float> missing) override {
+        WholeFile<EnvironmentMap>& env = environment_file(name);
+        if (env.error) return missing_or(*env.error, env.error_reported, out, missing);
+        float result[MipPyramid::kMaxChannels];
+        environment_lookup(*env.value, footprint, options, result);
+        write_channels(result, env.value->channels(), out);
+        return {};
+    }
+
+    Result<EnvironmentShape> environment_shape(std::string_view name) override {
+        WholeFile<EnvironmentMap>& env = environment_file(name);
+        if (env.error) return *env.error;
+        return EnvironmentShape{env.value->layout(), env.value->texel_scale(),
+                                env.value->channels()};
+    }
+
+    Status bump(std::string_view name, const TextureCoords& coords, const LookupOptions& options,
+                SlopeStatistics* statistics) override {
+        auto [entry, added] =
+            bumps_.find_or_add(name, [] { return std::make_unique<WholeFile<BumpPyramid>>(); });
+        std::call_once(entry->opened, [&, entry = entry] {
+            Result<Image> slopes = load_slope_map(std::string(name));
+            Result<BumpPyramid> pyramid =
+                slopes ? BumpPyramid::build(*slopes) : Result<BumpPyramid>(slopes.error());
+            if (!pyramid) {
+                entry->error = pyramid.error();
+                return;
+            }
+            bytes_in_memory_ += pyramid_bytes(pyramid->moments());
+            entry->value = std::move(*pyramid);
+        });
+        if (entry->error) {
+            if (!entry->error_reported.exchange(true)) report(*entry->error);
+            return *entry->error;
+        }
+        *statistics = bump_lookup(*entry->value, coords, options);
+        return {};
+    }
+
+    TextureSystemStats stats() const override {
+        const texsys::Accounting& a = *cache_.accounting();
+        TextureSystemStats s;
+        s.files = files_.size() + environments_.size() + bumps_.size();
+        s.tiles_loaded = a.loaded;
+        s.tile_hits = a.hits;
+        s.tile_misses = a.misses;
+        s.bytes_resident = a.resident;
+        s.peak_bytes = a.peak;
+        s.bytes_in_memory = bytes_in_memory_;
+        return s;
+    }
+
+    std::vector<Error> take_errors() override {
+        std::lock_guard lock(errors_mutex_);
+        return std::exchange(errors_, {});
+    }
+
+  private:
+    // The file of UDIM tile `number` of the set `set`.
+    TextureHandle* udim_tile(TextureHandle* set, int number) {
+        std::lock_guard lock(set->udim_mutex);
+        auto [it, added] = set->udim_tiles.try_emplace(number, nullptr);
+        if (added) {
+            std::string name = set->name;
+            name.replace(name.find(kUdim), kUdim.size(), std::to_string(number));
+            it->second = handle(name);
+        }
+        return it->second;
+    }
+
+    WholeFile<EnvironmentMap>& environment_file(std::string_view name) {
+        auto [entry, added] = environments_.find_or_add(
+            name, [] { return std::make_unique<WholeFile<EnvironmentMap>>(); });
+        std::call_once(entry->opened, [&, entry = entry] {
+            Result<EnvironmentMap> map = load_environment({std::filesystem::path(name)});
+            if (!map) {
+                entry->error = map.error();
+                return;
+            }
+            for (int f = 0; f < map->face_count(); ++f)
+                bytes_in_memory_ += pyramid_bytes(map->face(f));
+            entry->value = std::move(*map);
+        });
+        return *entry;
+    }
+
+    static std::size_t pyramid_bytes(const MipPyramid& pyramid) {
+        std::size_t texels = 0;
+        for (int l = 0; l < pyramid.level_count(); ++l)
+            texels += static_cast<std::size_t>(pyramid.width(l)) * pyramid.height(l);
+        return texels * pyramid.stride() * sizeof(float);
+    }
+
+    static void write_channels(const float* result, int channels, std::span<float> out) {
+        for (std::size_t k = 0; k < out.size(); ++k)
+            out[k] = k < static_cast<std::size_t>(channels) ? result[k] : 0.0f;
+    }
+
+    // A lookup that failed with `error`: the missing colour and success, the error reported once,
+    // if the caller gave one; else the error.
+    Status missing_or(const Error& error, std::atomic<bool>& reported, std::span<float> out,
+                      std::span<const float> missing) {
+        if (missing.empty()) return error;
+        for (std::size_t k = 0; k < out.size(); ++k) out[k] = k < missing.size() ? missing[k] : 0;
+        if (!reported.exchange(true)) report(error);
+        return {};
+    }
+
+    void report(const Error& error) {
+        std::lock_guard lock(errors_mutex_);
+        errors_.push_back(error);
+    }
+
+    const TextureSystemOptions options_;
+    const std::uint64_t id_ = next_system_id++;
+    texsys::TileCache cache_;
+    std::atomic<std::uint32_t> next_file_id_{0};
+    std::atomic<std::size_t> bytes_in_memory_{0};
+    FileTable<TextureHandle> files_;
+    FileTable<WholeFile<EnvironmentMap>> environments_;
+    FileTable<WholeFile<BumpPyramid>> bumps_;
+    std::mutex errors_mutex_;
+    std::vector<Error> errors_;
+};
+
+}  // namespace
+
+Result<std::unique_ptr<TextureSystem>> TextureSystem::create(const TextureSystemOptions& options) {
+    if (options.max_memory_mb < 1)
+        return Error{"texture system: max_memory_mb must be at least 1 (got 0)"};
+    if (options.tile_size < 8 || options.tile_size > 1024 ||
+        !std::has_single_bit(static_cast<unsigned>(options.tile_size)))
+        return Error{"texture system: tile_size must be a power of two from 8 to 1024 (got " +
+                     std::to_string(options.tile_size) + ")"};
+    if (!options.cache_dir.empty()) {
+        std::error_code ec;
+        std::filesystem::create_directories(options.cache_dir, ec);
+        if (ec || !std::filesystem::is_directory(options.cache_dir))
+            return Error{"texture system: cannot use the cache folder '" +
+                         options.cache_dir.string() +
+                         "': " + (ec ? ec.message() : std::string("it is not a directory"))};
+    }
+    return std::unique_ptr<TextureSystem>(std::make_unique<TextureSystemImpl>(options));
+}
+
+}  // namespace footprint

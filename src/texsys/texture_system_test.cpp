@@ -1,0 +1,323 @@
+#include "texture_system.h"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <random>
+#include <thread>
+#include <vector>
+
+#include "bump/slope_map.h"
+#include "core/test_temp_dir.h"
+#include "envmap/env_image_io.h"
+#include "image/image_io.h"
+#include "image/test_images.h"
+#include "texture/texture_lookup.h"
+
+namespace footprint {
+namespace {
+
+constexpr TextureFilter kFilters[] = {TextureFilter::nearest, TextureFilter::bilinear,
+                                      TextureFilter::trilinear, TextureFilter::footprint_assembly,
+                                      TextureFilter::ewa};
+
+std::unique_ptr<TextureSystem> make_system(const TextureSystemOptions& options = {}) {
+    Result<std::unique_ptr<TextureSystem>> made = TextureSystem::create(options);
+    EXPECT_TRUE(made) << made.error().message;
+    return std::move(*made);
+}
+
+// Lookups as a renderer makes them: magnified to strongly minified, isotropic to 16:1, anywhere
+// on the texture and beyond its edges.
+std::vector<TextureCoords> lookups(int count, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> position(-0.5f, 1.5f), unit(-1, 1), scale(-11, -2);
+    std::vector<TextureCoords> all;
+    for (int i = 0; i < count; ++i) {
+        const float size = std::exp2(scale(rng)), aniso = 1 + 7.5f * (unit(rng) + 1);
+        const float angle = 3.2f * unit(rng);
+        all.push_back({position(rng), position(rng), size * aniso * std::cos(angle),
+                       size * aniso * std::sin(angle), -size * std::sin(angle),
+                       size * std::cos(angle)});
+    }
+    return all;
+}
+
+std::uint32_t bits(float v) {
+    return std::bit_cast<std::uint32_t>(v);
+}
+
+// A MIP chain of `image` (a box pyramid) as level images, and written as a tiled MIP-mapped EXR.
+std::vector<Image> levels_of(const Image& image) {
+    const MipPyramid pyramid = MipPyramid::build(image);
+    std::vector<Image> levels;
+    for (int l = 0; l < pyramid.level_count(); ++l) levels.push_back(pyramid.level_image(l));
+    return levels;
+}
+
+TEST(TextureSystem, StoredLevelsLookUpBitForBitAsTheirPyramid) {
+    test::TempDir dir;
+    const std::vector<Image> levels = levels_of(random_image(300, 200, 3, 1));
+    LevelsSaveOptions save;
+    save.wrap_modes = "periodic,clamp";
+    ASSERT_TRUE(save_image_levels(levels, dir / "stored.exr", save));
+    MipPyramidOptions wrap;
+    wrap.wrap_t = WrapMode::clamp;
+    const MipPyramid pyramid = MipPyramid::from_levels(levels, wrap).value();
+
+    TextureSystemOptions options;
+    options.tile_size = 16;  // many tiles, taps across their edges
+    auto ts = make_system(options);
+    TextureHandle* file = ts->handle((dir / "stored.exr").string());
+    Result<TextureInfo> info = ts->info(file);
+    ASSERT_TRUE(info) << info.error().message;
+    EXPECT_TRUE(info->tiled);
+    EXPECT_EQ(info->width, 300);
+    EXPECT_EQ(info->levels, pyramid.level_count());
+    EXPECT_EQ(info->wrap_t, WrapMode::clamp);
+    for (TextureFilter filter : kFilters) {
+        LookupOptions lookup;
+        lookup.filter = filter;
+        for (const TextureCoords& c : lookups(300, 2)) {
+            float want[3], got[3];
+            texture_lookup(pyramid, c, lookup, want);
+            ASSERT_TRUE(ts->texture(file, c, lookup, got));
+            for (int k = 0; k < 3; ++k)
+                ASSERT_EQ(bits(got[k]), bits(want[k]))
+                    << to_string(filter) << " at (" << c.s << ", " << c.t << "): " << got[k]
+                    << " against " << want[k];
+        }
+    }
+    EXPECT_EQ(ts->stats().bytes_in_memory, 0u);
+}
+
+// Textures four times the cache: evicted and read again, with the same results as a cache that
+// holds them all, and resident texels within the limit plus the pinned tiles.
+TEST(TextureSystem, ASmallCacheKeepsItsBoundAndGivesTheUnboundedResults) {
+    test::TempDir dir;
+    std::vector<std::string> files;
+    LevelsSaveOptions save;
+    save.tile_size = 32;
+    for (int i = 0; i < 2; ++i) {  // 2 × 512² RGBA texels ≈ 5.6 MiB of float pyramids
+        files.push_back((dir / ("big" + std::to_string(i) + ".exr")).string());
+        ASSERT_TRUE(
+            save_image_levels(levels_of(random_image(512, 512, 3, 10 + i)), files.back(), save));
+    }
+    TextureSystemOptions small;
+    small.max_memory_mb = 1;
+    small.tile_size = 32;
+    auto bounded = make_system(small);
+    auto unbounded = make_system();
+    LookupOptions lookup;
+    for (int pass = 0; pass < 2; ++pass) {
+        for (const TextureCoords& c : lookups(1000, 3 + pass)) {
+            for (const std::string& file : files) {
+                float want[3], got[3];
+                ASSERT_TRUE(unbounded->texture(file, c, lookup, want));
+                ASSERT_TRUE(bounded->texture(file, c, lookup, got));
+                for (int k = 0; k < 3; ++k) ASSERT_EQ(bits(got[k]), bits(want[k]));
+            }
+        }
+    }
+    const TextureSystemStats s = bounded->stats();
+    const TextureSystemStats all = unbounded->stats();
+    EXPECT_EQ(s.files, 2u);
+    EXPECT_GT(all.peak_bytes, 4u << 20);  // what the lookups touched
+    // A 32² tile is 16 KiB: the limit, plus this thread's micro-cache and one lookup's pins.
+    EXPECT_LE(s.peak_bytes, (1u << 20) + 64 * 16384u);
+    EXPECT_GT(s.tiles_loaded, all.tiles_loaded);  // tiles evicted and read again
+    EXPECT_EQ(s.tile_misses, s.tiles_loaded);
+    EXPECT_GT(s.tile_hits + s.tile_misses, 0u);
+}
+
+TEST(TextureSystem, FilesWithoutLevelsAreBuiltInMemoryOrInTheCacheFolder) {
+    test::TempDir dir;
+    const Image image = random_image(128, 64, 3, 4);
+    ASSERT_TRUE(save_image(image, dir / "plain.png"));
+    const std::string png = (dir / "plain.png").string();
+    const MipPyramid pyramid = MipPyramid::build(*load_image(png));
+
+    auto in_memory = make_system();
+    TextureSystemOptions cached_options;
+    cached_options.cache_dir = dir / "cache";
+    auto cached = make_system(cached_options);
+    for (TextureFilter filter : kFilters) {
+        LookupOptions lookup;
+        lookup.filter = filter;
+        for (const TextureCoords& c : lookups(200, 5)) {
+            float want[3], memory[3], tiles[3];
+            texture_lookup(pyramid, c, lookup, want);
+            ASSERT_TRUE(in_memory->texture(png, c, lookup, memory));
+            ASSERT_TRUE(cached->texture(png, c, lookup, tiles));
+            for (int k = 0; k < 3; ++k) {
+                ASSERT_EQ(bits(memory[k]), bits(want[k])) << to_string(filter);
+                // The cached file's levels are the built pyramid's, as float; only EWA reads the
+                // prefilter variance, which a stored chain takes as the box's (T² − 1)/12.
+                ASSERT_NEAR(tiles[k], want[k], 1e-5f) << to_string(filter);
+            }
+        }
+    }
+    EXPECT_FALSE(in_memory->info(png)->tiled);
+    EXPECT_GT(in_memory->stats().bytes_in_memory, 128u * 64 * 16);
+    EXPECT_TRUE(cached->info(png)->tiled);
+    EXPECT_EQ(cached->stats().bytes_in_memory, 0u);
+    int cache_files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir / "cache")) {
+        ++cache_files;
+        EXPECT_EQ(entry.path().extension(), ".exr");
+    }
+    EXPECT_EQ(cache_files, 1);
+    // A second system finds the cached file and builds nothing.
+    const auto written = std::filesystem::last_write_time(
+        std::filesystem::directory_iterator(dir / "cache")->path());
+    auto again = make_system(cached_options);
+    EXPECT_TRUE(again->info(png)->tiled);
+    EXPECT_EQ(std::filesystem::last_write_time(
+                  std::filesystem::directory_iterator(dir / "cache")->path()),
+              written);
+}
+
+TEST(TextureSystem, AMissingOrCorruptFileIsAnErrorNamingItReportedOnce) {
+    test::TempDir dir;
+    {
+        std::ofstream corrupt(dir / "corrupt.exr", std::ios::binary);
+        corrupt << "v/1\x01 this is not an OpenEXR file";
+    }
+    auto ts = make_system();
+    const TextureCoords c{0.5f, 0.5f, 0.01f, 0, 0, 0.01f};
+    for (const char* name : {"missing.png", "corrupt.exr"}) {
+        const std::string file = (dir / name).string();
+        float out[3] = {9, 9, 9};
+        Status s = ts->texture(file, c, {}, out);
+        ASSERT_FALSE(s);
+        EXPECT_NE(s.error().message.find("'" + file + "'"), std::string::npos) << s.error().message;
+        EXPECT_FALSE(ts->info(file));
+        const float pink[3] = {1, 0, 1};
+        for (int i = 0; i < 100; ++i) EXPECT_TRUE(ts->texture(file, c, {}, out, pink));
+        EXPECT_EQ(out[0], 1.0f);
+        EXPECT_EQ(out[1], 0.0f);
+        EXPECT_EQ(out[2], 1.0f);
+    }
+    const std::vector<Error> errors = ts->take_errors();
+    ASSERT_EQ(errors.size(), 2u);  // once per file, not per lookup
+    EXPECT_NE(errors[0].message.find("no such file"), std::string::npos) << errors[0].message;
+    EXPECT_TRUE(ts->take_errors().empty());
+    EXPECT_EQ(ts->stats().files, 2u);
+}
+
+TEST(TextureSystem, UdimNamesResolveTheTileOfTheCoordinates) {
+    test::TempDir dir;
+    Image red(8, 8, 3), green(8, 8, 3);
+    for (std::size_t i = 0; i < red.pixels.size(); i += 3)
+        red.pixels[i] = 1, green.pixels[i + 1] = 1;
+    ASSERT_TRUE(save_image(red, dir / "paint.1001.exr"));
+    ASSERT_TRUE(save_image(green, dir / "paint.1012.exr"));  // u tile 1, v tile 1
+    auto ts = make_system();
+    const std::string name = (dir / "paint.<UDIM>.exr").string();
+    float out[3];
+    ASSERT_TRUE(ts->texture(name, {0.5f, 0.5f, 0.01f, 0, 0, 0.01f}, {}, out));
+    EXPECT_FLOAT_EQ(out[0], 1);
+    EXPECT_FLOAT_EQ(out[1], 0);
+    ASSERT_TRUE(ts->texture(name, {1.5f, 1.25f, 0.01f, 0, 0, 0.01f}, {}, out));
+    EXPECT_FLOAT_EQ(out[0], 0);
+    EXPECT_FLOAT_EQ(out[1], 1);
+    Status none = ts->texture(name, {2.5f, 0.5f, 0.01f, 0, 0, 0.01f}, {}, out);
+    ASSERT_FALSE(none);
+    EXPECT_NE(none.error().message.find("paint.1003.exr"), std::string::npos)
+        << none.error().message;
+    EXPECT_FALSE(ts->texture(name, {-0.5f, 0.5f, 0.01f, 0, 0, 0.01f}, {}, out));
+    EXPECT_EQ(ts->info(name)->width, 8);
+}
+
+// Threads sharing one small cache get what one thread alone gets.
+TEST(TextureSystem, ConcurrentLookupsGiveTheSingleThreadedResults) {
+    test::TempDir dir;
+    const std::string file = (dir / "shared.exr").string();
+    LevelsSaveOptions save;
+    save.tile_size = 32;
+    ASSERT_TRUE(save_image_levels(levels_of(random_image(512, 256, 4, 6)), file, save));
+    TextureSystemOptions options;
+    options.max_memory_mb = 1;
+    options.tile_size = 32;
+    auto ts = make_system(options);
+    const std::vector<TextureCoords> coords = lookups(1000, 7);
+    std::vector<float> want(coords.size() * 4);
+    {
+        auto alone = make_system();
+        for (std::size_t i = 0; i < coords.size(); ++i)
+            ASSERT_TRUE(alone->texture(file, coords[i], {}, {&want[4 * i], 4}));
+    }
+    constexpr int kThreads = 4;
+    std::vector<std::vector<float>> got(kThreads, std::vector<float>(want.size()));
+    std::vector<std::thread> threads;
+    for (int t = 0; t < kThreads; ++t) {
+        threads.emplace_back([&, t] {
+            for (std::size_t n = 0; n < coords.size(); ++n) {
+                constexpr std::size_t kSteps[kThreads] = {1, 7919, 7927, 7933};  // prime to 1000
+                const std::size_t i = (n * kSteps[t]) % coords.size();  // each its own order
+                if (!ts->texture(file, coords[i], {}, {&got[t][4 * i], 4})) return;
+            }
+        });
+    }
+    for (std::thread& thread : threads) thread.join();
+    for (int t = 0; t < kThreads; ++t)
+        for (std::size_t i = 0; i < want.size(); ++i)
+            ASSERT_EQ(bits(got[t][i]), bits(want[i])) << "thread " << t << " value " << i;
+    EXPECT_LE(ts->stats().peak_bytes, (1u << 20) + kThreads * 64 * 16384u);
+}
+
+TEST(TextureSystem, EnvironmentAndBumpLookupsAreTheDirectOnes) {
+    test::TempDir dir;
+    const std::string sky = (dir / "sky.exr").string();
+    ASSERT_TRUE(save_image(random_image(64, 32, 3, 8), sky));
+    const EnvironmentMap map = load_environment({sky}).value();
+    auto ts = make_system();
+    const Vec3 r{0.3f, 0.5f, -0.8f}, dx{0.02f, 0, 0}, dy{0, 0.01f, 0.005f};
+    float want[3], got[3];
+    environment_lookup(map, r, dx, dy, EnvLookupOptions{}, want);
+    ASSERT_TRUE(ts->environment(sky, r, dx, dy, EnvLookupOptions{}, got));
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(bits(got[k]), bits(want[k]));
+    Result<TextureSystem::EnvironmentShape> shape = ts->environment_shape(sky);
+    ASSERT_TRUE(shape);
+    const EnvFootprint footprint =
+        compute_env_footprint(shape->layout, shape->texel_scale, r, dx, dy);
+    environment_lookup(map, footprint, LookupOptions{}, want);
+    ASSERT_TRUE(ts->environment(sky, footprint, LookupOptions{}, got));
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(bits(got[k]), bits(want[k]));
+
+    const std::string normals = (dir / "normals.png").string();
+    Image slopes = random_image(32, 32, 2, 9);
+    for (float& v : slopes.pixels) v = v - 0.5f;
+    ASSERT_TRUE(save_image(normals_from_slopes(slopes), normals, {ColorEncoding::linear, 16}));
+    const BumpPyramid bump = BumpPyramid::build(*load_slope_map(normals)).value();
+    const TextureCoords c{0.3f, 0.6f, 0.05f, 0.01f, -0.01f, 0.03f};
+    const SlopeStatistics expected = bump_lookup(bump, c, LookupOptions{});
+    SlopeStatistics statistics;
+    ASSERT_TRUE(ts->bump(normals, c, LookupOptions{}, &statistics));
+    EXPECT_EQ(statistics.mean.x, expected.mean.x);
+    EXPECT_EQ(statistics.covariance.xy, expected.covariance.xy);
+    EXPECT_FALSE(ts->bump((dir / "none.png").string(), c, {}, &statistics));
+    EXPECT_FALSE(ts->environment((dir / "none.hdr").string(), r, dx, dy, {}, got));
+}
+
+TEST(TextureSystem, RefusesOptionsItCannotHonour) {
+    TextureSystemOptions zero;
+    zero.max_memory_mb = 0;
+    EXPECT_FALSE(TextureSystem::create(zero));
+    TextureSystemOptions odd;
+    odd.tile_size = 48;
+    Result<std::unique_ptr<TextureSystem>> made = TextureSystem::create(odd);
+    ASSERT_FALSE(made);
+    EXPECT_NE(made.error().message.find("48"), std::string::npos);
+    test::TempDir dir;
+    { std::ofstream(dir / "file") << "x"; }
+    TextureSystemOptions blocked;
+    blocked.cache_dir = dir / "file";
+    EXPECT_FALSE(TextureSystem::create(blocked));
+}
+
+}  // namespace
+}  // namespace footprint

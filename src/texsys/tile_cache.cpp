@@ -1,0 +1,74 @@
+#include "texsys/tile_cache.h"
+
+#include <algorithm>
+
+namespace footprint::texsys {
+
+void Accounting::add(std::size_t bytes) {
+    const std::size_t now = resident.fetch_add(bytes, std::memory_order_relaxed) + bytes;
+    std::size_t peak_now = peak.load(std::memory_order_relaxed);
+    while (now > peak_now && !peak.compare_exchange_weak(peak_now, now)) {
+    }
+}
+
+Tile::Tile(std::size_t floats, std::shared_ptr<Accounting> accounting_)
+    : texels(new float[floats]), bytes(floats * sizeof(float)), accounting(std::move(accounting_)) {
+    accounting->add(bytes);
+}
+
+Tile::~Tile() {
+    accounting->remove(bytes);
+}
+
+TileCache::TileCache(std::size_t max_bytes) : max_bytes_(max_bytes) {}
+
+TilePtr TileCache::get(const TileKey& key, std::size_t floats,
+                       const std::function<void(float*)>& load) {
+    TilePtr tile;
+    {
+        std::lock_guard lock(mutex_);
+        auto found = entries_.find(key);
+        if (found != entries_.end()) {
+            recency_.splice(recency_.begin(), recency_, found->second.recency);
+            tile = found->second.tile;
+            accounting_->hits.fetch_add(1, std::memory_order_relaxed);
+        } else {
+            tile = std::make_shared<Tile>(floats, accounting_);
+            recency_.push_front(key);
+            entries_.emplace(key, Entry{tile, recency_.begin()});
+            cached_bytes_ += tile->bytes;
+            evict_beyond_budget();
+            accounting_->misses.fetch_add(1, std::memory_order_relaxed);
+        }
+    }
+    // Outside the lock, so that a thread reading a tile from disk holds up only the threads
+    // that want that tile.
+    std::call_once(tile->loaded, [&] {
+        load(tile->texels.get());
+        accounting_->loaded.fetch_add(1, std::memory_order_relaxed);
+    });
+    return tile;
+}
+
+void TileCache::evict_beyond_budget() {
+    // The newest tile (at the front) stays even alone beyond the budget: its lookup needs it.
+    while (cached_bytes_ > max_bytes_ && recency_.size() > 1) {
+        auto victim = entries_.find(recency_.back());
+        cached_bytes_ -= victim->second.tile->bytes;
+        entries_.erase(victim);
+        recency_.pop_back();
+    }
+}
+
+ThreadTiles& thread_tiles(std::uint64_t system) {
+    // A thread that used several systems keeps a few; the oldest is dropped (its pins released).
+    constexpr std::size_t kSystemsPerThread = 4;
+    thread_local std::vector<std::pair<std::uint64_t, std::unique_ptr<ThreadTiles>>> systems;
+    for (auto& [id, tiles] : systems)
+        if (id == system) return *tiles;
+    if (systems.size() == kSystemsPerThread) systems.erase(systems.begin());
+    systems.emplace_back(system, std::make_unique<ThreadTiles>());
+    return *systems.back().second;
+}
+
+}  // namespace footprint::texsys

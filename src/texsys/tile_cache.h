@@ -1,0 +1,95 @@
+// texsys/tile_cache.h — the texture system's shared tile cache and each thread's view of it
+// (private to the texture system).
+//
+// TileCache maps a tile's key to its texels, loads a tile on its first request (once, whichever
+// threads ask for it at the same time) and evicts least-recently-used tiles when the cached texels
+// exceed its budget. A tile lives as long as someone holds it: the cache, or a thread that pinned
+// it (ThreadTiles). Tiles count themselves in Accounting from allocation to release, so
+// bytes_resident is what is really held, pinned tiles evicted from the cache included.
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <list>
+#include <memory>
+#include <mutex>
+#include <unordered_map>
+#include <vector>
+
+namespace footprint::texsys {
+
+// Which tile: a file of the texture system, a MIP level, a tile column and row.
+struct TileKey {
+    std::uint32_t file = 0;
+    std::uint32_t level = 0;
+    std::uint32_t tx = 0, ty = 0;
+    bool operator==(const TileKey&) const = default;
+};
+struct TileKeyHash {
+    std::size_t operator()(const TileKey& k) const {
+        std::uint64_t h = (std::uint64_t(k.file) << 40) ^ (std::uint64_t(k.level) << 34) ^
+                          (std::uint64_t(k.ty) << 17) ^ k.tx;
+        h ^= h >> 29;
+        h *= 0xbf58476d1ce4e5b9ull;
+        return static_cast<std::size_t>(h ^ (h >> 32));
+    }
+};
+
+// What the tiles hold, shared by the cache and every tile (which may outlive the cache).
+struct Accounting {
+    std::atomic<std::size_t> resident{0}, peak{0};
+    std::atomic<std::size_t> loaded{0}, hits{0}, misses{0};
+    void add(std::size_t bytes);
+    void remove(std::size_t bytes) { resident.fetch_sub(bytes, std::memory_order_relaxed); }
+};
+
+struct Tile {
+    Tile(std::size_t floats, std::shared_ptr<Accounting> accounting);
+    ~Tile();
+    Tile(const Tile&) = delete;
+    Tile& operator=(const Tile&) = delete;
+
+    std::unique_ptr<float[]> texels;
+    std::size_t bytes;
+    std::once_flag loaded;
+    std::shared_ptr<Accounting> accounting;
+};
+using TilePtr = std::shared_ptr<Tile>;
+
+class TileCache {
+  public:
+    explicit TileCache(std::size_t max_bytes);
+
+    // The tile of `key`, `floats` floats, filled by load(texels) on its first request.
+    TilePtr get(const TileKey& key, std::size_t floats, const std::function<void(float*)>& load);
+
+    const std::shared_ptr<Accounting>& accounting() const { return accounting_; }
+
+  private:
+    struct Entry {
+        TilePtr tile;
+        std::list<TileKey>::iterator recency;
+    };
+    void evict_beyond_budget();  // under mutex_
+
+    std::size_t max_bytes_;
+    std::shared_ptr<Accounting> accounting_ = std::make_shared<Accounting>();
+    std::mutex mutex_;
+    std::unordered_map<TileKey, Entry, TileKeyHash> entries_;
+    std::list<TileKey> recency_;  // most recently used first
+    std::size_t cached_bytes_ = 0;
+};
+
+// One thread's tiles of one texture system: the micro-cache, the most recent tiles last, which
+// also pins every tile of the lookup in progress (a lookup's taps point into them).
+struct ThreadTiles {
+    std::vector<std::pair<TileKey, TilePtr>> recent;
+};
+
+// The calling thread's ThreadTiles for the texture system numbered `system` (a number never
+// reused, so a new system at a freed one's address starts empty).
+ThreadTiles& thread_tiles(std::uint64_t system);
+
+}  // namespace footprint::texsys

@@ -1,0 +1,162 @@
+// texture_system.h — footprint::TextureSystem: filtered lookups of texture files by name, through
+// a cache of bounded size, callable from many threads (the role of OpenImageIO's TextureSystem).
+//
+//   footprint::TextureSystemOptions options;
+//   options.max_memory_mb = 512;
+//   auto ts = footprint::TextureSystem::create(options);
+//   float rgb[3];
+//   footprint::Status s = ts->texture("albedo.tx", coords, footprint::LookupOptions{}, rgb);
+//   if (!s) std::cerr << s.error().message << "\n";   // "cannot read 'albedo.tx': no such file"
+//
+// Files are opened on first use, by name (a path; relative names are relative to the process's
+// working directory). What a texture() call returns is texture_lookup() (texture/texture_lookup.h)
+// of the file's MIP pyramid, with every filter and LookupOptions of that call: coordinates,
+// derivatives and results in its conventions.
+//
+// Where the texels come from
+//   Stored levels. A tiled file that stores its MIP levels — OpenImageIO maketx's .tx, a tiled
+//   MIP-mapped OpenEXR or TIFF, save_image_levels()' and `footprint maketx`'s output — is read
+//   tile by tile, as lookups need its tiles, and its levels are used as stored (a box pyramid's
+//   kernel is assumed, as MipPyramid::from_levels() assumes).
+//   Built levels. Any other image is read whole once and its pyramid built (MipPyramid::build with
+//   options.downsample). With options.cache_dir set, the pyramid is written there as a tiled
+//   MIP-mapped EXR (named by the source's path, size and modification time, so a changed source is
+//   rebuilt), dropped from memory, and read tile by tile like a stored file: later runs open the
+//   cached file without building. Without it the pyramid stays in memory (stats().bytes_in_memory).
+//   Colour: integer files are sRGB-decoded as load_image() decodes them (image/image_io.h), float
+//   files are linear. Wrap modes come from the file's "wrapmodes" attribute (maketx's; "black" is
+//   read as clamp), else options.default_wrap.
+//
+// Bounded memory
+//   Stored and cached files' texels live in tiles of options.tile_size² texels, per MIP level,
+//   loaded on demand into one cache shared by all threads and evicted least-recently-used when the
+//   texels of the cached tiles would exceed max_memory_mb. Each thread keeps the last tiles it used
+//   (a micro-cache of kMicroCacheTiles tiles, without locks) and pins the tiles of the lookup it is
+//   in until that lookup returns. So the texels resident at any time are at most max_memory_mb
+//   plus, per thread, the micro-cache and the tiles of one lookup; plus about 150 bytes of
+//   bookkeeping per cached tile. stats() reports them (bytes_resident, peak_bytes). Results do not
+//   depend on what the cache holds: a lookup returns the same bits with any max_memory_mb.
+//   Environment maps and bump maps are held whole, as EnvironmentMap and BumpPyramid, once per
+//   file (stats().bytes_in_memory).
+//
+// UDIM
+//   A name containing "<UDIM>" is a set of files: the lookup at (s, t) reads the one whose name has
+//   1001 + ⌊s⌋ + 10·⌊t⌋ there, at (s − ⌊s⌋, t − ⌊t⌋), as other renderers resolve UDIMs (u tiles
+//   0…9 per row). A position outside u ∈ [0, 10), t ≥ 0, or on a tile with no file, is missing.
+//
+// Errors
+//   A file that cannot be read, or is not a texture footprint reads, gives every lookup on it an
+//   Error naming the file ("cannot read 'a.png': no such file"), never a crash, and costs one
+//   attempt to open: it is not retried. A lookup given a missing colour (missing_color, as
+//   OpenImageIO's missingcolor) writes that colour instead and succeeds; the error is then
+//   reported once per file through take_errors().
+//
+// Thread safety: every call may be made from any number of threads at once.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <footprint/bump/bump_pyramid.h>
+#include <footprint/core/result.h>
+#include <footprint/envmap/env_footprint.h>
+#include <footprint/envmap/environment_map.h>
+#include <footprint/texture/texture_lookup.h>
+#include <footprint/texture/wrap.h>
+
+namespace footprint {
+
+struct TextureSystemOptions {
+    std::size_t max_memory_mb = 1024;  // the cached tiles' texels, in MiB (≥ 1)
+    int tile_size = 64;                // texels per tile side: a power of two, 8 to 1024
+    // Where pyramids built for files without stored levels are kept (created if missing); empty:
+    // in memory.
+    std::filesystem::path cache_dir;
+    DownsampleFilter downsample = DownsampleFilter::box;  // of pyramids built here
+    WrapMode default_wrap = WrapMode::repeat;             // for files that do not say how they wrap
+};
+
+struct TextureSystemStats {
+    std::size_t files = 0;         // names opened, those that failed too
+    std::size_t tiles_loaded = 0;  // tiles read into the cache (again after an eviction)
+    // Tiles asked of the shared cache: found there, or not (then loaded). A thread's micro-cache
+    // answers most tile requests before they reach it; those are not counted.
+    std::size_t tile_hits = 0, tile_misses = 0;
+    std::size_t bytes_resident = 0;   // texels of the tiles alive now: cached, or pinned
+    std::size_t peak_bytes = 0;       // the most bytes_resident has been
+    std::size_t bytes_in_memory = 0;  // texels of pyramids held whole (see "Where the texels…")
+};
+
+struct TextureInfo {
+    int width = 0, height = 0;  // level 0
+    int channels = 0;
+    int levels = 0;
+    bool tiled = false;  // read tile by tile through the cache (stored or cached levels)
+    WrapMode wrap_s = WrapMode::repeat, wrap_t = WrapMode::repeat;
+};
+
+// A file's entry in a TextureSystem, for callers that look one file up many times: handle() once,
+// then lookups by handle skip the name's lookup. Valid as long as the TextureSystem.
+class TextureHandle;
+
+class TextureSystem {
+  public:
+    static constexpr int kMicroCacheTiles = 8;
+
+    // Refuses options it cannot honour (max_memory_mb 0, a tile size that is not a power of two in
+    // range, a cache_dir that cannot be created), naming them.
+    static Result<std::unique_ptr<TextureSystem>> create(const TextureSystemOptions& options = {});
+    virtual ~TextureSystem() = default;
+
+    // The handle of a texture file, opening it on first use (a file that fails to open has a handle
+    // too: lookups on it give its error).
+    virtual TextureHandle* handle(std::string_view name) = 0;
+    // The file's size, channels and levels (a UDIM set: its first tile's), or its error.
+    virtual Result<TextureInfo> info(TextureHandle* texture) = 0;
+    Result<TextureInfo> info(std::string_view name) { return info(handle(name)); }
+
+    // The texture filtered over the footprint of `coords`: out.size() floats, the file's first
+    // channels, any beyond them 0 (3 of a 1-channel file: grey, 0, 0). On an error, the missing
+    // colour (its first out.size() floats, 0 beyond) if one is given, else an Error.
+    virtual Status texture(TextureHandle* texture, const TextureCoords& coords,
+                           const LookupOptions& options, std::span<float> out,
+                           std::span<const float> missing_color = {}) = 0;
+    Status texture(std::string_view name, const TextureCoords& coords, const LookupOptions& options,
+                   std::span<float> out, std::span<const float> missing_color = {}) {
+        return texture(handle(name), coords, options, out, missing_color);
+    }
+
+    // environment_lookup() form (a) of the environment map in `name` (1, a lat-long, cube cross or
+    // sphere/paraboloid image, laid out as load_environment() detects it): direction r and its ray
+    // differentials. out and missing_color as texture().
+    virtual Status environment(std::string_view name, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
+                               const EnvLookupOptions& options, std::span<float> out,
+                               std::span<const float> missing_color = {}) = 0;
+    // Schilling's form (b): a footprint computed for this map (environment_shape() gives its
+    // layout and texel scale for compute_env_footprint()).
+    virtual Status environment(std::string_view name, const EnvFootprint& footprint,
+                               const LookupOptions& options, std::span<float> out,
+                               std::span<const float> missing_color = {}) = 0;
+    struct EnvironmentShape {
+        EnvLayout layout;
+        Vec2 texel_scale;
+        int channels;
+    };
+    virtual Result<EnvironmentShape> environment_shape(std::string_view name) = 0;
+
+    // bump_lookup() (bump/bump_pyramid.h) of the normal map in `name` (OpenGL convention, decoded
+    // as load_slope_map() decodes it): the mean slope and slope covariance over the footprint.
+    virtual Status bump(std::string_view name, const TextureCoords& coords,
+                        const LookupOptions& options, SlopeStatistics* statistics) = 0;
+
+    virtual TextureSystemStats stats() const = 0;
+    // The errors not yet taken, each file's once, in the order they happened.
+    virtual std::vector<Error> take_errors() = 0;
+};
+
+}  // namespace footprint
