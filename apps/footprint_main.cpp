@@ -1,6 +1,6 @@
 // footprint — the command-line program: argument parsing only; the commands live in demo.cpp,
-// env_command.cpp, eval_command.cpp, metrics_command.cpp, render_command.cpp, texture_demo.cpp and
-// view_command.cpp.
+// env_command.cpp, eval_command.cpp, maketx_command.cpp, metrics_command.cpp, render_command.cpp,
+// texture_demo.cpp and view_command.cpp.
 //   footprint --version
 //   footprint demo [--out DIR] [--scene NAME...] [--size N] [--spp N] [--threads N] [--quiet]
 //   footprint eval [SCENE...] [--out DIR] [--size W] [--reference-spp N] [--spp-list 1,4,16,64]
@@ -16,6 +16,7 @@
 //                    [--quiet]
 //   footprint view SCENE [--filter MODE] [--size WxH] [--exposure E] [--frames N]
 //                  [--screenshot FILE]
+//   footprint maketx IN -o OUT.exr [--wrap MODE[,MODE]] [--downsample box|tent] [--tile-size N]
 // Filter names: one vocabulary across the commands (apps/cli_options.h, kFilterHelp below).
 // Exit status: 0 success, 1 bad input or failure (one line on stderr), 2 command-line usage error.
 #include <CLI/CLI.hpp>
@@ -29,6 +30,7 @@
 #include "demo.h"
 #include "env_command.h"
 #include "eval_command.h"
+#include "maketx_command.h"
 #include "metrics_command.h"
 #include "render_command.h"
 #include "texture_demo.h"
@@ -100,6 +102,23 @@ int run(int argc, char** argv) {
                         "Replace NaN/Inf texels by the mean of their finite neighbours (with a "
                         "warning) instead of refusing the texture");
     plane_cmd->add_flag("--quiet,-q", plane.quiet, "No progress output");
+
+    footprint::MaketxCommandOptions maketx;
+    std::string maketx_input, maketx_output, maketx_downsample = "box";
+    CLI::App* maketx_cmd = app.add_subcommand(
+        "maketx",
+        "Write a texture's MIP pyramid as a tiled MIP-mapped EXR, prepared once for the "
+        "texture system (as OpenImageIO's maketx)");
+    maketx_cmd->add_option("input", maketx_input, "Texture file (PNG, JPEG, EXR, HDR, TIFF, …)")
+        ->required();
+    maketx_cmd->add_option("-o,--out", maketx_output, "Output file (.exr)")->required();
+    maketx_cmd->add_option("--wrap", maketx.wrap, "repeat, clamp or mirror; or S,T")
+        ->capture_default_str();
+    maketx_cmd->add_option("--downsample", maketx_downsample, "The pyramid's filter: box or tent")
+        ->check(CLI::IsMember({"box", "tent"}))
+        ->capture_default_str();
+    maketx_cmd->add_option("--tile-size", maketx.tile_size, "Tiles of N×N texels, 16 to 1024")
+        ->capture_default_str();
 
     footprint::EnvConvertCommandOptions convert;
     std::vector<std::string> convert_inputs, convert_outputs;
@@ -302,6 +321,13 @@ int run(int argc, char** argv) {
         return footprint::run_render_command(render);
     }
     if (*view_cmd) return footprint::run_view_command(view);
+    if (*maketx_cmd) {
+        maketx.input = maketx_input;
+        maketx.output = maketx_output;
+        maketx.downsample = maketx_downsample == "tent" ? footprint::DownsampleFilter::tent
+                                                        : footprint::DownsampleFilter::box;
+        return footprint::run_maketx_command(maketx);
+    }
     if (*env_cmd) {
         convert.inputs.assign(convert_inputs.begin(), convert_inputs.end());
         convert.outputs.assign(convert_outputs.begin(), convert_outputs.end());

@@ -1,0 +1,100 @@
+// Tests of `footprint maketx`, called as a function (maketx_command.h): the file it writes holds
+// the pyramid MipPyramid::build makes, the texture system reads it tile by tile with the same
+// results, and bad input is one line naming the file or value, with nothing written.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "core/test_temp_dir.h"
+#include "image/image_io.h"
+#include "image/test_images.h"
+#include "maketx_command.h"
+#include "texture_system.h"
+
+namespace footprint {
+namespace {
+
+int maketx(const MaketxCommandOptions& options, std::string* err) {
+    ::testing::internal::CaptureStderr();
+    const int status = run_maketx_command(options);
+    *err = ::testing::internal::GetCapturedStderr();
+    return status;
+}
+
+TEST(MaketxCommand, WritesThePyramidThatTheTextureSystemReadsAsBuilt) {
+    test::TempDir dir;
+    const Image image = random_image(96, 40, 3, 21);
+    ASSERT_TRUE(save_image(image, dir / "in.png"));
+    MaketxCommandOptions options;
+    options.input = dir / "in.png";
+    options.output = dir / "out.exr";
+    options.wrap = "repeat,clamp";
+    options.downsample = DownsampleFilter::tent;
+    options.tile_size = 16;
+    std::string err;
+    ASSERT_EQ(maketx(options, &err), 0) << err;
+    EXPECT_NE(err.find("wrote"), std::string::npos);
+    EXPECT_NE(err.find("7 levels"), std::string::npos) << err;
+
+    MipPyramidOptions built;
+    built.wrap_t = WrapMode::clamp;
+    built.downsample = DownsampleFilter::tent;
+    const MipPyramid pyramid = MipPyramid::build(*load_image(dir / "in.png"), built);
+    Result<std::vector<Image>> levels = load_image_levels(dir / "out.exr");
+    ASSERT_TRUE(levels);
+    ASSERT_EQ(static_cast<int>(levels->size()), pyramid.level_count());
+    for (int l = 0; l < pyramid.level_count(); ++l) {
+        const Image want = pyramid.level_image(l);
+        ASSERT_EQ((*levels)[l].pixels, want.pixels) << "level " << l;
+    }
+
+    auto ts = std::move(TextureSystem::create().value());
+    Result<TextureInfo> info = ts->info((dir / "out.exr").string());
+    ASSERT_TRUE(info) << info.error().message;
+    EXPECT_TRUE(info->tiled);
+    EXPECT_EQ(info->wrap_s, WrapMode::repeat);
+    EXPECT_EQ(info->wrap_t, WrapMode::clamp);
+    // Trilinear reads no prefilter variance: the stored levels give the built pyramid's bits.
+    LookupOptions trilinear;
+    trilinear.filter = TextureFilter::trilinear;
+    const TextureCoords c{0.3f, 0.97f, 0.05f, 0.01f, -0.01f, 0.04f};
+    float want[3], got[3];
+    texture_lookup(pyramid, c, trilinear, want);
+    ASSERT_TRUE(ts->texture((dir / "out.exr").string(), c, trilinear, got));
+    for (int k = 0; k < 3; ++k)
+        EXPECT_EQ(std::bit_cast<std::uint32_t>(got[k]), std::bit_cast<std::uint32_t>(want[k]));
+}
+
+TEST(MaketxCommand, BadInputIsOneLineNamingItAndWritesNothing) {
+    test::TempDir dir;
+    ASSERT_TRUE(save_image(random_image(8, 8, 1, 2), dir / "in.exr"));
+    struct Case {
+        std::string input, output, wrap;
+        int tile_size;
+        std::string expected;
+    } cases[] = {
+        {"missing.png", "out.exr", "repeat", 64, "missing.png"},
+        {"in.exr", "out.png", "repeat", 64, "out.png"},
+        {"in.exr", "out.exr", "wrapped", 64, "wrapped"},
+        {"in.exr", "out.exr", "repeat", 48, "48"},
+        {"in.exr", "no/such/folder/out.exr", "repeat", 64, "no/such/folder"},
+    };
+    for (const Case& c : cases) {
+        MaketxCommandOptions options;
+        options.input = dir / c.input;
+        options.output = dir / c.output;
+        options.wrap = c.wrap;
+        options.tile_size = c.tile_size;
+        std::string err;
+        EXPECT_EQ(maketx(options, &err), 1) << c.output;
+        EXPECT_NE(err.find(c.expected), std::string::npos) << err;
+        EXPECT_EQ(err.find('\n'), err.size() - 1) << err;  // one line
+    }
+    EXPECT_EQ(dir.entries(), 1);  // in.exr alone
+}
+
+}  // namespace
+}  // namespace footprint
