@@ -4,15 +4,20 @@
 //   footprint-bench bump [--json FILE]      bump/roughness pyramid build and filtered bump lookups
 //   footprint-bench env [--json FILE]       environment-map lookups vs OpenImageIO's environment()
 //   footprint-bench gpu [--json FILE] [--size WxH]   GPU frame times per mode vs hw-aniso
+//   footprint-bench texsys [--json FILE]    TextureSystem vs OpenImageIO's, textures > the cache
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <exception>
+#include <stdexcept>
+
+#include "cli_options.h"
 
 #include "bump_bench.h"
 #include "env_bench.h"
 #include "gpu_bench.h"
 #include "pyramid_bench.h"
+#include "texsys_bench.h"
 #include "texture_bench.h"
 
 int main(int argc, char** argv) {
@@ -47,6 +52,25 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 100));
     tex->add_flag("!--no-oiio", texture.with_oiio, "skip the OpenImageIO peer");
     tex->add_flag("--quiet", texture.quiet, "no progress output");
+
+    TexsysBenchOptions texsys;
+    CLI::App* tsys = app.add_subcommand(
+        "texsys", "the TextureSystem against OpenImageIO's on textures that do not fit its cache");
+    tsys->add_option("--json", texsys.json_path, "write the results as JSON to this file");
+    tsys->add_option("--textures", texsys.textures, "texture files")->check(CLI::Range(1, 64));
+    tsys->add_option("--size", texsys.size, "texture size (square, RGB float)")
+        ->check(CLI::Range(64, 16384));
+    tsys->add_option("--cache-mb", texsys.cache_mb, "max_memory_mb of both texture systems")
+        ->check(CLI::Range(1, 1 << 20));
+    std::string texsys_frame;
+    tsys->add_option("--frame", texsys_frame, "frame size WxH (default 1280x720)");
+    tsys->add_option("--frames", texsys.frames, "frames per run, the first cold")
+        ->check(CLI::Range(2, 100));
+    tsys->add_option("--threads", texsys.thread_counts, "thread counts to measure")
+        ->check(CLI::Range(1, 256));
+    tsys->add_option("--dir", texsys.dir, "where the texture files are written, kept and reused");
+    tsys->add_flag("!--no-oiio", texsys.with_oiio, "skip the OpenImageIO peer");
+    tsys->add_flag("--quiet", texsys.quiet, "no progress output");
 
     PyramidBenchOptions pyramid;
     CLI::App* pyr =
@@ -110,7 +134,8 @@ int main(int argc, char** argv) {
     gpuc->add_option("--warmup", gpu.warmup, "untimed frames first")
         ->check(CLI::Range(0, 1000))
         ->capture_default_str();
-    gpuc->add_option("--scenes", gpu.scenes, "demo scene names or scene files (default: every demo scene)");
+    gpuc->add_option("--scenes", gpu.scenes,
+                     "demo scene names or scene files (default: every demo scene)");
     gpuc->add_flag("--quality", gpu.quality,
                    "measure the images instead: interior RMSE against the CPU reference");
     gpuc->add_option("--reference-spp", gpu.reference_spp, "the reference's samples per pixel")
@@ -120,6 +145,14 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     try {
         if (*tex) return run_texture_bench(texture);
+        if (*tsys) {
+            if (!texsys_frame.empty()) {
+                const auto size = footprint::parse_image_size("--frame", texsys_frame);
+                if (!size) throw std::runtime_error(size.error().message);
+                texsys.width = size->width, texsys.height = size->height;
+            }
+            return run_texsys_bench(texsys);
+        }
         if (*pyr) return run_pyramid_bench(pyramid);
         if (*bmp) return run_bump_bench(bump);
         if (*envc) return run_env_bench(env);
