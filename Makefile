@@ -2,6 +2,7 @@
 #   make        Release build with debug info into build/ (build/footprint, build/footprint-bench)
 #   make demo   ... then runs the demo on the built-in image (writes out/)
 #   make test   ... then runs the unit tests, in Release and under ASan+UBSan (build-asan/)
+#   make python ... the Python module into build/python/ (PYTHONPATH=build/python python3)
 #   make bench  ... then runs the texture and environment benchmarks (bench-out/texture.json, env.json)
 #   make instructions  ... then counts instructions per environment lookup under callgrind
 #   make format clang-formats the sources
@@ -13,7 +14,7 @@ ifneq ($(CCACHE),)
     CMAKE_FLAGS += -DCMAKE_CXX_COMPILER_LAUNCHER=$(CCACHE)
 endif
 
-.PHONY: all deps build build-asan demo test test-release test-asan bench instructions format clean
+.PHONY: all deps build build-asan demo test test-release test-asan bench instructions format clean python
 
 all: build
 
@@ -28,6 +29,8 @@ build-asan: deps
 	@cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DFOOTPRINT_SANITIZE=ON \
 	    -DFOOTPRINT_TESTS_ONLY=ON $(CMAKE_FLAGS) >/dev/null
 	@cmake --build build-asan -j $(JOBS) --target footprint-tests
+
+python: build
 
 demo: build
 	./build/footprint demo --out out

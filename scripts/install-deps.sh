@@ -15,6 +15,7 @@ packages=(
     valgrind                                                  # bench/env-instructions.sh
     libepoxy-dev libegl-dev libgl1-mesa-dri libglfw3-dev      # the GPU path (OpenGL 4.5, EGL)
     xvfb xauth                                                # footprint view's test (a display)
+    pybind11-dev python3-dev python3-numpy python3-pytest     # the Python module and its tests
 )
 
 missing=()

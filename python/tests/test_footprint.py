@@ -1,0 +1,79 @@
+"""Tests of the footprint Python module: lookups against values known exactly, errors as
+exceptions with the library's messages, the renderer and the metrics."""
+import math
+
+import numpy as np
+import pytest
+
+import footprint
+
+
+@pytest.fixture
+def texture(tmp_path):
+    """A 64 × 32 RGB float texture with random texels, written as EXR."""
+    rng = np.random.default_rng(3)
+    pixels = rng.random((32, 64, 3), dtype=np.float32)
+    path = str(tmp_path / "texture.exr")
+    footprint.save_image(path, pixels)
+    return path, pixels
+
+
+def test_version():
+    assert footprint.version().count(".") == 2
+
+
+def test_point_lookups_at_texel_centres_are_the_texels(texture):
+    path, pixels = texture
+    ts = footprint.TextureSystem(max_memory_mb=16)
+    ys, xs = np.mgrid[0:32, 0:64]
+    s = ((xs + 0.5) / 64).ravel().astype(np.float32)
+    t = ((ys + 0.5) / 32).ravel().astype(np.float32)
+    for name in ("bilinear", "trilinear", "fa", "ewa"):
+        out = ts.texture(path, s, t, 0, 0, 0, 0, filter=name)  # scalars broadcast
+        assert out.shape == (64 * 32, 3) and out.dtype == np.float32
+        np.testing.assert_allclose(out, pixels.reshape(-1, 3), atol=1e-6, err_msg=name)
+    assert ts.channels(path) == 3
+    assert ts.stats()["files"] == 1
+
+
+def test_a_footprint_over_the_whole_texture_is_its_mean(texture):
+    path, pixels = texture
+    ts = footprint.TextureSystem()
+    out = ts.texture(path, [0.5], [0.5], [1.0], [0.0], [0.0], [1.0], filter="trilinear")
+    # The 1 × 1 level: the mean of a box pyramid's level 0 (64 × 32 → … → 1 × 1).
+    np.testing.assert_allclose(out[0], pixels.reshape(-1, 3).mean(axis=0), atol=1e-5)
+
+
+def test_a_constant_environment_is_constant_in_every_direction(tmp_path):
+    path = str(tmp_path / "sky.exr")
+    footprint.save_image(path, np.full((32, 64, 3), [0.25, 0.5, 2.0], dtype=np.float32))
+    ts = footprint.TextureSystem()
+    rng = np.random.default_rng(5)
+    r = rng.normal(size=(100, 3)).astype(np.float32)
+    out = ts.environment(path, r, 0.01 * np.ones((100, 3)), 0.02 * np.ones((100, 3)))
+    np.testing.assert_allclose(out, np.tile([0.25, 0.5, 2.0], (100, 1)), rtol=1e-5)
+
+
+def test_errors_are_exceptions_naming_the_file_or_value(tmp_path, texture):
+    ts = footprint.TextureSystem()
+    missing = str(tmp_path / "missing.png")
+    with pytest.raises(RuntimeError, match="missing.png"):
+        ts.texture(missing, [0.5], [0.5], [0.01], [0], [0], [0.01])
+    with pytest.raises(ValueError, match="lengths"):
+        ts.texture(texture[0], [0.5, 0.6], [0.5, 0.6, 0.7], 0, 0, 0, 0)
+    with pytest.raises(ValueError, match="bicubic"):
+        ts.texture(texture[0], [0.5], [0.5], 0, 0, 0, 0, filter="bicubic")
+    with pytest.raises(RuntimeError, match="max_memory_mb"):
+        footprint.TextureSystem(max_memory_mb=0)
+    with pytest.raises(RuntimeError, match="unknown scene"):
+        footprint.render("no-such-scene")
+
+
+def test_render_and_metrics():
+    image = footprint.render("water", filter="fa-rough", width=48)
+    assert image.shape == (27, 48, 3) and image.dtype == np.float32
+    assert np.isfinite(image).all() and image.max() > 0
+    same = footprint.metrics(image, image)
+    assert same["rmse"] == 0 and same["ssim"] == pytest.approx(1.0)
+    other = footprint.metrics(image, image * 0.5)
+    assert other["rmse"] == pytest.approx(math.sqrt(np.mean((image * 0.5) ** 2)), rel=1e-4)
