@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <OpenImageIO/imagebufalgo.h>
+
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -92,6 +94,47 @@ TEST(TextureSystem, StoredLevelsLookUpBitForBitAsTheirPyramid) {
         }
     }
     EXPECT_EQ(ts->stats().bytes_in_memory, 0u);
+}
+
+// OpenImageIO's own maketx output (a tiled MIP-mapped TIFF of its own tile size, 8-bit sRGB
+// here) is read tile by tile, its levels as stored and decoded as load_image_levels() decodes them.
+TEST(TextureSystem, OpenImageIOsMaketxFilesAreReadAsStored) {
+    // 8-bit codes are decoded through OpenImageIO's float conversion here and through a table in
+    // load_image_levels(): the same sRGB curve, a few ulp of values ≤ 1 apart (measured 2.4e-7).
+    constexpr float kSrgbDecodeTolerance = 2e-6f;
+    test::TempDir dir;
+    const Image image = random_image(200, 120, 3, 12);
+    OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::FLOAT);
+    OIIO::ImageBuf source(spec, const_cast<float*>(image.pixels.data()));
+    OIIO::ImageSpec config;
+    config.attribute("maketx:filtername", "box");
+    config.attribute("wrapmodes", "periodic,periodic");
+    config.set_format(OIIO::TypeDesc::UINT8);
+    config.tile_width = config.tile_height = 32;
+    const std::string tx = (dir / "maketx.tx").string();
+    ASSERT_TRUE(
+        OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, source, tx, config))
+        << OIIO::geterror();
+    Result<std::vector<Image>> levels = load_image_levels(tx);
+    ASSERT_TRUE(levels) << levels.error().message;
+    const MipPyramid pyramid = MipPyramid::from_levels(*levels).value();
+
+    auto ts = make_system();  // 64² tiles over the file's 32² ones
+    Result<TextureInfo> info = ts->info(tx);
+    ASSERT_TRUE(info) << info.error().message;
+    EXPECT_TRUE(info->tiled);
+    EXPECT_EQ(info->levels, pyramid.level_count());
+    for (TextureFilter filter : kFilters) {
+        LookupOptions lookup;
+        lookup.filter = filter;
+        for (const TextureCoords& c : lookups(200, 13)) {
+            float want[3], got[3];
+            texture_lookup(pyramid, c, lookup, want);
+            ASSERT_TRUE(ts->texture(tx, c, lookup, got));
+            for (int k = 0; k < 3; ++k)
+                ASSERT_NEAR(got[k], want[k], kSrgbDecodeTolerance) << to_string(filter);
+        }
+    }
 }
 
 // Textures four times the cache: evicted and read again, with the same results as a cache that
