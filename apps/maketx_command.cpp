@@ -16,7 +16,7 @@ int fail(const std::string& message) {
     return 1;
 }
 
-// "repeat" or "repeat,clamp" as (s, t), and OpenImageIO's names for them.
+// "repeat" or "repeat,clamp" as (s, t).
 struct WrapModes {
     WrapMode s, t;
 };
@@ -28,10 +28,6 @@ std::optional<WrapModes> parse_wraps(const std::string& text) {
     if (!s || !t) return std::nullopt;
     return WrapModes{*s, *t};
 }
-std::string oiio_wrap(WrapMode mode) {
-    return mode == WrapMode::repeat ? "periodic" : mode == WrapMode::clamp ? "clamp" : "mirror";
-}
-
 }  // namespace
 
 int run_maketx_command(const MaketxCommandOptions& options) {
@@ -57,7 +53,7 @@ int run_maketx_command(const MaketxCommandOptions& options) {
     std::vector<Image> levels;
     for (int l = 0; l < pyramid.level_count(); ++l) levels.push_back(pyramid.level_image(l));
     LevelsSaveOptions save;
-    save.wrap_modes = oiio_wrap(wraps->s) + "," + oiio_wrap(wraps->t);
+    save.wrap_modes = oiio_wrap_modes(wraps->s, wraps->t);
     save.tile_size = options.tile_size;
     if (Status saved = save_image_levels(levels, options.output, save); !saved)
         return fail(saved.error().message);

@@ -24,10 +24,7 @@ Error cannot_read(const std::string& file, const std::string& why) {
 // OpenImageIO's "wrapmodes" ("periodic,clamp", or one mode for both axes); black, which footprint
 // does not have, is read as clamp.
 std::optional<WrapMode> parse_oiio_wrap(std::string_view mode) {
-    if (mode == "periodic") return WrapMode::repeat;
-    if (mode == "clamp" || mode == "black") return WrapMode::clamp;
-    if (mode == "mirror") return WrapMode::mirror;
-    return std::nullopt;
+    return mode == "black" ? WrapMode::clamp : parse_wrap_mode(mode);
 }
 void read_wrap_modes(const OIIO::ImageSpec& spec, WrapMode fallback, TextureInfo& info) {
     info.wrap_s = info.wrap_t = fallback;
@@ -38,10 +35,6 @@ void read_wrap_modes(const OIIO::ImageSpec& spec, WrapMode fallback, TextureInfo
         comma == std::string::npos ? s : std::string_view(modes).substr(comma + 1);
     if (auto mode = parse_oiio_wrap(s)) info.wrap_s = *mode;
     if (auto mode = parse_oiio_wrap(t)) info.wrap_t = *mode;
-}
-
-std::string wrap_attribute(WrapMode mode) {
-    return mode == WrapMode::repeat ? "periodic" : mode == WrapMode::clamp ? "clamp" : "mirror";
 }
 
 // The file in options.cache_dir that holds the pyramid built for `file`: named by the source's
@@ -64,8 +57,7 @@ fs::path cached_pyramid(const fs::path& file, const TextureSystemOptions& option
 
 }  // namespace
 
-void TextureHandle::open(const TextureSystemOptions& options,
-                         std::atomic<std::size_t>& bytes_in_memory) {
+void TextureHandle::open(const TextureSystemOptions& options) {
     std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(name);
     if (!in) {  // load_image() names the cause best (no such file, a directory, …)
         Result<Image> image = load_image(name);
@@ -106,7 +98,7 @@ void TextureHandle::open(const TextureSystemOptions& options,
             for (int l = 0; l < built.level_count(); ++l)
                 level_images.push_back(built.level_image(l));
             LevelsSaveOptions save;
-            save.wrap_modes = wrap_attribute(info.wrap_s) + "," + wrap_attribute(info.wrap_t);
+            save.wrap_modes = oiio_wrap_modes(info.wrap_s, info.wrap_t);
             save.tile_size = std::clamp(options.tile_size, 16, 1024);
             if (Status saved = save_image_levels(level_images, cached, save); !saved) {
                 error = Error{"cannot cache the MIP levels of '" + name +
@@ -119,10 +111,6 @@ void TextureHandle::open(const TextureSystemOptions& options,
     }
     info = {built.width(0), built.height(0), built.channels(), built.level_count(),
             false,          info.wrap_s,     info.wrap_t};
-    std::size_t texels = 0;
-    for (int l = 0; l < built.level_count(); ++l)
-        texels += static_cast<std::size_t>(built.width(l)) * built.height(l);
-    bytes_in_memory += texels * built.stride() * sizeof(float);
     pyramid = std::make_unique<MipPyramid>(std::move(built));
 }
 

@@ -25,8 +25,7 @@ class TextureHandle {
 
     // Opens the file: its header for stored levels, else the image, whose pyramid is built (and,
     // with options.cache_dir, written there and opened as stored). Sets `error` on failure.
-    // `bytes_in_memory` counts a pyramid kept in memory.
-    void open(const TextureSystemOptions& options, std::atomic<std::size_t>& bytes_in_memory);
+    void open(const TextureSystemOptions& options);
 
     // Reads tile (tx, ty) of level l into `texels` (TiledTexels' layout: row-major, stride floats
     // per texel). A failed read gives zeros and sets read_error.

@@ -105,7 +105,8 @@ class TextureSystemImpl final : public TextureSystem {
             if (name.find(kUdim) != std::string_view::npos) {
                 file->udim = true;
             } else {
-                file->open(options_, bytes_in_memory_);
+                file->open(options_);
+                if (file->pyramid) bytes_in_memory_ += pyramid_bytes(*file->pyramid);
             }
         });
         return file;

@@ -52,6 +52,32 @@ std::uint32_t bits(float v) {
     return std::bit_cast<std::uint32_t>(v);
 }
 
+// Every filter's lookups of `file` through `ts` against texture_lookup() of `pyramid` on the
+// same coordinates (RGB): bit for bit where tolerance is 0, else within it.
+void expect_lookups_of_pyramid(TextureSystem& ts, const std::string& file,
+                               const MipPyramid& pyramid, const std::vector<TextureCoords>& coords,
+                               float tolerance = 0) {
+    TextureHandle* handle = ts.handle(file);
+    for (TextureFilter filter : kFilters) {
+        LookupOptions lookup;
+        lookup.filter = filter;
+        for (const TextureCoords& c : coords) {
+            float want[3], got[3];
+            texture_lookup(pyramid, c, lookup, want);
+            ASSERT_TRUE(ts.texture(handle, c, lookup, got));
+            for (int k = 0; k < 3; ++k) {
+                if (tolerance == 0) {
+                    ASSERT_EQ(bits(got[k]), bits(want[k]))
+                        << to_string(filter) << " at (" << c.s << ", " << c.t << "): " << got[k]
+                        << " against " << want[k];
+                } else {
+                    ASSERT_NEAR(got[k], want[k], tolerance) << to_string(filter);
+                }
+            }
+        }
+    }
+}
+
 // A MIP chain of `image` (a box pyramid) as level images, and written as a tiled MIP-mapped EXR.
 std::vector<Image> levels_of(const Image& image) {
     const MipPyramid pyramid = MipPyramid::build(image);
@@ -80,19 +106,7 @@ TEST(TextureSystem, StoredLevelsLookUpBitForBitAsTheirPyramid) {
     EXPECT_EQ(info->width, 300);
     EXPECT_EQ(info->levels, pyramid.level_count());
     EXPECT_EQ(info->wrap_t, WrapMode::clamp);
-    for (TextureFilter filter : kFilters) {
-        LookupOptions lookup;
-        lookup.filter = filter;
-        for (const TextureCoords& c : lookups(300, 2)) {
-            float want[3], got[3];
-            texture_lookup(pyramid, c, lookup, want);
-            ASSERT_TRUE(ts->texture(file, c, lookup, got));
-            for (int k = 0; k < 3; ++k)
-                ASSERT_EQ(bits(got[k]), bits(want[k]))
-                    << to_string(filter) << " at (" << c.s << ", " << c.t << "): " << got[k]
-                    << " against " << want[k];
-        }
-    }
+    expect_lookups_of_pyramid(*ts, (dir / "stored.exr").string(), pyramid, lookups(300, 2));
     EXPECT_EQ(ts->stats().bytes_in_memory, 0u);
 }
 
@@ -124,17 +138,7 @@ TEST(TextureSystem, OpenImageIOsMaketxFilesAreReadAsStored) {
     ASSERT_TRUE(info) << info.error().message;
     EXPECT_TRUE(info->tiled);
     EXPECT_EQ(info->levels, pyramid.level_count());
-    for (TextureFilter filter : kFilters) {
-        LookupOptions lookup;
-        lookup.filter = filter;
-        for (const TextureCoords& c : lookups(200, 13)) {
-            float want[3], got[3];
-            texture_lookup(pyramid, c, lookup, want);
-            ASSERT_TRUE(ts->texture(tx, c, lookup, got));
-            for (int k = 0; k < 3; ++k)
-                ASSERT_NEAR(got[k], want[k], kSrgbDecodeTolerance) << to_string(filter);
-        }
-    }
+    expect_lookups_of_pyramid(*ts, tx, pyramid, lookups(200, 13), kSrgbDecodeTolerance);
 }
 
 // Textures four times the cache: evicted and read again, with the same results as a cache that
@@ -187,22 +191,10 @@ TEST(TextureSystem, FilesWithoutLevelsAreBuiltInMemoryOrInTheCacheFolder) {
     TextureSystemOptions cached_options;
     cached_options.cache_dir = dir / "cache";
     auto cached = make_system(cached_options);
-    for (TextureFilter filter : kFilters) {
-        LookupOptions lookup;
-        lookup.filter = filter;
-        for (const TextureCoords& c : lookups(200, 5)) {
-            float want[3], memory[3], tiles[3];
-            texture_lookup(pyramid, c, lookup, want);
-            ASSERT_TRUE(in_memory->texture(png, c, lookup, memory));
-            ASSERT_TRUE(cached->texture(png, c, lookup, tiles));
-            for (int k = 0; k < 3; ++k) {
-                ASSERT_EQ(bits(memory[k]), bits(want[k])) << to_string(filter);
-                // The cached file's levels are the built pyramid's, as float; only EWA reads the
-                // prefilter variance, which a stored chain takes as the box's (T² − 1)/12.
-                ASSERT_NEAR(tiles[k], want[k], 1e-5f) << to_string(filter);
-            }
-        }
-    }
+    expect_lookups_of_pyramid(*in_memory, png, pyramid, lookups(200, 5));
+    // The cached file's levels are the built pyramid's, as float; only EWA reads the prefilter
+    // variance, which a stored chain takes as the box's (T² − 1)/12.
+    expect_lookups_of_pyramid(*cached, png, pyramid, lookups(200, 5), 1e-5f);
     EXPECT_FALSE(in_memory->info(png)->tiled);
     EXPECT_GT(in_memory->stats().bytes_in_memory, 128u * 64 * 16);
     EXPECT_TRUE(cached->info(png)->tiled);

@@ -34,6 +34,13 @@ const char* to_string(WrapMode mode) {
     return "?";
 }
 
+std::string oiio_wrap_modes(WrapMode s, WrapMode t) {
+    auto name = [](WrapMode mode) {
+        return mode == WrapMode::repeat ? "periodic" : to_string(mode);
+    };
+    return std::string(name(s)) + "," + name(t);
+}
+
 std::optional<TextureFilter> parse_texture_filter(std::string_view name) {
     for (TextureFilter f :
          {TextureFilter::nearest, TextureFilter::bilinear, TextureFilter::trilinear,

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string>
 #include <string_view>
 
 namespace footprint {
@@ -53,5 +54,8 @@ inline float reduce_coordinate(float s, WrapMode mode) {
 
 std::optional<WrapMode> parse_wrap_mode(std::string_view name);  // "repeat" | "clamp" | "mirror"
 const char* to_string(WrapMode mode);
+// OpenImageIO's "wrapmodes" attribute of a texture file (maketx's): "periodic,clamp" for s, t.
+// parse_wrap_mode() reads its names too ("periodic" is repeat).
+std::string oiio_wrap_modes(WrapMode s, WrapMode t);
 
 }  // namespace footprint
