@@ -39,6 +39,18 @@
 //   Environment maps and bump maps are held whole, as EnvironmentMap and BumpPyramid, once per
 //   file (stats().bytes_in_memory).
 //
+// Maps made in memory
+//   add_image(), add_bump() and add_environment() give a name to an image, a bump pyramid or an
+//   environment map the caller made (a generated texture, a normal map at the scene's strength, an
+//   environment assembled from six face files): lookups by that name then read it, held whole,
+//   as they read a file. footprint's renderer registers its derived maps this way, so that every
+//   lookup it makes goes through one TextureSystem. A name can be given once; a registered name
+//   hides a file of that name.
+//
+// Whole maps, for a GPU
+//   pyramid(), bump_pyramid() and environment_map() hand out a map whole, for uploading to a GPU:
+//   a tiled file's levels are then read completely, outside the cache and its bound.
+//
 // UDIM
 //   A name containing "<UDIM>" is a set of files: the lookup at (s, t) reads the one whose name has
 //   1001 + ⌊s⌋ + 10·⌊t⌋ there, at (s − ⌊s⌋, t − ⌊t⌋), as other renderers resolve UDIMs (u tiles
@@ -101,8 +113,11 @@ struct TextureInfo {
 };
 
 // A file's entry in a TextureSystem, for callers that look one file up many times: handle() once,
-// then lookups by handle skip the name's lookup. Valid as long as the TextureSystem.
+// then lookups by handle skip the name's lookup. Valid as long as the TextureSystem. Textures,
+// bump maps and environment maps have a handle type each: one file may be read as more than one.
 class TextureHandle;
+class BumpHandle;
+class EnvironmentHandle;
 
 class TextureSystem {
   public:
@@ -134,25 +149,64 @@ class TextureSystem {
     // environment_lookup() form (a) of the environment map in `name` (1, a lat-long, cube cross or
     // sphere/paraboloid image, laid out as load_environment() detects it): direction r and its ray
     // differentials. out and missing_color as texture().
-    virtual Status environment(std::string_view name, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
+    virtual Status environment(EnvironmentHandle* map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
                                const EnvLookupOptions& options, std::span<float> out,
                                std::span<const float> missing_color = {}) = 0;
+    Status environment(std::string_view name, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
+                       const EnvLookupOptions& options, std::span<float> out,
+                       std::span<const float> missing_color = {}) {
+        return environment(environment_handle(name), r, dr_dx, dr_dy, options, out, missing_color);
+    }
     // Schilling's form (b): a footprint computed for this map (environment_shape() gives its
     // layout and texel scale for compute_env_footprint()).
-    virtual Status environment(std::string_view name, const EnvFootprint& footprint,
+    virtual Status environment(EnvironmentHandle* map, const EnvFootprint& footprint,
                                const LookupOptions& options, std::span<float> out,
                                std::span<const float> missing_color = {}) = 0;
+    Status environment(std::string_view name, const EnvFootprint& footprint,
+                       const LookupOptions& options, std::span<float> out,
+                       std::span<const float> missing_color = {}) {
+        return environment(environment_handle(name), footprint, options, out, missing_color);
+    }
+    // Unfiltered: environment_bilinear() at the finest level in the map's direction r (a point
+    // sample, as a supersampled reference takes them).
+    virtual Status environment_sample(EnvironmentHandle* map, Vec3 r, std::span<float> out) = 0;
     struct EnvironmentShape {
         EnvLayout layout;
         Vec2 texel_scale;
         int channels;
     };
-    virtual Result<EnvironmentShape> environment_shape(std::string_view name) = 0;
+    virtual Result<EnvironmentShape> environment_shape(EnvironmentHandle* map) = 0;
+    Result<EnvironmentShape> environment_shape(std::string_view name) {
+        return environment_shape(environment_handle(name));
+    }
+    virtual EnvironmentHandle* environment_handle(std::string_view name) = 0;
 
     // bump_lookup() (bump/bump_pyramid.h) of the normal map in `name` (OpenGL convention, decoded
-    // as load_slope_map() decodes it): the mean slope and slope covariance over the footprint.
-    virtual Status bump(std::string_view name, const TextureCoords& coords,
-                        const LookupOptions& options, SlopeStatistics* statistics) = 0;
+    // as load_slope_map() decodes it, at strength 1 without micro-roughness), or of the bump
+    // pyramid add_bump() gave that name: the mean slope and slope covariance over the footprint.
+    virtual Status bump(BumpHandle* map, const TextureCoords& coords, const LookupOptions& options,
+                        SlopeStatistics* statistics) = 0;
+    Status bump(std::string_view name, const TextureCoords& coords, const LookupOptions& options,
+                SlopeStatistics* statistics) {
+        return bump(bump_handle(name), coords, options, statistics);
+    }
+    virtual BumpHandle* bump_handle(std::string_view name) = 0;
+
+    // Maps made in memory (see above). Each returns the new entry's handle, or an Error where the
+    // name is taken or the map is empty. add_image() builds the image's pyramid as for a file
+    // without stored levels, wrapping as `wrap_s`, `wrap_t`; its channels are linear.
+    virtual Result<TextureHandle*> add_image(std::string_view name, const Image& image,
+                                             WrapMode wrap_s = WrapMode::repeat,
+                                             WrapMode wrap_t = WrapMode::repeat) = 0;
+    virtual Result<BumpHandle*> add_bump(std::string_view name, BumpPyramid pyramid) = 0;
+    virtual Result<EnvironmentHandle*> add_environment(std::string_view name,
+                                                       EnvironmentMap map) = 0;
+
+    // Whole maps (see above), or the entry's error.
+    virtual Result<std::shared_ptr<const MipPyramid>> pyramid(TextureHandle* texture) = 0;
+    virtual Result<std::shared_ptr<const BumpPyramid>> bump_pyramid(BumpHandle* map) = 0;
+    virtual Result<std::shared_ptr<const EnvironmentMap>> environment_map(
+        EnvironmentHandle* map) = 0;
 
     virtual TextureSystemStats stats() const = 0;
     // The errors not yet taken, each file's once, in the order they happened.

@@ -85,6 +85,13 @@ void TextureHandle::open(const TextureSystemOptions& options) {
         error = image.error();
         return;
     }
+    if (image->empty() || image->channels > MipPyramid::kMaxChannels) {
+        error = cannot_read(
+            name, std::to_string(image->channels) + " channels of " + std::to_string(image->width) +
+                      "×" + std::to_string(image->height) + " texels (1 to " +
+                      std::to_string(MipPyramid::kMaxChannels) + " channels can be filtered)");
+        return;
+    }
     MipPyramidOptions pyramid_options;
     pyramid_options.wrap_s = info.wrap_s;
     pyramid_options.wrap_t = info.wrap_t;
@@ -111,7 +118,7 @@ void TextureHandle::open(const TextureSystemOptions& options) {
     }
     info = {built.width(0), built.height(0), built.channels(), built.level_count(),
             false,          info.wrap_s,     info.wrap_t};
-    pyramid = std::make_unique<MipPyramid>(std::move(built));
+    pyramid = std::make_shared<const MipPyramid>(std::move(built));
 }
 
 void TextureHandle::open_stored(const std::string& file, const TextureSystemOptions& options) {
@@ -191,6 +198,36 @@ void TextureHandle::read_tile(int l, int tx, int ty, float* texels) {
             }
         }
     }
+}
+
+Result<MipPyramid> TextureHandle::read_whole() {
+    const int size = 1 << shape.tile_log2, channels = shape.channels;
+    const int stride = texel_stride(channels);
+    std::vector<Image> levels;
+    std::vector<float> tile(static_cast<std::size_t>(size) * size * stride);
+    for (int l = 0; l < info.levels; ++l) {
+        const int width = shape.levels[l].width, height = shape.levels[l].height;
+        Image& level = levels.emplace_back(width, height, channels);
+        for (int ty = 0; ty * size < height; ++ty) {
+            for (int tx = 0; tx * size < width; ++tx) {
+                read_tile(l, tx, ty, tile.data());
+                const int w = std::min(size, width - tx * size);
+                const int h = std::min(size, height - ty * size);
+                for (int y = 0; y < h; ++y)
+                    for (int x = 0; x < w; ++x)
+                        std::copy_n(&tile[(static_cast<std::size_t>(y) * w + x) * stride], channels,
+                                    level.at(tx * size + x, ty * size + y));
+            }
+        }
+    }
+    if (read_failed) {
+        std::lock_guard lock(read_error_mutex);
+        return *read_error;
+    }
+    MipPyramidOptions options;
+    options.wrap_s = info.wrap_s;
+    options.wrap_t = info.wrap_t;
+    return MipPyramid::from_levels(levels, options);
 }
 
 void TextureHandle::fail_read(const std::string& why) {

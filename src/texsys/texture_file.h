@@ -32,6 +32,8 @@ class TextureHandle {
     void read_tile(int l, int tx, int ty, float* texels);
     // The floats of tile (tx, ty) of level l.
     std::size_t tile_floats(int l, int tx, int ty) const;
+    // A tiled file's levels read whole into a pyramid (outside the cache), or the read's error.
+    Result<MipPyramid> read_whole();
 
     const std::string name;
     const std::uint32_t id;
@@ -43,7 +45,10 @@ class TextureHandle {
     // Tiled (info.tiled): the levels' shape, read through `input`.
     detail::TiledShape shape;
     // Otherwise: the pyramid, in memory.
-    std::unique_ptr<MipPyramid> pyramid;
+    std::shared_ptr<const MipPyramid> pyramid;
+    // A tiled file read whole (TextureSystem::pyramid()), while someone holds it.
+    std::mutex whole_mutex;
+    std::weak_ptr<const MipPyramid> whole;
 
     // A read that failed after the file opened (a truncated tile): the file's error from then on.
     std::atomic<bool> read_failed{false};

@@ -16,6 +16,22 @@
 
 namespace footprint {
 
+namespace texsys {
+
+// A map held whole (environment and bump maps), opened once.
+template <class T>
+struct WholeMap {
+    std::once_flag opened;
+    std::shared_ptr<const T> value;
+    std::optional<Error> error;
+    std::atomic<bool> error_reported{false};
+};
+
+}  // namespace texsys
+
+class BumpHandle : public texsys::WholeMap<BumpPyramid> {};
+class EnvironmentHandle : public texsys::WholeMap<EnvironmentMap> {};
+
 namespace {
 
 // The tiles of one lookup on one file: the thread's micro-cache first, then the shared cache.
@@ -50,15 +66,6 @@ class LookupTiles final : public detail::TileSource {
     texsys::TileCache& cache_;
     texsys::ThreadTiles& thread_;
     TextureHandle& file_;
-};
-
-// A file held whole (environment and bump maps), opened once.
-template <class T>
-struct WholeFile {
-    std::once_flag opened;
-    std::optional<T> value;
-    std::optional<Error> error;
-    std::atomic<bool> error_reported{false};
 };
 
 // A name → entry table that many threads read and a few add to.
@@ -148,56 +155,126 @@ class TextureSystemImpl final : public TextureSystem {
         return {};
     }
 
-    Status environment(std::string_view name, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
+    Status environment(EnvironmentHandle* env, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
                        const EnvLookupOptions& options, std::span<float> out,
                        std::span<const float> missing) override {
-        WholeFile<EnvironmentMap>& env = environment_file(name);
-        if (env.error) return missing_or(*env.error, env.error_reported, out, missing);
+        if (env->error) return missing_or(*env->error, env->error_reported, out, missing);
         float result[MipPyramid::kMaxChannels];
-        environment_lookup(*env.value, r, dr_dx, dr_dy, options, result);
-        write_channels(result, env.value->channels(), out);
+        environment_lookup(*env->value, r, dr_dx, dr_dy, options, result);
+        write_channels(result, env->value->channels(), out);
         return {};
     }
 
-    Status environment(std::string_view name, const EnvFootprint& footprint,
+    Status environment(EnvironmentHandle* env, const EnvFootprint& footprint,
                        const LookupOptions& options, std::span<float> out,
                        std::span<const float> missing) override {
-        WholeFile<EnvironmentMap>& env = environment_file(name);
-        if (env.error) return missing_or(*env.error, env.error_reported, out, missing);
+        if (env->error) return missing_or(*env->error, env->error_reported, out, missing);
         float result[MipPyramid::kMaxChannels];
-        environment_lookup(*env.value, footprint, options, result);
-        write_channels(result, env.value->channels(), out);
+        environment_lookup(*env->value, footprint, options, result);
+        write_channels(result, env->value->channels(), out);
         return {};
     }
 
-    Result<EnvironmentShape> environment_shape(std::string_view name) override {
-        WholeFile<EnvironmentMap>& env = environment_file(name);
-        if (env.error) return *env.error;
-        return EnvironmentShape{env.value->layout(), env.value->texel_scale(),
-                                env.value->channels()};
+    Status environment_sample(EnvironmentHandle* env, Vec3 r, std::span<float> out) override {
+        if (env->error) return *env->error;
+        float result[MipPyramid::kMaxChannels];
+        environment_bilinear(*env->value, r, 0, result);
+        write_channels(result, env->value->channels(), out);
+        return {};
     }
 
-    Status bump(std::string_view name, const TextureCoords& coords, const LookupOptions& options,
-                SlopeStatistics* statistics) override {
-        auto [entry, added] =
-            bumps_.find_or_add(name, [] { return std::make_unique<WholeFile<BumpPyramid>>(); });
-        std::call_once(entry->opened, [&, entry = entry] {
-            Result<Image> slopes = load_slope_map(std::string(name));
-            Result<BumpPyramid> pyramid =
-                slopes ? BumpPyramid::build(*slopes) : Result<BumpPyramid>(slopes.error());
-            if (!pyramid) {
-                entry->error = pyramid.error();
-                return;
-            }
-            bytes_in_memory_ += pyramid_bytes(pyramid->moments());
-            entry->value = std::move(*pyramid);
+    Result<EnvironmentShape> environment_shape(EnvironmentHandle* env) override {
+        if (env->error) return *env->error;
+        return EnvironmentShape{env->value->layout(), env->value->texel_scale(),
+                                env->value->channels()};
+    }
+
+    EnvironmentHandle* environment_handle(std::string_view name) override {
+        return open_whole(environments_, name, [&](EnvironmentHandle& entry) {
+            Result<EnvironmentMap> map = load_environment({std::filesystem::path(name)});
+            if (!map) return void(entry.error = map.error());
+            entry.value = std::make_shared<const EnvironmentMap>(std::move(*map));
+            count_in_memory(*entry.value);
         });
+    }
+
+    Status bump(BumpHandle* entry, const TextureCoords& coords, const LookupOptions& options,
+                SlopeStatistics* statistics) override {
         if (entry->error) {
             if (!entry->error_reported.exchange(true)) report(*entry->error);
             return *entry->error;
         }
         *statistics = bump_lookup(*entry->value, coords, options);
         return {};
+    }
+
+    BumpHandle* bump_handle(std::string_view name) override {
+        return open_whole(bumps_, name, [&](BumpHandle& entry) {
+            Result<Image> slopes = load_slope_map(std::string(name));
+            Result<BumpPyramid> pyramid =
+                slopes ? BumpPyramid::build(*slopes) : Result<BumpPyramid>(slopes.error());
+            if (!pyramid) return void(entry.error = pyramid.error());
+            entry.value = std::make_shared<const BumpPyramid>(std::move(*pyramid));
+            count_in_memory(*entry.value);
+        });
+    }
+
+    Result<TextureHandle*> add_image(std::string_view name, const Image& image, WrapMode wrap_s,
+                                     WrapMode wrap_t) override {
+        if (image.empty())
+            return Error{"texture system: the image '" + std::string(name) + "' is empty"};
+        if (image.channels < 1 || image.channels > MipPyramid::kMaxChannels)
+            return Error{"texture system: the image '" + std::string(name) + "' has " +
+                         std::to_string(image.channels) + " channels (1 to " +
+                         std::to_string(MipPyramid::kMaxChannels) + " can be filtered)"};
+        auto [file, added] = files_.find_or_add(name, [&] {
+            return std::make_unique<TextureHandle>(std::string(name), next_file_id_++);
+        });
+        if (!added) return name_taken(name);
+        std::call_once(file->opened, [&, file = file] {
+            MipPyramidOptions options;
+            options.wrap_s = wrap_s;
+            options.wrap_t = wrap_t;
+            options.downsample = options_.downsample;
+            file->pyramid = std::make_shared<const MipPyramid>(MipPyramid::build(image, options));
+            file->info = {image.width, image.height, image.channels, file->pyramid->level_count(),
+                          false,       wrap_s,       wrap_t};
+            bytes_in_memory_ += pyramid_bytes(*file->pyramid);
+        });
+        return file;
+    }
+
+    Result<BumpHandle*> add_bump(std::string_view name, BumpPyramid pyramid) override {
+        return add_whole(bumps_, name, std::move(pyramid));
+    }
+
+    Result<EnvironmentHandle*> add_environment(std::string_view name, EnvironmentMap map) override {
+        return add_whole(environments_, name, std::move(map));
+    }
+
+    Result<std::shared_ptr<const MipPyramid>> pyramid(TextureHandle* file) override {
+        if (file->udim) return Error{"'" + file->name + "' is a UDIM set, not one pyramid"};
+        if (file->error) return *file->error;
+        if (file->pyramid) return file->pyramid;
+        // Kept while a caller holds it, so that two materials on one file upload it once.
+        std::lock_guard lock(file->whole_mutex);
+        if (std::shared_ptr<const MipPyramid> held = file->whole.lock()) return held;
+        Result<MipPyramid> whole = file->read_whole();
+        if (!whole) return whole.error();
+        auto held = std::make_shared<const MipPyramid>(std::move(*whole));
+        file->whole = held;
+        return held;
+    }
+
+    Result<std::shared_ptr<const BumpPyramid>> bump_pyramid(BumpHandle* entry) override {
+        if (entry->error) return *entry->error;
+        return entry->value;
+    }
+
+    Result<std::shared_ptr<const EnvironmentMap>> environment_map(
+        EnvironmentHandle* entry) override {
+        if (entry->error) return *entry->error;
+        return entry->value;
     }
 
     TextureSystemStats stats() const override {
@@ -231,20 +308,35 @@ class TextureSystemImpl final : public TextureSystem {
         return it->second;
     }
 
-    WholeFile<EnvironmentMap>& environment_file(std::string_view name) {
-        auto [entry, added] = environments_.find_or_add(
-            name, [] { return std::make_unique<WholeFile<EnvironmentMap>>(); });
+    // The entry of `name` in `table`, opened by `open` on first use.
+    template <class Entry, class Open>
+    Entry* open_whole(FileTable<Entry>& table, std::string_view name, const Open& open) {
+        auto [entry, added] = table.find_or_add(name, [] { return std::make_unique<Entry>(); });
+        std::call_once(entry->opened, [&, entry = entry] { open(*entry); });
+        return entry;
+    }
+
+    // A new entry `name` in `table` holding `map`.
+    template <class Entry, class Map>
+    Result<Entry*> add_whole(FileTable<Entry>& table, std::string_view name, Map map) {
+        auto [entry, added] = table.find_or_add(name, [] { return std::make_unique<Entry>(); });
+        if (!added) return name_taken(name);
         std::call_once(entry->opened, [&, entry = entry] {
-            Result<EnvironmentMap> map = load_environment({std::filesystem::path(name)});
-            if (!map) {
-                entry->error = map.error();
-                return;
-            }
-            for (int f = 0; f < map->face_count(); ++f)
-                bytes_in_memory_ += pyramid_bytes(map->face(f));
-            entry->value = std::move(*map);
+            entry->value = std::make_shared<const Map>(std::move(map));
+            count_in_memory(*entry->value);
         });
-        return *entry;
+        return entry;
+    }
+
+    static Error name_taken(std::string_view name) {
+        return Error{"texture system: the name '" + std::string(name) + "' is already in use"};
+    }
+
+    void count_in_memory(const EnvironmentMap& map) {
+        for (int f = 0; f < map.face_count(); ++f) bytes_in_memory_ += pyramid_bytes(map.face(f));
+    }
+    void count_in_memory(const BumpPyramid& pyramid) {
+        bytes_in_memory_ += pyramid_bytes(pyramid.moments());
     }
 
     static std::size_t pyramid_bytes(const MipPyramid& pyramid) {
@@ -280,8 +372,8 @@ class TextureSystemImpl final : public TextureSystem {
     std::atomic<std::uint32_t> next_file_id_{0};
     std::atomic<std::size_t> bytes_in_memory_{0};
     FileTable<TextureHandle> files_;
-    FileTable<WholeFile<EnvironmentMap>> environments_;
-    FileTable<WholeFile<BumpPyramid>> bumps_;
+    FileTable<EnvironmentHandle> environments_;
+    FileTable<BumpHandle> bumps_;
     std::mutex errors_mutex_;
     std::vector<Error> errors_;
 };
