@@ -31,10 +31,12 @@ struct Rendered {
     RenderStats stats;
 };
 
-Rendered render_timed(const RenderScene& scene, const RenderOptions& options,
-                      const std::string& label, bool show_progress) {
+Result<Rendered> render_timed(const RenderScene& scene, const RenderOptions& options,
+                              const std::string& label, bool show_progress) {
     Rendered r;
-    r.image = render_with_progress(scene, options, label, show_progress, &r.stats);
+    Result<Image> image = render_with_progress(scene, options, label, show_progress, &r.stats);
+    if (!image) return image.error();
+    r.image = std::move(*image);
     return r;
 }
 
@@ -80,8 +82,10 @@ int run_demo_command(const DemoCommandOptions& options) {
         render_options.threads = options.threads;
         render_options.filter = FilterMode::reference;
         render_options.spp = options.reference_spp;
-        const Rendered reference =
+        const Result<Rendered> rendered_reference =
             render_timed(*scene, render_options, demo.name + " reference", show_progress);
+        if (!rendered_reference) return fail(rendered_reference.error().message);
+        const Rendered& reference = *rendered_reference;
         if (Status s = outputs.save(reference.image, dir / "reference.png"); !s) {
             return fail(s.error().message);
         }
@@ -98,11 +102,12 @@ int run_demo_command(const DemoCommandOptions& options) {
         for (FilterMode mode : kDemoModes) {
             render_options.filter = mode;
             render_options.spp = 1;
-            Rendered r = render_timed(*scene, render_options,
-                                      demo.name + " " + filter_mode_name(mode), show_progress);
+            Result<Rendered> r = render_timed(
+                *scene, render_options, demo.name + " " + filter_mode_name(mode), show_progress);
+            if (!r) return fail(r.error().message);
             const std::string file = std::string(filter_mode_name(mode)) + ".png";
-            if (Status s = outputs.save(r.image, dir / file); !s) return fail(s.error().message);
-            const Result<ImageComparison> comparison = compare_images(r.image, reference.image);
+            if (Status s = outputs.save(r->image, dir / file); !s) return fail(s.error().message);
+            const Result<ImageComparison> comparison = compare_images(r->image, reference.image);
             if (!comparison)
                 return fail(demo.name + " " + filter_mode_name(mode) + ": " +
                             comparison.error().message);
@@ -110,11 +115,11 @@ int run_demo_command(const DemoCommandOptions& options) {
             entry["modes"].push_back({{"filter", filter_mode_name(mode)},
                                       {"file", demo.name + "/" + file},
                                       {"rmse", error},
-                                      {"seconds", r.stats.seconds},
-                                      {"lookups", r.stats.lookups}});
+                                      {"seconds", r->stats.seconds},
+                                      {"lookups", r->stats.lookups}});
             std::printf("%-17s %-10s %10.5f %9.3f\n", demo.name.c_str(), filter_mode_name(mode),
-                        error, r.stats.seconds);
-            rendered.push_back(std::move(r));
+                        error, r->stats.seconds);
+            rendered.push_back(std::move(*r));
         }
         std::vector<const Image*> sheet_images = {&reference.image};
         std::vector<std::string> labels = {

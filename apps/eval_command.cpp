@@ -55,8 +55,8 @@ class Renderer {
     Renderer(const RenderScene& scene, int threads, bool progress)
         : scene_(scene), threads_(threads), progress_(progress) {}
 
-    Timed render_one(FilterMode mode, int spp, std::uint32_t seed, const std::string& label,
-                     int frame = 0, int frame_count = 0) const {
+    Result<Timed> render_one(FilterMode mode, int spp, std::uint32_t seed, const std::string& label,
+                             int frame = 0, int frame_count = 0) const {
         RenderOptions options;
         options.filter = mode;
         options.spp = spp;
@@ -65,21 +65,21 @@ class Renderer {
         options.frame = frame;
         options.frame_count = frame_count;
         RenderStats stats;
-        Timed t;
-        t.image = render_with_progress(scene_, options, label, progress_, &stats);
-        t.seconds = stats.seconds;
-        return t;
+        Result<Image> image = render_with_progress(scene_, options, label, progress_, &stats);
+        if (!image) return image.error();
+        return Timed{std::move(*image), stats.seconds};
     }
 
-    std::vector<Image> sequence(FilterMode mode, int spp, std::uint32_t seed, int frames,
-                                const std::string& label) const {
+    Result<std::vector<Image>> sequence(FilterMode mode, int spp, std::uint32_t seed, int frames,
+                                        const std::string& label) const {
         std::vector<Image> images;
         for (int f = 0; f < frames; ++f) {
-            images.push_back(
+            Result<Timed> t =
                 render_one(mode, spp, seed,
                            label + " frame " + std::to_string(f + 1) + "/" + std::to_string(frames),
-                           f, frames)
-                    .image);
+                           f, frames);
+            if (!t) return t.error();
+            images.push_back(std::move(t->image));
         }
         return images;
     }
@@ -91,7 +91,8 @@ class Renderer {
 };
 
 // A cached render: read if present, else rendered and written (EXR, linear float).
-Result<Image> cached(const fs::path& file, bool& was_cached, const std::function<Image()>& make) {
+Result<Image> cached(const fs::path& file, bool& was_cached,
+                     const std::function<Result<Image>()>& make) {
     std::error_code ec;
     if (fs::is_regular_file(file, ec)) {
         Result<Image> image = load_image(file);
@@ -101,8 +102,9 @@ Result<Image> cached(const fs::path& file, bool& was_cached, const std::function
         }
     }
     was_cached = false;
-    Image image = make();
-    if (Status s = save_image(image, file); !s) return s.error();
+    Result<Image> image = make();
+    if (!image) return image;
+    if (Status s = save_image(*image, file); !s) return s.error();
     return image;
 }
 
@@ -211,15 +213,16 @@ int run_eval_command(const EvalCommandOptions& options) {
         // The reference, cached by content.
         bool reference_cached = false;
         double reference_seconds = 0;
-        Result<Image> reference =
-            cached(options.out_dir / "cache" /
-                       (key + "-ref" + std::to_string(options.reference_spp) + ".exr"),
-                   reference_cached, [&] {
-                       Timed t = renderer.render_one(FilterMode::reference, options.reference_spp,
-                                                     kReferenceSeed, named.name + " reference");
-                       reference_seconds = t.seconds;
-                       return std::move(t.image);
-                   });
+        Result<Image> reference = cached(
+            options.out_dir / "cache" /
+                (key + "-ref" + std::to_string(options.reference_spp) + ".exr"),
+            reference_cached, [&]() -> Result<Image> {
+                Result<Timed> t = renderer.render_one(FilterMode::reference, options.reference_spp,
+                                                      kReferenceSeed, named.name + " reference");
+                if (!t) return t.error();
+                reference_seconds = t->seconds;
+                return std::move(t->image);
+            });
         if (!reference) return fail(reference.error().message);
         const Image reference_display = display_encoded(*reference);
         if (Status s = outputs.save(*reference, dir / "reference.png"); !s) {
@@ -232,20 +235,21 @@ int run_eval_command(const EvalCommandOptions& options) {
         bool sequence_cached = animated;
         for (int f = 0; animated && f < options.frames; ++f) {
             bool was_cached = false;
-            Result<Image> frame = cached(
-                options.out_dir / "cache" /
-                    (key + "-seq" + std::to_string(options.frames) + "-ref" +
-                     std::to_string(options.flicker_reference_spp) + "-" + std::to_string(f) +
-                     ".exr"),
-                was_cached, [&] {
-                    return renderer
-                        .render_one(FilterMode::reference, options.flicker_reference_spp,
-                                    kSequenceReferenceSeed,
-                                    named.name + " reference frame " + std::to_string(f + 1) + "/" +
-                                        std::to_string(options.frames),
-                                    f, options.frames)
-                        .image;
-                });
+            Result<Image> frame =
+                cached(options.out_dir / "cache" /
+                           (key + "-seq" + std::to_string(options.frames) + "-ref" +
+                            std::to_string(options.flicker_reference_spp) + "-" +
+                            std::to_string(f) + ".exr"),
+                       was_cached, [&]() -> Result<Image> {
+                           Result<Timed> t = renderer.render_one(
+                               FilterMode::reference, options.flicker_reference_spp,
+                               kSequenceReferenceSeed,
+                               named.name + " reference frame " + std::to_string(f + 1) + "/" +
+                                   std::to_string(options.frames),
+                               f, options.frames);
+                           if (!t) return t.error();
+                           return std::move(t->image);
+                       });
             if (!frame) return fail(frame.error().message);
             sequence_cached = sequence_cached && was_cached;
             reference_sequence.push_back(std::move(*frame));
@@ -285,7 +289,10 @@ int run_eval_command(const EvalCommandOptions& options) {
         eval_scene.reference_seconds = reference_seconds;
         std::vector<Image> images;
         for (const Method& m : methods) {
-            Timed t = renderer.render_one(m.mode, m.spp, m.seed, named.name + " " + m.name);
+            Result<Timed> rendered =
+                renderer.render_one(m.mode, m.spp, m.seed, named.name + " " + m.name);
+            if (!rendered) return fail(named.name + " " + m.name + ": " + rendered.error().message);
+            Timed& t = *rendered;
             EvalMethod em;
             em.name = m.name;
             em.family = m.family;
@@ -308,9 +315,11 @@ int run_eval_command(const EvalCommandOptions& options) {
                 compare_images(display_encoded(t.image), reference_display);
             if (display) em.ssim = display->ssim;
             if (animated) {
-                const std::vector<Image> sequence = renderer.sequence(
+                const Result<std::vector<Image>> sequence = renderer.sequence(
                     m.mode, m.spp, m.seed, options.frames, named.name + " " + m.name);
-                Result<double> f = flicker(sequence, reference_sequence);
+                if (!sequence)
+                    return fail(named.name + " " + m.name + ": " + sequence.error().message);
+                Result<double> f = flicker(*sequence, reference_sequence);
                 em.flicker = f ? *f : kNaN;
             }
             eval_scene.methods.push_back(em);

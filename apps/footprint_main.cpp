@@ -261,6 +261,13 @@ int run(int argc, char** argv) {
                      "cpu, or gpu: the GPU path, one sample per pixel (--filter " +
                          footprint::gpu_filter_names("|") + ")")
         ->capture_default_str();
+    render_cmd
+        ->add_option("--texture-memory-mb", render.texture_memory_mb,
+                     "The texture cache's bound: MiB of texels of tiled files (maketx output)")
+        ->capture_default_str();
+    render_cmd->add_option("--texture-cache-dir", render.texture_cache_dir,
+                           "Keep pyramids built for plain image files in this folder (tiled "
+                           "EXR), read tile by tile like maketx output");
     render_cmd->add_flag("--json", render.json, "Print a one-line JSON summary to stdout");
     render_cmd->add_flag("--quiet,-q", render.quiet, "No progress output");
 

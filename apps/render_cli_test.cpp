@@ -92,6 +92,8 @@ TEST_F(RenderCommandTest, WritesPngAndExrAndJsonSummary) {
     EXPECT_EQ(summary["pixels"], 24 * 16);
     EXPECT_GT(summary["lookups"].get<double>(), 0);
     EXPECT_GE(summary["seconds"].get<double>(), 0);
+    EXPECT_EQ(summary["texture_tiles_loaded"], 0);  // no tiled file: the maps are in memory
+    EXPECT_EQ(summary["texture_peak_bytes"], 0);
 
     // EXR keeps linear HDR values (the sky's 4.0 band is reflected in the sphere), no exposure.
     RenderCommandOptions exr = options("ref.exr", "reference");
@@ -309,6 +311,8 @@ TEST_F(RenderCommandTest, NumbersOutOfRangeAreRefusedAlike) {
         {[](RenderCommandOptions& o) { o.width = -8; }, "--size -8 is out of range (16 to 16384)"},
         {[](RenderCommandOptions& o) { o.threads = -1; },
          "--threads -1 is out of range (0 to 1024; 0: all cores)"},
+        {[](RenderCommandOptions& o) { o.texture_memory_mb = 0; },
+         "--texture-memory-mb 0 is out of range (1 to 1048576)"},
     };
     for (const Case& c : cases) {
         RenderCommandOptions o = options("a.png", "fa");

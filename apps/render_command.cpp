@@ -25,6 +25,7 @@ constexpr int kDefaultReferenceSpp = 64;
 constexpr int kMaxSpp = 1 << 16;
 constexpr int kMaxFrames = 100000;
 constexpr int kMaxThreads = 1024;
+constexpr int kMaxTextureMemoryMb = 1 << 20;
 
 }  // namespace
 
@@ -55,6 +56,9 @@ std::optional<std::string> option_problem(const RenderCommandOptions& options) {
     if (auto problem = range_problem("--threads", options.threads, 0, kMaxThreads, "0: all cores"))
         return problem;
     if (!std::isfinite(options.exposure)) return "--exposure: must be finite";
+    if (auto problem =
+            range_problem("--texture-memory-mb", options.texture_memory_mb, 1, kMaxTextureMemoryMb))
+        return problem;
     return std::nullopt;
 }
 
@@ -74,7 +78,7 @@ std::string written_files(const RenderCommandOptions& options, int frame_count) 
 }
 
 void report(const RenderCommandOptions& options, const SceneDesc& desc, const RenderOptions& ro,
-            const RenderStats& stats, int frame_count) {
+            const RenderStats& stats, const TextureSystemStats& textures, int frame_count) {
     const char* mode = filter_mode_name(ro.filter);
     if (options.json) {
         const nlohmann::json summary = {{"scene", options.scene.string()},
@@ -90,7 +94,9 @@ void report(const RenderCommandOptions& options, const SceneDesc& desc, const Re
                                         {"lookups", stats.lookups},
                                         {"non_finite_samples", stats.non_finite_samples},
                                         {"non_finite_pixels", stats.non_finite_pixels},
-                                        {"frames", frame_count}};
+                                        {"frames", frame_count},
+                                        {"texture_tiles_loaded", textures.tiles_loaded},
+                                        {"texture_peak_bytes", textures.peak_bytes}};
         std::printf("%s\n", summary.dump().c_str());
     }
     if (options.quiet) return;
@@ -201,7 +207,12 @@ int run_render_command(const RenderCommandOptions& options) {
         return fail(options.scene.string() + ": --frames needs a camera_path in the scene");
     }
     if (options.width) resize_image(*desc, *options.width);
-    Result<RenderScene> scene = prepare_render_scene(*desc);
+    TextureSystemOptions texture_options;
+    texture_options.max_memory_mb = static_cast<std::size_t>(options.texture_memory_mb);
+    texture_options.cache_dir = options.texture_cache_dir;
+    Result<std::unique_ptr<TextureSystem>> textures = TextureSystem::create(texture_options);
+    if (!textures) return fail(textures.error().message);
+    Result<RenderScene> scene = prepare_render_scene(*desc, std::move(*textures));
     if (!scene) return fail(scene.error().message);
     if (gpu) return run_gpu_render(options, *gpu_filter, *desc, *scene);
 
@@ -223,6 +234,7 @@ int run_render_command(const RenderCommandOptions& options) {
         render_options.frame = frame;
         RenderStats frame_stats;
         Image image = render(*scene, render_options, &frame_stats, [&] { progress.advance(); });
+        if (Status s = scene->take_texture_errors(); !s) return fail(s.error().message);
         stats.seconds += frame_stats.seconds;
         stats.pixels += frame_stats.pixels;
         stats.samples += frame_stats.samples;
@@ -236,7 +248,7 @@ int run_render_command(const RenderCommandOptions& options) {
     }
     outputs.keep();
     progress.finish();
-    report(options, *desc, render_options, stats, frame_count);
+    report(options, *desc, render_options, stats, scene->textures().stats(), frame_count);
     return 0;
 }
 

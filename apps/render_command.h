@@ -1,8 +1,8 @@
 // apps/render_command.h — `footprint render`: a scene rendered with one filter mode.
 //
 //   footprint render SCENE -o OUT [--filter MODE] [--spp N] [--seed N] [--size WIDTH]
-//                    [--frames N] [--threads N] [--exposure E] [--device cpu|gpu] [--json]
-//                    [--quiet]
+//                    [--frames N] [--threads N] [--exposure E] [--device cpu|gpu]
+//                    [--texture-memory-mb N] [--texture-cache-dir DIR] [--json] [--quiet]
 //
 // --device gpu renders on the GPU path (gpu/gpu_renderer.h), headless through EGL, one sample per
 // pixel: MODE is then one of point, trilinear, fa, fa-rough, hw-aniso, --spp must be 1 and
@@ -18,6 +18,11 @@
 // into OUT with the frame number before the extension: out.png → out_0000.png … (4 digits, more if
 // N needs them).
 //
+// Every map of the scene is read through one TextureSystem (texture_system.h): files that store
+// MIP levels (maketx output) tile by tile through a cache of at most --texture-memory-mb MiB of
+// texels (default 1024), others built in memory or, with --texture-cache-dir, once into that
+// folder and then read like stored files.
+//
 // Returns the process exit status: 0, or 1 after one line "footprint: <what is wrong>" on stderr
 // naming the file, key or value at fault (scene errors come from scene/scene_file.h and
 // render/render_scene.h). The output path is checked before any work, and the image is written
@@ -31,7 +36,8 @@
 // samples, 0 if it has none). --json prints one summary line to stdout instead:
 //   {"scene": …, "output": …, "filter": …, "spp": …, "seed": …, "threads": …, "width": …,
 //    "height": …, "pixels": …, "seconds": …, "lookups": …, "non_finite_samples": …,
-//    "non_finite_pixels": …, "frames": …}   (pixels, seconds, lookups, non-finite: all frames)
+//    "non_finite_pixels": …, "frames": …, "texture_tiles_loaded": …, "texture_peak_bytes": …}
+//   (pixels, seconds, lookups, non-finite: all frames; the texture system's stats() at the end)
 //   with --device gpu: {"scene", "output", "device": "gpu", "gpu": the renderer's name, "filter",
 //    "spp": 1, "width", "height", "pixels", "seconds", "gpu_ms", "frames"} (gpu_ms: the GPU time
 //    of all frames, timer queries; seconds: the wall time of rendering and reading back)
@@ -51,10 +57,12 @@ struct RenderCommandOptions {
     std::optional<int> spp;           // 1 … 65536; not given: 1, or 64 for the reference
     std::optional<int> width;         // --size: 16 … 16384; not given: the scene's own size
     std::uint32_t seed = 1;
-    int threads = 0;             // 0: all cores
-    float exposure = 0;          // stops, for integer outputs
-    std::optional<int> frames;   // 1 … 100000: a sequence; not given: one image (scene camera)
-    std::string device = "cpu";  // "cpu" or "gpu"
+    int threads = 0;               // 0: all cores
+    float exposure = 0;            // stops, for integer outputs
+    std::optional<int> frames;     // 1 … 100000: a sequence; not given: one image (scene camera)
+    std::string device = "cpu";    // "cpu" or "gpu"
+    int texture_memory_mb = 1024;  // the texture system's max_memory_mb, ≥ 1
+    std::filesystem::path texture_cache_dir;  // its cache_dir; empty: built pyramids in memory
     bool json = false;
     bool quiet = false;
 };

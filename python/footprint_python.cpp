@@ -6,6 +6,7 @@
 //   rgb = ts.texture("albedo.exr", s, t, dsdx, dtdx, dsdy, dtdy, filter="fa")   # N × C float32
 //   sky = ts.environment("sky.hdr", r, dr_dx, dr_dy)                              # r: N × 3
 //   image = footprint.render("scene.json", filter="fa-rough", spp=1)             # H × W × 3
+//   image = footprint.render("scene.json", textures=ts)        # its maps through ts's cache
 //   footprint.metrics(image, reference)                                           # rmse, psnr,
 //   ssim footprint.save_image("out.exr", image); footprint.load_image("in.png")        # linear
 //   light
@@ -92,6 +93,9 @@ class PyTextureSystem {
         ts_ = std::move(*made);
     }
 
+    // The system itself, for render() to hold its scene's maps in.
+    const std::shared_ptr<TextureSystem>& system() const { return ts_; }
+
     int channels_of(const std::string& name) {
         Result<TextureInfo> info = ts_->info(name);
         if (!info) raise(info.error());
@@ -158,7 +162,7 @@ class PyTextureSystem {
     }
 
   private:
-    std::unique_ptr<TextureSystem> ts_;
+    std::shared_ptr<TextureSystem> ts_;
 };
 
 FloatArray to_array(const Image& image) {
@@ -178,7 +182,7 @@ Image to_image(const FloatArray& a, const char* name) {
 }
 
 FloatArray render_scene(const std::string& scene, const std::string& filter, int spp,
-                        std::optional<int> width, int threads) {
+                        std::optional<int> width, int threads, const PyTextureSystem* textures) {
     Result<FilterMode> mode = parse_render_filter(filter);
     if (!mode) raise(mode.error());
     if (spp < 1) throw py::value_error("spp must be at least 1");
@@ -191,7 +195,8 @@ FloatArray render_scene(const std::string& scene, const std::string& filter, int
             std::max(1, static_cast<int>(std::lround(double(*width) * desc.height / desc.width)));
         desc.width = *width;
     }
-    Result<RenderScene> prepared = prepare_render_scene(desc);
+    Result<RenderScene> prepared =
+        prepare_render_scene(desc, textures ? textures->system() : nullptr);
     if (!prepared) raise(prepared.error());
     RenderOptions options;
     options.filter = *mode;
@@ -202,6 +207,7 @@ FloatArray render_scene(const std::string& scene, const std::string& filter, int
         py::gil_scoped_release unlocked;
         image = render(*prepared, options);
     }
+    if (Status s = prepared->take_texture_errors(); !s) raise(s.error());
     return to_array(image);
 }
 
@@ -252,7 +258,9 @@ PYBIND11_MODULE(footprint, m) {
 
     m.def("render", &render_scene, py::arg("scene"), py::arg("filter") = "fa-rough",
           py::arg("spp") = 1, py::arg("width") = py::none(), py::arg("threads") = 0,
-          "A scene file (.json) or demo scene rendered: an H × W × 3 float32 array, linear light");
+          py::arg("textures") = py::none(),
+          "A scene file (.json) or demo scene rendered: an H × W × 3 float32 array, linear light; "
+          "its maps read through `textures` (a TextureSystem) or a new one");
     m.def("load_image", &load, py::arg("file"),
           "An image file as an H × W × C float32 array in linear light (load_image)");
     m.def("save_image", &save, py::arg("file"), py::arg("image"),

@@ -77,3 +77,17 @@ def test_render_and_metrics():
     assert same["rmse"] == 0 and same["ssim"] == pytest.approx(1.0)
     other = footprint.metrics(image, image * 0.5)
     assert other["rmse"] == pytest.approx(math.sqrt(np.mean((image * 0.5) ** 2)), rel=1e-4)
+
+
+def test_render_reads_its_maps_through_a_given_texture_system(tmp_path, texture):
+    scene = tmp_path / "plane.json"
+    scene.write_text(
+        '{"image": {"width": 40, "height": 24},'
+        ' "camera": {"position": [0, 1, 3], "look_at": [0, 0, 0], "fov_y_deg": 40},'
+        ' "lights": [{"type": "directional", "direction": [0, -1, -0.5]}],'
+        ' "objects": [{"shape": "plane", "size": [4, 4],'
+        '              "material": {"base_color": "%s"}}]}' % texture[0])
+    ts = footprint.TextureSystem(max_memory_mb=8)
+    shared = footprint.render(str(scene), textures=ts)
+    assert ts.stats()["files"] == 1  # the scene's texture, opened by the given system
+    np.testing.assert_array_equal(shared, footprint.render(str(scene)))

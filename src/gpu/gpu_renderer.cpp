@@ -168,7 +168,7 @@ void GpuRenderer::Impl::set_frame_uniforms(const CameraDesc& camera, int width, 
     glUniform1i(uniform("u_env_layout"), layout_code(gpu));
     if (const RenderEnvironment* env = scene->environment()) {
         glUniformMatrix3fv(uniform("u_env_rotation"), 1, GL_TRUE, &env->rotation.m[0][0]);
-        const Vec2 s = env->map.texel_scale();
+        const Vec2 s = env->texel_scale;
         glUniform2f(uniform("u_env_texel_scale"), s.x, s.y);
         glUniform1i(uniform("u_env_caps"), gpu.has_caps ? 1 : 0);
         glUniform3f(uniform("u_env_mean"), env->mean[0], env->mean[1], env->mean[2]);

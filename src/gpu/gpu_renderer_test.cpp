@@ -4,10 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
+#include "core/test_temp_dir.h"
 #include "gpu/gpu_test_device.h"
+#include "image/image_io.h"
+#include "image/test_images.h"
 #include "metrics/image_metrics.h"
 #include "render/camera.h"
 #include "render/renderer.h"
@@ -150,6 +154,40 @@ TEST(GpuRenderer, RefusesImageSizesTheGpuCannotHold) {
     ASSERT_FALSE(image);
     EXPECT_NE(image.error().message.find("image size 0x8 is outside 1x1 to"), std::string::npos)
         << image.error().message;
+}
+
+// The GPU uploads a map whole: a stored-levels file (read tile by tile on the CPU) is read whole
+// for it, and a grey file becomes grey RGB; both give the image of the plain file.
+TEST(GpuRenderer, StoredLevelsAndGreyMapsUploadAsThePlainFile) {
+    FOOTPRINT_GPU_DEVICE_OR_SKIP();
+    test::TempDir dir;
+    const Image grey = random_image(64, 32, 1, 11);
+    Image rgb(grey.width, grey.height, 3);
+    for (std::size_t i = 0; i < grey.pixel_count(); ++i)
+        std::fill_n(&rgb.pixels[i * 3], 3, grey.pixels[i]);
+    ASSERT_TRUE(save_image(rgb, dir / "rgb.exr"));
+    ASSERT_TRUE(save_image(grey, dir / "grey.exr"));
+    const MipPyramid pyramid = MipPyramid::build(rgb);
+    std::vector<Image> levels;
+    for (int l = 0; l < pyramid.level_count(); ++l) levels.push_back(pyramid.level_image(l));
+    LevelsSaveOptions stored;
+    stored.wrap_modes = "periodic,periodic";
+    stored.tile_size = 16;
+    ASSERT_TRUE(save_image_levels(levels, dir / "stored.exr", stored));
+    std::vector<Image> images;
+    for (const char* file : {"rgb.exr", "stored.exr", "grey.exr"}) {
+        SceneDesc desc = mirror_plane_scene(40, 24);
+        desc.objects[0].material.mirror = 0.5f;
+        desc.objects[0].material.diffuse = 1;
+        desc.objects[0].material.base_color_map.file = dir / file;
+        Result<RenderScene> scene = prepare_render_scene(desc);
+        ASSERT_TRUE(scene) << scene.error().message;
+        images.push_back(render_gpu(*scene, GpuFilter::fa_rough));
+    }
+    for (std::size_t i : {1u, 2u}) {
+        ASSERT_EQ(images[i].pixels.size(), images[0].pixels.size());
+        EXPECT_EQ(images[i].pixels, images[0].pixels) << i;
+    }
 }
 
 TEST(GpuFilter, NamesRoundTrip) {

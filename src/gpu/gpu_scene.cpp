@@ -95,19 +95,22 @@ class MapPool {
   public:
     // The place of `pyramid` as `layers` layers; none once the maps need more arrays than there
     // are units.
-    std::optional<MapRef> add(const MipPyramid& pyramid, int layers) {
+    // (The pool holds the pyramid until upload(): a tiled texture's is read whole for it.)
+    std::optional<MapRef> add(std::shared_ptr<const MipPyramid> pyramid, int layers) {
         for (std::size_t g = 0; g < groups_.size(); ++g) {
             Group& group = groups_[g];
             for (std::size_t i = 0; i < group.maps.size(); ++i)
-                if (group.maps[i] == &pyramid) return ref(g, i);
-            if (same_shape(*group.maps[0], pyramid) && group.layers == layers &&
+                if (group.maps[i] == pyramid.get()) return ref(g, i);
+            if (same_shape(*group.maps[0], *pyramid) && group.layers == layers &&
                 (static_cast<int>(group.maps.size()) + 1) * layers <= max_layers_) {
-                group.maps.push_back(&pyramid);
+                group.maps.push_back(pyramid.get());
+                held_.push_back(std::move(pyramid));
                 return ref(g, group.maps.size() - 1);
             }
         }
         if (groups_.size() >= static_cast<std::size_t>(kMaterialUnits)) return std::nullopt;
-        groups_.push_back({{&pyramid}, layers});
+        groups_.push_back({{pyramid.get()}, layers});
+        held_.push_back(std::move(pyramid));
         return ref(groups_.size() - 1, 0);
     }
 
@@ -123,6 +126,7 @@ class MapPool {
         std::vector<const MipPyramid*> maps;
         int layers;
     };
+    std::vector<std::shared_ptr<const MipPyramid>> held_;
 
     static bool same_shape(const MipPyramid& a, const MipPyramid& b) {
         return a.width(0) == b.width(0) && a.height(0) == b.height(0) &&
@@ -160,14 +164,17 @@ std::string object_name(const SceneDesc& scene, int i) {
     return "objects[" + std::to_string(i) + "]" + (name.empty() ? "" : " (" + name + ")");
 }
 
-void upload_environment(const RenderEnvironment& env, GpuScene& gpu, float anisotropy) {
-    const EnvironmentMap& map = env.map;
+Status upload_environment(const RenderScene& scene, GpuScene& gpu, float anisotropy) {
+    Result<std::shared_ptr<const EnvironmentMap>> whole =
+        scene.textures().environment_map(scene.environment()->map);
+    if (!whole) return whole.error();
+    const EnvironmentMap& map = **whole;
     gpu.has_environment = true;
     gpu.layout = map.layout();
     if (map.layout() == EnvLayout::cube) {
         gpu.cube = upload_cube(map);
         gpu.cube_sampler = make_sampler(GL_CLAMP_TO_EDGE, GL_CLAMP_TO_EDGE, 1);
-        return;
+        return {};
     }
     std::vector<const MipPyramid*> faces;
     for (int f = 0; f < map.face_count(); ++f) faces.push_back(&map.face(f));
@@ -176,6 +183,23 @@ void upload_environment(const RenderEnvironment& env, GpuScene& gpu, float aniso
         gpu.caps = upload_maps({map.polar_cap(0), map.polar_cap(1)}, 1, 1);
         gpu.has_caps = true;
     }
+    return {};
+}
+
+// A grey texture as the RGB one the shaders read (grey in every colour channel).
+std::shared_ptr<const MipPyramid> grey_as_rgb(const MipPyramid& grey) {
+    std::vector<Image> levels;
+    for (int l = 0; l < grey.level_count(); ++l) {
+        const Image level = grey.level_image(l);
+        Image& rgb = levels.emplace_back(level.width, level.height, 3);
+        for (std::size_t i = 0; i < level.pixel_count(); ++i)
+            std::fill_n(&rgb.pixels[i * 3], 3, level.pixels[i * level.channels]);
+    }
+    MipPyramidOptions options;
+    options.wrap_s = grey.wrap_s();
+    options.wrap_t = grey.wrap_t();
+    Result<MipPyramid> rgb = MipPyramid::from_levels(levels, options);
+    return std::make_shared<const MipPyramid>(std::move(*rgb));
 }
 
 float bump_frame_code(BumpFrame frame) {
@@ -190,28 +214,34 @@ float bump_frame_code(BumpFrame frame) {
     return 2;
 }
 
-Result<MaterialRecord> material_record(const RenderMaterial& m, MapPool& pool,
-                                       const std::string& name) {
+Result<MaterialRecord> material_record(const RenderMaterial& m, TextureSystem& textures,
+                                       MapPool& pool, const std::string& name) {
     const MaterialDesc& d = m.desc;
     MaterialRecord r{};
-    auto place = [&](const MipPyramid& pyramid, int layers) -> Result<MapRef> {
-        if (std::optional<MapRef> ref = pool.add(pyramid, layers)) return *ref;
+    auto place = [&](std::shared_ptr<const MipPyramid> pyramid, int layers) -> Result<MapRef> {
+        if (std::optional<MapRef> ref = pool.add(std::move(pyramid), layers)) return *ref;
         return Error{name + ": the scene's maps come in more than " +
                      std::to_string(kMaterialUnits) +
                      " different sizes (or wrap modes); the GPU path takes that many"};
     };
     MapRef color, bump;
     if (m.base_color_map) {
-        Result<MapRef> ref = place(*m.base_color_map, 1);
+        Result<std::shared_ptr<const MipPyramid>> pyramid = textures.pyramid(m.base_color_map);
+        if (!pyramid) return Error{name + ": " + pyramid.error().message};
+        if (m.base_color_grey) *pyramid = grey_as_rgb(**pyramid);
+        Result<MapRef> ref = place(std::move(*pyramid), 1);
         if (!ref) return ref.error();
         color = *ref;
     }
     Vec2 offset;
     if (m.bump) {
-        Result<MapRef> ref = place(m.bump->moments(), 2);
+        Result<std::shared_ptr<const BumpPyramid>> pyramid = textures.bump_pyramid(m.bump);
+        if (!pyramid) return Error{name + ": " + pyramid.error().message};
+        const BumpPyramid& b = **pyramid;
+        Result<MapRef> ref = place(std::shared_ptr<const MipPyramid>(*pyramid, &b.moments()), 2);
         if (!ref) return ref.error();
         bump = *ref;
-        offset = m.bump->slope_offset();
+        offset = b.slope_offset();
     }
     const Vec3d main = d.bump.main_direction;
     const float main_direction[4] = {static_cast<float>(main.x), static_cast<float>(main.y),
@@ -294,8 +324,8 @@ Status upload_meshes(const RenderScene& scene, MapPool& pool, GpuScene& gpu) {
         for (std::size_t k = 0; k < object_parts.size(); ++k) {
             const TriangleMesh& part = object_parts[k];
             Result<MaterialRecord> record =
-                material_record(scene.mesh_part_material(i, static_cast<int>(k)), pool,
-                                object_name(desc, i) + " part '" + part.name + "'");
+                material_record(scene.mesh_part_material(i, static_cast<int>(k)), scene.textures(),
+                                pool, object_name(desc, i) + " part '" + part.name + "'");
             if (!record) return record.error();
             const auto part_index = static_cast<std::uint32_t>(parts.size());
             parts.push_back({{static_cast<int>(gpu.materials.size()), part.has_normals() ? 1 : 0,
@@ -332,8 +362,8 @@ Result<GpuScene> upload_scene(const RenderScene& scene) {
     MapPool pool;
     const float anisotropy = max_anisotropy();
     const SceneDesc& desc = scene.desc();
-    if (const RenderEnvironment* env = scene.environment())
-        upload_environment(*env, gpu, anisotropy);
+    if (scene.environment())
+        if (Status s = upload_environment(scene, gpu, anisotropy); !s) return s.error();
     for (int i = 0; i < static_cast<int>(desc.objects.size()); ++i) {
         // Meshes are drawn by upload_meshes()'s buffers; an invalid shape never hits
         // (scene/shapes.h): both are left out of the analytic objects.
@@ -342,8 +372,8 @@ Result<GpuScene> upload_scene(const RenderScene& scene) {
             gpu.object_material.push_back(-1);
             continue;
         }
-        Result<MaterialRecord> record =
-            material_record(*scene.analytic_material(i), pool, object_name(desc, i));
+        Result<MaterialRecord> record = material_record(
+            *scene.analytic_material(i), scene.textures(), pool, object_name(desc, i));
         if (!record) return record.error();
         gpu.object_material.push_back(static_cast<int>(gpu.materials.size()));
         gpu.materials.push_back(*record);

@@ -1,7 +1,11 @@
 #include "render/render_scene.h"
 
 #include <algorithm>
+#include <atomic>
+#include <map>
+#include <sstream>
 #include <string>
+#include <tuple>
 
 #include "bump/slope_map.h"
 #include "envmap/env_image_io.h"
@@ -59,9 +63,64 @@ Image to_rgb(const Image& image) {
     return rgb;
 }
 
-Result<std::shared_ptr<const MipPyramid>> color_pyramid(const Image& image) {
-    if (image.empty()) return Error{"the image is empty"};
-    return std::make_shared<const MipPyramid>(MipPyramid::build(to_rgb(image)));
+// The scene's registrations in its texture system: names unique to this preparation (a shared
+// texture system may hold other scenes' maps), each map registered once.
+class SceneMaps {
+  public:
+    explicit SceneMaps(TextureSystem& textures) : textures(textures) {
+        static std::atomic<std::uint64_t> next_scene{1};
+        prefix_ = "scene " + std::to_string(next_scene++) + ": ";
+    }
+
+    // The handle registered as `key`, or the one `add(name)` registers under a name made of it.
+    template <class Handle, class Add>
+    Result<Handle*> find_or_add(const std::string& key, const Add& add) {
+        auto& handles = std::get<std::map<std::string, Handle*>>(handles_);
+        if (auto it = handles.find(key); it != handles.end()) return it->second;
+        Result<Handle*> handle = add(prefix_ + key);
+        if (handle) handles.emplace(key, *handle);
+        return handle;
+    }
+
+    // The texture system's name of the map this scene calls `key`.
+    std::string name(const std::string& key) const { return prefix_ + key; }
+
+    TextureSystem& textures;
+
+  private:
+    std::string prefix_;
+    std::tuple<std::map<std::string, TextureHandle*>, std::map<std::string, BumpHandle*>> handles_;
+};
+
+// What identifies an image source: its file, or the image in memory.
+std::string source_key(const ImageSource& source) {
+    if (!source.image) return source.file.string();
+    std::ostringstream key;
+    key << source.label() << " (in memory at " << source.image.get() << ")";
+    return key.str();
+}
+
+// The texture of a base-colour map: a file by name unless it is in memory or its non-finite
+// texels are to be repaired, which are loaded here and registered.
+Result<TextureHandle*> color_texture(const ImageSource& source, NonFinitePolicy non_finite,
+                                     SceneMaps& maps) {
+    if (!source.image && non_finite == NonFinitePolicy::refuse) {
+        TextureHandle* texture = maps.textures.handle(source.file.string());
+        Result<TextureInfo> info = maps.textures.info(texture);
+        if (info) return texture;
+        ImageLoadOptions repair;
+        repair.non_finite = NonFinitePolicy::repair;
+        if (!load_image(source.file, repair)) return info.error();
+        return Error{info.error().message + repair_hint("material")};
+    }
+    const std::string key = source_key(source) + (source.image ? "" : " (repaired)");
+    return maps.find_or_add<TextureHandle>(key, [&](const std::string& name) {
+        using R = Result<TextureHandle*>;
+        Result<Image> image = load_source(source, ColorEncoding::automatic, non_finite);
+        if (!image) return R(image.error());
+        if (image->empty()) return R(Error{"'" + source.label() + "': the image is empty"});
+        return maps.textures.add_image(name, *image);
+    });
 }
 
 // The slope map b of a bump description (see render_scene.h); `invalid` is the material's
@@ -86,40 +145,47 @@ Result<Image> bump_slopes(const BumpDesc& bump, const Image& map, InvalidNormalP
                  " (the material key \"invalid_normals\": \"clamp\" replaces such texels)"};
 }
 
-Result<RenderMaterial> prepare_material(const MaterialDesc& desc) {
+// The bump pyramid of a material's bump map, registered (once per map, strength and roughness).
+Result<BumpHandle*> bump_map(const MaterialDesc& desc, Sym2 micro_roughness, SceneMaps& maps) {
+    const BumpDesc& bump = desc.bump;
+    const bool height = bump.source == BumpDesc::Source::height_map;
+    // A normal map's NaN texels are kept: the material's invalid_normals policy decides.
+    const NonFinitePolicy non_finite = height ? desc.non_finite : NonFinitePolicy::keep;
+    std::ostringstream key;
+    key << source_key(bump.map) << (height ? " as heights" : " as normals") << " × "
+        << bump.strength << ", σ² " << micro_roughness.xx << ", policies "
+        << static_cast<int>(non_finite) << static_cast<int>(desc.invalid_normals);
+    return maps.find_or_add<BumpHandle>(key.str(), [&](const std::string& name) {
+        using R = Result<BumpHandle*>;
+        Result<Image> map = load_source(bump.map, ColorEncoding::linear, non_finite);
+        if (!map) return R(map.error());
+        Result<Image> slopes = bump_slopes(bump, *map, desc.invalid_normals);
+        if (!slopes) return R(Error{"'" + bump.map.label() + "': " + slopes.error().message});
+        BumpPyramidOptions options;
+        options.micro_roughness = micro_roughness;
+        Result<BumpPyramid> pyramid = BumpPyramid::build(*slopes, options);
+        if (!pyramid) return R(pyramid.error());
+        return maps.textures.add_bump(name, std::move(*pyramid));
+    });
+}
+
+Result<RenderMaterial> prepare_material(const MaterialDesc& desc, SceneMaps& maps) {
     RenderMaterial material;
     material.desc = desc;
     const float sigma2 = desc.micro_roughness * desc.micro_roughness;
     material.micro_roughness = Sym2{sigma2, 0, sigma2};
     if (!desc.base_color_map.empty()) {
-        Result<Image> image =
-            load_source(desc.base_color_map, ColorEncoding::automatic, desc.non_finite);
-        if (!image) return Error{"base_color: " + image.error().message};
-        Result<std::shared_ptr<const MipPyramid>> pyramid = color_pyramid(*image);
-        if (!pyramid)
-            return Error{"base_color: '" + desc.base_color_map.label() +
-                         "': " + pyramid.error().message};
-        material.base_color_map = *pyramid;
+        Result<TextureHandle*> texture = color_texture(desc.base_color_map, desc.non_finite, maps);
+        if (!texture) return Error{"base_color: " + texture.error().message};
+        material.base_color_map = *texture;
+        material.base_color_grey = maps.textures.info(*texture)->channels < 3;
     }
     if (desc.bump.source != BumpDesc::Source::none) {
         const char* key = desc.bump.source == BumpDesc::Source::height_map ? "bump.height_map"
                                                                            : "bump.normal_map";
-        // A normal map's NaN texels are kept: the material's invalid_normals policy decides.
-        const NonFinitePolicy non_finite = desc.bump.source == BumpDesc::Source::normal_map
-                                               ? NonFinitePolicy::keep
-                                               : desc.non_finite;
-        Result<Image> map = load_source(desc.bump.map, ColorEncoding::linear, non_finite);
-        if (!map) return Error{std::string(key) + ": " + map.error().message};
-        Result<Image> slopes = bump_slopes(desc.bump, *map, desc.invalid_normals);
-        if (!slopes) {
-            return Error{std::string(key) + ": '" + desc.bump.map.label() +
-                         "': " + slopes.error().message};
-        }
-        BumpPyramidOptions options;
-        options.micro_roughness = material.micro_roughness;
-        Result<BumpPyramid> pyramid = BumpPyramid::build(*slopes, options);
-        if (!pyramid) return Error{std::string(key) + ": " + pyramid.error().message};
-        material.bump = std::make_shared<const BumpPyramid>(std::move(*pyramid));
+        Result<BumpHandle*> bump = bump_map(desc, material.micro_roughness, maps);
+        if (!bump) return Error{std::string(key) + ": " + bump.error().message};
+        material.bump = *bump;
     }
     return material;
 }
@@ -127,7 +193,7 @@ Result<RenderMaterial> prepare_material(const MaterialDesc& desc) {
 // The material of one part of mesh file `file`: the scene's material combined with the file's own
 // colours and normal map (render_scene.h).
 Result<RenderMaterial> mesh_part_material(const TriangleMesh& part, const MaterialDesc& scene,
-                                          const std::filesystem::path& file) {
+                                          const std::filesystem::path& file, SceneMaps& maps) {
     const std::string in_file = " of '" + part.name + "' in '" + file.string() + "'";
     MaterialDesc desc = scene;
     const MeshMaterial& own = part.material;
@@ -142,14 +208,15 @@ Result<RenderMaterial> mesh_part_material(const TriangleMesh& part, const Materi
         desc.bump.strength = own.normal_scale;
         desc.bump.frame = BumpFrame::main_direction;
         desc.bump.main_direction = {};
-        Result<RenderMaterial> material = prepare_material(desc);
+        Result<RenderMaterial> material = prepare_material(desc, maps);
         if (material) material->frame_from_mesh_tangents = part.has_tangents();
         return material;
     }
-    return prepare_material(desc);
+    return prepare_material(desc, maps);
 }
 
-Result<std::unique_ptr<RenderEnvironment>> prepare_environment(const EnvironmentDesc& desc) {
+Result<std::unique_ptr<RenderEnvironment>> prepare_environment(const EnvironmentDesc& desc,
+                                                               SceneMaps& maps) {
     EnvImages images;
     images.layout = desc.layout;
     const bool in_memory = !desc.images.empty() && desc.images[0].image != nullptr;
@@ -177,31 +244,43 @@ Result<std::unique_ptr<RenderEnvironment>> prepare_environment(const Environment
     Result<EnvironmentMap> map = make_environment_map(images);
     if (!map) return map.error();
     auto environment = std::make_unique<RenderEnvironment>();
-    environment->map = std::move(*map);
+    environment->layout = map->layout();
+    environment->texel_scale = map->texel_scale();
     environment->rotation = rotation_xyz_degrees(static_cast<float>(desc.rotation_deg.x),
                                                  static_cast<float>(desc.rotation_deg.y),
                                                  static_cast<float>(desc.rotation_deg.z));
     environment->intensity = desc.intensity;
     // The mean colour: the coarsest level of every face, averaged (solid-angle weights are
     // ignored: this only sets the ambient term's level).
-    for (int f = 0; f < environment->map.face_count(); ++f) {
-        const MipPyramid& face = environment->map.face(f);
+    for (int f = 0; f < map->face_count(); ++f) {
+        const MipPyramid& face = map->face(f);
         const float* texel = face.texel(face.max_level(), 0, 0);
-        for (int c = 0; c < 3; ++c) {
-            environment->mean[c] += texel[c] / static_cast<float>(environment->map.face_count());
-        }
+        for (int c = 0; c < 3; ++c)
+            environment->mean[c] += texel[c] / static_cast<float>(map->face_count());
     }
+    Result<EnvironmentHandle*> handle =
+        maps.textures.add_environment(maps.name("environment"), std::move(*map));
+    if (!handle) return handle.error();
+    environment->map = *handle;
     return environment;
 }
 
 }  // namespace
 
-Result<RenderScene> prepare_render_scene(const SceneDesc& desc) {
+Result<RenderScene> prepare_render_scene(const SceneDesc& desc,
+                                         std::shared_ptr<TextureSystem> textures) {
     RenderScene scene;
     scene.desc_ = desc;
+    if (!textures) {
+        Result<std::unique_ptr<TextureSystem>> made = TextureSystem::create();
+        if (!made) return made.error();
+        textures = std::move(*made);
+    }
+    scene.textures_ = textures;
+    SceneMaps maps(*textures);
     if (desc.environment) {
         Result<std::unique_ptr<RenderEnvironment>> environment =
-            prepare_environment(*desc.environment);
+            prepare_environment(*desc.environment, maps);
         if (!environment) return scene_error(desc, "environment", environment.error());
         scene.environment_ = std::move(*environment);
     }
@@ -212,7 +291,7 @@ Result<RenderScene> prepare_render_scene(const SceneDesc& desc) {
     std::vector<MeshInstance> accel_inputs;
     for (int i = 0; i < object_count; ++i) {
         const ObjectDesc& object = desc.objects[i];
-        Result<RenderMaterial> material = prepare_material(object.material);
+        Result<RenderMaterial> material = prepare_material(object.material, maps);
         if (!material) {
             // prepare_material's messages start with the key inside the material.
             return scene_error(desc, object_key(i) + ".material." + material.error().message, {});
@@ -227,7 +306,8 @@ Result<RenderScene> prepare_render_scene(const SceneDesc& desc) {
         if (!asset) return scene_error(desc, object_key(i) + ".file", asset.error());
         scene.meshes_[i] = std::move(asset->meshes);
         for (const TriangleMesh& part : scene.meshes_[i]) {
-            Result<RenderMaterial> own = mesh_part_material(part, object.material, mesh->file);
+            Result<RenderMaterial> own =
+                mesh_part_material(part, object.material, mesh->file, maps);
             if (!own) return scene_error(desc, object_key(i) + ".file", own.error());
             scene.mesh_part_material_[i].push_back(static_cast<int>(scene.materials_.size()));
             scene.materials_.push_back(std::move(*own));
@@ -245,6 +325,14 @@ Result<RenderScene> prepare_render_scene(const SceneDesc& desc) {
         scene.mesh_accel_ = std::make_unique<MeshAccel>(std::move(*accel));
     }
     return scene;
+}
+
+Status RenderScene::take_texture_errors() const {
+    const std::vector<Error> errors = textures_->take_errors();
+    if (errors.empty()) return {};
+    std::string message = errors[0].message;
+    if (errors.size() > 1) message += " (and " + std::to_string(errors.size() - 1) + " more)";
+    return Error{message};
 }
 
 std::span<const TriangleMesh> RenderScene::mesh_parts(int object) const {

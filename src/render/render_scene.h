@@ -2,12 +2,19 @@
 // meshes loaded into an Embree BVH, and one intersection query over all objects.
 //
 // prepare_render_scene() turns a SceneDesc (scene/scene.h, from a file or built in code) into a
-// RenderScene:
-//   * base-colour maps → RGB MIP pyramids (sRGB files decoded to linear), repeating in s and t;
+// RenderScene, whose maps all live in one TextureSystem (texture_system.h) that every lookup of
+// the renderer and the GPU path's uploads go through:
+//   * base-colour maps → textures of the texture system: a file by its name (its stored MIP
+//     levels used as stored and read tile by tile, or its pyramid built, sRGB files decoded to
+//     linear; repeating in s and t unless the file says otherwise), an image in memory or a file
+//     whose non-finite texels are repaired registered by add_image(); grey maps are read as grey
+//     RGB, an alpha channel is ignored;
 //   * bump maps → slope maps b in slope_map.h's convention (height maps: b = −strength·∇h per unit
 //     of (u, v), one map period = 1; normal maps: b = strength·(n_x, n_y)/n_z) → bump + roughness
-//     pyramids (bump/bump_pyramid.h) with the material's micro-roughness σ as K_0 = σ² I;
-//   * the environment → an EnvironmentMap (envmap/), its rotation A and intensity;
+//     pyramids (bump/bump_pyramid.h) with the material's micro-roughness σ as K_0 = σ² I,
+//     registered by add_bump() (materials with the same map, strength and σ share one);
+//   * the environment → an EnvironmentMap (envmap/), scaled by its intensity and registered by
+//     add_environment(), with its rotation A;
 //   * meshes → triangles (scene/mesh.h) in one MeshAccel. Each part of a mesh file keeps its own
 //     colours: the scene material's base_color multiplies the file's (glTF baseColorFactor, OBJ
 //     Kd), the file's texture (glTF baseColorTexture, OBJ map_Kd) is used unless the scene gives
@@ -23,31 +30,32 @@
 #include <span>
 #include <vector>
 
-#include <footprint/bump/bump_pyramid.h>
 #include <footprint/core/result.h>
-#include <footprint/envmap/environment_map.h>
 #include <footprint/math/mat3.h>
 #include <footprint/scene/scene.h>
 #include <footprint/scene/surface.h>
-#include <footprint/texture/mip_pyramid.h>
+#include <footprint/texture_system.h>
 
 namespace footprint {
 
 class MeshAccel;
 struct TriangleMesh;
 
-// A material with its images as pyramids.
+// A material with its maps in the scene's texture system.
 struct RenderMaterial {
     MaterialDesc desc;
-    std::shared_ptr<const MipPyramid> base_color_map;  // RGB, linear; null: desc.base_color only
-    std::shared_ptr<const BumpPyramid> bump;           // slopes b (see above); null: flat
+    TextureHandle* base_color_map = nullptr;  // linear; null: desc.base_color only
+    bool base_color_grey = false;             // the map has 1 or 2 channels: grey (and alpha)
+    BumpHandle* bump = nullptr;               // slopes b (see above); null: flat
     Sym2 micro_roughness;  // σ² I: the slope covariance when there is no bump map
     bool frame_from_mesh_tangents = false;  // a glTF normal texture on a part with tangents
 };
 
 struct RenderEnvironment {
-    EnvironmentMap map;
-    Mat3 rotation;  // A: world → map
+    EnvironmentHandle* map = nullptr;  // in the scene's texture system, × intensity
+    EnvLayout layout = EnvLayout::latlong;
+    Vec2 texel_scale;  // the map's, for compute_env_footprint()
+    Mat3 rotation;     // A: world → map
     float intensity = 1;
     std::array<float, 3> mean{0, 0, 0};  // the map's average colour × intensity (ambient light)
 };
@@ -72,6 +80,12 @@ class RenderScene {
 
     const SceneDesc& desc() const { return desc_; }
     const RenderEnvironment* environment() const { return environment_.get(); }
+    // The texture system holding the scene's maps (thread-safe, as all its calls are).
+    TextureSystem& textures() const { return *textures_; }
+    // After rendering: the texture errors met since the last call — a stored file's tile that
+    // could not be read (a file truncated or changed on disk), whose texels rendered black — as
+    // one Error naming the file, or success. A caller that writes images checks it first.
+    Status take_texture_errors() const;
 
     // The material of analytic object `object` (an index into desc().objects); nullptr for a mesh.
     const RenderMaterial* analytic_material(int object) const {
@@ -91,9 +105,11 @@ class RenderScene {
     std::optional<SceneHit> intersect(const Ray& ray, double t_min, double t_max) const;
 
   private:
-    friend Result<RenderScene> prepare_render_scene(const SceneDesc& desc);
+    friend Result<RenderScene> prepare_render_scene(const SceneDesc& desc,
+                                                    std::shared_ptr<TextureSystem> textures);
 
     SceneDesc desc_;
+    std::shared_ptr<TextureSystem> textures_;
     std::unique_ptr<RenderEnvironment> environment_;
     std::vector<RenderMaterial> materials_;             // one per object, then one per mesh part
     std::vector<int> object_material_;                  // analytic objects: index into materials_
@@ -106,6 +122,9 @@ class RenderScene {
     std::unique_ptr<MeshAccel> mesh_accel_;
 };
 
-Result<RenderScene> prepare_render_scene(const SceneDesc& desc);
+// `textures`: the texture system to hold the scene's maps (shared with other scenes, or made with
+// the cache size a caller wants); null: one with TextureSystemOptions' defaults.
+Result<RenderScene> prepare_render_scene(const SceneDesc& desc,
+                                         std::shared_ptr<TextureSystem> textures = nullptr);
 
 }  // namespace footprint

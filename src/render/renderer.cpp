@@ -86,7 +86,10 @@ Vec2d gaussian_pair(double u1, double u2) {
 class SampleShader {
   public:
     SampleShader(const RenderScene& scene, const RenderOptions& options)
-        : scene_(scene), options_(options), policy_(policy_of(options.filter)) {}
+        : scene_(scene),
+          textures_(scene.textures()),
+          options_(options),
+          policy_(policy_of(options.filter)) {}
 
     // The colour seen along one camera ray; `random` = two uniforms for the micro-roughness.
     Rgb shade(const RayDifferential& ray, Vec2d random) {
@@ -106,21 +109,26 @@ class SampleShader {
         }
         ++lookups;
         Rgb out{};
-        float texel[MipPyramid::kMaxChannels];
         if (policy_.filtered) {
-            environment_lookup(env->map, to_float(ray.ray.direction), to_float(ray.dddx),
-                               to_float(ray.dddy), EnvLookupOptions{policy_.lookup, env->rotation},
-                               texel);
+            static_cast<void>(textures_.environment(
+                env->map, to_float(ray.ray.direction), to_float(ray.dddx), to_float(ray.dddy),
+                EnvLookupOptions{policy_.lookup, env->rotation}, out));
         } else {
-            environment_bilinear(env->map, env->rotation * to_float(ray.ray.direction), 0, texel);
+            static_cast<void>(textures_.environment_sample(
+                env->map, env->rotation * to_float(ray.ray.direction), out));
         }
-        std::memcpy(out.data(), texel, sizeof(out));
         return out;
     }
 
     Rgb shade_hit(const RayDifferential& ray, const SceneHit& hit, Vec2d random);
 
+    // The scene's maps are valid once prepared (prepare_render_scene() checked them), so the
+    // lookups' Status is not looked at: only a tiled texture's tile that cannot be read fails, and
+    // that gives kMissing here and is reported by the texture system's take_errors().
+    static constexpr float kMissing[3] = {0, 0, 0};
+
     const RenderScene& scene_;
+    TextureSystem& textures_;
     const RenderOptions& options_;
     ModePolicy policy_;
 };
@@ -153,9 +161,11 @@ Rgb SampleShader::shade_hit(const RayDifferential& ray, const SceneHit& hit, Vec
 
     Rgb base{desc.base_color.x, desc.base_color.y, desc.base_color.z};
     if (material.base_color_map) {
-        float texel[MipPyramid::kMaxChannels];
-        texture_lookup(*material.base_color_map, coords, policy_.lookup, texel);
+        Rgb texel;
+        static_cast<void>(
+            textures_.texture(material.base_color_map, coords, policy_.lookup, texel, kMissing));
         ++lookups;
+        if (material.base_color_grey) texel[1] = texel[2] = texel[0];
         for (int c = 0; c < 3; ++c) base[c] *= texel[c];
     }
 
@@ -163,7 +173,8 @@ Rgb SampleShader::shade_hit(const RayDifferential& ray, const SceneHit& hit, Vec
     Vec2 slope;
     Sym2 roughness = material.micro_roughness;
     if (material.bump) {
-        const SlopeStatistics stats = bump_lookup(*material.bump, coords, policy_.lookup);
+        SlopeStatistics stats;
+        static_cast<void>(textures_.bump(material.bump, coords, policy_.lookup, &stats));
         ++lookups;
         slope = stats.mean;
         roughness = stats.covariance;
@@ -236,7 +247,7 @@ Rgb SampleShader::shade_hit(const RayDifferential& ray, const SceneHit& hit, Vec
         for (int c = 0; c < 3; ++c) color[c] += desc.diffuse * base[c] * env->mean[c];
     }
     if (env && desc.mirror > 0) {
-        float texel[MipPyramid::kMaxChannels];
+        Rgb texel;
         if (policy_.filtered) {
             ReflectionGeometry geometry;
             geometry.v = v;
@@ -254,12 +265,12 @@ Rgb SampleShader::shade_hit(const RayDifferential& ray, const SceneHit& hit, Vec
             EnvFootprintOptions env_options;
             env_options.kappa = options_.kappa;
             env_options.rotation = env->rotation;
-            const EnvFootprint footprint = compute_env_footprint(
-                env->map.layout(), env->map.texel_scale(), geometry, env_options);
-            environment_lookup(env->map, footprint, policy_.lookup, texel);
+            const EnvFootprint footprint =
+                compute_env_footprint(env->layout, env->texel_scale, geometry, env_options);
+            static_cast<void>(textures_.environment(env->map, footprint, policy_.lookup, texel));
         } else {
             const Vec3 r = 2.0f * dot(n_hat, v_hat) * n_hat - v_hat;
-            environment_bilinear(env->map, env->rotation * r, 0, texel);
+            static_cast<void>(textures_.environment_sample(env->map, env->rotation * r, texel));
         }
         ++lookups;
         const float fresnel = desc.mirror * schlick_fresnel(desc.fresnel_f0, dot(n_hat, v_hat));

@@ -1081,7 +1081,7 @@ TEST(SceneFile, SingleEnvironmentFileTakesTheLayoutOfItsAspectRatio) {
         const Result<RenderScene> scene = scene_with_environment(dir.path(), c.environment);
         ASSERT_TRUE(scene.ok()) << scene.error().message;
         ASSERT_NE(scene->environment(), nullptr);
-        EXPECT_EQ(scene->environment()->map.layout(), c.layout);
+        EXPECT_EQ(scene->environment()->layout, c.layout);
     }
 }
 
@@ -1100,7 +1100,7 @@ TEST(SceneFile, SingleEnvironmentFileOfNoLayoutIsRefusedUnlessTheLayoutIsGiven) 
     const Result<RenderScene> given =
         scene_with_environment(dir.path(), R"({"file": "odd.exr", "layout": "latlong"})");
     ASSERT_TRUE(given.ok()) << given.error().message;
-    EXPECT_EQ(given->environment()->map.layout(), EnvLayout::latlong);
+    EXPECT_EQ(given->environment()->layout, EnvLayout::latlong);
 }
 
 TEST(SceneFile, QuickstartExampleRendersFromTheRepositorysAssets) {

@@ -1,0 +1,132 @@
+// Tests of the renderer's maps in its texture system (render/render_scene.h): a texture file that
+// stores its MIP levels is read tile by tile through the cache, with the image of the file it was
+// made from, whatever the cache holds; a tile that cannot be read is an error naming the file.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstdint>
+#include <filesystem>
+
+#include "core/test_temp_dir.h"
+#include "image/image_io.h"
+#include "image/test_images.h"
+#include "render/render_scene.h"
+#include "render/renderer.h"
+#include "texture/mip_pyramid.h"
+
+namespace footprint {
+namespace {
+
+// A textured plane seen at a grazing angle, in a sky: magnified near, strongly minified far.
+SceneDesc textured_plane(const std::filesystem::path& texture) {
+    SceneDesc scene;
+    scene.width = 64, scene.height = 40;
+    scene.camera.position = {0, 0.6, 3};
+    scene.camera.look_at = {0, 0, -2};
+    scene.camera.fov_y_deg = 50;
+    scene.lights.push_back({LightType::directional, {0.3, -1, -0.4}, {}, {1, 1, 1}});
+    PlaneShape plane;
+    plane.infinite = true;
+    MaterialDesc material;
+    material.base_color_map.file = texture;
+    material.specular = 0.3f;
+    scene.objects.push_back({"plane", plane, material});
+    return scene;
+}
+
+// `image`'s box pyramid written as stored levels, as `footprint maketx` writes them.
+void write_stored_levels(const Image& image, const std::filesystem::path& file) {
+    const MipPyramid pyramid = MipPyramid::build(image);
+    std::vector<Image> levels;
+    for (int l = 0; l < pyramid.level_count(); ++l) levels.push_back(pyramid.level_image(l));
+    LevelsSaveOptions options;
+    options.wrap_modes = "periodic,periodic";
+    options.tile_size = 16;
+    ASSERT_TRUE(save_image_levels(levels, file, options));
+}
+
+std::shared_ptr<TextureSystem> texture_system(std::size_t max_memory_mb, int tile_size = 64) {
+    TextureSystemOptions options;
+    options.max_memory_mb = max_memory_mb;
+    options.tile_size = tile_size;
+    Result<std::unique_ptr<TextureSystem>> made = TextureSystem::create(options);
+    EXPECT_TRUE(made) << made.error().message;
+    return std::move(*made);
+}
+
+Image render_with(const SceneDesc& desc, std::shared_ptr<TextureSystem> textures, FilterMode mode) {
+    Result<RenderScene> scene = prepare_render_scene(desc, std::move(textures));
+    EXPECT_TRUE(scene) << scene.error().message;
+    RenderOptions options;
+    options.filter = mode;
+    options.spp = mode == FilterMode::reference ? 4 : 1;
+    Image image = render(*scene, options);
+    EXPECT_TRUE(scene->take_texture_errors());
+    return image;
+}
+
+void expect_bit_identical(const Image& a, const Image& b, const char* what) {
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    for (std::size_t i = 0; i < a.pixels.size(); ++i)
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(a.pixels[i]),
+                  std::bit_cast<std::uint32_t>(b.pixels[i]))
+            << what << ": value " << i << " is " << a.pixels[i] << " against " << b.pixels[i];
+}
+
+TEST(RenderTextures, StoredLevelsRenderAsTheImageTheyWereMadeFromWithAnyCache) {
+    test::TempDir dir;
+    const Image image = random_image(256, 128, 3, 7);
+    ASSERT_TRUE(save_image(image, dir / "plain.exr"));
+    write_stored_levels(image, dir / "stored.exr");
+    const SceneDesc plain = textured_plane(dir / "plain.exr");
+    const SceneDesc stored = textured_plane(dir / "stored.exr");
+    for (FilterMode mode : {FilterMode::trilinear, FilterMode::fa_rough, FilterMode::ewa_rough,
+                            FilterMode::reference}) {
+        const Image want = render_with(plain, nullptr, mode);
+        expect_bit_identical(render_with(stored, texture_system(1024), mode), want,
+                             filter_mode_name(mode));
+        // 1 MiB of 16² tiles holds a quarter of level 0: tiles are evicted and read again.
+        const std::shared_ptr<TextureSystem> small = texture_system(1, 16);
+        expect_bit_identical(render_with(stored, small, mode), want, filter_mode_name(mode));
+        const TextureSystemStats stats = small->stats();
+        EXPECT_GT(stats.tiles_loaded, 0u) << "the stored file was not read through tiles";
+        EXPECT_EQ(stats.bytes_in_memory, 0u) << "the stored file was read whole";
+        // The bound: 1 MiB, plus one thread's micro-cache and one lookup's pinned tiles.
+        constexpr std::size_t kTileBytes = 16 * 16 * 4 * sizeof(float);
+        constexpr std::size_t kSlack = (TextureSystem::kMicroCacheTiles + 64) * kTileBytes;
+        EXPECT_LE(stats.peak_bytes, (std::size_t{1} << 20) + kSlack);
+    }
+}
+
+TEST(RenderTextures, ScenesShareATextureSystemAndEachMapIsHeldOnce) {
+    test::TempDir dir;
+    ASSERT_TRUE(save_image(random_image(64, 64, 3, 3), dir / "a.exr"));
+    SceneDesc desc = textured_plane(dir / "a.exr");
+    desc.objects.push_back(desc.objects[0]);  // a second object with the same map
+    const std::shared_ptr<TextureSystem> textures = texture_system(64);
+    ASSERT_TRUE(prepare_render_scene(desc, textures));
+    const std::size_t one_scene = textures->stats().bytes_in_memory;
+    EXPECT_GT(one_scene, 64u * 64 * 3 * sizeof(float));
+    EXPECT_EQ(textures->stats().files, 1u);
+    ASSERT_TRUE(prepare_render_scene(desc, textures));  // a file is opened once per system
+    EXPECT_EQ(textures->stats().bytes_in_memory, one_scene);
+}
+
+TEST(RenderTextures, ATileThatCannotBeReadIsAnErrorNamingTheFile) {
+    test::TempDir dir;
+    write_stored_levels(random_image(256, 256, 3, 5), dir / "stored.exr");
+    const SceneDesc desc = textured_plane(dir / "stored.exr");
+    Result<RenderScene> scene = prepare_render_scene(desc, texture_system(1, 16));
+    ASSERT_TRUE(scene) << scene.error().message;
+    // Cut the file after its header and offset tables: its tiles can no longer be read.
+    std::filesystem::resize_file(dir / "stored.exr", 4096);
+    static_cast<void>(render(*scene, RenderOptions{}));
+    const Status errors = scene->take_texture_errors();
+    ASSERT_FALSE(errors);
+    EXPECT_NE(errors.error().message.find("stored.exr"), std::string::npos)
+        << errors.error().message;
+    EXPECT_TRUE(scene->take_texture_errors()) << "an error is reported once";
+}
+
+}  // namespace
+}  // namespace footprint
