@@ -24,6 +24,7 @@
 #include <footprint/texture/wrap.h>
 
 #include <footprint/bump/bump_pyramid.h>
+#include <footprint/bump/bump_pyramid_file.h>
 #include <footprint/bump/local_frame.h>
 #include <footprint/bump/roughness.h>
 #include <footprint/bump/slope_map.h>

@@ -108,29 +108,81 @@ Result<BumpPyramid> BumpPyramid::build(const Image& slopes, const BumpPyramidOpt
     return p;
 }
 
-SlopeStatistics BumpPyramid::from_moments(const float* m) const {
+Result<BumpPyramid> BumpPyramid::from_moment_levels(const std::vector<Image>& levels,
+                                                    Vec2 slope_offset, WrapMode wrap_s,
+                                                    WrapMode wrap_t) {
+    if (levels.empty() || levels[0].channels != kMomentChannels)
+        return Error{"a bump pyramid has 5 moment channels, not " +
+                     std::to_string(levels.empty() ? 0 : levels[0].channels)};
+    if (!std::isfinite(slope_offset.x) || !std::isfinite(slope_offset.y))
+        return Error{"the slope offset is not finite"};
+    BumpPyramid p;
+    p.options_.wrap_s = wrap_s;
+    p.options_.wrap_t = wrap_t;
+    MipPyramidOptions po;
+    po.wrap_s = wrap_s;
+    po.wrap_t = wrap_t;
+    Result<MipPyramid> moments = MipPyramid::from_levels(levels, po);
+    if (!moments) return moments.error();
+    p.moments_ = std::move(*moments);
+    p.offset_ = slope_offset;
+    return p;
+}
+
+SlopeStatistics slope_statistics(const float* m, Vec2 offset, const BumpLookupOptions& options) {
     // K = M2' − μ'μ'ᵀ (the offset cancels: K is invariant to a shift of the slopes).
     const double m1 = m[0], m2 = m[1];
     const Sym2 k{float(m[2] - m1 * m1), float(m[3] - m1 * m2), float(m[4] - m2 * m2)};
-    return {Vec2{float(m1 + offset_.x), float(m2 + offset_.y)}, clamp_to_psd(k)};
+    SlopeStatistics st{Vec2{float(m1 + offset.x), float(m2 + offset.y)}, clamp_to_psd(k)};
+    if (options.strength != 1) {
+        st.mean = options.strength * st.mean;
+        st.covariance = (options.strength * options.strength) * st.covariance;
+    }
+    st.covariance = st.covariance + options.micro_roughness;
+    return st;
+}
+
+SlopeStatistics BumpPyramid::from_moments(const float* m) const {
+    return slope_statistics(m, offset_, {});
 }
 
 SlopeStatistics BumpPyramid::statistics(int level, int x, int y) const {
     return from_moments(moments_.texel(level, x, y));
 }
 
+BumpPyramid BumpPyramid::scaled(float strength, Sym2 micro_roughness) const {
+    // μ'' = s·μ', M2'' = s²·M2' + K_0 about the offset s·o: then μ'' + s·o = s·μ and
+    // M2'' − μ''μ''ᵀ = s²·K + K_0.
+    const double s = strength;
+    const double added[3] = {micro_roughness.xx, micro_roughness.xy, micro_roughness.yy};
+    std::vector<Image> levels;
+    for (int l = 0; l < moments_.level_count(); ++l) {
+        Image& level = levels.emplace_back(moments_.level_image(l));
+        for (std::size_t i = 0; i < level.pixel_count(); ++i) {
+            float* m = &level.pixels[i * kMomentChannels];
+            for (int c = 0; c < 2; ++c) m[c] = float(s * m[c]);
+            for (int c = 2; c < kMomentChannels; ++c) m[c] = float(s * s * m[c] + added[c - 2]);
+        }
+    }
+    Result<BumpPyramid> p =
+        from_moment_levels(levels, float(s) * offset_, options_.wrap_s, options_.wrap_t);
+    p->options_ = options_;
+    p->options_.micro_roughness = micro_roughness;
+    return std::move(*p);
+}
+
 SlopeStatistics bump_lookup(const BumpPyramid& pyramid, const TextureCoords& coords,
-                            const LookupOptions& options) {
+                            const BumpLookupOptions& options) {
     float m[kMomentChannels];
     texture_lookup(pyramid.moments(), coords, options, m);
-    return pyramid.from_moments(m);
+    return slope_statistics(m, pyramid.slope_offset(), options);
 }
 
 SlopeStatistics bump_lookup(const BumpPyramid& pyramid, float s, float t,
-                            const FootprintEllipse& footprint, const LookupOptions& options) {
+                            const FootprintEllipse& footprint, const BumpLookupOptions& options) {
     float m[kMomentChannels];
     texture_lookup(pyramid.moments(), s, t, footprint, options, m);
-    return pyramid.from_moments(m);
+    return slope_statistics(m, pyramid.slope_offset(), options);
 }
 
 }  // namespace footprint

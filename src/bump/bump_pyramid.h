@@ -47,11 +47,30 @@ struct BumpPyramidOptions {
     Sym2 micro_roughness;  // K_0 of every finest texel (PSD, slope units²); default none
 };
 
+// A bump lookup's options: the filter's (LookupOptions), and how the slopes read are scaled —
+//     mean = strength·μ,   K_b = strength²·K + micro_roughness
+// — which is the lookup of a pyramid built from the slopes × strength with K_0 = micro_roughness
+// (the moments are linear in both; equal up to float rounding). A pyramid built for one material
+// has neither (1 and none); a stored one (bump_pyramid_file.h) gets a material's at lookup.
+struct BumpLookupOptions : LookupOptions {
+    float strength = 1;
+    Sym2 micro_roughness;  // PSD, slope units²
+
+    BumpLookupOptions() = default;
+    BumpLookupOptions(const LookupOptions& lookup, float strength = 1, Sym2 micro_roughness = {})
+        : LookupOptions(lookup), strength(strength), micro_roughness(micro_roughness) {}
+};
+
 class BumpPyramid {
   public:
     // From a 2-channel slope map (b1, b2) of any size ≥ 1×1. Errors name the problem: a wrong
     // channel count, a non-finite slope (with its texel), a micro-roughness that is not PSD.
     static Result<BumpPyramid> build(const Image& slopes, const BumpPyramidOptions& options = {});
+    // From the moment levels a pyramid stored (moments() level by level, 5 channels, level 0 down
+    // to 1×1 in MipPyramid's sizes) and its slope_offset(): the same pyramid, bit for bit.
+    static Result<BumpPyramid> from_moment_levels(const std::vector<Image>& levels,
+                                                  Vec2 slope_offset, WrapMode wrap_s,
+                                                  WrapMode wrap_t);
 
     int level_count() const { return moments_.level_count(); }
     int width(int level) const { return moments_.width(level); }
@@ -69,17 +88,27 @@ class BumpPyramid {
     // μ and K_b from the 5 moment channels a lookup returned.
     SlopeStatistics from_moments(const float* m) const;
 
+    // This pyramid's slopes × strength, with micro_roughness added to every K: what bump_lookup()
+    // with BumpLookupOptions{…, strength, micro_roughness} reads, for a caller that needs the
+    // scaled pyramid whole (a GPU upload).
+    BumpPyramid scaled(float strength, Sym2 micro_roughness) const;
+
   private:
     MipPyramid moments_;
     Vec2 offset_;
     BumpPyramidOptions options_;
 };
 
+// μ and K_b from the 5 moment channels `m` of a pyramid whose slope_offset() is `offset`, scaled
+// as `options` say (BumpLookupOptions): the last step of every bump lookup.
+SlopeStatistics slope_statistics(const float* m, Vec2 offset, const BumpLookupOptions& options);
+
 // Filtered bump lookup (§5.4): the mean slope and the slope covariance K_b of the whole filtered
-// region, with any filter of texture_lookup() (LookupOptions::filter), in the same conventions.
+// region, with any filter of texture_lookup() (LookupOptions::filter), in the same conventions,
+// scaled as BumpLookupOptions say.
 SlopeStatistics bump_lookup(const BumpPyramid& pyramid, const TextureCoords& coords,
-                            const LookupOptions& options);
+                            const BumpLookupOptions& options);
 SlopeStatistics bump_lookup(const BumpPyramid& pyramid, float s, float t,
-                            const FootprintEllipse& footprint, const LookupOptions& options);
+                            const FootprintEllipse& footprint, const BumpLookupOptions& options);
 
 }  // namespace footprint

@@ -551,14 +551,14 @@ Result<std::vector<Image>> load_image_levels(const fs::path& file,
 namespace {
 
 // Why `image` cannot be written (the cause), or nullopt.
-std::optional<std::string> image_problem(const Image& image) {
+std::optional<std::string> image_problem(const Image& image, int max_channels = 4) {
     if (image.width <= 0 || image.height <= 0) {
         return "the image is empty (" + std::to_string(image.width) + " x " +
                std::to_string(image.height) + ")";
     }
-    if (image.channels < 1 || image.channels > 4) {
+    if (image.channels < 1 || image.channels > max_channels) {
         return "the image has " + std::to_string(image.channels) +
-               " channels; footprint writes 1 to 4";
+               " channels; footprint writes 1 to " + std::to_string(max_channels);
     }
     const std::uint64_t values = static_cast<std::uint64_t>(image.width) *
                                  static_cast<std::uint64_t>(image.height) *
@@ -753,11 +753,16 @@ Status write_file_atomically(const fs::path& file, std::string_view bytes) {
 namespace {
 
 // Why `levels` are not a MIP chain that save_image_levels can write, or nullopt.
-std::optional<std::string> levels_problem(const std::vector<Image>& levels) {
+std::optional<std::string> levels_problem(const std::vector<Image>& levels,
+                                          const LevelsSaveOptions& options) {
     if (levels.empty()) return std::string("no levels given");
+    const auto names = static_cast<int>(options.channel_names.size());
+    if (names > 0 && (names > 8 || levels[0].channels != names))
+        return std::to_string(names) + " channel names for " + std::to_string(levels[0].channels) +
+               " channels (1 to 8 named channels can be written)";
     for (std::size_t l = 0; l < levels.size(); ++l) {
         const std::string level = "MIP level " + std::to_string(l) + ": ";
-        if (auto problem = image_problem(levels[l])) return level + *problem;
+        if (auto problem = image_problem(levels[l], names > 0 ? names : 4)) return level + *problem;
         if (levels[l].channels != levels[0].channels)
             return level + "it has " + std::to_string(levels[l].channels) +
                    " channels, level 0 has " + std::to_string(levels[0].channels);
@@ -774,6 +779,13 @@ std::optional<std::string> levels_problem(const std::vector<Image>& levels) {
         return "the levels stop at " + std::to_string(last.width) + " x " +
                std::to_string(last.height) + ", not 1 x 1";
     return std::nullopt;
+}
+
+// The type of a float attribute of n values: OpenEXR keeps 2 and 3 as its v2f and v3f.
+OIIO::TypeDesc float_attribute_type(std::size_t n) {
+    if (n == 2) return OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::VEC2);
+    if (n == 3) return OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::VEC3);
+    return OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, static_cast<int>(n));
 }
 
 // The levels as one tiled, MIP-mapped OpenEXR file of floats, in memory.
@@ -793,8 +805,11 @@ Result<std::vector<unsigned char>> encode_levels(const std::vector<Image>& level
     const int channels = levels[0].channels;
     for (std::size_t l = 0; l < levels.size(); ++l) {
         OIIO::ImageSpec spec(levels[l].width, levels[l].height, channels, OIIO::TypeDesc::FLOAT);
-        spec.channelnames = kNames[channels - 1];
-        spec.alpha_channel = (channels == 2 || channels == 4) ? channels - 1 : -1;
+        const bool named = !options.channel_names.empty();
+        spec.channelnames = named ? options.channel_names : kNames[channels - 1];
+        spec.alpha_channel = !named && (channels == 2 || channels == 4) ? channels - 1 : -1;
+        for (const LevelsSaveOptions::FloatAttribute& a : options.float_attributes)
+            spec.attribute(a.name, float_attribute_type(a.values.size()), a.values.data());
         spec.tile_width = spec.tile_height = options.tile_size;
         // A MIP-mapped texture as maketx writes one (OpenImageIO's OpenEXR writer makes a
         // "Plain Texture" of tiles a MIPMAP_LEVELS file), levels rounded down: max(1, ⌊W/2⌋).
@@ -824,7 +839,7 @@ Status save_image_levels(const std::vector<Image>& levels, const fs::path& file,
                          const LevelsSaveOptions& options) {
     if (kind_of(file) != FileKind::exr)
         return write_error(file, "MIP levels are written as OpenEXR; name the file .exr");
-    if (auto problem = levels_problem(levels)) return write_error(file, *problem);
+    if (auto problem = levels_problem(levels, options)) return write_error(file, *problem);
     if (!(options.tile_size >= 16 && options.tile_size <= 1024))
         return write_error(
             file, "tile size " + std::to_string(options.tile_size) + " is outside 16 to 1024");

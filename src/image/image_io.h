@@ -112,6 +112,15 @@ struct LevelsSaveOptions {
     // "periodic,clamp" (s, then t; black, clamp, periodic, mirror). Empty: none written.
     std::string wrap_modes;
     int tile_size = 64;  // tiles of tile_size² texels, 16 to 1024
+    // One name per channel, 1 to 8 channels (a bump pyramid's moments); empty: Y, YA, RGB, RGBA
+    // for 1–4 channels.
+    std::vector<std::string> channel_names;
+    // Header attributes of floats besides OpenImageIO's, e.g. {"footprint:slope_offset", {x, y}}.
+    struct FloatAttribute {
+        std::string name;
+        std::vector<float> values;
+    };
+    std::vector<FloatAttribute> float_attributes;
 };
 
 // Writes `levels` as one tiled, MIP-mapped OpenEXR file of 32-bit floats (linear, as stored),

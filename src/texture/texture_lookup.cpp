@@ -41,6 +41,15 @@ std::string oiio_wrap_modes(WrapMode s, WrapMode t) {
     return std::string(name(s)) + "," + name(t);
 }
 
+WrapModes parse_oiio_wrap_modes(std::string_view modes) {
+    const auto parse = [](std::string_view mode) {
+        return mode == "black" ? std::optional(WrapMode::clamp) : parse_wrap_mode(mode);
+    };
+    const std::size_t comma = modes.find(',');
+    const std::string_view s = modes.substr(0, comma);
+    return {parse(s), parse(comma == std::string_view::npos ? s : modes.substr(comma + 1))};
+}
+
 std::optional<TextureFilter> parse_texture_filter(std::string_view name) {
     for (TextureFilter f :
          {TextureFilter::nearest, TextureFilter::bilinear, TextureFilter::trilinear,

@@ -57,5 +57,11 @@ const char* to_string(WrapMode mode);
 // OpenImageIO's "wrapmodes" attribute of a texture file (maketx's): "periodic,clamp" for s, t.
 // parse_wrap_mode() reads its names too ("periodic" is repeat).
 std::string oiio_wrap_modes(WrapMode s, WrapMode t);
+// Reads such an attribute ("periodic,clamp", or one mode for both axes): (s, t), each nullopt where
+// it names no mode footprint has. "black", which footprint does not have, is read as clamp.
+struct WrapModes {
+    std::optional<WrapMode> s, t;
+};
+WrapModes parse_oiio_wrap_modes(std::string_view modes);
 
 }  // namespace footprint
