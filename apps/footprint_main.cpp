@@ -17,6 +17,7 @@
 //   footprint view SCENE [--filter MODE] [--size WxH] [--exposure E] [--frames N]
 //                  [--screenshot FILE]
 //   footprint maketx IN -o OUT.exr [--wrap MODE[,MODE]] [--downsample box|tent] [--tile-size N]
+//                    [--bump [--height] [--invalid-normals clamp]]
 // Filter names: one vocabulary across the commands (apps/cli_options.h, kFilterHelp below).
 // Exit status: 0 success, 1 bad input or failure (one line on stderr), 2 command-line usage error.
 #include <CLI/CLI.hpp>
@@ -118,6 +119,16 @@ int run(int argc, char** argv) {
         ->check(CLI::IsMember({"box", "tent"}))
         ->capture_default_str();
     maketx_cmd->add_option("--tile-size", maketx.tile_size, "Tiles of N×N texels, 16 to 1024")
+        ->capture_default_str();
+    maketx_cmd->add_flag("--bump", maketx.bump,
+                         "IN is a normal map: write its bump + roughness pyramid (5 moment "
+                         "channels, strength 1), read tile by tile by the texture system");
+    maketx_cmd->add_flag("--height", maketx.height, "With --bump: IN is a height map");
+    std::string maketx_invalid = "error";
+    maketx_cmd
+        ->add_option("--invalid-normals", maketx_invalid,
+                     "With --bump: a normal map's invalid texels are an error, or clamped")
+        ->check(CLI::IsMember({"error", "clamp"}))
         ->capture_default_str();
 
     footprint::EnvConvertCommandOptions convert;
@@ -331,6 +342,7 @@ int run(int argc, char** argv) {
     if (*maketx_cmd) {
         maketx.input = maketx_input;
         maketx.output = maketx_output;
+        maketx.clamp_invalid_normals = maketx_invalid == "clamp";
         maketx.downsample = maketx_downsample == "tent" ? footprint::DownsampleFilter::tent
                                                         : footprint::DownsampleFilter::box;
         return footprint::run_maketx_command(maketx);

@@ -8,6 +8,8 @@
 #include <memory>
 #include <string>
 
+#include "bump/bump_pyramid_file.h"
+#include "bump/slope_map.h"
 #include "core/test_temp_dir.h"
 #include "image/image_io.h"
 #include "image/test_images.h"
@@ -94,6 +96,66 @@ TEST(MaketxCommand, BadInputIsOneLineNamingItAndWritesNothing) {
         EXPECT_EQ(err.find('\n'), err.size() - 1) << err;  // one line
     }
     EXPECT_EQ(dir.entries(), 1);  // in.exr alone
+}
+
+TEST(MaketxCommand, BumpWritesTheBumpPyramidOfTheNormalOrHeightMapAtStrengthOne) {
+    test::TempDir dir;
+    Image slopes = random_image(48, 40, 2, 31);
+    for (float& v : slopes.pixels) v -= 0.5f;
+    ASSERT_TRUE(save_image(normals_from_slopes(slopes), dir / "normals.exr"));
+    ASSERT_TRUE(save_image(random_image(48, 40, 1, 32), dir / "height.exr"));
+    for (const bool height : {false, true}) {
+        MaketxCommandOptions options;
+        options.input = dir / (height ? "height.exr" : "normals.exr");
+        options.output = dir / "bump.exr";
+        options.bump = true;
+        options.height = height;
+        options.wrap = "clamp,repeat";
+        options.tile_size = 16;
+        std::string err;
+        ASSERT_EQ(maketx(options, &err), 0) << err;
+        EXPECT_NE(err.find("bump pyramid, 6 levels, 5 moment channels"), std::string::npos) << err;
+        SlopeMapLoadOptions load;
+        load.source = height ? SlopeMapSource::height_map : SlopeMapSource::normal_map;
+        load.height_map.texel_size_u = 1.0f / 48;
+        load.height_map.texel_size_v = 1.0f / 40;
+        BumpPyramidOptions built;
+        built.wrap_s = WrapMode::clamp;
+        const BumpPyramid want =
+            BumpPyramid::build(*load_slope_map(options.input, load), built).value();
+        const BumpPyramid got = load_bump_pyramid(options.output).value();
+        EXPECT_EQ(got.slope_offset().x, want.slope_offset().x);
+        EXPECT_EQ(got.moments().wrap_s(), WrapMode::clamp);
+        for (int l = 0; l < want.level_count(); ++l)
+            ASSERT_EQ(got.moments().level_image(l).pixels, want.moments().level_image(l).pixels)
+                << "level " << l << (height ? " of the height map" : " of the normal map");
+    }
+}
+
+TEST(MaketxCommand, BumpRefusesInvalidNormalsUnlessClampedAndFlagsWithoutBump) {
+    test::TempDir dir;
+    Image normals(8, 8, 3, 0.0f);  // n = 0: not a normal
+    ASSERT_TRUE(save_image(normals, dir / "zero.exr"));
+    MaketxCommandOptions options;
+    options.input = dir / "zero.exr";
+    options.output = dir / "bump.exr";
+    options.bump = true;
+    std::string err;
+    EXPECT_EQ(maketx(options, &err), 1);
+    EXPECT_NE(err.find("zero.exr"), std::string::npos) << err;
+    EXPECT_NE(err.find("--invalid-normals clamp"), std::string::npos) << err;
+    EXPECT_FALSE(std::filesystem::exists(options.output));
+    options.clamp_invalid_normals = true;
+    EXPECT_EQ(maketx(options, &err), 0) << err;
+    EXPECT_TRUE(bump_pyramid_file_offset(options.output));
+
+    MaketxCommandOptions height_alone;
+    height_alone.input = dir / "zero.exr";
+    height_alone.output = dir / "other.exr";
+    height_alone.height = true;
+    EXPECT_EQ(maketx(height_alone, &err), 1);
+    EXPECT_EQ(err, "footprint: --height describes a bump map: give --bump too\n");
+    EXPECT_FALSE(std::filesystem::exists(height_alone.output));
 }
 
 }  // namespace

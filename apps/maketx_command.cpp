@@ -5,6 +5,8 @@
 #include <optional>
 #include <vector>
 
+#include "bump/bump_pyramid_file.h"
+#include "bump/slope_map.h"
 #include "image/image_io.h"
 
 namespace footprint {
@@ -16,25 +18,64 @@ int fail(const std::string& message) {
     return 1;
 }
 
-// "repeat" or "repeat,clamp" as (s, t).
-struct WrapModes {
-    WrapMode s, t;
-};
-std::optional<WrapModes> parse_wraps(const std::string& text) {
-    const std::size_t comma = text.find(',');
-    const std::optional<WrapMode> s = parse_wrap_mode(text.substr(0, comma));
-    const std::optional<WrapMode> t =
-        comma == std::string::npos ? s : parse_wrap_mode(text.substr(comma + 1));
-    if (!s || !t) return std::nullopt;
-    return WrapModes{*s, *t};
+// The slopes of a bump map file at strength 1 (render_scene.h's conventions): a normal map's
+// b = (n_x, n_y)/n_z, or a height map's b = −∇h per unit of (u, v).
+Result<Image> slopes_at_strength_one(const MaketxCommandOptions& options) {
+    ImageLoadOptions load;
+    load.encoding = ColorEncoding::linear;  // a bump map's values are data, never sRGB
+    // A normal map's NaN texels are kept: --invalid-normals decides for them.
+    if (!options.height) load.non_finite = NonFinitePolicy::keep;
+    Result<Image> map = load_image(options.input, load);
+    if (!map) return map.error();
+    Result<Image> slopes = [&] {
+        if (options.height) {
+            HeightMapOptions height;
+            height.texel_size_u = 1.0f / static_cast<float>(map->width);
+            height.texel_size_v = 1.0f / static_cast<float>(map->height);
+            return slopes_from_height_map(*map, height);
+        }
+        NormalMapOptions normal;
+        normal.invalid_normal_policy =
+            options.clamp_invalid_normals ? InvalidNormalPolicy::clamp : InvalidNormalPolicy::error;
+        return slopes_from_normal_map(*map, normal);
+    }();
+    if (!slopes)
+        return Error{"'" + options.input.string() + "': " + slopes.error().message +
+                     (options.height || options.clamp_invalid_normals
+                          ? ""
+                          : " (--invalid-normals clamp replaces such texels)")};
+    return slopes;
 }
+
+int make_bump_pyramid(const MaketxCommandOptions& options, WrapMode wrap_s, WrapMode wrap_t) {
+    Result<Image> slopes = slopes_at_strength_one(options);
+    if (!slopes) return fail(slopes.error().message);
+    BumpPyramidOptions pyramid_options;
+    pyramid_options.wrap_s = wrap_s;
+    pyramid_options.wrap_t = wrap_t;
+    pyramid_options.downsample = options.downsample;
+    Result<BumpPyramid> pyramid = BumpPyramid::build(*slopes, pyramid_options);
+    if (!pyramid) return fail("'" + options.input.string() + "': " + pyramid.error().message);
+    if (Status saved = save_bump_pyramid(*pyramid, options.output, options.tile_size); !saved)
+        return fail(saved.error().message);
+    std::fprintf(stderr,
+                 "footprint: wrote %s (%dx%d bump pyramid, %d levels, 5 moment channels, tiles "
+                 "%d²)\n",
+                 options.output.string().c_str(), slopes->width, slopes->height,
+                 pyramid->level_count(), options.tile_size);
+    return 0;
+}
+
 }  // namespace
 
 int run_maketx_command(const MaketxCommandOptions& options) {
-    const std::optional<WrapModes> wraps = parse_wraps(options.wrap);
-    if (!wraps)
+    const WrapModes wraps = parse_oiio_wrap_modes(options.wrap);
+    if (!wraps.s || !wraps.t)
         return fail("--wrap '" + options.wrap +
                     "': expected repeat, clamp or mirror, or two of them as S,T");
+    if ((options.height || options.clamp_invalid_normals) && !options.bump)
+        return fail(std::string(options.height ? "--height" : "--invalid-normals") +
+                    " describes a bump map: give --bump too");
     if (options.tile_size < 16 || options.tile_size > 1024 ||
         !std::has_single_bit(static_cast<unsigned>(options.tile_size)))
         return fail("--tile-size " + std::to_string(options.tile_size) +
@@ -42,18 +83,19 @@ int run_maketx_command(const MaketxCommandOptions& options) {
     if (options.output.extension() != ".exr")
         return fail("cannot write '" + options.output.string() +
                     "': maketx writes tiled MIP-mapped OpenEXR files (.exr)");
+    if (options.bump) return make_bump_pyramid(options, *wraps.s, *wraps.t);
     Result<Image> image = load_image(options.input);
     if (!image) return fail(image.error().message);
 
     MipPyramidOptions pyramid_options;
-    pyramid_options.wrap_s = wraps->s;
-    pyramid_options.wrap_t = wraps->t;
+    pyramid_options.wrap_s = *wraps.s;
+    pyramid_options.wrap_t = *wraps.t;
     pyramid_options.downsample = options.downsample;
     const MipPyramid pyramid = MipPyramid::build(*image, pyramid_options);
     std::vector<Image> levels;
     for (int l = 0; l < pyramid.level_count(); ++l) levels.push_back(pyramid.level_image(l));
     LevelsSaveOptions save;
-    save.wrap_modes = oiio_wrap_modes(wraps->s, wraps->t);
+    save.wrap_modes = oiio_wrap_modes(*wraps.s, *wraps.t);
     save.tile_size = options.tile_size;
     if (Status saved = save_image_levels(levels, options.output, save); !saved)
         return fail(saved.error().message);

@@ -1,6 +1,7 @@
 // apps/maketx_command.h — `footprint maketx`: a texture's MIP pyramid, prepared once, as a file.
 //
 //   footprint maketx IN -o OUT.exr [--wrap MODE[,MODE]] [--downsample box|tent] [--tile-size N]
+//                    [--bump [--height] [--invalid-normals clamp]]
 //
 // Reads IN (any image load_image reads: integer files are sRGB-decoded to linear, float files are
 // linear), builds its MIP pyramid (MipPyramid::build: every level down to 1×1, --downsample's
@@ -10,6 +11,14 @@
 // other renderers' texture caches: the role of OpenImageIO's `maketx`, with footprint's pyramid.
 //   --wrap        repeat (or periodic) | clamp | mirror, for s and t, or "S,T" (default repeat)
 //   --tile-size   16 … 1024, a power of two (default 64, the texture system's default tiles)
+//   --bump        IN is a bump map: write its bump + roughness pyramid (bump/bump_pyramid_file.h:
+//                 the 5 moment channels and the slope offset) of its slopes at strength 1 without
+//                 micro-roughness, which the texture system reads tile by tile and the renderer
+//                 scales by a material's strength and micro-roughness. IN is a tangent-space
+//                 normal map (OpenGL convention, read as data, not sRGB), or with --height a
+//                 height map (channel 0; slopes per unit of (u, v), one map period = 1). A normal
+//                 map's invalid texels are an error naming the first, unless --invalid-normals
+//                 clamp replaces them (slope_map.h).
 // Prints one line on stderr: "footprint: wrote OUT.exr (W×H, N levels, C channels, tiles T²)".
 // Returns 0, or 1 after one line "footprint: …" naming the file or value at fault (unreadable
 // input, an output that is not .exr or cannot be written — nothing is left behind then).
@@ -27,6 +36,9 @@ struct MaketxCommandOptions {
     std::string wrap = "repeat";
     DownsampleFilter downsample = DownsampleFilter::box;
     int tile_size = 64;
+    bool bump = false;                   // --bump
+    bool height = false;                 // --height: IN is a height map
+    bool clamp_invalid_normals = false;  // --invalid-normals clamp
 };
 int run_maketx_command(const MaketxCommandOptions& options);
 

@@ -36,8 +36,10 @@
 //   plus, per thread, the micro-cache and the tiles of one lookup; plus about 150 bytes of
 //   bookkeeping per cached tile. stats() reports them (bytes_resident, peak_bytes). Results do not
 //   depend on what the cache holds: a lookup returns the same bits with any max_memory_mb.
-//   Environment maps and bump maps are held whole, as EnvironmentMap and BumpPyramid, once per
-//   file (stats().bytes_in_memory).
+//   Bump maps are read the same way: a bump pyramid file (`footprint maketx --bump`) is read tile
+//   by tile as a texture of 5 moment channels, a normal map has its pyramid built (in memory, or
+//   into cache_dir and then read tile by tile). Environment maps are held whole, as
+//   EnvironmentMap, once per file (stats().bytes_in_memory).
 //
 // Maps made in memory
 //   add_image(), add_bump() and add_environment() give a name to an image, a bump pyramid or an
@@ -181,16 +183,22 @@ class TextureSystem {
     }
     virtual EnvironmentHandle* environment_handle(std::string_view name) = 0;
 
-    // bump_lookup() (bump/bump_pyramid.h) of the normal map in `name` (OpenGL convention, decoded
-    // as load_slope_map() decodes it, at strength 1 without micro-roughness), or of the bump
-    // pyramid add_bump() gave that name: the mean slope and slope covariance over the footprint.
-    virtual Status bump(BumpHandle* map, const TextureCoords& coords, const LookupOptions& options,
-                        SlopeStatistics* statistics) = 0;
-    Status bump(std::string_view name, const TextureCoords& coords, const LookupOptions& options,
-                SlopeStatistics* statistics) {
+    // bump_lookup() (bump/bump_pyramid.h) of the bump map in `name`: the mean slope and slope
+    // covariance over the footprint, scaled as options.strength and options.micro_roughness say
+    // (a LookupOptions converts: 1 and none). The map is a bump pyramid file (`footprint maketx
+    // --bump`, bump/bump_pyramid_file.h), read tile by tile; a normal map (OpenGL convention,
+    // decoded as load_slope_map() decodes it, at strength 1 without micro-roughness), whose
+    // pyramid is built as a texture's is (in memory, or once into cache_dir and then read tile by
+    // tile); or the pyramid add_bump() gave that name.
+    virtual Status bump(BumpHandle* map, const TextureCoords& coords,
+                        const BumpLookupOptions& options, SlopeStatistics* statistics) = 0;
+    Status bump(std::string_view name, const TextureCoords& coords,
+                const BumpLookupOptions& options, SlopeStatistics* statistics) {
         return bump(bump_handle(name), coords, options, statistics);
     }
     virtual BumpHandle* bump_handle(std::string_view name) = 0;
+    // The size, levels and wraps of a bump map's moment pyramid (5 channels), or its error.
+    virtual Result<TextureInfo> info(BumpHandle* map) = 0;
 
     // Maps made in memory (see above). Each returns the new entry's handle, or an Error where the
     // name is taken or the map is empty. add_image() builds the image's pyramid as for a file

@@ -8,6 +8,8 @@
 #include <array>
 #include <cmath>
 
+#include "bump/bump_pyramid_file.h"
+#include "bump/slope_map.h"
 #include "core/test_temp_dir.h"
 #include "gpu/gpu_test_device.h"
 #include "image/image_io.h"
@@ -188,6 +190,36 @@ TEST(GpuRenderer, StoredLevelsAndGreyMapsUploadAsThePlainFile) {
         ASSERT_EQ(images[i].pixels.size(), images[0].pixels.size());
         EXPECT_EQ(images[i].pixels, images[0].pixels) << i;
     }
+}
+
+// A bump pyramid file at strength 1 is uploaded scaled by the material's strength with its
+// micro-roughness: the normal map's image, to float rounding.
+TEST(GpuRenderer, ABumpPyramidFileUploadsAsItsNormalMapAtTheMaterialsStrength) {
+    FOOTPRINT_GPU_DEVICE_OR_SKIP();
+    test::TempDir dir;
+    Image slopes = random_image(64, 64, 2, 19);
+    for (float& b : slopes.pixels) b = b - 0.5f;
+    ASSERT_TRUE(save_image(normals_from_slopes(slopes), dir / "normals.exr"));
+    ASSERT_TRUE(save_bump_pyramid(BumpPyramid::build(*load_slope_map(dir / "normals.exr")).value(),
+                                  dir / "bump.exr", 16));
+    std::vector<Image> images;
+    for (const char* file : {"normals.exr", "bump.exr"}) {
+        SceneDesc desc = mirror_plane_scene(40, 24);
+        MaterialDesc& m = desc.objects[0].material;
+        m.specular = 0.5f;
+        m.micro_roughness = 0.05f;
+        m.bump.source = BumpDesc::Source::normal_map;
+        m.bump.map.file = dir / file;
+        m.bump.strength = 0.5f;
+        desc.lights.push_back({LightType::point, {}, {1, 3, 2}, {4, 4, 4}});
+        Result<RenderScene> scene = prepare_render_scene(desc);
+        ASSERT_TRUE(scene) << scene.error().message;
+        images.push_back(render_gpu(*scene, GpuFilter::fa_rough));
+    }
+    constexpr double kRmse = 1e-5;  // float rounding of the scaled moments (see the CPU's test)
+    const Result<ImageComparison> d = compare_images(images[1], images[0]);
+    ASSERT_TRUE(d) << d.error().message;
+    EXPECT_LT(d->rmse, kRmse);
 }
 
 TEST(GpuFilter, NamesRoundTrip) {

@@ -237,6 +237,11 @@ Result<MaterialRecord> material_record(const RenderMaterial& m, TextureSystem& t
     if (m.bump) {
         Result<std::shared_ptr<const BumpPyramid>> pyramid = textures.bump_pyramid(m.bump);
         if (!pyramid) return Error{name + ": " + pyramid.error().message};
+        // A stored bump pyramid: the material's strength and micro-roughness (PSD: trace 0 is
+        // none).
+        if (m.bump_strength != 1 || m.bump_micro_roughness.trace() != 0)
+            *pyramid = std::make_shared<const BumpPyramid>(
+                (*pyramid)->scaled(m.bump_strength, m.bump_micro_roughness));
         const BumpPyramid& b = **pyramid;
         Result<MapRef> ref = place(std::shared_ptr<const MipPyramid>(*pyramid, &b.moments()), 2);
         if (!ref) return ref.error();

@@ -7,6 +7,7 @@
 #include <string>
 #include <tuple>
 
+#include "bump/bump_pyramid_file.h"
 #include "bump/slope_map.h"
 #include "envmap/env_image_io.h"
 #include "image/image_io.h"
@@ -169,6 +170,17 @@ Result<BumpHandle*> bump_map(const MaterialDesc& desc, Sym2 micro_roughness, Sce
     });
 }
 
+// A bump map stored as a bump pyramid file (`footprint maketx --bump`): read tile by tile by the
+// texture system, the material's strength and micro-roughness applied at each lookup.
+Result<BumpHandle*> stored_bump_map(const BumpDesc& bump, Sym2 micro_roughness,
+                                    RenderMaterial& material, SceneMaps& maps) {
+    BumpHandle* handle = maps.textures.bump_handle(bump.map.file.string());
+    if (Result<TextureInfo> info = maps.textures.info(handle); !info) return info.error();
+    material.bump_strength = bump.strength;
+    material.bump_micro_roughness = micro_roughness;
+    return handle;
+}
+
 Result<RenderMaterial> prepare_material(const MaterialDesc& desc, SceneMaps& maps) {
     RenderMaterial material;
     material.desc = desc;
@@ -183,7 +195,10 @@ Result<RenderMaterial> prepare_material(const MaterialDesc& desc, SceneMaps& map
     if (desc.bump.source != BumpDesc::Source::none) {
         const char* key = desc.bump.source == BumpDesc::Source::height_map ? "bump.height_map"
                                                                            : "bump.normal_map";
-        Result<BumpHandle*> bump = bump_map(desc, material.micro_roughness, maps);
+        const bool stored = !desc.bump.map.image && bump_pyramid_file_offset(desc.bump.map.file);
+        Result<BumpHandle*> bump =
+            stored ? stored_bump_map(desc.bump, material.micro_roughness, material, maps)
+                   : bump_map(desc, material.micro_roughness, maps);
         if (!bump) return Error{std::string(key) + ": " + bump.error().message};
         material.bump = *bump;
     }

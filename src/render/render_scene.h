@@ -12,7 +12,9 @@
 //   * bump maps → slope maps b in slope_map.h's convention (height maps: b = −strength·∇h per unit
 //     of (u, v), one map period = 1; normal maps: b = strength·(n_x, n_y)/n_z) → bump + roughness
 //     pyramids (bump/bump_pyramid.h) with the material's micro-roughness σ as K_0 = σ² I,
-//     registered by add_bump() (materials with the same map, strength and σ share one);
+//     registered by add_bump() (materials with the same map, strength and σ share one); a bump
+//     pyramid file (`footprint maketx --bump`, in either key) is read as stored, tile by tile, its
+//     slopes × strength with σ² I added at each lookup;
 //   * the environment → an EnvironmentMap (envmap/), scaled by its intensity and registered by
 //     add_environment(), with its rotation A;
 //   * meshes → triangles (scene/mesh.h) in one MeshAccel. Each part of a mesh file keeps its own
@@ -47,6 +49,10 @@ struct RenderMaterial {
     TextureHandle* base_color_map = nullptr;  // linear; null: desc.base_color only
     bool base_color_grey = false;             // the map has 1 or 2 channels: grey (and alpha)
     BumpHandle* bump = nullptr;               // slopes b (see above); null: flat
+    // Applied by each bump lookup (BumpLookupOptions): a bump pyramid file's slopes are stored at
+    // strength 1 without micro-roughness; the maps built here have both already (1 and none).
+    float bump_strength = 1;
+    Sym2 bump_micro_roughness;
     Sym2 micro_roughness;  // σ² I: the slope covariance when there is no bump map
     bool frame_from_mesh_tangents = false;  // a glTF normal texture on a part with tangents
 };

@@ -174,7 +174,9 @@ Rgb SampleShader::shade_hit(const RayDifferential& ray, const SceneHit& hit, Vec
     Sym2 roughness = material.micro_roughness;
     if (material.bump) {
         SlopeStatistics stats;
-        static_cast<void>(textures_.bump(material.bump, coords, policy_.lookup, &stats));
+        const BumpLookupOptions bump_options(policy_.lookup, material.bump_strength,
+                                             material.bump_micro_roughness);
+        static_cast<void>(textures_.bump(material.bump, coords, bump_options, &stats));
         ++lookups;
         slope = stats.mean;
         roughness = stats.covariance;

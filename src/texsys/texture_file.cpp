@@ -8,6 +8,7 @@
 #include <sstream>
 #include <vector>
 
+#include "bump/bump_pyramid_file.h"
 #include "image/color.h"
 #include "image/image_io.h"
 
@@ -21,41 +22,29 @@ Error cannot_read(const std::string& file, const std::string& why) {
     return Error{"cannot read '" + file + "': " + why};
 }
 
-// OpenImageIO's "wrapmodes" ("periodic,clamp", or one mode for both axes); black, which footprint
-// does not have, is read as clamp.
-std::optional<WrapMode> parse_oiio_wrap(std::string_view mode) {
-    return mode == "black" ? WrapMode::clamp : parse_wrap_mode(mode);
-}
 void read_wrap_modes(const OIIO::ImageSpec& spec, WrapMode fallback, TextureInfo& info) {
-    info.wrap_s = info.wrap_t = fallback;
-    const std::string modes = spec.get_string_attribute("wrapmodes");
-    const std::size_t comma = modes.find(',');
-    const std::string_view s = std::string_view(modes).substr(0, comma);
-    const std::string_view t =
-        comma == std::string::npos ? s : std::string_view(modes).substr(comma + 1);
-    if (auto mode = parse_oiio_wrap(s)) info.wrap_s = *mode;
-    if (auto mode = parse_oiio_wrap(t)) info.wrap_t = *mode;
+    const WrapModes modes = parse_oiio_wrap_modes(spec.get_string_attribute("wrapmodes"));
+    info.wrap_s = modes.s.value_or(fallback);
+    info.wrap_t = modes.t.value_or(fallback);
 }
 
-// The file in options.cache_dir that holds the pyramid built for `file`: named by the source's
-// absolute path, size and modification time and by what shapes the pyramid.
-fs::path cached_pyramid(const fs::path& file, const TextureSystemOptions& options,
-                        const TextureInfo& info) {
+}  // namespace
+
+fs::path cached_pyramid_file(const fs::path& file, const TextureSystemOptions& options,
+                             WrapMode wrap_s, WrapMode wrap_t, std::string_view kind) {
     std::error_code ec;
     const fs::path absolute = fs::absolute(file, ec);
     const auto size = fs::file_size(file, ec);
     const auto modified = fs::last_write_time(file, ec).time_since_epoch().count();
     std::ostringstream key;
     key << absolute.string() << '|' << size << '|' << modified << '|' << options.tile_size << '|'
-        << static_cast<int>(options.downsample) << '|' << static_cast<int>(info.wrap_s) << '|'
-        << static_cast<int>(info.wrap_t);
+        << static_cast<int>(options.downsample) << '|' << static_cast<int>(wrap_s) << '|'
+        << static_cast<int>(wrap_t) << '|' << kind;
     std::ostringstream name;
-    name << file.stem().string() << '-' << std::hex << std::hash<std::string>{}(key.str())
-         << ".exr";
+    name << file.stem().string() << '-' << kind << '-' << std::hex
+         << std::hash<std::string>{}(key.str()) << ".exr";
     return options.cache_dir / name.str();
 }
-
-}  // namespace
 
 void TextureHandle::open(const TextureSystemOptions& options) {
     std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(name);
@@ -69,7 +58,8 @@ void TextureHandle::open(const TextureSystemOptions& options) {
     int levels = 1;
     while (in->seek_subimage(0, levels)) ++levels;
     // Stored levels: tiled, and every level MipPyramid's size, down to 1×1.
-    bool stored = spec.tile_width > 0 && spec.nchannels >= 1 && spec.nchannels <= 4;
+    bool stored =
+        spec.tile_width > 0 && spec.nchannels >= 1 && spec.nchannels <= MipPyramid::kMaxChannels;
     for (int l = 0; stored && l < levels; ++l) {
         stored = in->seek_subimage(0, l) && in->spec().width == std::max(1, spec.width >> l) &&
                  in->spec().height == std::max(1, spec.height >> l);
@@ -78,6 +68,16 @@ void TextureHandle::open(const TextureSystemOptions& options) {
     in.reset();
     if (stored) {
         open_stored(name, options);
+        return;
+    }
+    // A pyramid built in an earlier run (or by another system) is opened, not built again.
+    const fs::path cached =
+        options.cache_dir.empty()
+            ? fs::path()
+            : cached_pyramid_file(name, options, info.wrap_s, info.wrap_t, "texture");
+    std::error_code ec;
+    if (!cached.empty() && fs::exists(cached, ec)) {
+        open_stored(cached.string(), options);
         return;
     }
     Result<Image> image = load_image(name);
@@ -97,21 +97,16 @@ void TextureHandle::open(const TextureSystemOptions& options) {
     pyramid_options.wrap_t = info.wrap_t;
     pyramid_options.downsample = options.downsample;
     MipPyramid built = MipPyramid::build(*image, pyramid_options);
-    if (!options.cache_dir.empty()) {
-        const fs::path cached = cached_pyramid(name, options, info);
-        std::error_code ec;
-        if (!fs::exists(cached, ec)) {
-            std::vector<Image> level_images;
-            for (int l = 0; l < built.level_count(); ++l)
-                level_images.push_back(built.level_image(l));
-            LevelsSaveOptions save;
-            save.wrap_modes = oiio_wrap_modes(info.wrap_s, info.wrap_t);
-            save.tile_size = std::clamp(options.tile_size, 16, 1024);
-            if (Status saved = save_image_levels(level_images, cached, save); !saved) {
-                error = Error{"cannot cache the MIP levels of '" + name +
-                              "': " + saved.error().message};
-                return;
-            }
+    if (!cached.empty()) {
+        std::vector<Image> level_images;
+        for (int l = 0; l < built.level_count(); ++l) level_images.push_back(built.level_image(l));
+        LevelsSaveOptions save;
+        save.wrap_modes = oiio_wrap_modes(info.wrap_s, info.wrap_t);
+        save.tile_size = std::clamp(options.tile_size, 16, 1024);
+        if (Status saved = save_image_levels(level_images, cached, save); !saved) {
+            error =
+                Error{"cannot cache the MIP levels of '" + name + "': " + saved.error().message};
+            return;
         }
         open_stored(cached.string(), options);
         return;
@@ -139,6 +134,7 @@ void TextureHandle::open_stored(const std::string& file, const TextureSystemOpti
     file_tile_height_ = spec.tile_height;
     alpha_ = spec.nchannels == 2 || spec.nchannels == 4 ? spec.nchannels - 1 : -1;
     srgb_ = is_srgb_encoded(file);
+    slope_offset = bump_pyramid_file_offset(file);
     std::vector<int> widths, heights;
     for (int w = spec.width, h = spec.height;; w = std::max(1, w / 2), h = std::max(1, h / 2)) {
         widths.push_back(w);

@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -44,6 +45,8 @@ class TextureHandle {
 
     // Tiled (info.tiled): the levels' shape, read through `input`.
     detail::TiledShape shape;
+    // A bump pyramid file's (bump/bump_pyramid_file.h): its slope offset.
+    std::optional<Vec2> slope_offset;
     // Otherwise: the pyramid, in memory.
     std::shared_ptr<const MipPyramid> pyramid;
     // A tiled file read whole (TextureSystem::pyramid()), while someone holds it.
@@ -70,5 +73,12 @@ class TextureHandle {
     bool srgb_ = false;  // decode the colour channels (not alpha) from sRGB
     int alpha_ = -1;     // the alpha channel, or −1
 };
+
+// The file in options.cache_dir that holds the pyramid of `kind` ("texture", "bump") built for
+// `file` wrapping as (wrap_s, wrap_t): named by the source's absolute path, size and modification
+// time and by what shapes the pyramid, so that a changed source is built again.
+std::filesystem::path cached_pyramid_file(const std::filesystem::path& file,
+                                          const TextureSystemOptions& options, WrapMode wrap_s,
+                                          WrapMode wrap_t, std::string_view kind);
 
 }  // namespace footprint

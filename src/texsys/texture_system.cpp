@@ -8,6 +8,7 @@
 #include <shared_mutex>
 #include <unordered_map>
 
+#include "bump/bump_pyramid_file.h"
 #include "bump/slope_map.h"
 #include "envmap/env_image_io.h"
 #include "texsys/texture_file.h"
@@ -15,6 +16,8 @@
 #include "texture/tiled_texels.h"
 
 namespace footprint {
+
+namespace fs = std::filesystem;
 
 namespace texsys {
 
@@ -29,7 +32,13 @@ struct WholeMap {
 
 }  // namespace texsys
 
-class BumpHandle : public texsys::WholeMap<BumpPyramid> {};
+class BumpHandle : public texsys::WholeMap<BumpPyramid> {
+  public:
+    // A bump pyramid file, or the one built into the cache folder: its moments read tile by tile
+    // as a 5-channel texture, with its slope offset. Otherwise the pyramid is `value`, whole.
+    TextureHandle* moments = nullptr;
+    Vec2 slope_offset;
+};
 class EnvironmentHandle : public texsys::WholeMap<EnvironmentMap> {};
 
 namespace {
@@ -198,25 +207,36 @@ class TextureSystemImpl final : public TextureSystem {
         });
     }
 
-    Status bump(BumpHandle* entry, const TextureCoords& coords, const LookupOptions& options,
+    Status bump(BumpHandle* entry, const TextureCoords& coords, const BumpLookupOptions& options,
                 SlopeStatistics* statistics) override {
         if (entry->error) {
             if (!entry->error_reported.exchange(true)) report(*entry->error);
             return *entry->error;
         }
-        *statistics = bump_lookup(*entry->value, coords, options);
+        if (!entry->moments) {
+            *statistics = bump_lookup(*entry->value, coords, options);
+            return {};
+        }
+        float moments[5];
+        if (Status s = texture(entry->moments, coords, options, moments, {}); !s) {
+            if (!entry->error_reported.exchange(true)) report(s.error());
+            return s;
+        }
+        *statistics = slope_statistics(moments, entry->slope_offset, options);
         return {};
     }
 
     BumpHandle* bump_handle(std::string_view name) override {
-        return open_whole(bumps_, name, [&](BumpHandle& entry) {
-            Result<Image> slopes = load_slope_map(std::string(name));
-            Result<BumpPyramid> pyramid =
-                slopes ? BumpPyramid::build(*slopes) : Result<BumpPyramid>(slopes.error());
-            if (!pyramid) return void(entry.error = pyramid.error());
-            entry.value = std::make_shared<const BumpPyramid>(std::move(*pyramid));
-            count_in_memory(*entry.value);
-        });
+        return open_whole(bumps_, name,
+                          [&](BumpHandle& entry) { open_bump(entry, std::string(name)); });
+    }
+
+    Result<TextureInfo> info(BumpHandle* entry) override {
+        if (entry->error) return *entry->error;
+        if (entry->moments) return info(entry->moments);
+        const MipPyramid& m = entry->value->moments();
+        return TextureInfo{m.width(0), m.height(0), m.channels(), m.level_count(),
+                           false,      m.wrap_s(),  m.wrap_t()};
     }
 
     Result<TextureHandle*> add_image(std::string_view name, const Image& image, WrapMode wrap_s,
@@ -268,7 +288,16 @@ class TextureSystemImpl final : public TextureSystem {
 
     Result<std::shared_ptr<const BumpPyramid>> bump_pyramid(BumpHandle* entry) override {
         if (entry->error) return *entry->error;
-        return entry->value;
+        if (!entry->moments) return entry->value;
+        Result<std::shared_ptr<const MipPyramid>> moments = pyramid(entry->moments);
+        if (!moments) return moments.error();
+        std::vector<Image> levels;
+        for (int l = 0; l < (*moments)->level_count(); ++l)
+            levels.push_back((*moments)->level_image(l));
+        Result<BumpPyramid> whole = BumpPyramid::from_moment_levels(
+            levels, entry->slope_offset, (*moments)->wrap_s(), (*moments)->wrap_t());
+        if (!whole) return whole.error();
+        return std::make_shared<const BumpPyramid>(std::move(*whole));
     }
 
     Result<std::shared_ptr<const EnvironmentMap>> environment_map(
@@ -306,6 +335,44 @@ class TextureSystemImpl final : public TextureSystem {
             it->second = handle(name);
         }
         return it->second;
+    }
+
+    // Opens bump map `name`: a bump pyramid file tile by tile; a normal map decoded and its pyramid
+    // built, kept whole or, with a cache folder, written there once and read tile by tile.
+    void open_bump(BumpHandle& entry, const std::string& name) {
+        if (bump_pyramid_file_offset(name)) return open_stored_bump(entry, name, name);
+        const fs::path cached =
+            options_.cache_dir.empty()
+                ? fs::path()
+                : cached_pyramid_file(name, options_, WrapMode::repeat, WrapMode::repeat, "bump");
+        std::error_code ec;
+        if (!cached.empty() && fs::exists(cached, ec))
+            return open_stored_bump(entry, cached.string(), name);
+        Result<Image> slopes = load_slope_map(name);
+        Result<BumpPyramid> pyramid =
+            slopes ? BumpPyramid::build(*slopes) : Result<BumpPyramid>(slopes.error());
+        if (!pyramid) return void(entry.error = pyramid.error());
+        if (cached.empty()) {
+            entry.value = std::make_shared<const BumpPyramid>(std::move(*pyramid));
+            return count_in_memory(*entry.value);
+        }
+        const int tile = std::clamp(options_.tile_size, 16, 1024);
+        if (Status saved = save_bump_pyramid(*pyramid, cached, tile); !saved)
+            return void(entry.error = Error{"cannot cache the bump pyramid of '" + name +
+                                            "': " + saved.error().message});
+        open_stored_bump(entry, cached.string(), name);
+    }
+
+    // The bump map `name` read from `file`, a bump pyramid file, as a tiled texture of moments.
+    void open_stored_bump(BumpHandle& entry, const std::string& file, const std::string& name) {
+        TextureHandle* moments = handle(file);
+        Result<TextureInfo> info = this->info(moments);
+        if (!info) return void(entry.error = info.error());
+        if (!info->tiled || info->channels != 5 || !moments->slope_offset)
+            return void(entry.error = Error{"cannot read '" + name +
+                                            "': not a tiled bump pyramid of 5 moment channels"});
+        entry.moments = moments;
+        entry.slope_offset = *moments->slope_offset;
     }
 
     // The entry of `name` in `table`, opened by `open` on first use.

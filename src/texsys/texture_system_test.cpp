@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "bump/bump_pyramid_file.h"
 #include "bump/slope_map.h"
 #include "core/test_temp_dir.h"
 #include "envmap/env_image_io.h"
@@ -336,6 +337,67 @@ TEST(TextureSystem, EnvironmentAndBumpLookupsAreTheDirectOnes) {
     EXPECT_EQ(statistics.covariance.xy, expected.covariance.xy);
     EXPECT_FALSE(ts->bump((dir / "none.png").string(), c, {}, &statistics));
     EXPECT_FALSE(ts->environment((dir / "none.hdr").string(), r, dx, dy, {}, got));
+}
+
+// Bump maps through tiles: a bump pyramid file, and a normal map built once into the cache folder,
+// are read tile by tile through a small cache with the whole pyramid's results, bit for bit, also
+// when a lookup scales them (strength, micro-roughness).
+TEST(TextureSystem, BumpPyramidFilesAreReadTileByTileAsTheirPyramid) {
+    test::TempDir dir;
+    Image slopes = random_image(200, 120, 2, 12);
+    for (float& v : slopes.pixels) v = 0.8f * (v - 0.4f);
+    const std::string normals = (dir / "normals.exr").string();
+    ASSERT_TRUE(save_image(normals_from_slopes(slopes), normals));
+    const BumpPyramid bump = BumpPyramid::build(*load_slope_map(normals)).value();
+    const std::string stored = (dir / "bump.exr").string();
+    ASSERT_TRUE(save_bump_pyramid(bump, stored, 16));
+
+    TextureSystemOptions small;
+    small.max_memory_mb = 1;
+    small.tile_size = 16;
+    small.cache_dir = dir / "cache";
+    auto ts = make_system(small);
+    const BumpLookupOptions scaled(LookupOptions{}, 0.7f, Sym2{0.01f, 0.001f, 0.02f});
+    for (const std::string& name : {stored, normals}) {
+        BumpHandle* handle = ts->bump_handle(name);
+        Result<TextureInfo> info = ts->info(handle);
+        ASSERT_TRUE(info) << info.error().message;
+        EXPECT_TRUE(info->tiled) << name;
+        EXPECT_EQ(info->channels, 5);
+        for (TextureFilter filter : kFilters) {
+            for (const BumpLookupOptions& base : {BumpLookupOptions{}, scaled}) {
+                BumpLookupOptions options = base;
+                options.filter = filter;
+                for (const TextureCoords& c : lookups(300, 13)) {
+                    const SlopeStatistics want = bump_lookup(bump, c, options);
+                    SlopeStatistics got;
+                    ASSERT_TRUE(ts->bump(handle, c, options, &got));
+                    ASSERT_EQ(bits(got.mean.x), bits(want.mean.x)) << name << to_string(filter);
+                    ASSERT_EQ(bits(got.mean.y), bits(want.mean.y));
+                    ASSERT_EQ(bits(got.covariance.xx), bits(want.covariance.xx));
+                    ASSERT_EQ(bits(got.covariance.xy), bits(want.covariance.xy));
+                    ASSERT_EQ(bits(got.covariance.yy), bits(want.covariance.yy));
+                }
+            }
+        }
+    }
+    EXPECT_EQ(ts->stats().bytes_in_memory, 0u);  // neither held whole
+    EXPECT_GT(ts->stats().tiles_loaded, 0u);
+    // The normal map's pyramid went into the cache folder once; a second system opens it there.
+    int cached = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir / "cache")) {
+        ++cached;
+        EXPECT_TRUE(bump_pyramid_file_offset(entry.path())) << entry.path();
+    }
+    EXPECT_EQ(cached, 1);
+    auto again = make_system(small);
+    ASSERT_TRUE(again->info(again->bump_handle(normals)));
+    EXPECT_EQ(again->stats().bytes_in_memory, 0u);
+    // Whole, for a GPU: the file's pyramid.
+    Result<std::shared_ptr<const BumpPyramid>> whole = ts->bump_pyramid(ts->bump_handle(stored));
+    ASSERT_TRUE(whole);
+    EXPECT_EQ((*whole)->slope_offset().x, bump.slope_offset().x);
+    EXPECT_EQ((*whole)->moments().level_image(0).pixels, bump.moments().level_image(0).pixels);
 }
 
 TEST(TextureSystem, RefusesOptionsItCannotHonour) {
