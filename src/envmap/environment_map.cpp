@@ -245,6 +245,42 @@ Result<EnvironmentMap> EnvironmentMap::from_paraboloid(const Image& front, const
     return map;
 }
 
+Result<EnvironmentMap> EnvironmentMap::from_face_levels(
+    EnvLayout layout, const std::vector<std::vector<Image>>& faces,
+    const std::vector<std::vector<Image>>& polar_caps) {
+    if (static_cast<int>(faces.size()) != footprint::face_count(layout))
+        return Error{std::string("a ") + env_layout_name(layout) + " map has " +
+                     std::to_string(footprint::face_count(layout)) + " faces, not " +
+                     std::to_string(faces.size())};
+    if (!polar_caps.empty() && (layout != EnvLayout::latlong || polar_caps.size() != 2))
+        return Error{"only a lat-long map has polar caps, two of them"};
+    EnvironmentMap map;
+    map.layout_ = layout;
+    MipPyramidOptions options;  // as the layout's factory above builds its faces
+    options.wrap_s = layout == EnvLayout::latlong ? WrapMode::repeat : WrapMode::clamp;
+    options.wrap_t = WrapMode::clamp;
+    options.border = layout == EnvLayout::cube ? 1 : 0;
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        Result<MipPyramid> face = MipPyramid::from_levels(faces[f], options);
+        if (!face) return Error{"face " + std::to_string(f) + ": " + face.error().message};
+        if (f > 0 &&
+            (face->channels() != map.channels() || face->width(0) != map.faces_[0].width(0)))
+            return Error{"face " + std::to_string(f) + " differs in size or channels from face 0"};
+        if (layout != EnvLayout::latlong && face->width(0) != face->height(0))
+            return Error{"face " + std::to_string(f) + " is not square"};
+        map.faces_.push_back(std::move(*face));
+    }
+    MipPyramidOptions cap_options;
+    cap_options.wrap_s = cap_options.wrap_t = WrapMode::clamp;
+    for (std::size_t p = 0; p < polar_caps.size(); ++p) {
+        Result<MipPyramid> cap = MipPyramid::from_levels(polar_caps[p], cap_options);
+        if (!cap) return Error{"polar cap " + std::to_string(p) + ": " + cap.error().message};
+        map.polar_caps_.push_back(std::move(*cap));
+    }
+    if (layout == EnvLayout::cube) fill_cube_borders(map, map.faces_);
+    return map;
+}
+
 namespace env_route {
 
 float centre_probe_lod(const EnvironmentMap& map, const EnvFootprint& footprint,

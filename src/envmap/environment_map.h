@@ -74,6 +74,13 @@ class EnvironmentMap {
     static Result<EnvironmentMap> from_sphere(const Image& image);
     // Two square paraboloid maps of one size: front (+Z hemisphere) and back (spec §3.3).
     static Result<EnvironmentMap> from_paraboloid(const Image& front, const Image& back);
+    // From the levels a map's pyramids stored (env_pyramid_file.h): face(f)'s levels, level 0
+    // down to 1×1 in MipPyramid's sizes, for each of the layout's faces (a sphere or paraboloid
+    // map's with their continued exterior), and a lat-long map's two polar caps' or none. The
+    // same map as the one they came from, bit for bit (a cube's face borders are filled again).
+    static Result<EnvironmentMap> from_face_levels(
+        EnvLayout layout, const std::vector<std::vector<Image>>& faces,
+        const std::vector<std::vector<Image>>& polar_caps = {});
 
     EnvLayout layout() const { return layout_; }
     int face_count() const { return static_cast<int>(faces_.size()); }

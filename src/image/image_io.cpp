@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "image/color.h"
+#include "image/exr_parts.h"
 #include "image/image_io_detail.h"
 
 namespace footprint {
@@ -788,6 +789,29 @@ OIIO::TypeDesc float_attribute_type(std::size_t n) {
     return OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, static_cast<int>(n));
 }
 
+// The spec of a level of width × height texels: what maketx writes for a MIP-mapped texture
+// (OpenImageIO's OpenEXR writer makes a "Plain Texture" of tiles a MIPMAP_LEVELS file), levels
+// rounded down, max(1, ⌊W/2⌋), and the options' attributes.
+OIIO::ImageSpec level_spec(int width, int height, int channels, const LevelsSaveOptions& options) {
+    static const std::vector<std::string> kNames[4] = {
+        {"Y"}, {"Y", "A"}, {"R", "G", "B"}, {"R", "G", "B", "A"}};
+    OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::FLOAT);
+    const bool named = !options.channel_names.empty();
+    spec.channelnames = named ? options.channel_names : kNames[channels - 1];
+    spec.alpha_channel = !named && (channels == 2 || channels == 4) ? channels - 1 : -1;
+    for (const LevelsSaveOptions::FloatAttribute& a : options.float_attributes)
+        spec.attribute(a.name, float_attribute_type(a.values.size()), a.values.data());
+    for (const auto& [name, value] : options.string_attributes) spec.attribute(name, value);
+    spec.tile_width = spec.tile_height = options.tile_size;
+    spec.attribute("textureformat", "Plain Texture");
+    spec.attribute("openexr:levelmode", 1);
+    spec.attribute("openexr:roundingmode", 0);
+    spec.attribute("oiio:ColorSpace", "Linear");
+    spec.attribute("DateTime", "");  // the same levels give the same bytes
+    if (!options.wrap_modes.empty()) spec.attribute("wrapmodes", options.wrap_modes);
+    return spec;
+}
+
 // The levels as one tiled, MIP-mapped OpenEXR file of floats, in memory.
 Result<std::vector<unsigned char>> encode_levels(const std::vector<Image>& levels,
                                                  const fs::path& file,
@@ -800,25 +824,9 @@ Result<std::vector<unsigned char>> encode_levels(const std::vector<Image>& level
         return Error{with_oiio_message("OpenImageIO cannot write MIP-mapped OpenEXR into memory",
                                        OIIO::geterror())};
     out->set_ioproxy(&memory);
-    static const std::vector<std::string> kNames[4] = {
-        {"Y"}, {"Y", "A"}, {"R", "G", "B"}, {"R", "G", "B", "A"}};
-    const int channels = levels[0].channels;
     for (std::size_t l = 0; l < levels.size(); ++l) {
-        OIIO::ImageSpec spec(levels[l].width, levels[l].height, channels, OIIO::TypeDesc::FLOAT);
-        const bool named = !options.channel_names.empty();
-        spec.channelnames = named ? options.channel_names : kNames[channels - 1];
-        spec.alpha_channel = !named && (channels == 2 || channels == 4) ? channels - 1 : -1;
-        for (const LevelsSaveOptions::FloatAttribute& a : options.float_attributes)
-            spec.attribute(a.name, float_attribute_type(a.values.size()), a.values.data());
-        spec.tile_width = spec.tile_height = options.tile_size;
-        // A MIP-mapped texture as maketx writes one (OpenImageIO's OpenEXR writer makes a
-        // "Plain Texture" of tiles a MIPMAP_LEVELS file), levels rounded down: max(1, ⌊W/2⌋).
-        spec.attribute("textureformat", "Plain Texture");
-        spec.attribute("openexr:levelmode", 1);
-        spec.attribute("openexr:roundingmode", 0);
-        spec.attribute("oiio:ColorSpace", "Linear");
-        spec.attribute("DateTime", "");  // the same levels give the same bytes
-        if (!options.wrap_modes.empty()) spec.attribute("wrapmodes", options.wrap_modes);
+        const OIIO::ImageSpec spec =
+            level_spec(levels[l].width, levels[l].height, levels[l].channels, options);
         const auto mode = l == 0 ? OIIO::ImageOutput::Create : OIIO::ImageOutput::AppendMIPLevel;
         if (!out->open(file.string(), spec, mode) ||
             !out->write_image(OIIO::TypeDesc::FLOAT, levels[l].pixels.data())) {
@@ -837,13 +845,25 @@ Result<std::vector<unsigned char>> encode_levels(const std::vector<Image>& level
 
 Status save_image_levels(const std::vector<Image>& levels, const fs::path& file,
                          const LevelsSaveOptions& options) {
+    return save_image_level_chains({{std::string(), levels}}, file, options);
+}
+
+Status save_image_level_chains(const std::vector<LevelChain>& parts, const fs::path& file,
+                               const LevelsSaveOptions& options) {
     if (kind_of(file) != FileKind::exr)
         return write_error(file, "MIP levels are written as OpenEXR; name the file .exr");
-    if (auto problem = levels_problem(levels, options)) return write_error(file, *problem);
+    if (parts.empty()) return write_error(file, "no MIP chains given");
+    for (std::size_t p = 0; p < parts.size(); ++p)
+        if (auto problem = levels_problem(parts[p].levels, options))
+            return write_error(
+                file,
+                (parts.size() > 1 ? "part " + std::to_string(p) + ": " : std::string()) + *problem);
     if (!(options.tile_size >= 16 && options.tile_size <= 1024))
         return write_error(
             file, "tile size " + std::to_string(options.tile_size) + " is outside 16 to 1024");
-    Result<std::vector<unsigned char>> bytes = encode_levels(levels, file, options);
+    Result<std::vector<unsigned char>> bytes = parts.size() == 1
+                                                   ? encode_levels(parts[0].levels, file, options)
+                                                   : detail::encode_exr_parts(parts, options);
     if (!bytes) return write_error(file, bytes.error().message);
     return write_file_atomically(
         file, std::string_view(reinterpret_cast<const char*>(bytes->data()), bytes->size()));

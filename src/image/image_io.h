@@ -121,6 +121,7 @@ struct LevelsSaveOptions {
         std::vector<float> values;
     };
     std::vector<FloatAttribute> float_attributes;
+    std::vector<std::pair<std::string, std::string>> string_attributes;  // likewise, strings
 };
 
 // Writes `levels` as one tiled, MIP-mapped OpenEXR file of 32-bit floats (linear, as stored),
@@ -129,6 +130,17 @@ struct LevelsSaveOptions {
 // Errors name the file and, where the levels are wrong, the level.
 Status save_image_levels(const std::vector<Image>& levels, const std::filesystem::path& file,
                          const LevelsSaveOptions& options = {});
+
+// Several MIP chains as the parts of one such file (OpenEXR multi-part; OpenImageIO's subimages),
+// each written as save_image_levels() writes its one, part i named parts[i].name (OpenEXR requires
+// distinct names when there is more than one part); the options apply to every part.
+struct LevelChain {
+    std::string name;
+    std::vector<Image> levels;
+};
+Status save_image_level_chains(const std::vector<LevelChain>& parts,
+                               const std::filesystem::path& file,
+                               const LevelsSaveOptions& options = {});
 
 struct ImageSaveOptions {
     // automatic: sRGB for .png .jpg .jpeg .tif .tiff, linear for .exr .hdr. srgb / linear force
