@@ -17,7 +17,7 @@
 //   footprint view SCENE [--filter MODE] [--size WxH] [--exposure E] [--frames N]
 //                  [--screenshot FILE]
 //   footprint maketx IN -o OUT.exr [--wrap MODE[,MODE]] [--downsample box|tent] [--tile-size N]
-//                    [--bump [--height] [--invalid-normals clamp]]
+//                    [--bump [--height] [--invalid-normals clamp]] [--env LAYOUT]
 // Filter names: one vocabulary across the commands (apps/cli_options.h, kFilterHelp below).
 // Exit status: 0 success, 1 bad input or failure (one line on stderr), 2 command-line usage error.
 #include <CLI/CLI.hpp>
@@ -124,6 +124,9 @@ int run(int argc, char** argv) {
                          "IN is a normal map: write its bump + roughness pyramid (5 moment "
                          "channels, strength 1), read tile by tile by the texture system");
     maketx_cmd->add_flag("--height", maketx.height, "With --bump: IN is a height map");
+    maketx_cmd->add_option("--env", maketx.env,
+                           "IN is an environment map of this layout (auto, latlong, cube, sphere, "
+                           "paraboloid): write its pyramids and polar caps, prepared once");
     std::string maketx_invalid = "error";
     maketx_cmd
         ->add_option("--invalid-normals", maketx_invalid,

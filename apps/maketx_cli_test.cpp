@@ -11,6 +11,8 @@
 #include "bump/bump_pyramid_file.h"
 #include "bump/slope_map.h"
 #include "core/test_temp_dir.h"
+#include "envmap/env_image_io.h"
+#include "envmap/env_pyramid_file.h"
 #include "image/image_io.h"
 #include "image/test_images.h"
 #include "maketx_command.h"
@@ -156,6 +158,48 @@ TEST(MaketxCommand, BumpRefusesInvalidNormalsUnlessClampedAndFlagsWithoutBump) {
     EXPECT_EQ(maketx(height_alone, &err), 1);
     EXPECT_EQ(err, "footprint: --height describes a bump map: give --bump too\n");
     EXPECT_FALSE(std::filesystem::exists(height_alone.output));
+}
+
+TEST(MaketxCommand, EnvWritesTheEnvironmentsPyramidsThatLoadAsBuilt) {
+    test::TempDir dir;
+    Image latlong = random_image(64, 32, 3, 41);
+    ASSERT_TRUE(save_image(latlong, dir / "sky.exr"));
+    Image cross = random_image(64, 48, 3, 42);  // a 4:3 horizontal cross
+    ASSERT_TRUE(save_image(cross, dir / "cross.exr"));
+    for (const auto& [file, layout] : {std::pair{"sky.exr", "auto"}, {"cross.exr", "cube"}}) {
+        MaketxCommandOptions options;
+        options.input = dir / file;
+        options.output = dir / "env.exr";
+        options.env = layout;
+        options.tile_size = 16;
+        std::string err;
+        ASSERT_EQ(maketx(options, &err), 0) << err;
+        EXPECT_NE(err.find(std::string(layout) == "cube" ? "cube environment, 6 faces"
+                                                         : "latlong environment, 1 face"),
+                  std::string::npos)
+            << err;
+        const EnvironmentMap want = load_environment({options.input}).value();
+        const EnvironmentMap got = load_environment_pyramid(options.output).value();
+        ASSERT_EQ(got.face_count(), want.face_count());
+        for (int f = 0; f < want.face_count(); ++f)
+            for (int l = 0; l < want.face(f).level_count(); ++l)
+                ASSERT_EQ(got.face(f).level_image(l).pixels, want.face(f).level_image(l).pixels)
+                    << file << " face " << f << " level " << l;
+        EXPECT_EQ(got.polar_cap(0) != nullptr, want.polar_cap(0) != nullptr);
+    }
+    MaketxCommandOptions bad;
+    bad.input = dir / "sky.exr";
+    bad.output = dir / "bad.exr";
+    bad.env = "mercator";
+    std::string err;
+    EXPECT_EQ(maketx(bad, &err), 1);
+    EXPECT_EQ(err,
+              "footprint: --env 'mercator': expected auto, latlong, cube, sphere or paraboloid\n");
+    bad.env = "latlong";
+    bad.bump = true;
+    EXPECT_EQ(maketx(bad, &err), 1);
+    EXPECT_EQ(err, "footprint: --bump and --env: give one of them\n");
+    EXPECT_FALSE(std::filesystem::exists(bad.output));
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 
 #include "bump/bump_pyramid_file.h"
 #include "bump/slope_map.h"
+#include "envmap/env_image_io.h"
+#include "envmap/env_pyramid_file.h"
 #include "image/image_io.h"
 
 namespace footprint {
@@ -66,6 +68,29 @@ int make_bump_pyramid(const MaketxCommandOptions& options, WrapMode wrap_s, Wrap
     return 0;
 }
 
+int make_environment_pyramid(const MaketxCommandOptions& options) {
+    EnvImageOptions load;
+    if (options.env != "auto") {
+        const std::optional<EnvLayout> layout = parse_env_layout(options.env);
+        if (!layout)
+            return fail("--env '" + options.env +
+                        "': expected auto, latlong, cube, sphere or paraboloid");
+        load.layout = *layout;
+    }
+    Result<EnvironmentMap> map = load_environment({options.input}, load);
+    if (!map) return fail(map.error().message);
+    if (Status saved = save_environment_pyramid(*map, options.output, options.tile_size); !saved)
+        return fail(saved.error().message);
+    const MipPyramid& face = map->face(0);
+    std::fprintf(stderr,
+                 "footprint: wrote %s (%s environment, %d face%s of %dx%d, %d levels%s, tiles "
+                 "%d²)\n",
+                 options.output.string().c_str(), env_layout_name(map->layout()), map->face_count(),
+                 map->face_count() == 1 ? "" : "s", face.width(0), face.height(0),
+                 face.level_count(), map->polar_cap(0) ? ", polar caps" : "", options.tile_size);
+    return 0;
+}
+
 }  // namespace
 
 int run_maketx_command(const MaketxCommandOptions& options) {
@@ -83,7 +108,9 @@ int run_maketx_command(const MaketxCommandOptions& options) {
     if (options.output.extension() != ".exr")
         return fail("cannot write '" + options.output.string() +
                     "': maketx writes tiled MIP-mapped OpenEXR files (.exr)");
+    if (options.bump && !options.env.empty()) return fail("--bump and --env: give one of them");
     if (options.bump) return make_bump_pyramid(options, *wraps.s, *wraps.t);
+    if (!options.env.empty()) return make_environment_pyramid(options);
     Result<Image> image = load_image(options.input);
     if (!image) return fail(image.error().message);
 

@@ -1,7 +1,7 @@
 // apps/maketx_command.h — `footprint maketx`: a texture's MIP pyramid, prepared once, as a file.
 //
 //   footprint maketx IN -o OUT.exr [--wrap MODE[,MODE]] [--downsample box|tent] [--tile-size N]
-//                    [--bump [--height] [--invalid-normals clamp]]
+//                    [--bump [--height] [--invalid-normals clamp]] [--env LAYOUT]
 //
 // Reads IN (any image load_image reads: integer files are sRGB-decoded to linear, float files are
 // linear), builds its MIP pyramid (MipPyramid::build: every level down to 1×1, --downsample's
@@ -19,6 +19,12 @@
 //                 height map (channel 0; slopes per unit of (u, v), one map period = 1). A normal
 //                 map's invalid texels are an error naming the first, unless --invalid-normals
 //                 clamp replaces them (slope_map.h).
+//   --env         IN is an environment map (one file: a lat-long, a cube cross or strip, a sphere
+//                 or a paraboloid pair, laid out as LAYOUT says — latlong, cube, sphere,
+//                 paraboloid — or as load_environment() detects with "auto"): write its pyramids
+//                 (and a lat-long map's polar caps) as an environment pyramid file
+//                 (envmap/env_pyramid_file.h), which the texture system and a scene's environment
+//                 load without building them. --wrap and --downsample do not apply.
 // Prints one line on stderr: "footprint: wrote OUT.exr (W×H, N levels, C channels, tiles T²)".
 // Returns 0, or 1 after one line "footprint: …" naming the file or value at fault (unreadable
 // input, an output that is not .exr or cannot be written — nothing is left behind then).
@@ -39,6 +45,7 @@ struct MaketxCommandOptions {
     bool bump = false;                   // --bump
     bool height = false;                 // --height: IN is a height map
     bool clamp_invalid_normals = false;  // --invalid-normals clamp
+    std::string env;                     // --env LAYOUT (or "auto"); empty: not an environment
 };
 int run_maketx_command(const MaketxCommandOptions& options);
 

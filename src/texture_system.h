@@ -39,7 +39,10 @@
 //   Bump maps are read the same way: a bump pyramid file (`footprint maketx --bump`) is read tile
 //   by tile as a texture of 5 moment channels, a normal map has its pyramid built (in memory, or
 //   into cache_dir and then read tile by tile). Environment maps are held whole, as
-//   EnvironmentMap, once per file (stats().bytes_in_memory).
+//   EnvironmentMap, once per file (stats().bytes_in_memory): an environment pyramid file
+//   (`footprint maketx --env`, envmap/env_pyramid_file.h) as stored, any other image laid out as
+//   load_environment() detects, its pyramids built (with cache_dir, kept there as an environment
+//   pyramid file and read from there by later runs).
 //
 // Maps made in memory
 //   add_image(), add_bump() and add_environment() give a name to an image, a bump pyramid or an
@@ -148,9 +151,9 @@ class TextureSystem {
         return texture(handle(name), coords, options, out, missing_color);
     }
 
-    // environment_lookup() form (a) of the environment map in `name` (1, a lat-long, cube cross or
-    // sphere/paraboloid image, laid out as load_environment() detects it): direction r and its ray
-    // differentials. out and missing_color as texture().
+    // environment_lookup() form (a) of the environment map in `name` (an environment pyramid
+    // file, or a lat-long, cube cross or sphere/paraboloid image laid out as load_environment()
+    // detects it): direction r and its ray differentials. out and missing_color as texture().
     virtual Status environment(EnvironmentHandle* map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
                                const EnvLookupOptions& options, std::span<float> out,
                                std::span<const float> missing_color = {}) = 0;

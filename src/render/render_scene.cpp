@@ -10,6 +10,7 @@
 #include "bump/bump_pyramid_file.h"
 #include "bump/slope_map.h"
 #include "envmap/env_image_io.h"
+#include "envmap/env_pyramid_file.h"
 #include "image/image_io.h"
 #include "scene/mesh.h"
 #include "scene/mesh_accel.h"
@@ -230,8 +231,26 @@ Result<RenderMaterial> mesh_part_material(const TriangleMesh& part, const Materi
     return prepare_material(desc, maps);
 }
 
-Result<std::unique_ptr<RenderEnvironment>> prepare_environment(const EnvironmentDesc& desc,
-                                                               SceneMaps& maps) {
+// An environment pyramid file's map (`footprint maketx --env`) in RGB × intensity, levels and caps
+// as stored.
+Result<EnvironmentMap> rgb_times(const EnvironmentMap& stored, float intensity) {
+    auto levels_of = [&](const MipPyramid& pyramid) {
+        std::vector<Image> levels;
+        for (int l = 0; l < pyramid.level_count(); ++l) {
+            Image& level = levels.emplace_back(to_rgb(pyramid.level_image(l)));
+            for (float& v : level.pixels) v *= intensity;
+        }
+        return levels;
+    };
+    std::vector<std::vector<Image>> faces, caps;
+    for (int f = 0; f < stored.face_count(); ++f) faces.push_back(levels_of(stored.face(f)));
+    for (int pole = 0; pole < 2 && stored.polar_cap(pole); ++pole)
+        caps.push_back(levels_of(*stored.polar_cap(pole)));
+    return EnvironmentMap::from_face_levels(stored.layout(), faces, caps);
+}
+
+// The environment's images in RGB × intensity, from memory or its files.
+Result<EnvImages> environment_images(const EnvironmentDesc& desc) {
     EnvImages images;
     images.layout = desc.layout;
     const bool in_memory = !desc.images.empty() && desc.images[0].image != nullptr;
@@ -256,23 +275,53 @@ Result<std::unique_ptr<RenderEnvironment>> prepare_environment(const Environment
         face = to_rgb(face);
         for (float& v : face.pixels) v *= desc.intensity;
     }
-    Result<EnvironmentMap> map = make_environment_map(images);
-    if (!map) return map.error();
+    return images;
+}
+
+// What the renderer keeps of a map besides its handle: layout, texel scale, mean colour.
+void describe(const EnvironmentMap& map, RenderEnvironment& environment) {
+    environment.layout = map.layout();
+    environment.texel_scale = map.texel_scale();
+    // The mean colour: the coarsest level of every face, averaged (solid-angle weights are
+    // ignored: this only sets the ambient term's level).
+    for (int f = 0; f < map.face_count(); ++f) {
+        const MipPyramid& face = map.face(f);
+        const float* texel = face.texel(face.max_level(), 0, 0);
+        for (int c = 0; c < 3; ++c)
+            environment.mean[c] += texel[c] / static_cast<float>(map.face_count());
+    }
+}
+
+// The environment in the texture system: an environment pyramid file by its name (a copy in RGB ×
+// intensity where it is not that already), any other files' or images' pyramids built here and
+// registered.
+Result<std::unique_ptr<RenderEnvironment>> prepare_environment(const EnvironmentDesc& desc,
+                                                               SceneMaps& maps) {
     auto environment = std::make_unique<RenderEnvironment>();
-    environment->layout = map->layout();
-    environment->texel_scale = map->texel_scale();
     environment->rotation = rotation_xyz_degrees(static_cast<float>(desc.rotation_deg.x),
                                                  static_cast<float>(desc.rotation_deg.y),
                                                  static_cast<float>(desc.rotation_deg.z));
     environment->intensity = desc.intensity;
-    // The mean colour: the coarsest level of every face, averaged (solid-angle weights are
-    // ignored: this only sets the ambient term's level).
-    for (int f = 0; f < map->face_count(); ++f) {
-        const MipPyramid& face = map->face(f);
-        const float* texel = face.texel(face.max_level(), 0, 0);
-        for (int c = 0; c < 3; ++c)
-            environment->mean[c] += texel[c] / static_cast<float>(map->face_count());
+    Result<EnvironmentMap> map = Error{""};
+    const bool stored = desc.images.size() == 1 && !desc.images[0].image &&
+                        is_environment_pyramid_file(desc.images[0].file);
+    if (stored) {
+        EnvironmentHandle* handle = maps.textures.environment_handle(desc.images[0].file.string());
+        Result<std::shared_ptr<const EnvironmentMap>> whole = maps.textures.environment_map(handle);
+        if (!whole) return whole.error();
+        if (desc.intensity == 1 && (*whole)->channels() == 3) {
+            describe(**whole, *environment);
+            environment->map = handle;
+            return environment;
+        }
+        map = rgb_times(**whole, desc.intensity);
+    } else {
+        Result<EnvImages> images = environment_images(desc);
+        if (!images) return images.error();
+        map = make_environment_map(*images);
     }
+    if (!map) return map.error();
+    describe(*map, *environment);
     Result<EnvironmentHandle*> handle =
         maps.textures.add_environment(maps.name("environment"), std::move(*map));
     if (!handle) return handle.error();

@@ -10,6 +10,8 @@
 #include "bump/bump_pyramid_file.h"
 #include "bump/slope_map.h"
 #include "core/test_temp_dir.h"
+#include "envmap/env_image_io.h"
+#include "envmap/env_pyramid_file.h"
 #include "image/image_io.h"
 #include "image/test_images.h"
 #include "metrics/image_metrics.h"
@@ -161,6 +163,40 @@ TEST(RenderTextures, ABumpPyramidFileRendersAsItsNormalMapAtTheMaterialsStrength
     const Result<ImageComparison> d = compare_images(images[1], images[0]);
     ASSERT_TRUE(d) << d.error().message;
     EXPECT_LT(d->rmse, kRmse);
+}
+
+// An environment given as an environment pyramid file (`footprint maketx --env`) renders as the
+// file it was made from: the texture system's entry itself at intensity 1, bit for bit; a copy
+// scaled by the intensity otherwise (scaled after filtering: float rounding).
+TEST(RenderTextures, AnEnvironmentPyramidFileRendersAsItsSource) {
+    test::TempDir dir;
+    ASSERT_TRUE(save_image(random_image(128, 64, 3, 23), dir / "sky.exr"));
+    ASSERT_TRUE(save_environment_pyramid(load_environment({dir / "sky.exr"}).value(),
+                                         dir / "sky_env.exr", 16));
+    for (const float intensity : {1.0f, 2.5f}) {
+        std::vector<Image> images;
+        for (const char* file : {"sky.exr", "sky_env.exr"}) {
+            SceneDesc desc = textured_plane(dir / "sky.exr");
+            desc.objects[0].material.base_color_map = {};
+            desc.objects[0].material.mirror = 0.8f;
+            desc.objects.push_back({"ball", SphereShape{{0, 0.5, -1}, 0.5}, {}});
+            desc.objects.back().material.mirror = 1;
+            EnvironmentDesc env;
+            env.images.push_back(ImageSource{dir / file, nullptr, file});
+            env.detect_layout = true;
+            env.intensity = intensity;
+            desc.environment = env;
+            images.push_back(render_with(desc, nullptr, FilterMode::fa_rough));
+        }
+        if (intensity == 1) {
+            expect_bit_identical(images[1], images[0], "intensity 1");
+        } else {
+            constexpr double kRmse = 1e-5;  // rounding of the levels scaled after the box filter
+            const Result<ImageComparison> d = compare_images(images[1], images[0]);
+            ASSERT_TRUE(d) << d.error().message;
+            EXPECT_LT(d->rmse, kRmse);
+        }
+    }
 }
 
 }  // namespace

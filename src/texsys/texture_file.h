@@ -74,9 +74,9 @@ class TextureHandle {
     int alpha_ = -1;     // the alpha channel, or −1
 };
 
-// The file in options.cache_dir that holds the pyramid of `kind` ("texture", "bump") built for
-// `file` wrapping as (wrap_s, wrap_t): named by the source's absolute path, size and modification
-// time and by what shapes the pyramid, so that a changed source is built again.
+// The file in options.cache_dir that holds the pyramids of `kind` ("texture", "bump", "env") built
+// for `file` wrapping as (wrap_s, wrap_t): named by the source's absolute path, size and
+// modification time and by what shapes the pyramid, so that a changed source is built again.
 std::filesystem::path cached_pyramid_file(const std::filesystem::path& file,
                                           const TextureSystemOptions& options, WrapMode wrap_s,
                                           WrapMode wrap_t, std::string_view kind);

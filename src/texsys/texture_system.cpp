@@ -11,6 +11,7 @@
 #include "bump/bump_pyramid_file.h"
 #include "bump/slope_map.h"
 #include "envmap/env_image_io.h"
+#include "envmap/env_pyramid_file.h"
 #include "texsys/texture_file.h"
 #include "texsys/tile_cache.h"
 #include "texture/tiled_texels.h"
@@ -200,7 +201,7 @@ class TextureSystemImpl final : public TextureSystem {
 
     EnvironmentHandle* environment_handle(std::string_view name) override {
         return open_whole(environments_, name, [&](EnvironmentHandle& entry) {
-            Result<EnvironmentMap> map = load_environment({std::filesystem::path(name)});
+            Result<EnvironmentMap> map = open_environment(std::string(name));
             if (!map) return void(entry.error = map.error());
             entry.value = std::make_shared<const EnvironmentMap>(std::move(*map));
             count_in_memory(*entry.value);
@@ -335,6 +336,25 @@ class TextureSystemImpl final : public TextureSystem {
             it->second = handle(name);
         }
         return it->second;
+    }
+
+    // The environment map in `name`: an environment pyramid file as stored; any other file's
+    // pyramids built, and with a cache folder kept there once and read from there in later runs.
+    Result<EnvironmentMap> open_environment(const std::string& name) {
+        if (is_environment_pyramid_file(name)) return load_environment_pyramid(name);
+        const fs::path cached =
+            options_.cache_dir.empty()
+                ? fs::path()
+                : cached_pyramid_file(name, options_, WrapMode::repeat, WrapMode::clamp, "env");
+        std::error_code ec;
+        if (!cached.empty() && fs::exists(cached, ec)) return load_environment_pyramid(cached);
+        Result<EnvironmentMap> map = load_environment({fs::path(name)});
+        if (!map || cached.empty()) return map;
+        const int tile = std::clamp(options_.tile_size, 16, 1024);
+        if (Status saved = save_environment_pyramid(*map, cached, tile); !saved)
+            return Error{"cannot cache the environment pyramids of '" + name +
+                         "': " + saved.error().message};
+        return map;
     }
 
     // Opens bump map `name`: a bump pyramid file tile by tile; a normal map decoded and its pyramid

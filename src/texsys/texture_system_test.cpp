@@ -16,6 +16,7 @@
 #include "bump/slope_map.h"
 #include "core/test_temp_dir.h"
 #include "envmap/env_image_io.h"
+#include "envmap/env_pyramid_file.h"
 #include "image/image_io.h"
 #include "image/test_images.h"
 #include "texture/texture_lookup.h"
@@ -398,6 +399,36 @@ TEST(TextureSystem, BumpPyramidFilesAreReadTileByTileAsTheirPyramid) {
     ASSERT_TRUE(whole);
     EXPECT_EQ((*whole)->slope_offset().x, bump.slope_offset().x);
     EXPECT_EQ((*whole)->moments().level_image(0).pixels, bump.moments().level_image(0).pixels);
+}
+
+// Environment maps: an environment pyramid file looks up as the map it holds; a plain file with a
+// cache folder has its pyramids kept there once, and a second system loads them from there.
+TEST(TextureSystem, EnvironmentPyramidFilesAndTheCacheFolderGiveTheBuiltMap) {
+    test::TempDir dir;
+    const std::string sky = (dir / "sky.exr").string();
+    ASSERT_TRUE(save_image(random_image(64, 32, 3, 14), sky));
+    const EnvironmentMap map = load_environment({sky}).value();
+    const std::string stored = (dir / "sky_env.exr").string();
+    ASSERT_TRUE(save_environment_pyramid(map, stored, 16));
+    TextureSystemOptions cached;
+    cached.cache_dir = dir / "cache";
+    auto first = make_system(cached);
+    auto second = make_system(cached);
+    const Vec3 r{0.3f, 0.9f, -0.2f}, dx{0.02f, 0, 0}, dy{0, 0.01f, 0.005f};
+    float want[3];
+    environment_lookup(map, r, dx, dy, EnvLookupOptions{}, want);
+    for (auto [ts, name] :
+         {std::pair{first.get(), stored}, {first.get(), sky}, {second.get(), sky}}) {
+        float got[3];
+        ASSERT_TRUE(ts->environment(name, r, dx, dy, EnvLookupOptions{}, got));
+        for (int k = 0; k < 3; ++k) EXPECT_EQ(bits(got[k]), bits(want[k])) << name;
+    }
+    int files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir / "cache")) {
+        ++files;
+        EXPECT_TRUE(is_environment_pyramid_file(entry.path())) << entry.path();
+    }
+    EXPECT_EQ(files, 1);
 }
 
 TEST(TextureSystem, RefusesOptionsItCannotHonour) {
