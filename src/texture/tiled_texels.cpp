@@ -28,6 +28,32 @@ Vec2 TiledTexels::prefilter_variance(int l) const {
     return {(t * t - 1) / 12, (t * t - 1) / 12};
 }
 
+BilinearTaps TiledTexels::taps_elsewhere(int l, const BilinearPosition& p) const {
+    const int w = width(l), h = height(l);
+    int xa = p.x0, xb = p.x0 + 1, ya = p.y0, yb = p.y0 + 1;
+    if (!p.inside) {
+        xa = wrap_index(xa, w, shape_.wrap_s), xb = wrap_index(xb, w, shape_.wrap_s);
+        ya = wrap_index(ya, h, shape_.wrap_t), yb = wrap_index(yb, h, shape_.wrap_t);
+    }
+    return {texel(l, xa, ya), texel(l, xb, ya), texel(l, xa, yb), texel(l, xb, yb), p.fx, p.fy};
+}
+
+const TiledTexels::Slot& TiledTexels::load_tile(int l, int tx, int ty) const {
+    const int k = shape_.tile_log2;
+    const int x0 = tx << k, y0 = ty << k;
+    const int width = std::min(1 << k, this->width(l) - x0);
+    const int height = std::min(1 << k, this->height(l) - y0);
+    Slot& slot = slots_[l % kSlots];
+    slot = {l,
+            x0,
+            y0,
+            static_cast<unsigned>(width),
+            static_cast<unsigned>(height),
+            static_cast<std::ptrdiff_t>(width) * stride_,
+            source_.tile(l, tx, ty)};
+    return slot;
+}
+
 std::optional<TiledTexels::Window> TiledTexels::window(int l, float s0, float t0, float s1,
                                                        float t1) const {
     constexpr float kMargin = 1.0f / 64;  // line_inside()'s, for positions rounded otherwise
@@ -42,9 +68,8 @@ std::optional<TiledTexels::Window> TiledTexels::window(int l, float s0, float t0
     const int xa = static_cast<int>(x_low), xb = static_cast<int>(x_high) + 1;
     const int ya = static_cast<int>(y_low), yb = static_cast<int>(y_high) + 1;
     if ((xa >> k) != (xb >> k) || (ya >> k) != (yb >> k)) return std::nullopt;
-    const int tx = xa >> k, ty = ya >> k;
-    return Window{tile(l, tx, ty), tx << k, ty << k,
-                  static_cast<std::ptrdiff_t>(pitch(l, tx)) * stride_, stride_};
+    const Slot& slot = tile_holding(l, xa, ya);
+    return Window{slot.tile, slot.x0, slot.y0, slot.pitch_floats, stride_};
 }
 
 }  // namespace footprint::detail

@@ -68,31 +68,23 @@ class TiledTexels {
 
     // Texel (x, y) of level l, x ∈ [0, width), y ∈ [0, height).
     const float* texel(int l, int x, int y) const {
-        const int k = shape_.tile_log2, mask = (1 << k) - 1;
-        const int tx = x >> k;
-        return tile(l, tx, y >> k) +
-               (static_cast<std::ptrdiff_t>(y & mask) * pitch(l, tx) + (x & mask)) * stride_;
+        const Slot& slot = tile_holding(l, x, y);
+        return slot.tile + (y - slot.y0) * slot.pitch_floats + (x - slot.x0) * stride_;
     }
 
     // The four taps of a bilinear sample at position p of level l, wrapped as wrapped_taps().
     BilinearTaps taps(int l, const BilinearPosition& p) const {
-        const int w = width(l), h = height(l);
-        int xa = p.x0, xb = p.x0 + 1, ya = p.y0, yb = p.y0 + 1;
-        if (!p.inside) {
-            xa = wrap_index(xa, w, shape_.wrap_s), xb = wrap_index(xb, w, shape_.wrap_s);
-            ya = wrap_index(ya, h, shape_.wrap_t), yb = wrap_index(yb, h, shape_.wrap_t);
+        // Most taps lie in the tile the level's previous taps came from (a line of probes walks
+        // through a tile): addressed there without a wrap test or a tile lookup. A position
+        // outside the level cannot pass, as no tile reaches beyond it.
+        const Slot& slot = slots_[l % kSlots];
+        const unsigned x = static_cast<unsigned>(p.x0 - slot.x0);
+        const unsigned y = static_cast<unsigned>(p.y0 - slot.y0);
+        if (slot.level == l && x < slot.width - 1 && y < slot.height - 1) {
+            const float* upper = slot.tile + y * slot.pitch_floats + x * stride_;
+            return row_major_taps(upper, slot.pitch_floats, stride_, p.fx, p.fy);
         }
-        const int k = shape_.tile_log2, mask = (1 << k) - 1;
-        const int tx = xa >> k, ty = ya >> k;
-        if ((xb >> k) != tx || (yb >> k) != ty)  // across a tile's edge (1 in 2^k per axis)
-            return {
-                texel(l, xa, ya), texel(l, xb, ya), texel(l, xa, yb), texel(l, xb, yb), p.fx, p.fy};
-        const float* t = tile(l, tx, ty);
-        const std::ptrdiff_t pitch_floats = static_cast<std::ptrdiff_t>(pitch(l, tx)) * stride_;
-        const float* upper = t + (ya & mask) * pitch_floats;
-        const float* lower = t + (yb & mask) * pitch_floats;
-        const std::ptrdiff_t ca = (xa & mask) * stride_, cb = (xb & mask) * stride_;
-        return {upper + ca, upper + cb, lower + ca, lower + cb, p.fx, p.fy};
+        return taps_elsewhere(l, p);
     }
 
     // The part of level l that one tile holds, for a run of taps that all lie in it: their
@@ -113,30 +105,34 @@ class TiledTexels {
     std::optional<Window> window(int l, float s0, float t0, float s1, float t1) const;
 
   private:
-    // Texels per row of tile column tx (the last column's tiles hold what is left of the level).
-    int pitch(int l, int tx) const {
-        return std::min(1 << shape_.tile_log2, width(l) - (tx << shape_.tile_log2));
+    // One tile of a level: where it lies on the level and how large it is.
+    struct Slot {
+        int level = -1;  // none
+        int x0 = 0, y0 = 0;
+        unsigned width = 0, height = 0;
+        std::ptrdiff_t pitch_floats = 0;
+        const float* tile = nullptr;
+    };
+
+    // The slot of level l, holding the tile of texel (x, y) of the level: most taps of a lookup
+    // fall in the tile its previous tap on the same level read. One slot per level (a trilinear
+    // probe alternates between two) keeps that tile at hand.
+    const Slot& tile_holding(int l, int x, int y) const {
+        const Slot& slot = slots_[l % kSlots];
+        if (slot.level == l && static_cast<unsigned>(x - slot.x0) < slot.width &&
+            static_cast<unsigned>(y - slot.y0) < slot.height)
+            return slot;
+        return load_tile(l, x >> shape_.tile_log2, y >> shape_.tile_log2);
     }
-    // Most taps of a lookup fall in the tile its previous tap on the same level read: one slot
-    // per level (a trilinear probe alternates between two) keeps that tile at hand.
-    const float* tile(int l, int tx, int ty) const {
-        const std::uint64_t key =
-            (std::uint64_t(l) << 56) | (std::uint64_t(ty) << 28) | std::uint64_t(tx);
-        Slot& slot = slots_[l % kSlots];
-        if (key != slot.key) {
-            slot.key = key;
-            slot.tile = source_.tile(l, tx, ty);
-        }
-        return slot.tile;
-    }
+    // Tile (tx, ty) of level l, from the source into the level's slot.
+    const Slot& load_tile(int l, int tx, int ty) const;
+    // taps() of taps that are not all in the level's slot's tile: wrapped, and each from its own
+    // tile when they straddle a tile's edge (1 in 2^k per axis).
+    BilinearTaps taps_elsewhere(int l, const BilinearPosition& p) const;
 
     const TiledShape& shape_;
     const TileSource& source_;
     int stride_;
-    struct Slot {
-        std::uint64_t key = ~std::uint64_t(0);
-        const float* tile = nullptr;
-    };
     static constexpr int kSlots = 4;
     mutable Slot slots_[kSlots];
 };
