@@ -35,15 +35,22 @@ BilinearTaps TiledTexels::taps_elsewhere(int l, const BilinearPosition& p) const
         xa = wrap_index(xa, w, shape_.wrap_s), xb = wrap_index(xb, w, shape_.wrap_s);
         ya = wrap_index(ya, h, shape_.wrap_t), yb = wrap_index(yb, h, shape_.wrap_t);
     }
+    const Window& tile = tile_holding(l, xa, ya);
+    if (xb == xa + 1 && yb == ya + 1 && static_cast<unsigned>(xb - tile.x0) < tile.width &&
+        static_cast<unsigned>(yb - tile.y0) < tile.height) {  // in one tile, as most are
+        const float* upper =
+            tile.texels + (ya - tile.y0) * tile.pitch_floats + (xa - tile.x0) * stride_;
+        return row_major_taps(upper, tile.pitch_floats, stride_, p.fx, p.fy);
+    }
     return {texel(l, xa, ya), texel(l, xb, ya), texel(l, xa, yb), texel(l, xb, yb), p.fx, p.fy};
 }
 
-const TiledTexels::Slot& TiledTexels::load_tile(int l, int tx, int ty) const {
+const TiledTexels::Window& TiledTexels::load_tile(int l, int tx, int ty) const {
     const int k = shape_.tile_log2;
     const int x0 = tx << k, y0 = ty << k;
     const int width = std::min(1 << k, this->width(l) - x0);
     const int height = std::min(1 << k, this->height(l) - y0);
-    Slot& slot = slots_[l % kSlots];
+    Window& slot = slot_of(l, tx, ty);
     slot = {l,
             x0,
             y0,
@@ -52,24 +59,6 @@ const TiledTexels::Slot& TiledTexels::load_tile(int l, int tx, int ty) const {
             static_cast<std::ptrdiff_t>(width) * stride_,
             source_.tile(l, tx, ty)};
     return slot;
-}
-
-std::optional<TiledTexels::Window> TiledTexels::window(int l, float s0, float t0, float s1,
-                                                       float t1) const {
-    constexpr float kMargin = 1.0f / 64;  // line_inside()'s, for positions rounded otherwise
-    const float w = static_cast<float>(width(l)), h = static_cast<float>(height(l));
-    const float x_low = std::min(s0, s1) * w - 0.5f - kMargin;
-    const float x_high = std::max(s0, s1) * w - 0.5f + kMargin;
-    const float y_low = std::min(t0, t1) * h - 0.5f - kMargin;
-    const float y_high = std::max(t0, t1) * h - 0.5f + kMargin;
-    // The taps' columns ⌊X⌋ and ⌊X⌋ + 1 on the level itself; false for NaN.
-    if (!(x_low >= 0 && y_low >= 0 && x_high < w - 1 && y_high < h - 1)) return std::nullopt;
-    const int k = shape_.tile_log2;
-    const int xa = static_cast<int>(x_low), xb = static_cast<int>(x_high) + 1;
-    const int ya = static_cast<int>(y_low), yb = static_cast<int>(y_high) + 1;
-    if ((xa >> k) != (xb >> k) || (ya >> k) != (yb >> k)) return std::nullopt;
-    const Slot& slot = tile_holding(l, xa, ya);
-    return Window{slot.tile, slot.x0, slot.y0, slot.pitch_floats, stride_};
 }
 
 }  // namespace footprint::detail
