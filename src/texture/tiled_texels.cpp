@@ -28,7 +28,7 @@ Vec2 TiledTexels::prefilter_variance(int l) const {
     return {(t * t - 1) / 12, (t * t - 1) / 12};
 }
 
-BilinearTaps TiledTexels::taps_elsewhere(int l, const BilinearPosition& p) const {
+TiledTexels::PlacedTaps TiledTexels::taps_elsewhere(int l, const BilinearPosition& p) const {
     const int w = width(l), h = height(l);
     int xa = p.x0, xb = p.x0 + 1, ya = p.y0, yb = p.y0 + 1;
     if (!p.inside) {
@@ -36,13 +36,16 @@ BilinearTaps TiledTexels::taps_elsewhere(int l, const BilinearPosition& p) const
         ya = wrap_index(ya, h, shape_.wrap_t), yb = wrap_index(yb, h, shape_.wrap_t);
     }
     const Window& tile = tile_holding(l, xa, ya);
-    if (xb == xa + 1 && yb == ya + 1 && static_cast<unsigned>(xb - tile.x0) < tile.width &&
-        static_cast<unsigned>(yb - tile.y0) < tile.height) {  // in one tile, as most are
-        const float* upper =
-            tile.texels + (ya - tile.y0) * tile.pitch_floats + (xa - tile.x0) * stride_;
-        return row_major_taps(upper, tile.pitch_floats, stride_, p.fx, p.fy);
+    if (static_cast<unsigned>(xb - tile.x0) < tile.width &&
+        static_cast<unsigned>(yb - tile.y0) < tile.height) {  // all four in one tile, as most are
+        const float* upper = tile.texels + (ya - tile.y0) * tile.pitch_floats;
+        const float* lower = tile.texels + (yb - tile.y0) * tile.pitch_floats;
+        const std::ptrdiff_t ca = (xa - tile.x0) * stride_, cb = (xb - tile.x0) * stride_;
+        return {{upper + ca, upper + cb, lower + ca, lower + cb, p.fx, p.fy}, &tile, xa, ya};
     }
-    return {texel(l, xa, ya), texel(l, xb, ya), texel(l, xa, yb), texel(l, xb, yb), p.fx, p.fy};
+    const BilinearTaps taps{
+        texel(l, xa, ya), texel(l, xb, ya), texel(l, xa, yb), texel(l, xb, yb), p.fx, p.fy};
+    return {taps, &tile_holding(l, xa, ya), xa, ya};  // a tile whose slot another took, again
 }
 
 const TiledTexels::Window& TiledTexels::load_tile(int l, int tx, int ty) const {

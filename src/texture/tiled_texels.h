@@ -131,8 +131,18 @@ class TiledTexels {
             const float* upper = slot.texels + y * slot.pitch_floats + x * stride_;
             return row_major_taps(upper, slot.pitch_floats, stride_, p.fx, p.fy);
         }
-        return taps_elsewhere(l, p);
+        return taps_elsewhere(l, p).taps;
     }
+
+    // Taps as taps() gives them, with where their upper-left tap was read (wrapped), for a caller
+    // that keeps that tile at hand for the taps that follow (TiledLine): taps() of taps that are
+    // not all in a tile at hand.
+    struct PlacedTaps {
+        BilinearTaps taps;
+        const Window* tile;  // the tile of the upper-left tap
+        int x, y;            // the upper-left tap on the level
+    };
+    PlacedTaps taps_elsewhere(int l, const BilinearPosition& p) const;
 
   private:
     Window& slot_of(int l, int tx, int ty) const {
@@ -140,9 +150,6 @@ class TiledTexels {
     }
     // Tile (tx, ty) of level l, from the source into its slot.
     const Window& load_tile(int l, int tx, int ty) const;
-    // taps() of taps that are not all in a tile at hand: wrapped, and each from its own tile
-    // when they straddle a tile's edge (1 in 2^k per axis).
-    BilinearTaps taps_elsewhere(int l, const BilinearPosition& p) const;
 
     const TiledShape& shape_;
     const TileSource& source_;
@@ -200,11 +207,8 @@ class TiledLine {
         const Int4 inside = (offset >= 0) & (offset < span_);
         const ProbeTaps taps =
             (inside[0] & inside[1] & inside[2] & inside[3]) != 0
-                ? ProbeTaps{row_major_taps(tile_[0] + offset[1] * pitch_[0] + offset[0] * S,
-                                           pitch_[0], S, fraction[0], fraction[1]),
-                            row_major_taps(tile_[1] + offset[3] * pitch_[1] + offset[2] * S,
-                                           pitch_[1], S, fraction[2], fraction[3])}
-                : taps_moving(lower, fraction);
+                ? ProbeTaps{window_taps(0, offset, fraction), window_taps(1, offset, fraction)}
+                : taps_moving(lower, fraction, inside);
         prefetch_probe(taps, levels_, S);
         return taps;
     }
@@ -217,25 +221,33 @@ class TiledLine {
         const auto p = position_of_(i);
         return floor_and_fraction(Float4{p.x, p.y, p.x, p.y} * size_ - 0.5f);
     }
-    // The taps of a probe that leaves a window, through TiledTexels::taps(), and the windows moved
-    // to the tiles they came from. Out of line, so that place() stays small enough to inline.
-    [[gnu::noinline]] ProbeTaps taps_moving(Int4 lower, Float4 fraction) {
+    // The taps on level k at `offset` in its window (fine x, y, coarse x, y).
+    BilinearTaps window_taps(int k, Int4 offset, Float4 fraction) const {
+        return row_major_taps(tile_[k] + offset[2 * k + 1] * pitch_[k] + offset[2 * k] * S,
+                              pitch_[k], S, fraction[2 * k], fraction[2 * k + 1]);
+    }
+    // The taps of a probe that leaves a window (`inside` its windows: fine x, y, coarse x, y),
+    // through TiledTexels::taps_elsewhere() on the levels it leaves, whose windows move to the
+    // tiles their taps came from. Out of line, so that place() stays small enough to inline.
+    [[gnu::noinline]] ProbeTaps taps_moving(Int4 lower, Float4 fraction, Int4 inside) {
         ProbeTaps taps;
         const int levels = levels_.w > 0.0f ? 2 : 1;
         for (int k = 0; k < levels; ++k) {
+            BilinearTaps& level_taps = k == 0 ? taps.fine : taps.coarse;
+            if (inside[2 * k] & inside[2 * k + 1]) {
+                level_taps = window_taps(k, lower - origin_, fraction);
+                continue;
+            }
             const int l = level_[k], x = lower[2 * k], y = lower[2 * k + 1];
-            const int w = texels_.width(l), h = texels_.height(l);
-            const bool inside = x >= 0 && y >= 0 && x + 1 < w && y + 1 < h;
-            (k == 0 ? taps.fine : taps.coarse) =
-                texels_.taps(l, {x, y, fraction[2 * k], fraction[2 * k + 1], inside});
-            // The new window: the tile of the upper-left tap as taps() wrapped it. Where the
-            // texture repeats, its copies beyond the level's edge are the level's tiles again:
-            // the copy that holds (x, y), whole periods away.
-            const int xw = inside ? x : wrap_index(x, w, texels_.wrap_s());
-            const int yw = inside ? y : wrap_index(y, h, texels_.wrap_t());
-            take_window(k, texels_.tile_holding(l, xw, yw),
-                        texels_.wrap_s() == WrapMode::repeat ? x - xw : 0,
-                        texels_.wrap_t() == WrapMode::repeat ? y - yw : 0);
+            const bool on_level =
+                x >= 0 && y >= 0 && x + 1 < texels_.width(l) && y + 1 < texels_.height(l);
+            const TiledTexels::PlacedTaps placed =
+                texels_.taps_elsewhere(l, {x, y, fraction[2 * k], fraction[2 * k + 1], on_level});
+            level_taps = placed.taps;
+            // Where the texture repeats, its copies beyond the level's edge are the level's tiles
+            // again: the window is the copy that holds (x, y), whole periods away.
+            take_window(k, *placed.tile, texels_.wrap_s() == WrapMode::repeat ? x - placed.x : 0,
+                        texels_.wrap_t() == WrapMode::repeat ? y - placed.y : 0);
         }
         if (levels == 1) {  // the coarse level is the fine one
             origin_[2] = origin_[0], origin_[3] = origin_[1];
