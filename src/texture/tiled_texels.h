@@ -174,6 +174,16 @@ inline const float* level_texel(const TiledTexels& texels, int l, int x, int y) 
     return texels.texel(l, x, y);
 }
 
+typedef unsigned UInt4 __attribute__((vector_size(16)));
+
+// Whether a comparison's four lanes are all true (−1): both its 64-bit halves are (fewer
+// instructions than four lanes taken out one by one).
+inline bool all_lanes(Int4 mask) {
+    typedef long long Long2 __attribute__((vector_size(16)));
+    const Long2 halves = Long2(mask);
+    return (halves[0] & halves[1]) == -1;
+}
+
 // The probes of a line through tiles (blend_line_ahead()), probe i at position_of(i) on `levels`:
 // positioned on both levels at once (bilinear_positions()' arithmetic), their taps on each level
 // addressed in the tile the level's previous taps came from — its window, held here for both
@@ -201,14 +211,13 @@ class TiledLine {
 
     ProbeTaps place(int i) {
         const auto [lower, fraction] = position(i);
-        // The upper-left taps' place in the windows: all four taps inside where it is below
-        // the window's last column and row.
+        // The upper-left taps' place in the windows: all four taps inside where it is 0 to
+        // span − 1 (unsigned: a negative offset is beyond every span).
         const Int4 offset = lower - origin_;
-        const Int4 inside = (offset >= 0) & (offset < span_);
-        const ProbeTaps taps =
-            (inside[0] & inside[1] & inside[2] & inside[3]) != 0
-                ? ProbeTaps{window_taps(0, offset, fraction), window_taps(1, offset, fraction)}
-                : taps_moving(lower, fraction, inside);
+        const Int4 inside = UInt4(offset) < UInt4(span_);
+        const ProbeTaps taps = all_lanes(inside) ? ProbeTaps{window_taps(0, offset, fraction),
+                                                             window_taps(1, offset, fraction)}
+                                                 : taps_moving(lower, fraction, inside);
         prefetch_probe(taps, levels_, S);
         return taps;
     }
