@@ -72,8 +72,9 @@ inline Requested assemble(const Texels& pyramid, float s, float t, const ProbePl
         // A line whose ends' taps lie on the levels needs no wrapping.
         if (blend_probe_line_inside(pyramid, plan.count, weights, levels, position, out))
             return Requested::done;
-    } else {  // through tiles: every line one way, across tiles' and the level's edges alike
-        blend_probe_line_in_tiles(pyramid, plan.count, weights, levels, position, out);
+    } else {  // through tiles: every line one way, its probes at position(i)
+        const ProbeLine line{{s, t}, {du, dv}, first};
+        blend_probe_line_in_tiles(pyramid, plan.count, weights, levels, line, out);
         return Requested::done;
     }
     dispatch_stride(pyramid.stride(), [&]<int S>() {

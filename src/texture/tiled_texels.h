@@ -184,18 +184,27 @@ inline bool all_lanes(Int4 mask) {
     return (halves[0] & halves[1]) == -1;
 }
 
-// The probes of a line through tiles (blend_line_ahead()), probe i at position_of(i) on `levels`:
+// A straight line of probes: probe i at centre + (first + i)·step (normalised coordinates).
+struct ProbeLine {
+    Vec2 centre, step;
+    float first;
+};
+
+// The probes of a line through tiles (blend_line_ahead()), probe i of `line` on `levels`:
 // positioned on both levels at once (bilinear_positions()' arithmetic), their taps on each level
 // addressed in the tile the level's previous taps came from — its window, held here for both
-// levels at once — and through TiledTexels::taps() where they leave it (into another tile, across
-// a tile's edge, or beyond the level's edge, wrapped), which moves the window to where they went.
-template <int S, class PositionOf>
+// levels at once — and through TiledTexels::taps_elsewhere() where they leave it (into another
+// tile, across a tile's edge, or beyond the level's edge, wrapped), which moves the window to the
+// tile they went to.
+template <int S>
 class TiledLine {
   public:
-    TiledLine(const TiledTexels& texels, TrilinearLevels levels, PositionOf& position_of)
+    TiledLine(const TiledTexels& texels, TrilinearLevels levels, const ProbeLine& line)
         : texels_(texels),
           levels_(levels),
-          position_of_(position_of),
+          centre_{line.centre.x, line.centre.y, line.centre.x, line.centre.y},
+          step_{line.step.x, line.step.y, line.step.x, line.step.y},
+          first_(line.first),
           level_{levels.l0, levels.w > 0.0f ? levels.l0 + 1 : levels.l0} {
         const int fine = level_[0], coarse = level_[1];
         size_ = __builtin_convertvector((Int4{texels.width(fine), texels.height(fine),
@@ -225,10 +234,12 @@ class TiledLine {
     Texel<S> coarse(const ProbeTaps& taps) const { return blend_taps<S>(taps.coarse); }
 
   private:
-    // Probe i's upper-left taps and fractions on both levels (bilinear_positions()' arithmetic).
+    // Probe i's upper-left taps and fractions on both levels (bilinear_positions()' arithmetic),
+    // its position computed as assemble() computes it (footprint_assembly_filter.h), for both
+    // levels' coordinates at once.
     FloorAndFraction position(int i) const {
-        const auto p = position_of_(i);
-        return floor_and_fraction(Float4{p.x, p.y, p.x, p.y} * size_ - 0.5f);
+        const float k = first_ + static_cast<float>(i);
+        return floor_and_fraction((centre_ + k * step_) * size_ - 0.5f);
     }
     // The taps on level k at `offset` in its window (fine x, y, coarse x, y).
     BilinearTaps window_taps(int k, Int4 offset, Float4 fraction) const {
@@ -276,7 +287,8 @@ class TiledLine {
 
     const TiledTexels& texels_;
     TrilinearLevels levels_;
-    PositionOf& position_of_;
+    Float4 centre_, step_;  // the line's (s, t, s, t)
+    float first_;
     int level_[2];  // fine, coarse (the fine level again when levels.w = 0)
     Float4 size_;   // the levels' widths and heights
     // The windows (fine x, y, coarse x, y): their first texel on the level, and the upper-left
@@ -286,14 +298,12 @@ class TiledLine {
     std::ptrdiff_t pitch_[2] = {};
 };
 
-// A line of `count` probes through tiles on `levels`, probe i at position_of(i) (TiledLine),
-// blended and written to out.
-template <class PositionOf>
-void blend_probe_line_in_tiles(const TiledTexels& texels, int count, const float* weights,
-                               TrilinearLevels levels, PositionOf&& position_of, float* out) {
+// A line of `count` probes through tiles on `levels` (TiledLine), blended and written to out.
+inline void blend_probe_line_in_tiles(const TiledTexels& texels, int count, const float* weights,
+                                      TrilinearLevels levels, const ProbeLine& line, float* out) {
     dispatch_stride(texels.stride(), [&]<int S>() {
-        const Texel<S> result = blend_line_ahead<S>(
-            count, weights, levels.w, TiledLine<S, PositionOf>(texels, levels, position_of));
+        const Texel<S> result =
+            blend_line_ahead<S>(count, weights, levels.w, TiledLine<S>(texels, levels, line));
         store(result, texels.channels(), out);
     });
 }
