@@ -37,7 +37,7 @@ TiledTexels::PlacedTaps TiledTexels::taps_elsewhere(int l, const BilinearPositio
     }
     const Window& tile = tile_holding(l, xa, ya);
     if (static_cast<unsigned>(xb - tile.x0) < tile.width &&
-        static_cast<unsigned>(yb - tile.y0) < tile.height) {  // all four in one tile, as most are
+        static_cast<unsigned>(yb - tile.y0) < tile.height) {  // all four in one tile (as most)
         const float* upper = tile.texels + (ya - tile.y0) * tile.pitch_floats;
         const float* lower = tile.texels + (yb - tile.y0) * tile.pitch_floats;
         const std::ptrdiff_t ca = (xa - tile.x0) * stride_, cb = (xb - tile.x0) * stride_;
