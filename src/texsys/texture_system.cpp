@@ -46,15 +46,23 @@ namespace {
 
 // The tiles of one lookup on one file: the thread's micro-cache first, then the shared cache.
 // Every tile asked for stays pinned (in ThreadTiles::recent) until the lookup ends, when all but
-// the last kMicroCacheTiles are let go.
+// the last kMicroCacheTiles are let go, and with them the thread's tiles at hand.
 class LookupTiles final : public detail::TileSource {
   public:
     LookupTiles(texsys::TileCache& cache, texsys::ThreadTiles& thread, TextureHandle& file)
-        : cache_(cache), thread_(thread), file_(file) {}
+        : cache_(cache), thread_(thread), file_(file) {
+        if (thread.slots_file != file.id) {
+            thread.slots.clear();
+            thread.slots_file = file.id;
+        }
+    }
     ~LookupTiles() {
         auto& recent = thread_.recent;
         const std::size_t keep = TextureSystem::kMicroCacheTiles;
-        if (recent.size() > keep) recent.erase(recent.begin(), recent.end() - keep);
+        if (recent.size() > keep) {
+            recent.erase(recent.begin(), recent.end() - keep);
+            thread_.slots.clear();
+        }
     }
     LookupTiles(const LookupTiles&) = delete;
     LookupTiles& operator=(const LookupTiles&) = delete;
@@ -153,8 +161,9 @@ class TextureSystemImpl final : public TextureSystem {
         if (file->pyramid) {
             texture_lookup(*file->pyramid, c, options, result);
         } else {
-            const LookupTiles tiles(cache_, texsys::thread_tiles(id_), *file);
-            const detail::TiledTexels texels(file->shape, tiles);
+            texsys::ThreadTiles& thread = texsys::thread_tiles(id_);
+            const LookupTiles tiles(cache_, thread, *file);
+            const detail::TiledTexels texels(file->shape, tiles, thread.slots);
             detail::texture_lookup(texels, c, options, result);
         }
         if (file->read_failed) {

@@ -18,6 +18,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "texture/tiled_texels.h"
+
 namespace footprint::texsys {
 
 // Which tile: a file of the texture system, a MIP level, a tile column and row.
@@ -83,9 +85,13 @@ class TileCache {
 };
 
 // One thread's tiles of one texture system: the micro-cache, the most recent tiles last, which
-// also pins every tile of the lookup in progress (a lookup's taps point into them).
+// also pins every tile of the lookup in progress (a lookup's taps point into them); and the tiles
+// at hand of its last lookup through tiles, on file `slots_file`, which point into tiles of
+// `recent`: kept for the next lookup on that file until one of those is let go.
 struct ThreadTiles {
     std::vector<std::pair<TileKey, TilePtr>> recent;
+    detail::TiledTexels::Slots slots;
+    std::uint32_t slots_file = ~std::uint32_t(0);
 };
 
 // The calling thread's ThreadTiles for the texture system numbered `system` (a number never

@@ -25,8 +25,8 @@ inline ProbePlan plan_for(const Texels& pyramid, const FootprintEllipse& footpri
 }
 
 // filter_footprint_assembly(), or given `probe` and `line`, request_footprint_assembly(), of a
-// footprint planned (plan_for()), on a MipPyramid or TiledTexels (which has no fast paths: its
-// taps are wherever its tiles are).
+// footprint planned (plan_for()), on a MipPyramid or TiledTexels (whose lines all take TiledLine,
+// tiled_texels.h).
 template <class Texels>
 inline Requested assemble(const Texels& pyramid, float s, float t, const ProbePlan& plan,
                           const LookupOptions& options, float* out, RequestedProbe* probe,
@@ -72,8 +72,10 @@ inline Requested assemble(const Texels& pyramid, float s, float t, const ProbePl
         // A line whose ends' taps lie on the levels needs no wrapping.
         if (blend_probe_line_inside(pyramid, plan.count, weights, levels, position, out))
             return Requested::done;
-    } else if (blend_probe_line_in_tiles(pyramid, plan.count, weights, levels, position, out)) {
-        return Requested::done;  // in one tile per level: no tile lookup per tap
+    } else {  // through tiles: every line one way, its probes at position(i)
+        const ProbeLine line{{s, t}, {du, dv}, first};
+        blend_probe_line_in_tiles(pyramid, plan.count, weights, levels, line, out);
+        return Requested::done;
     }
     dispatch_stride(pyramid.stride(), [&]<int S>() {
         const Texel<S> result =

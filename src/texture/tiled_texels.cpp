@@ -28,23 +28,40 @@ Vec2 TiledTexels::prefilter_variance(int l) const {
     return {(t * t - 1) / 12, (t * t - 1) / 12};
 }
 
-std::optional<TiledTexels::Window> TiledTexels::window(int l, float s0, float t0, float s1,
-                                                       float t1) const {
-    constexpr float kMargin = 1.0f / 64;  // line_inside()'s, for positions rounded otherwise
-    const float w = static_cast<float>(width(l)), h = static_cast<float>(height(l));
-    const float x_low = std::min(s0, s1) * w - 0.5f - kMargin;
-    const float x_high = std::max(s0, s1) * w - 0.5f + kMargin;
-    const float y_low = std::min(t0, t1) * h - 0.5f - kMargin;
-    const float y_high = std::max(t0, t1) * h - 0.5f + kMargin;
-    // The taps' columns ⌊X⌋ and ⌊X⌋ + 1 on the level itself; false for NaN.
-    if (!(x_low >= 0 && y_low >= 0 && x_high < w - 1 && y_high < h - 1)) return std::nullopt;
+TiledTexels::PlacedTaps TiledTexels::taps_elsewhere(int l, const BilinearPosition& p) const {
+    const int w = width(l), h = height(l);
+    int xa = p.x0, xb = p.x0 + 1, ya = p.y0, yb = p.y0 + 1;
+    if (!p.inside) {
+        xa = wrap_index(xa, w, shape_.wrap_s), xb = wrap_index(xb, w, shape_.wrap_s);
+        ya = wrap_index(ya, h, shape_.wrap_t), yb = wrap_index(yb, h, shape_.wrap_t);
+    }
+    const Window& tile = tile_holding(l, xa, ya);
+    if (static_cast<unsigned>(xb - tile.x0) < tile.width &&
+        static_cast<unsigned>(yb - tile.y0) < tile.height) {  // all four in one tile (as most)
+        const float* upper = tile.texels + (ya - tile.y0) * tile.pitch_floats;
+        const float* lower = tile.texels + (yb - tile.y0) * tile.pitch_floats;
+        const std::ptrdiff_t ca = (xa - tile.x0) * stride_, cb = (xb - tile.x0) * stride_;
+        return {{upper + ca, upper + cb, lower + ca, lower + cb, p.fx, p.fy}, &tile, xa, ya};
+    }
+    const BilinearTaps taps{
+        texel(l, xa, ya), texel(l, xb, ya), texel(l, xa, yb), texel(l, xb, yb), p.fx, p.fy};
+    return {taps, &tile_holding(l, xa, ya), xa, ya};  // a tile whose slot another took, again
+}
+
+const TiledTexels::Window& TiledTexels::load_tile(int l, int tx, int ty) const {
     const int k = shape_.tile_log2;
-    const int xa = static_cast<int>(x_low), xb = static_cast<int>(x_high) + 1;
-    const int ya = static_cast<int>(y_low), yb = static_cast<int>(y_high) + 1;
-    if ((xa >> k) != (xb >> k) || (ya >> k) != (yb >> k)) return std::nullopt;
-    const int tx = xa >> k, ty = ya >> k;
-    return Window{tile(l, tx, ty), tx << k, ty << k,
-                  static_cast<std::ptrdiff_t>(pitch(l, tx)) * stride_, stride_};
+    const int x0 = tx << k, y0 = ty << k;
+    const int width = std::min(1 << k, this->width(l) - x0);
+    const int height = std::min(1 << k, this->height(l) - y0);
+    Window& slot = slot_of(l, tx, ty);
+    slot = {l,
+            x0,
+            y0,
+            static_cast<unsigned>(width),
+            static_cast<unsigned>(height),
+            static_cast<std::ptrdiff_t>(width) * stride_,
+            source_.tile(l, tx, ty)};
+    return slot;
 }
 
 }  // namespace footprint::detail

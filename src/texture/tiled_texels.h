@@ -23,7 +23,8 @@
 namespace footprint::detail {
 
 // Where TiledTexels gets its tiles. tile() returns the texels of tile (tx, ty) of level l, valid
-// until the lookup that asked for them has returned (the texture system pins them until then).
+// until the lookup that asked for them has returned (the texture system pins them until then), or
+// for as long as the source keeps them (TiledTexels::Slots).
 class TileSource {
   public:
     virtual const float* tile(int level, int tx, int ty) const = 0;
@@ -51,8 +52,41 @@ struct TiledShape {
 
 class TiledTexels {
   public:
+    // One tile of a level: where it lies on the level, how large it is and its texels.
+    struct Window {
+        int level = -1;  // none
+        int x0 = 0, y0 = 0;
+        unsigned width = 0, height = 0;
+        std::ptrdiff_t pitch_floats = 0;
+        const float* texels = nullptr;
+    };
+    // The tiles at hand: most taps of a lookup fall in a tile that its previous taps on the same
+    // level read, and most lookups in tiles that the previous lookup read. A slot for each of four
+    // levels (a trilinear probe reads two) and each parity of a tile's column and row, so that the
+    // up to four tiles that a bilinear sample's taps straddle do not take each other's place.
+    // A caller may keep them from one lookup to the next on the same levels while the source
+    // keeps their tiles, and clear() them when it lets go of one.
+    class Slots {
+      public:
+        void clear() { *this = {}; }
+
+      private:
+        friend class TiledTexels;
+        Window slots_[16];
+    };
+
+    // `slots`: the tiles at hand, empty or kept from a lookup on the same levels.
+    TiledTexels(const TiledShape& shape, const TileSource& source, Slots& slots)
+        : shape_(shape), source_(source), stride_(texel_stride(shape.channels)), slots_(slots) {}
+    // With slots of its own, empty.
     TiledTexels(const TiledShape& shape, const TileSource& source)
-        : shape_(shape), source_(source), stride_(texel_stride(shape.channels)) {}
+        : shape_(shape),
+          source_(source),
+          stride_(texel_stride(shape.channels)),
+          own_slots_(std::in_place),
+          slots_(*own_slots_) {}
+    TiledTexels(const TiledTexels&) = delete;
+    TiledTexels& operator=(const TiledTexels&) = delete;
 
     // What the filters ask of a texel source (as MipPyramid's members of the same names).
     int channels() const { return shape_.channels; }
@@ -66,79 +100,62 @@ class TiledTexels {
     Vec2 prefilter_variance(int l) const;  // TiledShape::prefilter_variance
     const MipPyramid::LevelView& level(int l) const { return shape_.levels[l]; }
 
+    // The tile at hand that holds texel (x, y) of level l, or null.
+    const Window* tile_at_hand(int l, int x, int y) const {
+        const Window& slot = slot_of(l, x >> shape_.tile_log2, y >> shape_.tile_log2);
+        const bool holds = slot.level == l && static_cast<unsigned>(x - slot.x0) < slot.width &&
+                           static_cast<unsigned>(y - slot.y0) < slot.height;
+        return holds ? &slot : nullptr;
+    }
+    // The tile of level l that holds texel (x, y), x ∈ [0, width), y ∈ [0, height).
+    const Window& tile_holding(int l, int x, int y) const {
+        if (const Window* tile = tile_at_hand(l, x, y)) return *tile;
+        return load_tile(l, x >> shape_.tile_log2, y >> shape_.tile_log2);
+    }
+
     // Texel (x, y) of level l, x ∈ [0, width), y ∈ [0, height).
     const float* texel(int l, int x, int y) const {
-        const int k = shape_.tile_log2, mask = (1 << k) - 1;
-        const int tx = x >> k;
-        return tile(l, tx, y >> k) +
-               (static_cast<std::ptrdiff_t>(y & mask) * pitch(l, tx) + (x & mask)) * stride_;
+        const Window& tile = tile_holding(l, x, y);
+        return tile.texels + (y - tile.y0) * tile.pitch_floats + (x - tile.x0) * stride_;
     }
 
     // The four taps of a bilinear sample at position p of level l, wrapped as wrapped_taps().
     BilinearTaps taps(int l, const BilinearPosition& p) const {
-        const int w = width(l), h = height(l);
-        int xa = p.x0, xb = p.x0 + 1, ya = p.y0, yb = p.y0 + 1;
-        if (!p.inside) {
-            xa = wrap_index(xa, w, shape_.wrap_s), xb = wrap_index(xb, w, shape_.wrap_s);
-            ya = wrap_index(ya, h, shape_.wrap_t), yb = wrap_index(yb, h, shape_.wrap_t);
+        // Most taps lie in a tile at hand (a line of probes walks through a tile): addressed
+        // there without a wrap test or a tile lookup. A position outside the level cannot pass,
+        // as no tile reaches beyond it.
+        const Window& slot = slot_of(l, p.x0 >> shape_.tile_log2, p.y0 >> shape_.tile_log2);
+        const unsigned x = static_cast<unsigned>(p.x0 - slot.x0);
+        const unsigned y = static_cast<unsigned>(p.y0 - slot.y0);
+        if (slot.level == l && x < slot.width - 1 && y < slot.height - 1) {
+            const float* upper = slot.texels + y * slot.pitch_floats + x * stride_;
+            return row_major_taps(upper, slot.pitch_floats, stride_, p.fx, p.fy);
         }
-        const int k = shape_.tile_log2, mask = (1 << k) - 1;
-        const int tx = xa >> k, ty = ya >> k;
-        if ((xb >> k) != tx || (yb >> k) != ty)  // across a tile's edge (1 in 2^k per axis)
-            return {
-                texel(l, xa, ya), texel(l, xb, ya), texel(l, xa, yb), texel(l, xb, yb), p.fx, p.fy};
-        const float* t = tile(l, tx, ty);
-        const std::ptrdiff_t pitch_floats = static_cast<std::ptrdiff_t>(pitch(l, tx)) * stride_;
-        const float* upper = t + (ya & mask) * pitch_floats;
-        const float* lower = t + (yb & mask) * pitch_floats;
-        const std::ptrdiff_t ca = (xa & mask) * stride_, cb = (xb & mask) * stride_;
-        return {upper + ca, upper + cb, lower + ca, lower + cb, p.fx, p.fy};
+        return taps_elsewhere(l, p).taps;
     }
 
-    // The part of level l that one tile holds, for a run of taps that all lie in it: their
-    // addresses without a tile lookup or a wrap test each.
-    struct Window {
-        const float* tile;
-        int x0, y0;  // the tile's first texel on the level
-        std::ptrdiff_t pitch_floats;
-        int stride;
-        BilinearTaps taps(const BilinearPosition& p) const {
-            const float* upper = tile + (p.y0 - y0) * pitch_floats + (p.x0 - x0) * stride;
-            const float* lower = upper + pitch_floats;
-            return {upper, upper + stride, lower, lower + stride, p.fx, p.fy};
-        }
+    // Taps as taps() gives them, with where their upper-left tap was read (wrapped), for a caller
+    // that keeps that tile at hand for the taps that follow (TiledLine): taps() of taps that are
+    // not all in a tile at hand.
+    struct PlacedTaps {
+        BilinearTaps taps;
+        const Window* tile;  // the tile of the upper-left tap
+        int x, y;            // the upper-left tap on the level
     };
-    // The tile of level l that holds every tap of bilinear samples in the box of corners (s0, t0)
-    // and (s1, t1) (to line_inside()'s margin), if one does and none of them is wrapped.
-    std::optional<Window> window(int l, float s0, float t0, float s1, float t1) const;
+    PlacedTaps taps_elsewhere(int l, const BilinearPosition& p) const;
 
   private:
-    // Texels per row of tile column tx (the last column's tiles hold what is left of the level).
-    int pitch(int l, int tx) const {
-        return std::min(1 << shape_.tile_log2, width(l) - (tx << shape_.tile_log2));
+    Window& slot_of(int l, int tx, int ty) const {
+        return slots_.slots_[(l & 3) * 4 + (tx & 1) * 2 + (ty & 1)];
     }
-    // Most taps of a lookup fall in the tile its previous tap on the same level read: one slot
-    // per level (a trilinear probe alternates between two) keeps that tile at hand.
-    const float* tile(int l, int tx, int ty) const {
-        const std::uint64_t key =
-            (std::uint64_t(l) << 56) | (std::uint64_t(ty) << 28) | std::uint64_t(tx);
-        Slot& slot = slots_[l % kSlots];
-        if (key != slot.key) {
-            slot.key = key;
-            slot.tile = source_.tile(l, tx, ty);
-        }
-        return slot.tile;
-    }
+    // Tile (tx, ty) of level l, from the source into its slot.
+    const Window& load_tile(int l, int tx, int ty) const;
 
     const TiledShape& shape_;
     const TileSource& source_;
     int stride_;
-    struct Slot {
-        std::uint64_t key = ~std::uint64_t(0);
-        const float* tile = nullptr;
-    };
-    static constexpr int kSlots = 4;
-    mutable Slot slots_[kSlots];
+    std::optional<Slots> own_slots_;
+    Slots& slots_;
 };
 
 // The texel-source functions the filters call (sampling.h has the MipPyramid's): a trilinear
@@ -157,33 +174,138 @@ inline const float* level_texel(const TiledTexels& texels, int l, int x, int y) 
     return texels.texel(l, x, y);
 }
 
-// blend_probe_line_inside() for tiles: a line of `count` probes on `levels`, probe i at
-// position_of(i) = c + k·Δ, blended and written to out when its ends' taps (and so all of them)
-// lie in one tile on each level without wrapping — true; otherwise nothing written, false. The
-// taps are those probe_taps() gives, addressed through the two windows.
-template <class PositionOf>
-bool blend_probe_line_in_tiles(const TiledTexels& texels, int count, const float* weights,
-                               TrilinearLevels levels, PositionOf&& position_of, float* out) {
-    const auto a = position_of(0), b = position_of(count - 1);
-    const int coarse_level = levels.w > 0.0f ? levels.l0 + 1 : levels.l0;
-    const auto fine = texels.window(levels.l0, a.x, a.y, b.x, b.y);
-    if (!fine) return false;
-    const auto coarse = texels.window(coarse_level, a.x, a.y, b.x, b.y);
-    if (!coarse) return false;
-    const MipPyramid::LevelView &fine_view = texels.level(levels.l0),
-                                &coarse_view = texels.level(coarse_level);
+typedef unsigned UInt4 __attribute__((vector_size(16)));
+
+// Whether a comparison's four lanes are all true (−1): both its 64-bit halves are (fewer
+// instructions than four lanes taken out one by one).
+inline bool all_lanes(Int4 mask) {
+    typedef long long Long2 __attribute__((vector_size(16)));
+    const Long2 halves = Long2(mask);
+    return (halves[0] & halves[1]) == -1;
+}
+
+// A straight line of probes: probe i at centre + (first + i)·step (normalised coordinates).
+struct ProbeLine {
+    Vec2 centre, step;
+    float first;
+};
+
+// The probes of a line through tiles (blend_line_ahead()), probe i of `line` on `levels`:
+// positioned on both levels at once (bilinear_positions()' arithmetic), their taps on each level
+// addressed in the tile the level's previous taps came from — its window, held here for both
+// levels at once — and through TiledTexels::taps_elsewhere() where they leave it (into another
+// tile, across a tile's edge, or beyond the level's edge, wrapped), which moves the window to the
+// tile they went to.
+template <int S>
+class TiledLine {
+  public:
+    TiledLine(const TiledTexels& texels, TrilinearLevels levels, const ProbeLine& line)
+        : texels_(texels),
+          levels_(levels),
+          centre_{line.centre.x, line.centre.y, line.centre.x, line.centre.y},
+          step_{line.step.x, line.step.y, line.step.x, line.step.y},
+          first_(line.first),
+          level_{levels.l0, levels.w > 0.0f ? levels.l0 + 1 : levels.l0} {
+        const int fine = level_[0], coarse = level_[1];
+        size_ = __builtin_convertvector((Int4{texels.width(fine), texels.height(fine),
+                                              texels.width(coarse), texels.height(coarse)}),
+                                        Float4);
+        // The windows start at the tiles at hand that hold the first probe, if any do.
+        const Int4 first = position(0).lower;
+        for (int k = 0; k < 2; ++k)
+            if (const TiledTexels::Window* tile =
+                    texels.tile_at_hand(level_[k], first[2 * k], first[2 * k + 1]))
+                take_window(k, *tile, 0, 0);
+    }
+
+    ProbeTaps place(int i) {
+        const auto [lower, fraction] = position(i);
+        // The upper-left taps' place in the windows: all four taps inside where it is 0 to
+        // span − 1 (unsigned: a negative offset is beyond every span).
+        const Int4 offset = lower - origin_;
+        const Int4 inside = UInt4(offset) < UInt4(span_);
+        const ProbeTaps taps = all_lanes(inside) ? ProbeTaps{window_taps(0, offset, fraction),
+                                                             window_taps(1, offset, fraction)}
+                                                 : taps_moving(lower, fraction, inside);
+        prefetch_probe(taps, levels_, S);
+        return taps;
+    }
+    Texel<S> fine(const ProbeTaps& taps) const { return blend_taps<S>(taps.fine); }
+    Texel<S> coarse(const ProbeTaps& taps) const { return blend_taps<S>(taps.coarse); }
+
+  private:
+    // Probe i's upper-left taps and fractions on both levels (bilinear_positions()' arithmetic),
+    // its position computed as assemble() computes it (footprint_assembly_filter.h), for both
+    // levels' coordinates at once.
+    FloorAndFraction position(int i) const {
+        const float k = first_ + static_cast<float>(i);
+        return floor_and_fraction((centre_ + k * step_) * size_ - 0.5f);
+    }
+    // The taps on level k at `offset` in its window (fine x, y, coarse x, y).
+    BilinearTaps window_taps(int k, Int4 offset, Float4 fraction) const {
+        return row_major_taps(tile_[k] + offset[2 * k + 1] * pitch_[k] + offset[2 * k] * S,
+                              pitch_[k], S, fraction[2 * k], fraction[2 * k + 1]);
+    }
+    // The taps of a probe that leaves a window (`inside` its windows: fine x, y, coarse x, y),
+    // through TiledTexels::taps_elsewhere() on the levels it leaves, whose windows move to the
+    // tiles their taps came from. Out of line, so that place() stays small enough to inline.
+    [[gnu::noinline]] ProbeTaps taps_moving(Int4 lower, Float4 fraction, Int4 inside) {
+        ProbeTaps taps;
+        const int levels = levels_.w > 0.0f ? 2 : 1;
+        for (int k = 0; k < levels; ++k) {
+            BilinearTaps& level_taps = k == 0 ? taps.fine : taps.coarse;
+            if (inside[2 * k] & inside[2 * k + 1]) {
+                level_taps = window_taps(k, lower - origin_, fraction);
+                continue;
+            }
+            const int l = level_[k], x = lower[2 * k], y = lower[2 * k + 1];
+            const bool on_level =
+                x >= 0 && y >= 0 && x + 1 < texels_.width(l) && y + 1 < texels_.height(l);
+            const TiledTexels::PlacedTaps placed =
+                texels_.taps_elsewhere(l, {x, y, fraction[2 * k], fraction[2 * k + 1], on_level});
+            level_taps = placed.taps;
+            // Where the texture repeats, its copies beyond the level's edge are the level's tiles
+            // again: the window is the copy that holds (x, y), whole periods away.
+            take_window(k, *placed.tile, texels_.wrap_s() == WrapMode::repeat ? x - placed.x : 0,
+                        texels_.wrap_t() == WrapMode::repeat ? y - placed.y : 0);
+        }
+        if (levels == 1) {  // the coarse level is the fine one
+            origin_[2] = origin_[0], origin_[3] = origin_[1];
+            span_[2] = span_[0], span_[3] = span_[1];
+            tile_[1] = tile_[0], pitch_[1] = pitch_[0];
+        }
+        return taps;
+    }
+    // Level k's window: `tile`, shifted by (dx, dy).
+    void take_window(int k, const TiledTexels::Window& tile, int dx, int dy) {
+        origin_[2 * k] = tile.x0 + dx, origin_[2 * k + 1] = tile.y0 + dy;
+        span_[2 * k] = static_cast<int>(tile.width) - 1;
+        span_[2 * k + 1] = static_cast<int>(tile.height) - 1;
+        tile_[k] = tile.texels;
+        pitch_[k] = tile.pitch_floats;
+    }
+
+    const TiledTexels& texels_;
+    TrilinearLevels levels_;
+    Float4 centre_, step_;  // the line's (s, t, s, t)
+    float first_;
+    int level_[2];  // fine, coarse (the fine level again when levels.w = 0)
+    Float4 size_;   // the levels' widths and heights
+    // The windows (fine x, y, coarse x, y): their first texel on the level, and the upper-left
+    // taps they hold all four taps of, 0 to span − 1 on from there (none at first).
+    Int4 origin_{}, span_{};
+    const float* tile_[2] = {};  // the windows' texels
+    std::ptrdiff_t pitch_[2] = {};
+};
+
+// A line of `count` probes through tiles on `levels` (TiledLine), blended and written to out.
+inline void blend_probe_line_in_tiles(const TiledTexels& texels, int count, const float* weights,
+                                      TrilinearLevels levels, const ProbeLine& line, float* out) {
     dispatch_stride(texels.stride(), [&]<int S>() {
         const Texel<S> result =
-            blend_probe_line<S>(count, weights, levels, texels.stride(), [&](int i) {
-                const auto p = position_of(i);
-                if (levels.w == 0.0f)
-                    return ProbeTaps{fine->taps(bilinear_position(fine_view, p.x, p.y)), {}};
-                const BilinearPositionPair q = bilinear_positions(fine_view, coarse_view, p.x, p.y);
-                return ProbeTaps{fine->taps(q.fine), coarse->taps(q.coarse)};
-            });
+            blend_line_ahead<S>(count, weights, levels.w, TiledLine<S>(texels, levels, line));
         store(result, texels.channels(), out);
     });
-    return true;
 }
 
 // texture_lookup() through tiles: bit for bit the MipPyramid's lookup of the same levels (any
