@@ -3,6 +3,11 @@
 // (environment_map_batch.cpp) share. route_lookup() takes a lookup from its footprint to one of
 // three ends: done into out, one probe at the footprint's centre left to the caller (CentreProbe),
 // or, given a DeferredCubeLine (the batch), a cube line on its face requested for a later read.
+//
+// Each step reads an EnvironmentMap or a TiledEnvironment (tiled_environment.h), `Map`, alike;
+// the batch and the deferred lines are the EnvironmentMap's alone. The templates declared here
+// are defined in env_lookup_general.h and instantiated by environment_map.cpp (EnvironmentMap)
+// and tiled_environment.cpp (TiledEnvironment).
 #pragma once
 
 #include "envmap/env_footprint.h"
@@ -18,8 +23,8 @@ namespace footprint::env_route {
 // The level of the one trilinear probe at the footprint's centre that a near-isotropic footprint
 // takes (without the ellipse's axes), or −1 where the lookup takes another path: a polar cap, a
 // line of probes, another filter, or the sphere map's rim.
-float centre_probe_lod(const EnvironmentMap& map, const EnvFootprint& footprint,
-                       const LookupOptions& options);
+template <class Map>
+float centre_probe_lod(const Map& map, const EnvFootprint& footprint, const LookupOptions& options);
 
 // The one trilinear probe at the footprint's centre, c at lod (centre_probe_lod()): where it is and
 // which levels it reads. A single lookup reads it at once (filter_centre_probe); the batch
@@ -28,17 +33,20 @@ struct CentreProbe {
     EnvCoords coords;
     detail::TrilinearLevels levels;
 };
-inline CentreProbe centre_probe(const EnvironmentMap& map, const EnvCoords& c, float lod,
+template <class Map>
+inline CentreProbe centre_probe(const Map& map, const EnvCoords& c, float lod,
                                 const LookupOptions& options) {
     return {c, detail::trilinear_levels(lod, map.face(c.face).max_level(),
                                         single_probe_blend(options.lod_blend))};
 }
 
 // A lat-long footprint near a pole, carried onto its polar cap; invalid elsewhere.
-inline PolarCapFootprint cap_footprint(const EnvironmentMap& map, const EnvFootprint& footprint) {
+template <class Map>
+inline PolarCapFootprintOn<CapOf<Map>> cap_footprint(const Map& map,
+                                                     const EnvFootprint& footprint) {
     return map.layout() == EnvLayout::latlong && map.polar_cap(0)
                ? polar_cap_footprint(map, footprint)
-               : PolarCapFootprint{};
+               : PolarCapFootprintOn<CapOf<Map>>{};
 }
 
 // What general_lookup() reads of a footprint: taken from an EnvFootprint or, without building one,
@@ -65,17 +73,20 @@ using DeferredCubeLine = detail::RequestedLine<kDeferredProbes>;
 // Every other lookup (a line of probes, another filter), given the footprint's cap_footprint(),
 // done into out; or, given `defer` (the batch), a cube line on its face requested into it for a
 // later read: then true.
-bool general_lookup(const EnvironmentMap& map, const FootprintCentre& footprint,
-                    const PolarCapFootprint& cap, const LookupOptions& options, float* out,
-                    DeferredCubeLine* defer);
+template <class Map>
+bool general_lookup(const Map& map, const FootprintCentre& footprint,
+                    const PolarCapFootprintOn<CapOf<Map>>& cap, const LookupOptions& options,
+                    float* out, DeferredCubeLine* defer);
 
 // Footprint assembly of a planned line (general_lookup()'s, or the batch's short_plans4()):
 // done into out, or, given `defer`, a cube line on its face requested into it (then true).
-bool lookup_plan(const EnvironmentMap& map, const FootprintCentre& footprint, const ProbePlan& plan,
+template <class Map>
+bool lookup_plan(const Map& map, const FootprintCentre& footprint, const ProbePlan& plan,
                  const LookupOptions& options, float* out, DeferredCubeLine* defer);
 
 // Whether the polar caps of a lat-long map take a direction (map space) rather than the map.
-inline bool in_caps_region(const EnvironmentMap& map, Vec3 map_direction) {
+template <class Map>
+inline bool in_caps_region(const Map& map, Vec3 map_direction) {
     return map.layout() == EnvLayout::latlong && map.polar_cap(0) &&
            in_polar_cap_region(map_direction);
 }
@@ -85,7 +96,8 @@ inline bool in_caps_region(const EnvironmentMap& map, Vec3 map_direction) {
 // compute_env_footprint() sets them), so the lat-long footprint (two atan2 and its Jacobian) is
 // skipped. False, with nothing written, where the cap cannot take it (then the lat-long footprint
 // decides).
-bool polar_cap_lookup(const EnvironmentMap& map, Vec3 r, Vec3 map_direction, Vec3 dr_dx, Vec3 dr_dy,
+template <class Map>
+bool polar_cap_lookup(const Map& map, Vec3 r, Vec3 map_direction, Vec3 dr_dx, Vec3 dr_dy,
                       const IdentitySkippingRotation& to_map, const LookupOptions& options,
                       float* out);
 
@@ -96,7 +108,8 @@ enum class Routed { done, centre_probe, deferred_line };
 // A lookup of a computed footprint: one probe at its centre, returned in `probe` for the caller to
 // filter, a cube line on its face requested into `defer` where given, or any other lookup, done
 // here into out.
-inline Routed route_lookup(const EnvironmentMap& map, const EnvFootprint& footprint,
+template <class Map>
+inline Routed route_lookup(const Map& map, const EnvFootprint& footprint,
                            const LookupOptions& options, float* out, CentreProbe& probe,
                            DeferredCubeLine* defer) {
     const float lod = centre_probe_lod(map, footprint, options);
@@ -114,8 +127,9 @@ inline Routed route_lookup(const EnvironmentMap& map, const EnvFootprint& footpr
 // probe at the footprint's centre (most are) is returned in `probe`, for the caller to filter (the
 // batch defers it until its texels have arrived); given `defer` (the batch), a cube line on its
 // face is requested there; every other lookup is done here, into out.
-[[gnu::always_inline]] inline Routed route_lookup(const EnvironmentMap& map, Vec3 r, Vec3 dr_dx,
-                                                  Vec3 dr_dy, const LookupOptions& options,
+template <class Map>
+[[gnu::always_inline]] inline Routed route_lookup(const Map& map, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
+                                                  const LookupOptions& options,
                                                   const IdentitySkippingRotation& to_map,
                                                   float* out, CentreProbe& probe,
                                                   DeferredCubeLine* defer) {
@@ -131,7 +145,8 @@ inline Routed route_lookup(const EnvironmentMap& map, const EnvFootprint& footpr
             probe = centre_probe(map, plain.coords, lod, options);
             return Routed::centre_probe;
         }
-        return general_lookup(map, plain, PolarCapFootprint{}, options, out, defer)  // no caps
+        return general_lookup(map, plain, PolarCapFootprintOn<CapOf<Map>>{}, options, out,
+                              defer)  // no caps
                    ? Routed::deferred_line
                    : Routed::done;
     }

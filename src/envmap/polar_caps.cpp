@@ -8,11 +8,13 @@
 
 #include "envmap/env_layout_detail.h"
 #include "envmap/env_sampling.h"
+#include "envmap/tiled_environment.h"
 #include "math/fast_atan2.h"
 #include "math/lanes.h"
 #include "texture/filters.h"
 #include "texture/footprint_assembly_lanes.h"
 #include "texture/texture_lookup.h"
+#include "texture/texture_lookup_route.h"
 
 namespace footprint {
 
@@ -107,9 +109,10 @@ inline CapMatrixLanes<F> cap_matrix(F s, F t, const Jacobian23T<F>& j, const Vec
 // K on the cap and whether the caps can filter it, for r in the caps' region
 // (in_polar_cap_region()). `latlong_trace`: tr K of the lat-long footprint, if one was computed (0
 // otherwise).
-PolarCapFootprint cap_footprint(const EnvironmentMap& map, Vec3 r, Vec3 dx, Vec3 dy,
-                                const Vec3* roughness, float latlong_trace) {
-    PolarCapFootprint f;
+template <class Map>
+PolarCapFootprintOn<CapOf<Map>> cap_footprint(const Map& map, Vec3 r, Vec3 dx, Vec3 dy,
+                                              const Vec3* roughness, float latlong_trace) {
+    PolarCapFootprintOn<CapOf<Map>> f;
     f.cap = map.polar_cap(r.y > 0 ? 0 : 1);
     // Face 2 or 3: |r_y| is the major axis within 30°.
     const EnvCoordsJacobian cj = r.y > 0 ? env_detail::cube_coords_and_jacobian_on<2>(r)
@@ -128,31 +131,42 @@ PolarCapFootprint cap_footprint(const EnvironmentMap& map, Vec3 r, Vec3 dx, Vec3
 
 }  // namespace
 
-PolarCapFootprint polar_cap_footprint(const EnvironmentMap& map, const EnvFootprint& footprint) {
+template <class Map>
+PolarCapFootprintOn<CapOf<Map>> polar_cap_footprint(const Map& map, const EnvFootprint& footprint) {
     if (!in_polar_cap_region(footprint.map_direction)) return {};
     const Vec3 roughness[2] = {footprint.map_roughness1, footprint.map_roughness2};
     return cap_footprint(map, footprint.map_direction, footprint.map_dr_dx, footprint.map_dr_dy,
                          roughness, footprint.matrix.trace());
 }
 
-PolarCapFootprint polar_cap_footprint(const EnvironmentMap& map, Vec3 map_direction, Vec3 map_dr_dx,
-                                      Vec3 map_dr_dy) {
+template <class Map>
+PolarCapFootprintOn<CapOf<Map>> polar_cap_footprint(const Map& map, Vec3 map_direction,
+                                                    Vec3 map_dr_dx, Vec3 map_dr_dy) {
     return cap_footprint(map, map_direction, map_dr_dx, map_dr_dy, nullptr, 0.0f);
 }
 
+template PolarCapFootprint polar_cap_footprint(const EnvironmentMap&, const EnvFootprint&);
+template PolarCapFootprint polar_cap_footprint(const EnvironmentMap&, Vec3, Vec3, Vec3);
+template PolarCapFootprintOn<detail::TiledTexels> polar_cap_footprint(
+    const detail::TiledEnvironment&, const EnvFootprint&);
+template PolarCapFootprintOn<detail::TiledTexels> polar_cap_footprint(
+    const detail::TiledEnvironment&, Vec3, Vec3, Vec3);
+
 namespace {
 
-// polar_cap_filter() at the footprint's single_probe_lod(), or given `probe` and `line`,
-// polar_cap_request().
-inline detail::Requested filter_cap(const PolarCapFootprint& f, float lod,
+// polar_cap_filter() at the footprint's single_probe_lod(), or given `probe` and `line` (caps in
+// memory only), polar_cap_request().
+template <class Cap>
+inline detail::Requested filter_cap(const PolarCapFootprintOn<Cap>& f, float lod,
                                     const LookupOptions& options, float* out,
                                     detail::RequestedProbe* probe,
                                     detail::RequestedLine<detail::kRequestedLineProbes>* line) {
-    const MipPyramid& cap = *f.cap;
+    constexpr bool in_memory = std::is_same_v<Cap, MipPyramid>;
+    const Cap& cap = *f.cap;
     const EnvCoords& c = f.coords;
     // One probe (the common case): no ellipse axes.
     if (lod >= 0.0f) {
-        if (probe) {
+        if (in_memory && probe) {
             const detail::TrilinearLevels levels = detail::trilinear_levels(
                 lod, cap.max_level(), single_probe_blend(options.lod_blend));
             *probe = {detail::probe_taps(cap, c.s, c.t, levels), levels};
@@ -170,22 +184,29 @@ inline detail::Requested filter_cap(const PolarCapFootprint& f, float lod,
     if (options.filter == TextureFilter::footprint_assembly) {
         // A valid cap footprint is finite and on the face, so texture_lookup()'s sanitising
         // (reducing (s, t), bounding the ellipse) has nothing to do.
-        if (probe)
-            return detail::request_footprint_assembly(cap, c.s, c.t, ellipse, options, out, *probe,
-                                                      *line);
+        if constexpr (in_memory) {
+            if (probe)
+                return detail::request_footprint_assembly(cap, c.s, c.t, ellipse, options, out,
+                                                          *probe, *line);
+        }
         detail::filter_footprint_assembly(cap, c.s, c.t, ellipse, options, out);
         return detail::Requested::done;
     }
-    texture_lookup(cap, c.s, c.t, ellipse, options, out);
+    texture_route::lookup_ellipse(cap, c.s, c.t, ellipse, options, out);
     return detail::Requested::done;
 }
 
 }  // namespace
 
-void polar_cap_filter(const PolarCapFootprint& f, const LookupOptions& options, float* out) {
+template <class Cap>
+void polar_cap_filter(const PolarCapFootprintOn<Cap>& f, const LookupOptions& options, float* out) {
     filter_cap(f, single_probe_lod(f.matrix, options, f.cap->max_level()), options, out, nullptr,
                nullptr);
 }
+
+template void polar_cap_filter(const PolarCapFootprint&, const LookupOptions&, float*);
+template void polar_cap_filter(const PolarCapFootprintOn<detail::TiledTexels>&,
+                               const LookupOptions&, float*);
 
 detail::Requested polar_cap_request(const PolarCapFootprint& f, float lod,
                                     const LookupOptions& options, float* out,

@@ -5,6 +5,9 @@
 // anisotropy survives even where the lat-long footprint fell back to an isotropic one (§3.4).
 #pragma once
 
+#include <type_traits>
+#include <utility>
+
 #include "envmap/env_footprint.h"
 #include "envmap/environment_map.h"
 #include "image/image.h"
@@ -26,21 +29,33 @@ bool in_polar_cap_region(Vec3 r);
 
 // A footprint carried onto the cap of its pole: K on the cap from the footprint's map-space
 // direction differentials (EnvFootprint::map_dr_dx …), so its anisotropy survives even where the
-// lat-long footprint fell back to an isotropic one.
-struct PolarCapFootprint {
+// lat-long footprint fell back to an isotropic one. `Cap` is the caps' texel source: a MipPyramid
+// (an EnvironmentMap's) or TiledTexels (a TiledEnvironment's, tiled_environment.h).
+template <class Cap>
+struct PolarCapFootprintOn {
     bool valid = false;  // the caps filter it: centre within 30° of a pole, probes on the face
-    const MipPyramid* cap = nullptr;
+    const Cap* cap = nullptr;
     EnvCoords coords;  // on the cap (cube face 2 or 3)
     Sym2 matrix;       // K in the cap's level-0 texels
 };
-PolarCapFootprint polar_cap_footprint(const EnvironmentMap& map, const EnvFootprint& footprint);
+using PolarCapFootprint = PolarCapFootprintOn<MipPyramid>;
+// The caps' texel source of a map type.
+template <class Map>
+using CapOf = std::remove_cvref_t<decltype(*std::declval<const Map&>().polar_cap(0))>;
+
+// Explicitly instantiated (polar_caps.cpp) for EnvironmentMap and TiledEnvironment.
+template <class Map>
+PolarCapFootprintOn<CapOf<Map>> polar_cap_footprint(const Map& map, const EnvFootprint& footprint);
 // The same for form (a) (a direction and its differentials, in map space; no roughness), without
 // an EnvFootprint, for a direction the caller found in the caps' region (in_polar_cap_region()).
-PolarCapFootprint polar_cap_footprint(const EnvironmentMap& map, Vec3 map_direction, Vec3 map_dr_dx,
-                                      Vec3 map_dr_dy);
+template <class Map>
+PolarCapFootprintOn<CapOf<Map>> polar_cap_footprint(const Map& map, Vec3 map_direction,
+                                                    Vec3 map_dr_dx, Vec3 map_dr_dy);
 
 // Filters a valid cap footprint into out.
-void polar_cap_filter(const PolarCapFootprint& footprint, const LookupOptions& options, float* out);
+template <class Cap>
+void polar_cap_filter(const PolarCapFootprintOn<Cap>& footprint, const LookupOptions& options,
+                      float* out);
 
 // polar_cap_footprint() (form (a)) for four rays at once on a lat-long map with caps, in
 // structure-of-arrays form (math/float4.h), for the batch. Bit i of `region` is set where ray i's

@@ -22,6 +22,18 @@ TiledShape::TiledShape(std::vector<int> widths, std::vector<int> heights, int ch
     }
 }
 
+TiledShape tiled_shape(const MipPyramid& pyramid, int tile_log2) {
+    std::vector<int> widths, heights;
+    std::vector<Vec2> variances;
+    for (int l = 0; l < pyramid.level_count(); ++l) {
+        widths.push_back(pyramid.width(l));
+        heights.push_back(pyramid.height(l));
+        variances.push_back(pyramid.prefilter_variance(l));
+    }
+    return {std::move(widths), std::move(heights), pyramid.channels(),  tile_log2,
+            pyramid.wrap_s(),  pyramid.wrap_t(),   std::move(variances)};
+}
+
 Vec2 TiledTexels::prefilter_variance(int l) const {
     if (!shape_.prefilter_variance.empty()) return shape_.prefilter_variance[l];
     const float t = static_cast<float>(width(0)) / static_cast<float>(width(l));  // from_levels()

@@ -50,6 +50,10 @@ struct TiledShape {
     std::vector<MipPyramid::LevelView> levels;
 };
 
+// The shape of `pyramid`'s levels in tiles of 2^tile_log2 texels: its sizes, wrap modes and
+// prefilter variances, so that a TiledTexels of its tiles filters as the pyramid does.
+TiledShape tiled_shape(const MipPyramid& pyramid, int tile_log2);
+
 class TiledTexels {
   public:
     // One tile of a level: where it lies on the level, how large it is and its texels.
@@ -68,7 +72,9 @@ class TiledTexels {
     // keeps their tiles, and clear() them when it lets go of one.
     class Slots {
       public:
-        void clear() { *this = {}; }
+        void clear() {
+            for (Window& slot : slots_) slot.level = -1;  // holds nothing
+        }
 
       private:
         friend class TiledTexels;

@@ -11,54 +11,11 @@
 #include <vector>
 
 #include "image/test_images.h"
+#include "texture/test_pyramid_tiles.h"
 #include "texture/texture_lookup.h"
 
 namespace footprint {
 namespace {
-
-// Tiles cut from a MipPyramid's levels, each a separate allocation (so that a tap read from the
-// wrong tile, or with the wrong pitch, reads other texels), counted as they are asked for.
-class PyramidTiles final : public detail::TileSource {
-  public:
-    PyramidTiles(const MipPyramid& pyramid, int tile_log2)
-        : pyramid_(pyramid), tile_log2_(tile_log2) {}
-
-    const float* tile(int l, int tx, int ty) const override {
-        auto [it, added] = tiles_.try_emplace({l, tx, ty});
-        if (added) {
-            const int size = 1 << tile_log2_, x0 = tx * size, y0 = ty * size;
-            const int w = std::min(size, pyramid_.width(l) - x0);
-            const int h = std::min(size, pyramid_.height(l) - y0);
-            EXPECT_GT(w, 0);
-            EXPECT_GT(h, 0);
-            const int stride = pyramid_.stride();
-            it->second.resize(static_cast<std::size_t>(w) * h * stride);
-            for (int y = 0; y < h; ++y)
-                for (int x = 0; x < w; ++x)
-                    std::memcpy(&it->second[(static_cast<std::size_t>(y) * w + x) * stride],
-                                pyramid_.texel(l, x0 + x, y0 + y), stride * sizeof(float));
-        }
-        return it->second.data();
-    }
-    std::size_t tiles_made() const { return tiles_.size(); }
-
-  private:
-    const MipPyramid& pyramid_;
-    int tile_log2_;
-    mutable std::map<std::tuple<int, int, int>, std::vector<float>> tiles_;
-};
-
-detail::TiledShape shape_of(const MipPyramid& pyramid, int tile_log2) {
-    std::vector<int> widths, heights;
-    std::vector<Vec2> variances;
-    for (int l = 0; l < pyramid.level_count(); ++l) {
-        widths.push_back(pyramid.width(l));
-        heights.push_back(pyramid.height(l));
-        variances.push_back(pyramid.prefilter_variance(l));
-    }
-    return {widths,  heights,          pyramid.channels(), tile_log2,
-            pyramid.wrap_s(), pyramid.wrap_t(), variances};
-}
 
 // Lookups of every kind: magnified, isotropic and anisotropic minified, larger than the texture,
 // near and beyond every edge, with non-finite derivatives and positions.
@@ -94,8 +51,9 @@ TEST(TiledTexels, LookupsThroughTilesAreBitForBitThePyramids) {
             options.downsample = DownsampleFilter::tent;
             const MipPyramid pyramid =
                 MipPyramid::build(random_image(77, 45, channels, 3), options);
-            const detail::TiledShape shape = shape_of(pyramid, 4);  // 16 × 16: many crossings
-            const PyramidTiles tiles(pyramid, shape.tile_log2);
+            const detail::TiledShape shape =
+                detail::tiled_shape(pyramid, 4);  // 16 × 16: many crossings
+            const test::PyramidTiles tiles(pyramid, shape.tile_log2);
             for (TextureFilter filter : kFilters) {
                 LookupOptions lookup;
                 lookup.filter = filter;
