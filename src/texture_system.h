@@ -38,11 +38,15 @@
 //   depend on what the cache holds: a lookup returns the same bits with any max_memory_mb.
 //   Bump maps are read the same way: a bump pyramid file (`footprint maketx --bump`) is read tile
 //   by tile as a texture of 5 moment channels, a normal map has its pyramid built (in memory, or
-//   into cache_dir and then read tile by tile). Environment maps are held whole, as
-//   EnvironmentMap, once per file (stats().bytes_in_memory): an environment pyramid file
-//   (`footprint maketx --env`, envmap/env_pyramid_file.h) as stored, any other image laid out as
-//   load_environment() detects, its pyramids built (with cache_dir, kept there as an environment
-//   pyramid file and read from there by later runs).
+//   into cache_dir and then read tile by tile). So are environment maps, per face (and per polar
+//   cap of a lat-long map), per MIP level: an environment pyramid file (`footprint maketx --env`,
+//   envmap/env_pyramid_file.h) is read tile by tile as stored; any other image, laid out as
+//   load_environment() detects, has its pyramids built, held whole as an EnvironmentMap
+//   (stats().bytes_in_memory) or, with cache_dir, written there as an environment pyramid file
+//   once and read tile by tile (later runs open it without building). Lookups through tiles return
+//   the map's own results bit for bit with footprint assembly; the other filters, which read the
+//   centre face alone, may differ at a cube face's edge (a cube map in memory keeps its
+//   neighbours' texels there).
 //
 // Maps made in memory
 //   add_image(), add_bump() and add_environment() give a name to an image, a bump pyramid or an
@@ -71,6 +75,7 @@
 // Thread safety: every call may be made from any number of threads at once.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <filesystem>
 #include <memory>
@@ -179,6 +184,9 @@ class TextureSystem {
         EnvLayout layout;
         Vec2 texel_scale;
         int channels;
+        // The coarsest (1×1) level of each face, averaged: the map's mean colour, unweighted by
+        // solid angle (an ambient term's level); channels floats, 0 beyond.
+        std::array<float, MipPyramid::kMaxChannels> mean{};
     };
     virtual Result<EnvironmentShape> environment_shape(EnvironmentHandle* map) = 0;
     Result<EnvironmentShape> environment_shape(std::string_view name) {

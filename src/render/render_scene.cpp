@@ -278,23 +278,22 @@ Result<EnvImages> environment_images(const EnvironmentDesc& desc) {
     return images;
 }
 
-// What the renderer keeps of a map besides its handle: layout, texel scale, mean colour.
-void describe(const EnvironmentMap& map, RenderEnvironment& environment) {
-    environment.layout = map.layout();
-    environment.texel_scale = map.texel_scale();
-    // The mean colour: the coarsest level of every face, averaged (solid-angle weights are
-    // ignored: this only sets the ambient term's level).
-    for (int f = 0; f < map.face_count(); ++f) {
-        const MipPyramid& face = map.face(f);
-        const float* texel = face.texel(face.max_level(), 0, 0);
-        for (int c = 0; c < 3; ++c)
-            environment.mean[c] += texel[c] / static_cast<float>(map.face_count());
-    }
+// What the renderer keeps of the map `handle` besides the handle: layout, texel scale, mean colour
+// (environment_shape(), the ambient term's level).
+Status describe(TextureSystem& textures, EnvironmentHandle* handle,
+                RenderEnvironment& environment) {
+    Result<TextureSystem::EnvironmentShape> shape = textures.environment_shape(handle);
+    if (!shape) return shape.error();
+    environment.map = handle;
+    environment.layout = shape->layout;
+    environment.texel_scale = shape->texel_scale;
+    std::copy_n(shape->mean.begin(), 3, environment.mean.begin());
+    return {};
 }
 
-// The environment in the texture system: an environment pyramid file by its name (a copy in RGB ×
-// intensity where it is not that already), any other files' or images' pyramids built here and
-// registered.
+// The environment in the texture system: an environment pyramid file by its name, read tile by
+// tile (a copy in RGB × intensity, held whole, where it is not that already), any other files' or
+// images' pyramids built here and registered.
 Result<std::unique_ptr<RenderEnvironment>> prepare_environment(const EnvironmentDesc& desc,
                                                                SceneMaps& maps) {
     auto environment = std::make_unique<RenderEnvironment>();
@@ -307,13 +306,14 @@ Result<std::unique_ptr<RenderEnvironment>> prepare_environment(const Environment
                         is_environment_pyramid_file(desc.images[0].file);
     if (stored) {
         EnvironmentHandle* handle = maps.textures.environment_handle(desc.images[0].file.string());
-        Result<std::shared_ptr<const EnvironmentMap>> whole = maps.textures.environment_map(handle);
-        if (!whole) return whole.error();
-        if (desc.intensity == 1 && (*whole)->channels() == 3) {
-            describe(**whole, *environment);
-            environment->map = handle;
+        Result<TextureSystem::EnvironmentShape> shape = maps.textures.environment_shape(handle);
+        if (!shape) return shape.error();
+        if (desc.intensity == 1 && shape->channels == 3) {
+            if (Status s = describe(maps.textures, handle, *environment); !s) return s.error();
             return environment;
         }
+        Result<std::shared_ptr<const EnvironmentMap>> whole = maps.textures.environment_map(handle);
+        if (!whole) return whole.error();
         map = rgb_times(**whole, desc.intensity);
     } else {
         Result<EnvImages> images = environment_images(desc);
@@ -321,11 +321,10 @@ Result<std::unique_ptr<RenderEnvironment>> prepare_environment(const Environment
         map = make_environment_map(*images);
     }
     if (!map) return map.error();
-    describe(*map, *environment);
     Result<EnvironmentHandle*> handle =
         maps.textures.add_environment(maps.name("environment"), std::move(*map));
     if (!handle) return handle.error();
-    environment->map = *handle;
+    if (Status s = describe(maps.textures, *handle, *environment); !s) return s.error();
     return environment;
 }
 

@@ -16,7 +16,8 @@
 //     pyramid file (`footprint maketx --bump`, in either key) is read as stored, tile by tile, its
 //     slopes × strength with σ² I added at each lookup;
 //   * the environment → an EnvironmentMap (envmap/), scaled by its intensity and registered by
-//     add_environment(), with its rotation A;
+//     add_environment(), with its rotation A; an environment pyramid file (`footprint maketx
+//     --env`) of RGB at intensity 1 is read as stored, tile by tile;
 //   * meshes → triangles (scene/mesh.h) in one MeshAccel. Each part of a mesh file keeps its own
 //     colours: the scene material's base_color multiplies the file's (glTF baseColorFactor, OBJ
 //     Kd), the file's texture (glTF baseColorTexture, OBJ map_Kd) is used unless the scene gives

@@ -166,8 +166,8 @@ TEST(RenderTextures, ABumpPyramidFileRendersAsItsNormalMapAtTheMaterialsStrength
 }
 
 // An environment given as an environment pyramid file (`footprint maketx --env`) renders as the
-// file it was made from: the texture system's entry itself at intensity 1, bit for bit; a copy
-// scaled by the intensity otherwise (scaled after filtering: float rounding).
+// file it was made from: the texture system's entry itself at intensity 1, read tile by tile, bit
+// for bit; a copy scaled by the intensity otherwise (scaled after filtering: float rounding).
 TEST(RenderTextures, AnEnvironmentPyramidFileRendersAsItsSource) {
     test::TempDir dir;
     ASSERT_TRUE(save_image(random_image(128, 64, 3, 23), dir / "sky.exr"));
@@ -175,6 +175,7 @@ TEST(RenderTextures, AnEnvironmentPyramidFileRendersAsItsSource) {
                                          dir / "sky_env.exr", 16));
     for (const float intensity : {1.0f, 2.5f}) {
         std::vector<Image> images;
+        const std::shared_ptr<TextureSystem> small = texture_system(1, 16);
         for (const char* file : {"sky.exr", "sky_env.exr"}) {
             SceneDesc desc = textured_plane(dir / "sky.exr");
             desc.objects[0].material.base_color_map = {};
@@ -186,10 +187,13 @@ TEST(RenderTextures, AnEnvironmentPyramidFileRendersAsItsSource) {
             env.detect_layout = true;
             env.intensity = intensity;
             desc.environment = env;
-            images.push_back(render_with(desc, nullptr, FilterMode::fa_rough));
+            images.push_back(
+                render_with(desc, images.empty() ? nullptr : small, FilterMode::fa_rough));
         }
         if (intensity == 1) {
             expect_bit_identical(images[1], images[0], "intensity 1");
+            EXPECT_GT(small->stats().tiles_loaded, 0u);
+            EXPECT_EQ(small->stats().bytes_in_memory, 0u) << "the file was read whole";
         } else {
             constexpr double kRmse = 1e-5;  // rounding of the levels scaled after the box filter
             const Result<ImageComparison> d = compare_images(images[1], images[0]);

@@ -122,6 +122,10 @@ void TextureHandle::open_stored(const std::string& file, const TextureSystemOpti
         error = cannot_read(file, OIIO::geterror());
         return;
     }
+    if (subimage_ > 0 && !input_->seek_subimage(subimage_, 0)) {
+        error = cannot_read(file, "part " + std::to_string(subimage_) + " is missing");
+        return;
+    }
     const OIIO::ImageSpec& spec = input_->spec();
     const WrapMode wrap_s = info.wrap_s, wrap_t = info.wrap_t;
     read_wrap_modes(spec, options.default_wrap, info);
@@ -145,6 +149,16 @@ void TextureHandle::open_stored(const std::string& file, const TextureSystemOpti
     shape = detail::TiledShape(std::move(widths), std::move(heights), spec.nchannels,
                                std::countr_zero(static_cast<unsigned>(options.tile_size)),
                                info.wrap_s, info.wrap_t);
+}
+
+void TextureHandle::open_part(int part, const detail::TiledShape& part_shape,
+                              const TextureSystemOptions& options) {
+    subimage_ = part;
+    open_stored(name, options);
+    if (error) return;
+    shape = part_shape;
+    info.wrap_s = part_shape.wrap_s;
+    info.wrap_t = part_shape.wrap_t;
 }
 
 std::size_t TextureHandle::tile_floats(int l, int tx, int ty) const {
@@ -173,12 +187,13 @@ void TextureHandle::read_tile(int l, int tx, int ty, float* texels) {
     std::string why;
     {
         std::lock_guard lock(read_mutex_);
-        ok = input_->read_tiles(0, l, xb, xe, yb, ye, 0, 1, 0, channels, OIIO::TypeDesc::FLOAT,
-                                read.data());
+        ok = input_->read_tiles(subimage_, l, xb, xe, yb, ye, 0, 1, 0, channels,
+                                OIIO::TypeDesc::FLOAT, read.data());
         if (!ok) why = input_->geterror();
     }
     if (!ok) {
-        fail_read("MIP level " + std::to_string(l) + " tile (" + std::to_string(tx) + ", " +
+        fail_read((subimage_ > 0 ? "part " + std::to_string(subimage_) + " " : std::string()) +
+                  "MIP level " + std::to_string(l) + " tile (" + std::to_string(tx) + ", " +
                   std::to_string(ty) + "): " + why);
         return;
     }

@@ -28,6 +28,11 @@ class TextureHandle {
     // with options.cache_dir, written there and opened as stored). Sets `error` on failure.
     void open(const TextureSystemOptions& options);
 
+    // Opens part `part` of the file (an environment pyramid file's face or polar cap,
+    // envmap/tiled_environment.h) to be read tile by tile as `part_shape`, which its headers gave.
+    void open_part(int part, const detail::TiledShape& part_shape,
+                   const TextureSystemOptions& options);
+
     // Reads tile (tx, ty) of level l into `texels` (TiledTexels' layout: row-major, stride floats
     // per texel). A failed read gives zeros and sets read_error.
     void read_tile(int l, int tx, int ty, float* texels);
@@ -69,6 +74,7 @@ class TextureHandle {
 
     std::mutex read_mutex_;  // one read at a time through input_
     std::unique_ptr<OIIO::ImageInput> input_;
+    int subimage_ = 0;  // the part (OpenImageIO subimage) read
     int file_tile_width_ = 0, file_tile_height_ = 0;
     bool srgb_ = false;  // decode the colour channels (not alpha) from sRGB
     int alpha_ = -1;     // the alpha channel, or −1

@@ -1,10 +1,12 @@
 #include "texture_system.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <bit>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <shared_mutex>
 #include <unordered_map>
 
@@ -12,6 +14,7 @@
 #include "bump/slope_map.h"
 #include "envmap/env_image_io.h"
 #include "envmap/env_pyramid_file.h"
+#include "envmap/tiled_environment.h"
 #include "texsys/texture_file.h"
 #include "texsys/tile_cache.h"
 #include "texture/tiled_texels.h"
@@ -40,7 +43,29 @@ class BumpHandle : public texsys::WholeMap<BumpPyramid> {
     TextureHandle* moments = nullptr;
     Vec2 slope_offset;
 };
-class EnvironmentHandle : public texsys::WholeMap<EnvironmentMap> {};
+class EnvironmentHandle : public texsys::WholeMap<EnvironmentMap> {
+  public:
+    // An environment pyramid file, or the one built into the cache folder: its parts (faces,
+    // then polar caps) read tile by tile, each a file of the cache's. Otherwise the map is
+    // `value`, whole.
+    std::string file;
+    detail::TiledEnvShape shape;
+    TextureSystem::EnvironmentShape shape_of{};  // what environment_shape() returns
+    std::vector<std::unique_ptr<TextureHandle>> parts;
+    // The file read whole (TextureSystem::environment_map()), while someone holds it.
+    std::mutex whole_mutex;
+    std::weak_ptr<const EnvironmentMap> whole;
+
+    // The error of a part's read that failed (a truncated tile), if any.
+    std::optional<Error> read_error() {
+        for (const auto& part : parts)
+            if (part->read_failed) {
+                std::lock_guard lock(part->read_error_mutex);
+                return *part->read_error;
+            }
+        return std::nullopt;
+    }
+};
 
 namespace {
 
@@ -50,22 +75,20 @@ namespace {
 class LookupTiles final : public detail::TileSource {
   public:
     LookupTiles(texsys::TileCache& cache, texsys::ThreadTiles& thread, TextureHandle& file)
-        : cache_(cache), thread_(thread), file_(file) {
-        if (thread.slots_file != file.id) {
-            thread.slots.clear();
-            thread.slots_file = file.id;
-        }
-    }
+        : cache_(cache), thread_(thread), file_(file) {}
     ~LookupTiles() {
         auto& recent = thread_.recent;
         const std::size_t keep = TextureSystem::kMicroCacheTiles;
         if (recent.size() > keep) {
             recent.erase(recent.begin(), recent.end() - keep);
-            thread_.slots.clear();
+            thread_.let_go();
         }
     }
     LookupTiles(const LookupTiles&) = delete;
     LookupTiles& operator=(const LookupTiles&) = delete;
+
+    // The thread's tiles at hand on the file, for TiledTexels.
+    detail::TiledTexels::Slots& slots() const { return thread_.slots_for(file_.id); }
 
     const float* tile(int level, int tx, int ty) const override {
         const texsys::TileKey key{file_.id, static_cast<std::uint32_t>(level),
@@ -84,6 +107,23 @@ class LookupTiles final : public detail::TileSource {
     texsys::TileCache& cache_;
     texsys::ThreadTiles& thread_;
     TextureHandle& file_;
+};
+
+// The tiles of one lookup on an environment map read tile by tile: a LookupTiles on each part.
+class EnvLookupTiles {
+  public:
+    EnvLookupTiles(texsys::TileCache& cache, texsys::ThreadTiles& thread, EnvironmentHandle& env) {
+        for (std::size_t i = 0; i < env.parts.size(); ++i) {
+            const LookupTiles& part = tiles_[i].emplace(cache, thread, *env.parts[i]);
+            sources_[i] = {&part, &part.slots()};
+        }
+    }
+    const auto& sources() const { return sources_; }
+
+  private:
+    static constexpr int kParts = detail::TiledEnvironment::kMaxParts;
+    std::array<std::optional<LookupTiles>, kParts> tiles_;
+    std::array<detail::TiledEnvironment::Part, kParts> sources_{};
 };
 
 // A name → entry table that many threads read and a few add to.
@@ -163,7 +203,7 @@ class TextureSystemImpl final : public TextureSystem {
         } else {
             texsys::ThreadTiles& thread = texsys::thread_tiles(id_);
             const LookupTiles tiles(cache_, thread, *file);
-            const detail::TiledTexels texels(file->shape, tiles, thread.slots);
+            const detail::TiledTexels texels(file->shape, tiles, tiles.slots());
             detail::texture_lookup(texels, c, options, result);
         }
         if (file->read_failed) {
@@ -177,43 +217,33 @@ class TextureSystemImpl final : public TextureSystem {
     Status environment(EnvironmentHandle* env, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
                        const EnvLookupOptions& options, std::span<float> out,
                        std::span<const float> missing) override {
-        if (env->error) return missing_or(*env->error, env->error_reported, out, missing);
-        float result[MipPyramid::kMaxChannels];
-        environment_lookup(*env->value, r, dr_dx, dr_dy, options, result);
-        write_channels(result, env->value->channels(), out);
-        return {};
+        return environment_on(env, out, missing, [&](const auto& map, float* result) {
+            environment_lookup(map, r, dr_dx, dr_dy, options, result);
+        });
     }
 
     Status environment(EnvironmentHandle* env, const EnvFootprint& footprint,
                        const LookupOptions& options, std::span<float> out,
                        std::span<const float> missing) override {
-        if (env->error) return missing_or(*env->error, env->error_reported, out, missing);
-        float result[MipPyramid::kMaxChannels];
-        environment_lookup(*env->value, footprint, options, result);
-        write_channels(result, env->value->channels(), out);
-        return {};
+        return environment_on(env, out, missing, [&](const auto& map, float* result) {
+            environment_lookup(map, footprint, options, result);
+        });
     }
 
     Status environment_sample(EnvironmentHandle* env, Vec3 r, std::span<float> out) override {
-        if (env->error) return *env->error;
-        float result[MipPyramid::kMaxChannels];
-        environment_bilinear(*env->value, r, 0, result);
-        write_channels(result, env->value->channels(), out);
-        return {};
+        return environment_on(env, out, {}, [&](const auto& map, float* result) {
+            environment_bilinear(map, r, 0, result);
+        });
     }
 
     Result<EnvironmentShape> environment_shape(EnvironmentHandle* env) override {
         if (env->error) return *env->error;
-        return EnvironmentShape{env->value->layout(), env->value->texel_scale(),
-                                env->value->channels()};
+        return env->shape_of;
     }
 
     EnvironmentHandle* environment_handle(std::string_view name) override {
         return open_whole(environments_, name, [&](EnvironmentHandle& entry) {
-            Result<EnvironmentMap> map = open_environment(std::string(name));
-            if (!map) return void(entry.error = map.error());
-            entry.value = std::make_shared<const EnvironmentMap>(std::move(*map));
-            count_in_memory(*entry.value);
+            open_environment(entry, std::string(name));
         });
     }
 
@@ -313,7 +343,15 @@ class TextureSystemImpl final : public TextureSystem {
     Result<std::shared_ptr<const EnvironmentMap>> environment_map(
         EnvironmentHandle* entry) override {
         if (entry->error) return *entry->error;
-        return entry->value;
+        if (entry->value) return entry->value;
+        // Kept while a caller holds it, as pyramid() keeps a texture read whole.
+        std::lock_guard lock(entry->whole_mutex);
+        if (std::shared_ptr<const EnvironmentMap> held = entry->whole.lock()) return held;
+        Result<EnvironmentMap> whole = load_environment_pyramid(entry->file);
+        if (!whole) return whole.error();
+        auto held = std::make_shared<const EnvironmentMap>(std::move(*whole));
+        entry->whole = held;
+        return held;
     }
 
     TextureSystemStats stats() const override {
@@ -347,23 +385,81 @@ class TextureSystemImpl final : public TextureSystem {
         return it->second;
     }
 
-    // The environment map in `name`: an environment pyramid file as stored; any other file's
-    // pyramids built, and with a cache folder kept there once and read from there in later runs.
-    Result<EnvironmentMap> open_environment(const std::string& name) {
-        if (is_environment_pyramid_file(name)) return load_environment_pyramid(name);
+    // An environment lookup on `env`, lookup(map, result) on its map in memory or read through
+    // tiles: its channels to out, or the error (with `missing`, the missing colour instead).
+    template <class Lookup>
+    Status environment_on(EnvironmentHandle* env, std::span<float> out,
+                          std::span<const float> missing, const Lookup& lookup) {
+        if (env->error) return missing_or(*env->error, env->error_reported, out, missing);
+        float result[MipPyramid::kMaxChannels];
+        if (env->value) {
+            lookup(*env->value, result);
+            write_channels(result, env->value->channels(), out);
+            return {};
+        }
+        {
+            const EnvLookupTiles tiles(cache_, texsys::thread_tiles(id_), *env);
+            lookup(detail::TiledEnvironment(env->shape, tiles.sources()), result);
+        }
+        if (std::optional<Error> failed = env->read_error())
+            return missing_or(*failed, env->error_reported, out, missing);
+        write_channels(result, env->shape.parts[0].channels, out);
+        return {};
+    }
+
+    // Opens environment map `name`: an environment pyramid file tile by tile; any other file's
+    // pyramids built, kept whole or, with a cache folder, written there once and read tile by
+    // tile (in later runs, without building them again).
+    void open_environment(EnvironmentHandle& entry, const std::string& name) {
+        if (is_environment_pyramid_file(name)) return open_stored_environment(entry, name);
         const fs::path cached =
             options_.cache_dir.empty()
                 ? fs::path()
                 : cached_pyramid_file(name, options_, WrapMode::repeat, WrapMode::clamp, "env");
         std::error_code ec;
-        if (!cached.empty() && fs::exists(cached, ec)) return load_environment_pyramid(cached);
+        if (!cached.empty() && fs::exists(cached, ec))
+            return open_stored_environment(entry, cached.string());
         Result<EnvironmentMap> map = load_environment({fs::path(name)});
-        if (!map || cached.empty()) return map;
+        if (!map) return void(entry.error = map.error());
+        if (cached.empty()) {
+            entry.value = std::make_shared<const EnvironmentMap>(std::move(*map));
+            return held_whole(entry);
+        }
         const int tile = std::clamp(options_.tile_size, 16, 1024);
         if (Status saved = save_environment_pyramid(*map, cached, tile); !saved)
-            return Error{"cannot cache the environment pyramids of '" + name +
-                         "': " + saved.error().message};
-        return map;
+            return void(entry.error = Error{"cannot cache the environment pyramids of '" + name +
+                                            "': " + saved.error().message});
+        open_stored_environment(entry, cached.string());
+    }
+
+    // The environment pyramid file `file` (envmap/env_pyramid_file.h), its parts read tile by
+    // tile.
+    void open_stored_environment(EnvironmentHandle& entry, const std::string& file) {
+        Result<detail::TiledEnvShape> shape = detail::environment_pyramid_shape(
+            file, std::countr_zero(static_cast<unsigned>(options_.tile_size)));
+        if (!shape) return void(entry.error = shape.error());
+        for (std::size_t p = 0; p < shape->parts.size(); ++p) {
+            auto part = std::make_unique<TextureHandle>(file, next_file_id_++);
+            part->open_part(static_cast<int>(p), shape->parts[p], options_);
+            if (part->error) return void(entry.error = part->error);
+            entry.parts.push_back(std::move(part));
+        }
+        entry.file = file;
+        entry.shape = std::move(*shape);
+        // The mean colour from each face's 1×1 level, read now (outside the cache).
+        const MipPyramid::LevelView& level0 = entry.shape.parts[0].levels[0];
+        const int channels = entry.shape.parts[0].channels, faces = entry.shape.face_count();
+        entry.shape_of = {entry.shape.layout,
+                          {static_cast<float>(level0.width), static_cast<float>(level0.height)},
+                          channels};
+        for (int f = 0; f < faces; ++f) {
+            TextureHandle& part = *entry.parts[f];
+            float texel[texel_stride(MipPyramid::kMaxChannels)];
+            part.read_tile(part.info.levels - 1, 0, 0, texel);
+            if (part.read_failed) return void(entry.error = *part.read_error);
+            for (int c = 0; c < channels; ++c)
+                entry.shape_of.mean[c] += texel[c] / static_cast<float>(faces);
+        }
     }
 
     // Opens bump map `name`: a bump pyramid file tile by tile; a normal map decoded and its pyramid
@@ -383,7 +479,7 @@ class TextureSystemImpl final : public TextureSystem {
         if (!pyramid) return void(entry.error = pyramid.error());
         if (cached.empty()) {
             entry.value = std::make_shared<const BumpPyramid>(std::move(*pyramid));
-            return count_in_memory(*entry.value);
+            return held_whole(entry);
         }
         const int tile = std::clamp(options_.tile_size, 16, 1024);
         if (Status saved = save_bump_pyramid(*pyramid, cached, tile); !saved)
@@ -419,7 +515,7 @@ class TextureSystemImpl final : public TextureSystem {
         if (!added) return name_taken(name);
         std::call_once(entry->opened, [&, entry = entry] {
             entry->value = std::make_shared<const Map>(std::move(map));
-            count_in_memory(*entry->value);
+            held_whole(*entry);
         });
         return entry;
     }
@@ -428,11 +524,21 @@ class TextureSystemImpl final : public TextureSystem {
         return Error{"texture system: the name '" + std::string(name) + "' is already in use"};
     }
 
-    void count_in_memory(const EnvironmentMap& map) {
-        for (int f = 0; f < map.face_count(); ++f) bytes_in_memory_ += pyramid_bytes(map.face(f));
+    // What is known of an entry whose map is held whole: its texels (stats().bytes_in_memory),
+    // and an environment map's shape (environment_shape()).
+    void held_whole(EnvironmentHandle& entry) {
+        const EnvironmentMap& map = *entry.value;
+        entry.shape_of = {map.layout(), map.texel_scale(), map.channels()};
+        for (int f = 0; f < map.face_count(); ++f) {
+            const MipPyramid& face = map.face(f);
+            const float* texel = face.texel(face.max_level(), 0, 0);
+            for (int c = 0; c < map.channels(); ++c)
+                entry.shape_of.mean[c] += texel[c] / static_cast<float>(map.face_count());
+            bytes_in_memory_ += pyramid_bytes(face);
+        }
     }
-    void count_in_memory(const BumpPyramid& pyramid) {
-        bytes_in_memory_ += pyramid_bytes(pyramid.moments());
+    void held_whole(BumpHandle& entry) {
+        bytes_in_memory_ += pyramid_bytes(entry.value->moments());
     }
 
     static std::size_t pyramid_bytes(const MipPyramid& pyramid) {

@@ -401,34 +401,128 @@ TEST(TextureSystem, BumpPyramidFilesAreReadTileByTileAsTheirPyramid) {
     EXPECT_EQ((*whole)->moments().level_image(0).pixels, bump.moments().level_image(0).pixels);
 }
 
-// Environment maps: an environment pyramid file looks up as the map it holds; a plain file with a
-// cache folder has its pyramids kept there once, and a second system loads them from there.
-TEST(TextureSystem, EnvironmentPyramidFilesAndTheCacheFolderGiveTheBuiltMap) {
+// Rays as a renderer casts them at an environment: anywhere, a pixel's to a hemisphere's spread,
+// up to 16:1 anisotropic.
+std::vector<EnvRayDifferential> env_rays(int count, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<float> normal;
+    std::uniform_real_distribution<float> scale(-10, 0), aniso(0, 4);
+    std::vector<EnvRayDifferential> all;
+    for (int i = 0; i < count; ++i) {
+        const Vec3 r = normalize(Vec3{normal(rng), normal(rng), normal(rng)});
+        const float s = std::exp2(scale(rng)), t = s * std::exp2(-aniso(rng));
+        all.push_back({r, s * Vec3{normal(rng), normal(rng), normal(rng)},
+                       t * Vec3{normal(rng), normal(rng), normal(rng)}});
+    }
+    return all;
+}
+
+// Environment maps through tiles: environment pyramid files of a lat-long map (with its polar
+// caps) and a cube map, each larger than the cache, look up through a 1 MiB cache as the maps they
+// hold, bit for bit (both forms and point samples), within the cache's bound; a plain file with a
+// cache folder has its pyramids kept there once and read tile by tile, also by a second system.
+TEST(TextureSystem, EnvironmentMapsAreReadTileByTileWithinTheBound) {
     test::TempDir dir;
     const std::string sky = (dir / "sky.exr").string();
-    ASSERT_TRUE(save_image(random_image(64, 32, 3, 14), sky));
-    const EnvironmentMap map = load_environment({sky}).value();
-    const std::string stored = (dir / "sky_env.exr").string();
-    ASSERT_TRUE(save_environment_pyramid(map, stored, 16));
-    TextureSystemOptions cached;
-    cached.cache_dir = dir / "cache";
-    auto first = make_system(cached);
-    auto second = make_system(cached);
-    const Vec3 r{0.3f, 0.9f, -0.2f}, dx{0.02f, 0, 0}, dy{0, 0.01f, 0.005f};
-    float want[3];
-    environment_lookup(map, r, dx, dy, EnvLookupOptions{}, want);
-    for (auto [ts, name] :
-         {std::pair{first.get(), stored}, {first.get(), sky}, {second.get(), sky}}) {
-        float got[3];
-        ASSERT_TRUE(ts->environment(name, r, dx, dy, EnvLookupOptions{}, got));
-        for (int k = 0; k < 3; ++k) EXPECT_EQ(bits(got[k]), bits(want[k])) << name;
+    ASSERT_TRUE(save_image(random_image(512, 256, 3, 14), sky));
+    std::vector<std::string> cross_faces;
+    for (int f = 0; f < 6; ++f) {
+        cross_faces.push_back((dir / ("face" + std::to_string(f) + ".exr")).string());
+        ASSERT_TRUE(save_image(random_image(128, 128, 3, 20 + f), cross_faces.back()));
     }
+    std::vector<std::filesystem::path> face_paths(cross_faces.begin(), cross_faces.end());
+    const EnvironmentMap latlong = load_environment({sky}).value();
+    const EnvironmentMap cube = load_environment(face_paths).value();
+    ASSERT_EQ(cube.layout(), EnvLayout::cube);
+    const std::string latlong_file = (dir / "sky_env.exr").string();
+    const std::string cube_file = (dir / "cube_env.exr").string();
+    ASSERT_TRUE(save_environment_pyramid(latlong, latlong_file, 16));
+    ASSERT_TRUE(save_environment_pyramid(cube, cube_file, 32));  // tiles unlike the cache's
+
+    TextureSystemOptions small;
+    small.max_memory_mb = 1;
+    small.tile_size = 16;
+    small.cache_dir = dir / "cache";
+    auto ts = make_system(small);
+    auto again = make_system(small);  // finds sky.exr's pyramids in the cache folder
+    const auto check = [&](TextureSystem& system, const std::string& name,
+                           const EnvironmentMap& map) {
+        EnvironmentHandle* env = system.environment_handle(name);
+        Result<TextureSystem::EnvironmentShape> shape = system.environment_shape(env);
+        ASSERT_TRUE(shape) << shape.error().message;
+        EXPECT_EQ(shape->layout, map.layout());
+        EXPECT_EQ(shape->texel_scale.x, map.texel_scale().x);
+        for (const EnvRayDifferential& ray : env_rays(500, 3)) {
+            float want[3], got[3];
+            environment_lookup(map, ray.direction, ray.d_dx, ray.d_dy, EnvLookupOptions{}, want);
+            ASSERT_TRUE(system.environment(env, ray.direction, ray.d_dx, ray.d_dy, {}, got));
+            for (int k = 0; k < 3; ++k) ASSERT_EQ(bits(got[k]), bits(want[k])) << name;
+            const EnvFootprint footprint = compute_env_footprint(
+                map.layout(), map.texel_scale(), ray.direction, ray.d_dx, 0.2f * ray.d_dy);
+            environment_lookup(map, footprint, LookupOptions{}, want);
+            ASSERT_TRUE(system.environment(env, footprint, LookupOptions{}, got));
+            for (int k = 0; k < 3; ++k) ASSERT_EQ(bits(got[k]), bits(want[k])) << name;
+            environment_bilinear(map, ray.direction, 0, want);
+            ASSERT_TRUE(system.environment_sample(env, ray.direction, got));
+            for (int k = 0; k < 3; ++k) ASSERT_EQ(bits(got[k]), bits(want[k])) << name;
+        }
+    };
+    for (int pass = 0; pass < 2; ++pass) {
+        check(*ts, latlong_file, latlong);
+        check(*ts, cube_file, cube);
+        check(*ts, sky, latlong);
+    }
+    check(*again, sky, latlong);
+    const TextureSystemStats s = ts->stats();
+    EXPECT_EQ(s.bytes_in_memory, 0u);  // nothing held whole
+    // A 16² tile is 4 KiB: the limit, plus this thread's micro-cache and one lookup's pins.
+    EXPECT_LE(s.peak_bytes, (1u << 20) + 256 * 4096u);
+    EXPECT_GT(s.tiles_loaded,
+              (2u << 20) / 4096);  // more than the maps' texels: evicted, read again
+    EXPECT_EQ(again->stats().bytes_in_memory, 0u);
     int files = 0;
     for (const auto& entry : std::filesystem::directory_iterator(dir / "cache")) {
         ++files;
         EXPECT_TRUE(is_environment_pyramid_file(entry.path())) << entry.path();
     }
     EXPECT_EQ(files, 1);
+    // Whole, for a GPU: the map the file holds.
+    Result<std::shared_ptr<const EnvironmentMap>> whole =
+        ts->environment_map(ts->environment_handle(cube_file));
+    ASSERT_TRUE(whole);
+    EXPECT_EQ((*whole)->face(3).level_image(1).pixels, cube.face(3).level_image(1).pixels);
+}
+
+// A truncated environment pyramid file: an error naming it, reported once; with a missing colour,
+// that colour.
+TEST(TextureSystem, ATruncatedEnvironmentPyramidIsAnErrorNamingIt) {
+    test::TempDir dir;
+    const EnvironmentMap map = load_environment({[&] {
+                                   const auto sky = dir / "sky.exr";
+                                   EXPECT_TRUE(save_image(random_image(256, 128, 3, 5), sky));
+                                   return sky;
+                               }()})
+                                   .value();
+    const std::string file = (dir / "sky_env.exr").string();
+    ASSERT_TRUE(save_environment_pyramid(map, file, 16));
+    std::filesystem::resize_file(file, std::filesystem::file_size(file) * 3 / 4);
+    auto ts = make_system();
+    const float pink[3] = {1, 0, 1};
+    int failed = 0, pink_results = 0;
+    for (const EnvRayDifferential& ray : env_rays(300, 8)) {
+        float out[3];
+        const Status s = ts->environment(file, ray.direction, ray.d_dx, ray.d_dy, {}, out);
+        if (!s) {
+            ++failed;
+            EXPECT_NE(s.error().message.find("'" + file + "'"), std::string::npos)
+                << s.error().message;
+        }
+        ASSERT_TRUE(ts->environment(file, ray.direction, ray.d_dx, ray.d_dy, {}, out, pink));
+        pink_results += out[0] == 1 && out[1] == 0 && out[2] == 1;
+    }
+    EXPECT_GT(failed, 0);
+    EXPECT_GT(pink_results, 0);
+    EXPECT_EQ(ts->take_errors().size(), 1u);
 }
 
 TEST(TextureSystem, RefusesOptionsItCannotHonour) {

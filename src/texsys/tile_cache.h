@@ -8,6 +8,7 @@
 // bytes_resident is what is really held, pinned tiles evicted from the cache included.
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -86,12 +87,45 @@ class TileCache {
 
 // One thread's tiles of one texture system: the micro-cache, the most recent tiles last, which
 // also pins every tile of the lookup in progress (a lookup's taps point into them); and the tiles
-// at hand of its last lookup through tiles, on file `slots_file`, which point into tiles of
-// `recent`: kept for the next lookup on that file until one of those is let go.
+// at hand of its last lookups through tiles, for each of its last few files (an environment map's
+// faces and caps are a file each), which point into tiles of `recent`: kept for the next lookup
+// on that file until one of those is let go (let_go()).
 struct ThreadTiles {
     std::vector<std::pair<TileKey, TilePtr>> recent;
-    detail::TiledTexels::Slots slots;
-    std::uint32_t slots_file = ~std::uint32_t(0);
+
+    // The tiles at hand on `file`: those of its last lookup while none was let go since, else
+    // none (the slots of the file least recently given a new set).
+    detail::TiledTexels::Slots& slots_for(std::uint32_t file) {
+        FileSlots* entry = &files_[last_];  // most lookups are on the file of the last one
+        if (entry->file != file) {
+            entry = nullptr;
+            for (std::size_t i = 0; i < files_.size() && !entry; ++i)
+                if (files_[i].file == file) entry = &files_[last_ = i];
+        }
+        if (!entry) {
+            entry = &files_[last_ = next_victim_];
+            next_victim_ = (next_victim_ + 1) % files_.size();
+            entry->file = file;
+            entry->generation = generation_ - 1;
+        }
+        if (entry->generation != generation_) {
+            entry->slots.clear();
+            entry->generation = generation_;
+        }
+        return entry->slots;
+    }
+    // Tiles of `recent` were let go: every file's tiles at hand may point into them.
+    void let_go() { ++generation_; }
+
+  private:
+    struct FileSlots {
+        std::uint32_t file = ~std::uint32_t(0);
+        std::uint64_t generation = 0;
+        detail::TiledTexels::Slots slots;
+    };
+    std::array<FileSlots, 12> files_;
+    std::size_t last_ = 0, next_victim_ = 0;
+    std::uint64_t generation_ = 1;
 };
 
 // The calling thread's ThreadTiles for the texture system numbered `system` (a number never
