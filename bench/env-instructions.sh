@@ -14,6 +14,14 @@ command -v valgrind >/dev/null || { echo "env-instructions: valgrind is not inst
 [ -x "$driver" ] || { echo "env-instructions: $driver is missing (make build)" >&2; exit 1; }
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
+# OpenImageIO loads libhwy, whose initialiser reads the clock with rdtscp, which valgrind cannot
+# run: its TimerResolution() is replaced by a stub (nothing measured calls it).
+if ldd "$driver" | grep -q libhwy; then
+    printf '#include <cstdint>\nnamespace hwy::platform { uint64_t TimerResolution() { return 1; } }\n' |
+        c++ -x c++ -shared -fPIC -O2 -o "$out/hwy-timer-stub.so" - ||
+        { echo "env-instructions: cannot build the libhwy timer stub" >&2; exit 1; }
+    export LD_PRELOAD="$out/hwy-timer-stub.so${LD_PRELOAD:+:$LD_PRELOAD}"
+fi
 count_one() {  # layout regime form
     local lookups=20000
     [ "$2" = aniso32 ] && lookups=2000  # a long probe line each
