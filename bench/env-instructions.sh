@@ -16,7 +16,7 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 # OpenImageIO loads libhwy, whose initialiser reads the clock with rdtscp, which valgrind cannot
 # run: its TimerResolution() is replaced by a stub (nothing measured calls it).
-if ldd "$driver" | grep -q libhwy; then
+if ldd "$driver" | grep libhwy >/dev/null; then  # (not grep -q: pipefail, SIGPIPE)
     printf '#include <cstdint>\nnamespace hwy::platform { uint64_t TimerResolution() { return 1; } }\n' |
         c++ -x c++ -shared -fPIC -O2 -o "$out/hwy-timer-stub.so" - ||
         { echo "env-instructions: cannot build the libhwy timer stub" >&2; exit 1; }
