@@ -18,6 +18,26 @@ Error cannot_read(const std::filesystem::path& file, const std::string& why) {
     return Error{"cannot read '" + file.string() + "': " + why};
 }
 
+// An environment pyramid file opened, and its layout; an Error naming it where it cannot be opened
+// or is not one.
+struct OpenedPyramid {
+    std::unique_ptr<OIIO::ImageInput> in;
+    EnvLayout layout;
+};
+Result<OpenedPyramid> open_pyramid(const std::filesystem::path& file) {
+    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(file.string());
+    if (!in) {
+        Result<Image> image = load_image(file);  // names the cause best (no such file, …)
+        return image ? cannot_read(file, OIIO::geterror()) : image.error();
+    }
+    const std::optional<EnvLayout> layout =
+        parse_env_layout(in->spec().get_string_attribute(kLayoutAttribute));
+    if (!layout)
+        return cannot_read(file,
+                           "it is not an environment pyramid (footprint maketx --env writes them)");
+    return OpenedPyramid{std::move(in), *layout};
+}
+
 // A pyramid's levels as images.
 std::vector<Image> levels_of(const MipPyramid& pyramid) {
     std::vector<Image> levels;
@@ -57,16 +77,10 @@ Status save_environment_pyramid(const EnvironmentMap& map, const std::filesystem
 }
 
 Result<EnvironmentMap> load_environment_pyramid(const std::filesystem::path& file) {
-    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(file.string());
-    if (!in) {
-        Result<Image> image = load_image(file);  // names the cause best (no such file, …)
-        return image ? cannot_read(file, OIIO::geterror()) : image.error();
-    }
-    const std::optional<EnvLayout> layout =
-        parse_env_layout(in->spec().get_string_attribute(kLayoutAttribute));
-    if (!layout)
-        return cannot_read(file,
-                           "it is not an environment pyramid (footprint maketx --env writes them)");
+    Result<OpenedPyramid> opened = open_pyramid(file);
+    if (!opened) return opened.error();
+    OIIO::ImageInput* in = opened->in.get();
+    const EnvLayout layout = opened->layout;
     std::vector<std::vector<Image>> parts;
     while (in->seek_subimage(static_cast<int>(parts.size()), 0)) {
         Result<std::vector<Image>> part = read_part(*in, static_cast<int>(parts.size()));
@@ -74,11 +88,11 @@ Result<EnvironmentMap> load_environment_pyramid(const std::filesystem::path& fil
         parts.push_back(std::move(*part));
     }
     (void)in->geterror();
-    const auto faces = static_cast<std::size_t>(face_count(*layout));
+    const auto faces = static_cast<std::size_t>(face_count(layout));
     if (parts.size() < faces) return cannot_read(file, "parts are missing");
     const std::vector<std::vector<Image>> caps(parts.begin() + faces, parts.end());
     parts.resize(faces);
-    Result<EnvironmentMap> map = EnvironmentMap::from_face_levels(*layout, parts, caps);
+    Result<EnvironmentMap> map = EnvironmentMap::from_face_levels(layout, parts, caps);
     if (!map) return cannot_read(file, map.error().message);
     return map;
 }
@@ -117,29 +131,23 @@ Result<TiledShape> part_shape(OIIO::ImageInput& in, int part, int tile_log2, Wra
 }  // namespace
 
 Result<TiledEnvShape> environment_pyramid_shape(const std::filesystem::path& file, int tile_log2) {
-    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(file.string());
-    if (!in) {
-        Result<Image> image = load_image(file);  // names the cause best (no such file, …)
-        return image ? cannot_read(file, OIIO::geterror()) : image.error();
-    }
-    const std::optional<EnvLayout> layout =
-        parse_env_layout(in->spec().get_string_attribute(kLayoutAttribute));
-    if (!layout)
-        return cannot_read(file,
-                           "it is not an environment pyramid (footprint maketx --env writes them)");
+    Result<OpenedPyramid> opened = open_pyramid(file);
+    if (!opened) return opened.error();
+    OIIO::ImageInput* in = opened->in.get();
+    const EnvLayout layout = opened->layout;
     TiledEnvShape shape;
-    shape.layout = *layout;
-    const int faces = face_count(*layout);
+    shape.layout = layout;
+    const int faces = face_count(layout);
     int parts = 0;
     while (in->seek_subimage(parts, 0)) ++parts;
     (void)in->geterror();
     shape.polar_caps = parts == faces + 2;
-    if (parts < faces || (parts != faces && !(shape.polar_caps && *layout == EnvLayout::latlong)))
+    if (parts < faces || (parts != faces && !(shape.polar_caps && layout == EnvLayout::latlong)))
         return cannot_read(file, std::to_string(parts) + " parts do not make a " +
-                                     env_layout_name(*layout) + " map");
+                                     env_layout_name(layout) + " map");
     for (int p = 0; p < parts; ++p) {
         // As EnvironmentMap::from_face_levels() holds them.
-        const bool seam = *layout == EnvLayout::latlong && p < faces;
+        const bool seam = layout == EnvLayout::latlong && p < faces;
         Result<TiledShape> part = part_shape(
             *in, p, tile_log2, seam ? WrapMode::repeat : WrapMode::clamp, WrapMode::clamp);
         if (!part) return cannot_read(file, part.error().message);
@@ -149,9 +157,9 @@ Result<TiledEnvShape> environment_pyramid_shape(const std::filesystem::path& fil
         if (part->channels != (p == 0 ? part->channels : shape.parts[0].channels))
             return cannot_read(file, "part " + std::to_string(p) + " differs in channels");
         if (p < faces && (level0.width != first.width || level0.height != first.height ||
-                          (*layout != EnvLayout::latlong && !square)))
+                          (layout != EnvLayout::latlong && !square)))
             return cannot_read(file, "face " + std::to_string(p) + " is not the size of face 0" +
-                                         (*layout != EnvLayout::latlong ? " or not square" : ""));
+                                         (layout != EnvLayout::latlong ? " or not square" : ""));
         if (p >= faces &&
             (!square || (p > faces && level0.width != shape.parts[faces].levels[0].width)))
             return cannot_read(file, "the polar caps are not square faces of one size");

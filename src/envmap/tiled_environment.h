@@ -30,6 +30,11 @@ struct TiledEnvShape {
     bool polar_caps = false;
 
     int face_count() const { return static_cast<int>(parts.size()) - (polar_caps ? 2 : 0); }
+    int channels() const { return parts[0].channels; }
+    Vec2 texel_scale() const {  // S = (W0, H0) of a face's level 0
+        return {static_cast<float>(parts[0].levels[0].width),
+                static_cast<float>(parts[0].levels[0].height)};
+    }
 };
 
 // The shape of `map`'s pyramids in tiles of 2^tile_log2 texels: its faces' level sizes and wrap
@@ -61,11 +66,8 @@ class TiledEnvironment {
     // What the environment lookups ask of a map (as EnvironmentMap's members of the same names).
     EnvLayout layout() const { return shape_.layout; }
     int face_count() const { return shape_.face_count(); }
-    int channels() const { return shape_.parts[0].channels; }
-    Vec2 texel_scale() const {
-        const MipPyramid::LevelView& level0 = shape_.parts[0].levels[0];
-        return {static_cast<float>(level0.width), static_cast<float>(level0.height)};
-    }
+    int channels() const { return shape_.channels(); }
+    Vec2 texel_scale() const { return shape_.texel_scale(); }
     const TiledTexels& face(int i) const { return part(i); }
     const TiledTexels* polar_cap(int pole) const {
         return shape_.polar_caps ? &part(face_count() + pole) : nullptr;

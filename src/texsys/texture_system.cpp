@@ -394,16 +394,15 @@ class TextureSystemImpl final : public TextureSystem {
         float result[MipPyramid::kMaxChannels];
         if (env->value) {
             lookup(*env->value, result);
-            write_channels(result, env->value->channels(), out);
-            return {};
+        } else {
+            {
+                const EnvLookupTiles tiles(cache_, texsys::thread_tiles(id_), *env);
+                lookup(detail::TiledEnvironment(env->shape, tiles.sources()), result);
+            }
+            if (std::optional<Error> failed = env->read_error())
+                return missing_or(*failed, env->error_reported, out, missing);
         }
-        {
-            const EnvLookupTiles tiles(cache_, texsys::thread_tiles(id_), *env);
-            lookup(detail::TiledEnvironment(env->shape, tiles.sources()), result);
-        }
-        if (std::optional<Error> failed = env->read_error())
-            return missing_or(*failed, env->error_reported, out, missing);
-        write_channels(result, env->shape.parts[0].channels, out);
+        write_channels(result, env->shape_of.channels, out);
         return {};
     }
 
@@ -447,18 +446,13 @@ class TextureSystemImpl final : public TextureSystem {
         entry.file = file;
         entry.shape = std::move(*shape);
         // The mean colour from each face's 1×1 level, read now (outside the cache).
-        const MipPyramid::LevelView& level0 = entry.shape.parts[0].levels[0];
-        const int channels = entry.shape.parts[0].channels, faces = entry.shape.face_count();
-        entry.shape_of = {entry.shape.layout,
-                          {static_cast<float>(level0.width), static_cast<float>(level0.height)},
-                          channels};
-        for (int f = 0; f < faces; ++f) {
+        entry.shape_of = {entry.shape.layout, entry.shape.texel_scale(), entry.shape.channels()};
+        for (int f = 0; f < entry.shape.face_count(); ++f) {
             TextureHandle& part = *entry.parts[f];
             float texel[texel_stride(MipPyramid::kMaxChannels)];
             part.read_tile(part.info.levels - 1, 0, 0, texel);
             if (part.read_failed) return void(entry.error = *part.read_error);
-            for (int c = 0; c < channels; ++c)
-                entry.shape_of.mean[c] += texel[c] / static_cast<float>(faces);
+            add_face_mean(texel, entry.shape.face_count(), entry.shape_of);
         }
     }
 
@@ -531,11 +525,14 @@ class TextureSystemImpl final : public TextureSystem {
         entry.shape_of = {map.layout(), map.texel_scale(), map.channels()};
         for (int f = 0; f < map.face_count(); ++f) {
             const MipPyramid& face = map.face(f);
-            const float* texel = face.texel(face.max_level(), 0, 0);
-            for (int c = 0; c < map.channels(); ++c)
-                entry.shape_of.mean[c] += texel[c] / static_cast<float>(map.face_count());
+            add_face_mean(face.texel(face.max_level(), 0, 0), map.face_count(), entry.shape_of);
             bytes_in_memory_ += pyramid_bytes(face);
         }
+    }
+    // One face's 1×1 texel's share of the map's mean colour (EnvironmentShape::mean).
+    static void add_face_mean(const float* texel, int faces, EnvironmentShape& shape) {
+        for (int c = 0; c < shape.channels; ++c)
+            shape.mean[c] += texel[c] / static_cast<float>(faces);
     }
     void held_whole(BumpHandle& entry) {
         bytes_in_memory_ += pyramid_bytes(entry.value->moments());
