@@ -1,0 +1,295 @@
+#include "render/sample_shader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "bump/local_frame.h"
+#include "envmap/env_footprint.h"
+#include "math/sample_patterns.h"
+#include "shading/blinn_phong.h"
+
+namespace footprint::detail {
+
+namespace {
+
+Vec3 to_float(Vec3d v) {
+    return vec3_cast<float>(v);
+}
+std::array<float, 3> to_array(Vec3 v) {
+    return {v.x, v.y, v.z};
+}
+
+// A standard normal pair from two uniforms (Box–Muller).
+Vec2d gaussian_pair(double u1, double u2) {
+    const double r = std::sqrt(-2.0 * std::log(std::max(u1, 1e-12)));
+    const double phi = 2.0 * std::numbers::pi * u2;
+    return {r * std::cos(phi), r * std::sin(phi)};
+}
+
+float schlick_fresnel(float f0, float cos_theta) {
+    const float c = std::clamp(1.0f - cos_theta, 0.0f, 1.0f);
+    const float c2 = c * c;
+    return f0 + (1.0f - f0) * c2 * c2 * c;
+}
+
+// The scene's maps are valid once prepared (prepare_render_scene() checked them), so the lookups'
+// Status is not looked at: only a tiled texture's tile that cannot be read fails, and that gives
+// kMissing here and is reported by the texture system's take_errors().
+constexpr float kMissing[3] = {0, 0, 0};
+
+// R2 quasi-random offsets (Roberts 2018), Cranley–Patterson rotated per pixel.
+constexpr double kR2a = 0.7548776662466927, kR2b = 0.5698402909980532;
+
+std::uint32_t pixel_seed(int x, int y, std::uint32_t seed) {
+    return hash32(seed ^ hash32(static_cast<std::uint32_t>(y) ^
+                                hash32(static_cast<std::uint32_t>(x) + 0x9e3779b9u)));
+}
+
+}  // namespace
+
+ModePolicy policy_of(FilterMode mode) {
+    ModePolicy policy;
+    switch (mode) {
+        case FilterMode::bilinear:
+            policy.filtered = false;
+            policy.lookup.filter = TextureFilter::bilinear;
+            break;
+        case FilterMode::reference:
+            policy.filtered = false;
+            policy.sample_micro_roughness = true;
+            policy.lookup.filter = TextureFilter::bilinear;
+            break;
+        case FilterMode::trilinear:
+            policy.lookup.filter = TextureFilter::trilinear;
+            break;
+        case FilterMode::fa:
+            policy.lookup.filter = TextureFilter::footprint_assembly;
+            break;
+        case FilterMode::fa_rough:
+            policy.roughness = true;
+            policy.lookup.filter = TextureFilter::footprint_assembly;
+            break;
+        case FilterMode::ewa_rough:
+            policy.roughness = true;
+            policy.lookup.filter = TextureFilter::ewa;
+            break;
+    }
+    return policy;
+}
+
+SampleShader::SampleShader(const RenderScene& scene, const RenderOptions& options)
+    : scene_(scene),
+      textures_(scene.textures()),
+      options_(options),
+      policy_(policy_of(options.filter)) {}
+
+Rgb SampleShader::background(const RayDifferential& ray) {
+    const RenderEnvironment* env = scene_.environment();
+    if (!env) {
+        const Vec3 b = scene_.desc().background;
+        return {b.x, b.y, b.z};
+    }
+    ++lookups;
+    Rgb out{};
+    if (policy_.filtered) {
+        static_cast<void>(textures_.environment(
+            env->map, to_float(ray.ray.direction), to_float(ray.dddx), to_float(ray.dddy),
+            EnvLookupOptions{policy_.lookup, env->rotation}, out));
+    } else {
+        static_cast<void>(textures_.environment_sample(
+            env->map, env->rotation * to_float(ray.ray.direction), out));
+    }
+    return out;
+}
+
+std::optional<SurfacePoint> SampleShader::trace(const RayDifferential& ray, Vec2d random) {
+    const std::optional<SceneHit> hit = scene_.intersect(ray.ray, 1e-9, INFINITY);
+    if (!hit) return std::nullopt;
+    const SurfaceHit& s = hit->surface;
+    SurfacePoint point;
+    point.material = hit->material;
+    point.object = s.object;
+    const RenderMaterial& material = *hit->material;
+    const MaterialDesc& desc = material.desc;
+
+    // Ray differentials → texture coordinates and their derivatives. (s, t) = (u, 1 − v), wrapped
+    // in double before rounding (uv grows without bound on an infinite plane).
+    if (policy_.filtered) point.diff = surface_differentials(ray, s);
+    const SurfaceDifferentials& diff = point.diff;
+    TextureCoords coords;
+    const double t_coord = 1.0 - s.uv.y;
+    coords.s = static_cast<float>(s.uv.x - std::floor(s.uv.x));
+    coords.t = static_cast<float>(t_coord - std::floor(t_coord));
+    if (diff.valid) {
+        coords.dsdx = static_cast<float>(diff.duvdx.x);
+        coords.dtdx = static_cast<float>(-diff.duvdx.y);
+        coords.dsdy = static_cast<float>(diff.duvdy.x);
+        coords.dtdy = static_cast<float>(-diff.duvdy.y);
+    }
+
+    point.base = {desc.base_color.x, desc.base_color.y, desc.base_color.z};
+    if (material.base_color_map) {
+        Rgb texel;
+        static_cast<void>(
+            textures_.texture(material.base_color_map, coords, policy_.lookup, texel, kMissing));
+        ++lookups;
+        if (material.base_color_grey) texel[1] = texel[2] = texel[0];
+        for (int c = 0; c < 3; ++c) point.base[c] *= texel[c];
+    }
+
+    // Bump: mean slope b and roughness K_b of the filtered region (spec §5.4).
+    point.roughness = material.micro_roughness;
+    if (material.bump) {
+        SlopeStatistics stats;
+        const BumpLookupOptions bump_options(policy_.lookup, material.bump_strength,
+                                             material.bump_micro_roughness);
+        static_cast<void>(textures_.bump(material.bump, coords, bump_options, &stats));
+        ++lookups;
+        point.slope = stats.mean;
+        point.roughness = stats.covariance;
+    }
+    if (policy_.sample_micro_roughness && desc.micro_roughness > 0) {
+        const Vec2d z = gaussian_pair(random.x, random.y);
+        point.slope = point.slope +
+                      desc.micro_roughness * Vec2{static_cast<float>(z.x), static_cast<float>(z.y)};
+    }
+    if (!policy_.roughness) point.roughness = Sym2{};
+
+    // A frame is needed wherever there are slopes: a bump map or micro-roughness.
+    point.bumped = material.bump != nullptr || desc.micro_roughness > 0;
+    if (point.bumped) point.frame = bump_frame(desc.bump, *hit);
+
+    // Face the viewer: a surface seen from behind is shaded as its mirror image (n, ∂n and the
+    // tangent frame negated, so n_m = −(n + T b)).
+    point.p = to_float(s.p);
+    point.n = to_float(s.n), point.dndx = to_float(diff.dndx), point.dndy = to_float(diff.dndy);
+    point.v = to_float(ray.ray.origin - s.p);
+    if (dot(to_float(s.geometric_normal), point.v) < 0) {
+        point.n = -point.n, point.dndx = -point.dndx, point.dndy = -point.dndy;
+        point.frame.frame.t1 = -point.frame.frame.t1, point.frame.frame.t2 = -point.frame.frame.t2;
+    }
+    return point;
+}
+
+ShadingFactors SampleShader::shade(const SurfacePoint& point) {
+    const MaterialDesc& desc = point.material->desc;
+    const Vec3 v_hat = normalize(point.v);
+    const Vec2 b_t = point.frame.slope_sign * point.slope;
+    const Vec3 n_m = point.bumped ? perturbed_normal(point.n, point.frame.frame, b_t) : point.n;
+    Vec3 n_hat = normalize(n_m);
+    if (dot(n_hat, v_hat) <= 0) n_hat = point.n;  // a slope tilted past the viewer: drop it (§4)
+    if (dot(n_hat, v_hat) <= 0) n_hat = v_hat;
+
+    ShadingFactors out;
+    out.base = point.base;
+    add_lights(point, n_hat, v_hat, out);
+    const RenderEnvironment* env = scene_.environment();
+    if (env && desc.diffuse > 0) {
+        for (int c = 0; c < 3; ++c) out.diffuse[c] += desc.diffuse * env->mean[c];
+    }
+    if (env && desc.mirror > 0) add_reflection(point, n_hat, v_hat, out);
+    return out;
+}
+
+// Lambert + Blinn-Phong (rough in the rough modes) for every light.
+void SampleShader::add_lights(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat,
+                              ShadingFactors& out) const {
+    const MaterialDesc& desc = point.material->desc;
+    Vec3 e1, e2;
+    tangent_basis(n_hat, e1, e2);
+    const Sym2 k_e = point.bumped && policy_.roughness
+                         ? covariance_in_frame(point.roughness, point.frame.frame, e1, e2)
+                         : point.roughness;
+    const RoughShadingModel model =
+        policy_.roughness ? RoughShadingModel::gaussian : RoughShadingModel::plain;
+    for (const LightDesc& light : scene_.desc().lights) {
+        Vec3 l;
+        float scale = 1;
+        if (light.type == LightType::directional) {
+            l = normalize(-to_float(light.direction));
+        } else {
+            const Vec3 d = to_float(light.position) - point.p;
+            const float d2 = dot(d, d);
+            if (!(d2 > 0)) continue;
+            l = d / std::sqrt(d2);
+            scale = 1.0f / d2;
+        }
+        const float cos_l = dot(n_hat, l);
+        if (cos_l <= 0) continue;
+        const Vec3 h = normalize(l + v_hat);
+        const float spec =
+            desc.specular > 0
+                ? desc.specular * specular(model, to_array(n_hat), to_array(e1), to_array(e2),
+                                           to_array(h), k_e, desc.shininess)
+                : 0.0f;
+        const float diffuse = desc.diffuse * cos_l;
+        const float rgb[3] = {light.color.x, light.color.y, light.color.z};
+        for (int c = 0; c < 3; ++c) {
+            out.diffuse[c] += scale * rgb[c] * diffuse;
+            out.highlight[c] += scale * rgb[c] * spec;
+        }
+    }
+}
+
+// The mirror reflection: the environment filtered over the footprint of spec §2 (the curvature,
+// the aperture and, in the rough modes, the slopes' covariance), or sampled in the reflected
+// direction; weighted by Schlick's Fresnel.
+void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat,
+                                  ShadingFactors& out) {
+    const RenderEnvironment& env = *scene_.environment();
+    const MaterialDesc& desc = point.material->desc;
+    if (policy_.filtered) {
+        ReflectionGeometry geometry;
+        geometry.v = point.v;
+        geometry.dv_dx = -to_float(point.diff.dpdx);  // the eye is fixed: ∂v = −∂p
+        geometry.dv_dy = -to_float(point.diff.dpdy);
+        geometry.n = point.n;
+        geometry.dn_dx = point.dndx;
+        geometry.dn_dy = point.dndy;
+        if (point.bumped) {
+            geometry.bump_slope = point.frame.slope_sign * point.slope;
+            geometry.t1 = point.frame.frame.t1;
+            geometry.t2 = point.frame.frame.t2;
+            geometry.roughness = roughness_factor(point.roughness);
+        }
+        EnvFootprintOptions env_options;
+        env_options.kappa = options_.kappa;
+        env_options.rotation = env.rotation;
+        out.env_footprint =
+            compute_env_footprint(env.layout, env.texel_scale, geometry, env_options);
+        out.map_reflection = normalize(out.env_footprint->map_direction);
+        static_cast<void>(
+            textures_.environment(env.map, *out.env_footprint, policy_.lookup, out.reflection));
+    } else {
+        const Vec3 r = 2.0f * dot(n_hat, v_hat) * n_hat - v_hat;
+        out.map_reflection = env.rotation * r;
+        static_cast<void>(
+            textures_.environment_sample(env.map, out.map_reflection, out.reflection));
+    }
+    ++lookups;
+    out.fresnel = desc.mirror * schlick_fresnel(desc.fresnel_f0, dot(n_hat, v_hat));
+}
+
+RayDifferential sample_ray(const PinholeCamera& camera, const RenderOptions& options, int x, int y,
+                           int k, Vec2d& random) {
+    const int n = std::max(1, options.spp);
+    const bool centre_only = n == 1 && options.filter != FilterMode::reference;
+    const std::uint32_t seed = pixel_seed(x, y, options.seed);
+    double ox = 0, oy = 0;
+    if (!centre_only) {
+        const double rot_x = unit_float(hash32(seed)), rot_y = unit_float(hash32(seed + 1));
+        const double ux = std::fmod(rot_x + kR2a * (k + 0.5), 1.0);
+        const double uy = std::fmod(rot_y + kR2b * (k + 0.5), 1.0);
+        ox = gaussian_pixel_offset(ux), oy = gaussian_pixel_offset(uy);
+    }
+    RayDifferential ray = camera.ray(x + 0.5 + ox, y + 0.5 + oy);
+    const double differential_scale = 1.0 / std::sqrt(static_cast<double>(n));
+    ray.dodx = differential_scale * ray.dodx, ray.dody = differential_scale * ray.dody;
+    ray.dddx = differential_scale * ray.dddx, ray.dddy = differential_scale * ray.dddy;
+    const std::uint32_t h = hash32(seed + 2 + static_cast<std::uint32_t>(k));
+    random = {unit_float(h), unit_float(hash32(h))};
+    return ray;
+}
+
+}  // namespace footprint::detail

@@ -1,0 +1,104 @@
+// render/sample_shader.h — (private) the colour of one camera sample, in the steps of
+// render/renderer.h's "one pixel's journey", for render() and the error budget (error_budget.h).
+//
+//   trace()    the nearest hit and what the maps say there: base colour c, mean slope b and its
+//              covariance K_b (filtered, or finest-level with the micro-roughness sampled), the
+//              surface's normal, tangent frame and ray differentials, turned to face the viewer;
+//   shade()    the factors of the shading formula at that point (ShadingFactors);
+//   combine()  the sample's colour from its factors: c ⊙ D + S + F·R.
+// The error budget takes each factor (or the slope moments) from the reference path and the rest
+// from a filtered mode, which is why the steps are separate.
+#pragma once
+
+#include <array>
+#include <optional>
+
+#include "render/bump_frame.h"
+#include "render/camera.h"
+#include "render/render_scene.h"
+#include "render/renderer.h"
+#include "scene/ray_differentials.h"
+
+namespace footprint::detail {
+
+using Rgb = std::array<float, 3>;
+
+// What one mode does at every lookup.
+struct ModePolicy {
+    bool filtered = true;    // use the ray differentials (false: finest-level bilinear)
+    bool roughness = false;  // the roughness pyramid enters the env footprint and the highlights
+    bool sample_micro_roughness = false;  // reference: micro-roughness as random slopes
+    LookupOptions lookup;
+};
+ModePolicy policy_of(FilterMode mode);
+
+// A hit and what the maps say there: the inputs of shading.
+struct SurfacePoint {
+    const RenderMaterial* material = nullptr;
+    int object = -1;      // SurfaceHit::object
+    Rgb base{};           // c: the material's colour × its (filtered) texture
+    Vec2 slope;           // b: the mean bump slope (plus a sampled micro-slope in the reference)
+    Sym2 roughness;       // K_b: the slopes' covariance (zero where the mode ignores roughness)
+    bool bumped = false;  // a bump map or micro-roughness: the normal is perturbed in `frame`
+    BumpFrameAtHit frame;
+    // Facing the viewer (a surface seen from behind is shaded as its mirror image).
+    Vec3 p, n, dndx, dndy;  // n any length, ∂n per pixel step
+    Vec3 v;                 // surface → eye
+    SurfaceDifferentials diff;
+};
+
+// The factors of one sample's colour: combine() = c ⊙ D + S + F·R.
+struct ShadingFactors {
+    Rgb base{};         // c
+    Rgb diffuse{};      // D = diffuse·(Σ_i E_i max(0, n̂·l̂_i) + Ē)
+    Rgb highlight{};    // S = specular·Σ_i E_i S(n̂, ĥ_i, K_b)
+    float fresnel = 0;  // F = mirror·Schlick(n̂·v̂)
+    Rgb reflection{};   // R = the environment in the reflected direction (filtered or not)
+    // How R was looked up: the unit reflected direction in map space, and (filtered modes) the
+    // footprint.
+    Vec3 map_reflection;
+    std::optional<EnvFootprint> env_footprint;
+};
+
+inline Rgb combine(const ShadingFactors& f) {
+    Rgb out;
+    for (int c = 0; c < 3; ++c) {
+        out[c] = f.base[c] * f.diffuse[c] + f.highlight[c] + f.fresnel * f.reflection[c];
+    }
+    return out;
+}
+
+class SampleShader {
+  public:
+    SampleShader(const RenderScene& scene, const RenderOptions& options);
+
+    // The colour seen along one camera ray; `random` = two uniforms for the micro-roughness.
+    Rgb shade(const RayDifferential& ray, Vec2d random) {
+        const std::optional<SurfacePoint> point = trace(ray, random);
+        return point ? combine(shade(*point)) : background(ray);
+    }
+
+    // The hit along `ray` and its inputs; nullopt if the ray escapes.
+    std::optional<SurfacePoint> trace(const RayDifferential& ray, Vec2d random);
+    ShadingFactors shade(const SurfacePoint& point);
+    Rgb background(const RayDifferential& ray);
+
+    std::uint64_t lookups = 0;
+
+  private:
+    void add_lights(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat, ShadingFactors& out) const;
+    void add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat, ShadingFactors& out);
+
+    const RenderScene& scene_;
+    TextureSystem& textures_;
+    const RenderOptions& options_;
+    ModePolicy policy_;
+};
+
+// The ray of sample k of n in pixel (x, y): the pixel centre for a filtered mode's single sample,
+// else a Gaussian-warped R2 point (σ = ½ pixel) with its differentials scaled by 1/√n; `random`
+// gets the sample's two uniforms for the micro-roughness.
+RayDifferential sample_ray(const PinholeCamera& camera, const RenderOptions& options, int x, int y,
+                           int k, Vec2d& random);
+
+}  // namespace footprint::detail
