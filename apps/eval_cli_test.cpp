@@ -2,6 +2,7 @@
 // rows, the reference cache keyed by scene content, and the report shown in headless Chromium.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +15,7 @@
 #include "eval_command.h"
 #include "eval_report.h"
 #include "image/image_io.h"
+#include "render/error_budget.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
 #include "scene/scene_file.h"
@@ -147,6 +149,44 @@ TEST_F(EvalCommandTest, BadArgumentsNameTheProblem) {
     o.frames = 1;
     EXPECT_EQ(run(o, &err), 1);
     EXPECT_NE(err.find("--frames"), std::string::npos) << err;
+}
+
+TEST_F(EvalCommandTest, TheBudgetWritesOneRowPerSceneAndTerm) {
+    EvalCommandOptions o = small({"secret_writing", "water"});
+    o.budget = true;
+    ASSERT_EQ(run(o), 0);
+    std::ifstream in(o.out_dir / "budget.json");
+    const nlohmann::json budget = nlohmann::json::parse(in);
+    EXPECT_EQ(budget["filter"], "fa-rough");
+    ASSERT_EQ(budget["scenes"].size(), 2u);
+    for (const nlohmann::json& scene : budget["scenes"]) {
+        const nlohmann::json& terms = scene["terms"];
+        ASSERT_EQ(terms.size(), all_budget_terms().size() + 1);
+        EXPECT_EQ(terms[0]["term"], "fa-rough");
+        EXPECT_TRUE(terms[0]["removed_interior"].is_null());
+        const double mode = terms[0]["rmse"].get<double>();
+        EXPECT_GT(mode, 0);
+        for (std::size_t i = 0; i < all_budget_terms().size(); ++i) {
+            const std::string name = budget_term_name(all_budget_terms()[i]);
+            EXPECT_EQ(terms[i + 1]["term"], name);
+            EXPECT_TRUE(fs::is_regular_file(o.out_dir / scene["name"].get<std::string>() /
+                                            ("budget_" + name + ".png")));
+        }
+    }
+    // The secret writing is a textured plane: its texture term removes (nearly) all the error.
+    const nlohmann::json& writing = budget["scenes"][0]["terms"];
+    EXPECT_EQ(writing[1]["term"], "texture");
+    EXPECT_GT(writing[1]["removed_interior"].get<double>(), 0.99);
+    std::ifstream csv(o.out_dir / "budget.csv");
+    const std::string text((std::istreambuf_iterator<char>(csv)), {});
+    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'),
+              static_cast<long>(1 + 2 * (all_budget_terms().size() + 1)));
+
+    std::string err;
+    o.budget_filter = "reference";
+    EXPECT_EQ(run(o, &err), 1);
+    EXPECT_NE(err.find("--budget-filter: 'reference' is not a filtered mode"), std::string::npos)
+        << err;
 }
 
 // A textured floor to the horizon (fine checks alias) under a sphere: pixels whose samples vary.

@@ -13,6 +13,7 @@
 #include "cli_options.h"
 #include "command_util.h"
 #include "demo_scenes.h"
+#include "eval_budget.h"
 #include "eval_report.h"
 #include "image/color.h"
 #include "image/image_io.h"
@@ -169,6 +170,7 @@ std::optional<std::string> option_problem(const EvalCommandOptions& options) {
 }  // namespace
 
 int run_eval_command(const EvalCommandOptions& options) {
+    if (options.budget) return run_error_budget_command(options);
     if (const auto problem = option_problem(options)) return fail(*problem);
     std::vector<std::string> names = options.scenes;
     if (names.empty()) names = demo_scene_names();

@@ -4,6 +4,7 @@
 //   footprint eval [SCENE...] --out DIR [--size W] [--reference-spp N] [--spp-list 1,4,16,64]
 //                  [--frames N] [--flicker-reference-spp N] [--threads N] [--no-browser-check]
 //                  [--quiet]
+//   footprint eval --budget [SCENE...] --out DIR [--budget-filter MODE] ... (apps/eval_budget.h)
 //
 // SCENE is a built-in demo name (apps/demo_scenes.h; default: all of them) or a scene file
 // (.json). For each scene it renders
@@ -54,6 +55,10 @@ struct EvalCommandOptions {
     int threads = 0;
     bool browser_check = true;
     bool quiet = false;
+    // --budget: the error budget of one filtered mode instead (apps/eval_budget.h), with
+    // reference_spp samples.
+    bool budget = false;
+    std::string budget_filter = "fa-rough";  // a filtered mode's name (renderer.h)
 };
 int run_eval_command(const EvalCommandOptions& options);
 

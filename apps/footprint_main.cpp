@@ -239,6 +239,14 @@ int run(int argc, char** argv) {
     eval_cmd->add_flag("--no-browser-check", eval_no_browser,
                        "Do not open the report in headless Chromium");
     eval_cmd->add_flag("--quiet,-q", eval.quiet, "No progress output");
+    eval_cmd->add_flag("--budget", eval.budget,
+                       "The error budget instead: each term of --budget-filter's pixel taken from "
+                       "the reference in turn (docs/evaluation.md)");
+    eval_cmd
+        ->add_option("--budget-filter", eval.budget_filter,
+                     "The filtered mode the budget examines (bilinear, trilinear, fa, fa-rough, "
+                     "ewa-rough)")
+        ->capture_default_str();
 
     footprint::RenderCommandOptions render;
     std::string render_scene, render_output;

@@ -47,19 +47,27 @@ AxisGrid axis_grid(double texels_per_sigma, const EnvReferenceOptions& options) 
 }  // namespace
 
 SphereGaussian sphere_gaussian_from_ray_differentials(Vec3d r, Vec3d dr_dx, Vec3d dr_dy) {
+    const Vec3d spread[2] = {dr_dx, dr_dy};
+    return sphere_gaussian_from_spread(r, spread);
+}
+
+SphereGaussian sphere_gaussian_from_spread(Vec3d r, std::span<const Vec3d> spread) {
     SphereGaussian g;
     const double length_r = length(r);
     if (!is_finite(r) || !(length_r > 0)) return g;  // direction +z, a point
     const Vec3d n = r / length_r;
     g.direction = n;
-    if (!is_finite(dr_dx) || !is_finite(dr_dy)) return g;
-    // The pixel steps on the unit sphere, in a tangent basis (u, v) at n: P ∂r/∂x / |r| etc.
+    for (const Vec3d& s : spread) {
+        if (!is_finite(s)) return g;
+    }
+    // Σ = ¼ Σ_i s_i s_iᵀ on the unit sphere (P s_i / |r|), in a tangent basis (u, v) at n,
+    // principal axes by the robust form of spec §2.7.
     const Vec3d u = perpendicular(n), v = cross(n, u);
-    const double x0 = dot(dr_dx, u) / length_r, x1 = dot(dr_dx, v) / length_r;
-    const double y0 = dot(dr_dy, u) / length_r, y1 = dot(dr_dy, v) / length_r;
-    // Σ = ¼ (d_x d_xᵀ + d_y d_yᵀ) in (u, v), principal axes by the robust form of spec §2.7.
-    const double k11 = 0.25 * (x0 * x0 + y0 * y0), k12 = 0.25 * (x0 * x1 + y0 * y1),
-                 k22 = 0.25 * (x1 * x1 + y1 * y1);
+    double k11 = 0, k12 = 0, k22 = 0;
+    for (const Vec3d& s : spread) {
+        const double a = dot(s, u) / length_r, b = dot(s, v) / length_r;
+        k11 += 0.25 * a * a, k12 += 0.25 * a * b, k22 += 0.25 * b * b;
+    }
     const double w = std::hypot(k11 - k22, 2 * k12);
     const double major_sq = 0.5 * (k11 + k22 + w);
     if (!(major_sq > 0) || !std::isfinite(major_sq)) return g;

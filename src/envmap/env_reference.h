@@ -43,6 +43,8 @@
 // tests, benchmark error figures and reference renders; thread-safe (reads the map only).
 #pragma once
 
+#include <span>
+
 #include <footprint/envmap/environment_map.h>
 #include <footprint/math/vec3.h>
 
@@ -62,6 +64,11 @@ struct SphereGaussian {
 // P)/|r|² with P = I − r̂r̂ᵀ, axes = its principal axes (√eigenvalue · eigenvector; axis1 the major).
 // Non-finite or zero r gives direction +z; non-finite differentials give a point.
 SphereGaussian sphere_gaussian_from_ray_differentials(Vec3d r, Vec3d dr_dx, Vec3d dr_dy);
+
+// The same for any number of spread vectors s_i (changes of r, at r's scale): Σ = ¼ Σ_i P s_i s_iᵀ
+// P/|r|². An EnvFootprint's map-space vectors (map_dr_dx, map_dr_dy, map_roughness1,
+// map_roughness2 at map_direction) give its whole footprint K = K12 + κ² K3.
+SphereGaussian sphere_gaussian_from_spread(Vec3d r, std::span<const Vec3d> spread);
 
 struct EnvReferenceOptions {
     double step_texels = 0.5;         // largest distance between neighbouring nodes, level-0 texels

@@ -1,9 +1,5 @@
 #include "render/renderer.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -16,8 +12,6 @@
 namespace footprint {
 
 namespace {
-
-constexpr int kTileSize = 16;
 
 constexpr FilterMode kAllModes[] = {FilterMode::bilinear,  FilterMode::trilinear,
                                     FilterMode::fa,        FilterMode::fa_rough,
@@ -117,7 +111,7 @@ Image interior_mask(const RenderScene& scene) {
 }
 
 int render_tile_count(int width, int height) {
-    return ((width + kTileSize - 1) / kTileSize) * ((height + kTileSize - 1) / kTileSize);
+    return detail::tile_count(width, height);
 }
 
 Image render(const RenderScene& scene, const RenderOptions& options, RenderStats* stats,
@@ -126,35 +120,21 @@ Image render(const RenderScene& scene, const RenderOptions& options, RenderStats
     const int width = scene.desc().width, height = scene.desc().height;
     const PinholeCamera camera(view_camera(scene.desc(), options), width, height);
     Image image(width, height, 3);
-    const int tiles_x = (width + kTileSize - 1) / kTileSize;
-    const int tiles = render_tile_count(width, height);
     std::atomic<std::uint64_t> lookups{0}, non_finite_samples{0}, non_finite_pixels{0};
-    auto render_tiles = [&] {
-        tbb::parallel_for(
-            tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
-                for (int tile = r.begin(); tile != r.end(); ++tile) {
-                    detail::SampleShader shader(scene, options);
-                    SampleCounts counts;
-                    const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
-                    for (int y = y0; y < std::min(height, y0 + kTileSize); ++y) {
-                        for (int x = x0; x < std::min(width, x0 + kTileSize); ++x) {
-                            const Rgb c = render_pixel_with(shader, camera, options, x, y, counts);
-                            std::copy(c.begin(), c.end(), image.at(x, y));
-                        }
-                    }
-                    lookups += shader.lookups;
-                    non_finite_samples += counts.non_finite_samples;
-                    non_finite_pixels += counts.non_finite_pixels;
-                    if (tile_done) tile_done();
-                }
-            });
-    };
-    if (options.threads > 0) {
-        tbb::task_arena arena(options.threads);
-        arena.execute(render_tiles);
-    } else {
-        render_tiles();
-    }
+    detail::for_each_tile(width, height, options.threads, [&](const detail::Tile& tile) {
+        detail::SampleShader shader(scene, options);
+        SampleCounts counts;
+        for (int y = tile.y0; y < tile.y1; ++y) {
+            for (int x = tile.x0; x < tile.x1; ++x) {
+                const Rgb c = render_pixel_with(shader, camera, options, x, y, counts);
+                std::copy(c.begin(), c.end(), image.at(x, y));
+            }
+        }
+        lookups += shader.lookups;
+        non_finite_samples += counts.non_finite_samples;
+        non_finite_pixels += counts.non_finite_pixels;
+        if (tile_done) tile_done();
+    });
     if (stats) {
         stats->seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

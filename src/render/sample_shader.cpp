@@ -1,5 +1,9 @@
 #include "render/sample_shader.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -37,6 +41,8 @@ float schlick_fresnel(float f0, float cos_theta) {
 // Status is not looked at: only a tiled texture's tile that cannot be read fails, and that gives
 // kMissing here and is reported by the texture system's take_errors().
 constexpr float kMissing[3] = {0, 0, 0};
+
+constexpr int kTileSize = 16;
 
 // R2 quasi-random offsets (Roberts 2018), Cranley–Patterson rotated per pixel.
 constexpr double kR2a = 0.7548776662466927, kR2b = 0.5698402909980532;
@@ -117,7 +123,7 @@ std::optional<SurfacePoint> SampleShader::trace(const RayDifferential& ray, Vec2
     // in double before rounding (uv grows without bound on an infinite plane).
     if (policy_.filtered) point.diff = surface_differentials(ray, s);
     const SurfaceDifferentials& diff = point.diff;
-    TextureCoords coords;
+    TextureCoords& coords = point.coords;
     const double t_coord = 1.0 - s.uv.y;
     coords.s = static_cast<float>(s.uv.x - std::floor(s.uv.x));
     coords.t = static_cast<float>(t_coord - std::floor(t_coord));
@@ -290,6 +296,32 @@ RayDifferential sample_ray(const PinholeCamera& camera, const RenderOptions& opt
     const std::uint32_t h = hash32(seed + 2 + static_cast<std::uint32_t>(k));
     random = {unit_float(h), unit_float(hash32(h))};
     return ray;
+}
+
+int tile_count(int width, int height) {
+    return ((width + kTileSize - 1) / kTileSize) * ((height + kTileSize - 1) / kTileSize);
+}
+
+void for_each_tile(int width, int height, int threads,
+                   const std::function<void(const Tile&)>& body) {
+    const int tiles_x = (width + kTileSize - 1) / kTileSize;
+    auto run = [&] {
+        tbb::parallel_for(tbb::blocked_range<int>(0, tile_count(width, height), 1),
+                          [&](const tbb::blocked_range<int>& r) {
+                              for (int i = r.begin(); i != r.end(); ++i) {
+                                  const int x0 = (i % tiles_x) * kTileSize;
+                                  const int y0 = (i / tiles_x) * kTileSize;
+                                  body(Tile{x0, y0, std::min(width, x0 + kTileSize),
+                                            std::min(height, y0 + kTileSize)});
+                              }
+                          });
+    };
+    if (threads > 0) {
+        tbb::task_arena arena(threads);
+        arena.execute(run);
+    } else {
+        run();
+    }
 }
 
 }  // namespace footprint::detail

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <optional>
 
 #include "render/bump_frame.h"
@@ -35,11 +36,12 @@ ModePolicy policy_of(FilterMode mode);
 // A hit and what the maps say there: the inputs of shading.
 struct SurfacePoint {
     const RenderMaterial* material = nullptr;
-    int object = -1;      // SurfaceHit::object
-    Rgb base{};           // c: the material's colour × its (filtered) texture
-    Vec2 slope;           // b: the mean bump slope (plus a sampled micro-slope in the reference)
-    Sym2 roughness;       // K_b: the slopes' covariance (zero where the mode ignores roughness)
-    bool bumped = false;  // a bump map or micro-roughness: the normal is perturbed in `frame`
+    int object = -1;       // SurfaceHit::object
+    TextureCoords coords;  // (s, t) of the maps and, in filtered modes, their derivatives
+    Rgb base{};            // c: the material's colour × its (filtered) texture
+    Vec2 slope;            // b: the mean bump slope (plus a sampled micro-slope in the reference)
+    Sym2 roughness;        // K_b: the slopes' covariance (zero where the mode ignores roughness)
+    bool bumped = false;   // a bump map or micro-roughness: the normal is perturbed in `frame`
     BumpFrameAtHit frame;
     // Facing the viewer (a surface seen from behind is shaded as its mirror image).
     Vec3 p, n, dndx, dndy;  // n any length, ∂n per pixel step
@@ -100,5 +102,13 @@ class SampleShader {
 // gets the sample's two uniforms for the micro-roughness.
 RayDifferential sample_ray(const PinholeCamera& camera, const RenderOptions& options, int x, int y,
                            int k, Vec2d& random);
+
+// The image in tiles of 16 × 16 pixels, run on oneTBB (`threads` > 0: an arena of that many).
+struct Tile {
+    int x0, y0, x1, y1;  // pixels [x0, x1) × [y0, y1)
+};
+int tile_count(int width, int height);
+void for_each_tile(int width, int height, int threads,
+                   const std::function<void(const Tile&)>& body);
 
 }  // namespace footprint::detail

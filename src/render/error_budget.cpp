@@ -1,0 +1,403 @@
+#include "render/error_budget.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include "envmap/env_reference.h"
+#include "render/camera.h"
+#include "render/sample_shader.h"
+#include "texture/reference_filter.h"
+
+namespace footprint {
+
+namespace {
+
+using detail::Rgb;
+using detail::ShadingFactors;
+using detail::SurfacePoint;
+
+constexpr BudgetTerm kTerms[] = {BudgetTerm::texture,    BudgetTerm::texture_filter,
+                                 BudgetTerm::bump,       BudgetTerm::diffuse,
+                                 BudgetTerm::highlight,  BudgetTerm::fresnel,
+                                 BudgetTerm::env_filter, BudgetTerm::env_footprint,
+                                 BudgetTerm::reflection, BudgetTerm::factors};
+constexpr int kTermCount = static_cast<int>(std::size(kTerms));
+
+// The exact Gaussians are dense quadratures; these caps keep one pixel's at a few thousand taps
+// (a 65-node axis of a Gaussian is already exact to far below the errors measured).
+constexpr int kEnvNodesPerAxis = 65;
+constexpr double kTextureNodesPerAxis = 128;
+
+bool finite(const Rgb& c) {
+    return std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]);
+}
+
+// Sums over one pixel's reference samples that hit the object (and material) the pixel centre
+// hits: each factor, the slopes' first and second moments, the reflected directions' likewise.
+struct SampleSums {
+    int count = 0;
+    double base[3] = {}, diffuse[3] = {}, highlight[3] = {}, reflection[3] = {}, fresnel = 0;
+    double slope[2] = {}, slope2[3] = {};  // Σ b, Σ b bᵀ (xx, xy, yy)
+    double dir[3] = {}, dir2[3][3] = {};   // Σ r̂, Σ r̂ r̂ᵀ
+
+    void add(const SurfacePoint& p, const ShadingFactors& f) {
+        ++count;
+        for (int c = 0; c < 3; ++c) {
+            base[c] += f.base[c], diffuse[c] += f.diffuse[c];
+            highlight[c] += f.highlight[c], reflection[c] += f.reflection[c];
+        }
+        fresnel += f.fresnel;
+        slope[0] += p.slope.x, slope[1] += p.slope.y;
+        slope2[0] += double(p.slope.x) * p.slope.x, slope2[1] += double(p.slope.x) * p.slope.y;
+        slope2[2] += double(p.slope.y) * p.slope.y;
+        const double r[3] = {f.map_reflection.x, f.map_reflection.y, f.map_reflection.z};
+        for (int i = 0; i < 3; ++i) {
+            dir[i] += r[i];
+            for (int j = 0; j < 3; ++j) dir2[i][j] += r[i] * r[j];
+        }
+    }
+
+    ShadingFactors means() const {
+        ShadingFactors m;
+        for (int c = 0; c < 3; ++c) {
+            m.base[c] = static_cast<float>(base[c] / count);
+            m.diffuse[c] = static_cast<float>(diffuse[c] / count);
+            m.highlight[c] = static_cast<float>(highlight[c] / count);
+            m.reflection[c] = static_cast<float>(reflection[c] / count);
+        }
+        m.fresnel = static_cast<float>(fresnel / count);
+        return m;
+    }
+
+    Vec2 mean_slope() const {
+        return {static_cast<float>(slope[0] / count), static_cast<float>(slope[1] / count)};
+    }
+    Sym2 slope_covariance() const {
+        const Vec2 m = mean_slope();
+        return {static_cast<float>(std::max(0.0, slope2[0] / count - double(m.x) * m.x)),
+                static_cast<float>(slope2[1] / count - double(m.x) * m.y),
+                static_cast<float>(std::max(0.0, slope2[2] / count - double(m.y) * m.y))};
+    }
+
+    // The Gaussian of the reflected directions' mean and covariance, as a SphereGaussian: the
+    // covariance in a tangent basis (u, w) at the mean direction, factored Σ = L Lᵀ, spread
+    // vectors 2·L's columns (sphere_gaussian_from_spread's ¼).
+    SphereGaussian direction_gaussian() const {
+        Vec3d mean{dir[0] / count, dir[1] / count, dir[2] / count};
+        const Vec3d m = normalize(mean);
+        const Vec3d u = std::abs(m.x) < 0.9 ? normalize(cross(m, Vec3d{1, 0, 0}))
+                                            : normalize(cross(m, Vec3d{0, 1, 0}));
+        const Vec3d w = cross(m, u);
+        auto covariance = [&](Vec3d a, Vec3d b) {
+            const double ma = dot(a, mean), mb = dot(b, mean);
+            double sum = 0;
+            const double av[3] = {a.x, a.y, a.z}, bv[3] = {b.x, b.y, b.z};
+            for (int i = 0; i < 3; ++i) {
+                for (int j = 0; j < 3; ++j) sum += av[i] * dir2[i][j] * bv[j];
+            }
+            return sum / count - ma * mb;
+        };
+        const double cuu = std::max(0.0, covariance(u, u)), cuw = covariance(u, w),
+                     cww = std::max(0.0, covariance(w, w));
+        const double l11 = std::sqrt(cuu);
+        const double l21 = l11 > 0 ? cuw / l11 : 0;
+        const double l22 = std::sqrt(std::max(0.0, cww - l21 * l21));
+        const Vec3d spread[2] = {2.0 * (l11 * u + l21 * w), 2.0 * (l22 * w)};
+        return sphere_gaussian_from_spread(m, spread);
+    }
+};
+
+// Each base-colour texture's pyramid and level 0, read once, for the exact texture Gaussian.
+class LevelZeroImages {
+  public:
+    struct Entry {
+        std::shared_ptr<const MipPyramid> pyramid;  // null if it could not be read
+        std::shared_ptr<const Image> level0;
+    };
+
+    explicit LevelZeroImages(TextureSystem& textures) : textures_(textures) {}
+
+    Entry get(TextureHandle* texture) {
+        const std::lock_guard lock(mutex_);
+        auto [it, inserted] = entries_.try_emplace(texture);
+        if (inserted) {
+            Result<std::shared_ptr<const MipPyramid>> pyramid = textures_.pyramid(texture);
+            if (pyramid) {
+                it->second.pyramid = *pyramid;
+                it->second.level0 = std::make_shared<Image>((*pyramid)->level_image(0));
+            }
+        }
+        return it->second;
+    }
+
+  private:
+    TextureSystem& textures_;
+    std::mutex mutex_;
+    std::map<TextureHandle*, Entry> entries_;
+};
+
+// The base colour with the texture filtered by the exact Gaussian of the centre's footprint.
+Rgb exact_texture(const SurfacePoint& centre, LevelZeroImages& images) {
+    const RenderMaterial& material = *centre.material;
+    const Vec3 colour = material.desc.base_color;
+    Rgb base{colour.x, colour.y, colour.z};
+    if (!material.base_color_map) return base;
+    const LevelZeroImages::Entry texture = images.get(material.base_color_map);
+    if (!texture.pyramid) return centre.base;
+    const FootprintEllipse footprint = footprint_of(*texture.pyramid, centre.coords);
+    ReferenceOptions options;
+    options.wrap_s = texture.pyramid->wrap_s(), options.wrap_t = texture.pyramid->wrap_t();
+    options.nodes_per_sigma = 4;
+    options.max_node_spacing = std::max(
+        0.5, 2 * options.truncation_sigmas * 0.5 * footprint.major_radius / kTextureNodesPerAxis);
+    float texel[8] = {};
+    reference_lookup(*texture.level0, centre.coords.s, centre.coords.t, footprint, options, texel);
+    if (material.base_color_grey) texel[1] = texel[2] = texel[0];
+    for (int c = 0; c < 3; ++c) base[c] *= texel[c];
+    return base;
+}
+
+Rgb exact_environment(const EnvironmentMap& map, const SphereGaussian& footprint) {
+    EnvReferenceOptions options;
+    options.max_samples_per_axis = kEnvNodesPerAxis;
+    float texel[8] = {};
+    environment_reference(map, footprint, texel, options);
+    return {texel[0], texel[1], texel[2]};
+}
+
+SphereGaussian footprint_gaussian(const EnvFootprint& f) {
+    const Vec3d spread[4] = {vec3_cast<double>(f.map_dr_dx), vec3_cast<double>(f.map_dr_dy),
+                             vec3_cast<double>(f.map_roughness1),
+                             vec3_cast<double>(f.map_roughness2)};
+    return sphere_gaussian_from_spread(vec3_cast<double>(f.map_direction), spread);
+}
+
+class BudgetPixel {
+  public:
+    BudgetPixel(const RenderScene& scene, const ErrorBudgetOptions& options,
+                const EnvironmentMap* env_map, LevelZeroImages& images)
+        : filtered_options_(render_options(options, options.filter, 1)),
+          reference_options_(render_options(options, FilterMode::reference, options.spp)),
+          filtered_(scene, filtered_options_),
+          reference_(scene, reference_options_),
+          env_map_(env_map),
+          images_(images) {}
+
+    // Writes the reference, the filtered pixel and every hybrid of pixel (x, y).
+    void render(const PinholeCamera& camera, int x, int y, ErrorBudgetImages& out) {
+        Vec2d random;
+        const RayDifferential centre_ray =
+            detail::sample_ray(camera, filtered_options_, x, y, 0, random);
+        const std::optional<SurfacePoint> centre = filtered_.trace(centre_ray, random);
+        ShadingFactors factors;
+        Rgb filtered;
+        if (centre) {
+            factors = filtered_.shade(*centre);
+            filtered = detail::combine(factors);
+        } else {
+            filtered = filtered_.background(centre_ray);
+        }
+
+        SampleSums sums;
+        bool covered = centre.has_value();
+        double colour[3] = {};
+        int kept = 0;
+        for (int k = 0; k < reference_options_.spp; ++k) {
+            const RayDifferential ray =
+                detail::sample_ray(camera, reference_options_, x, y, k, random);
+            const std::optional<SurfacePoint> point = reference_.trace(ray, random);
+            Rgb c;
+            if (point) {
+                const ShadingFactors f = reference_.shade(*point);
+                c = detail::combine(f);
+                const bool same = centre && point->object == centre->object &&
+                                  point->material == centre->material;
+                covered = covered && same;
+                if (same && finite(c)) sums.add(*point, f);
+            } else {
+                c = reference_.background(ray);
+                covered = false;
+            }
+            if (!finite(c)) continue;
+            for (int i = 0; i < 3; ++i) colour[i] += c[i];
+            ++kept;
+        }
+        const Rgb reference = kept == 0 ? Rgb{0, 0, 0}
+                                        : Rgb{static_cast<float>(colour[0] / kept),
+                                              static_cast<float>(colour[1] / kept),
+                                              static_cast<float>(colour[2] / kept)};
+        put(out.reference, x, y, reference);
+        put(out.filtered, x, y, filtered);
+        for (int t = 0; t < kTermCount; ++t) {
+            const Rgb hybrid = covered && sums.count > 0
+                                   ? combine_with(kTerms[t], *centre, factors, sums)
+                                   : filtered;
+            put(out.terms[static_cast<std::size_t>(t)], x, y, hybrid);
+        }
+    }
+
+  private:
+    static RenderOptions render_options(const ErrorBudgetOptions& options, FilterMode mode,
+                                        int spp) {
+        RenderOptions r;
+        r.filter = mode;
+        r.spp = spp;
+        r.kappa = options.kappa;
+        r.seed = options.seed;
+        return r;
+    }
+
+    static void put(Image& image, int x, int y, const Rgb& c) {
+        std::copy(c.begin(), c.end(), image.at(x, y));
+    }
+
+    // The filtered pixel with `term` taken from the samples.
+    Rgb combine_with(BudgetTerm term, const SurfacePoint& centre, ShadingFactors f,
+                     const SampleSums& sums) {
+        const ShadingFactors mean = sums.means();
+        switch (term) {
+            case BudgetTerm::texture:
+                f.base = mean.base;
+                break;
+            case BudgetTerm::texture_filter:
+                f.base = exact_texture(centre, images_);
+                break;
+            case BudgetTerm::bump: {
+                SurfacePoint moments = centre;
+                moments.slope = sums.mean_slope();
+                if (detail::policy_of(filtered_options_.filter).roughness) {
+                    moments.roughness = sums.slope_covariance();
+                }
+                return detail::combine(filtered_.shade(moments));
+            }
+            case BudgetTerm::diffuse:
+                f.diffuse = mean.diffuse;
+                break;
+            case BudgetTerm::highlight:
+                f.highlight = mean.highlight;
+                break;
+            case BudgetTerm::fresnel:
+                f.fresnel = mean.fresnel;
+                break;
+            case BudgetTerm::env_filter:
+                if (env_map_ && f.env_footprint) {
+                    f.reflection =
+                        exact_environment(*env_map_, footprint_gaussian(*f.env_footprint));
+                }
+                break;
+            case BudgetTerm::env_footprint:
+                if (env_map_ && f.fresnel != 0) {
+                    f.reflection = exact_environment(*env_map_, sums.direction_gaussian());
+                }
+                break;
+            case BudgetTerm::reflection:
+                f.reflection = mean.reflection;
+                break;
+            case BudgetTerm::factors:
+                f.base = mean.base, f.diffuse = mean.diffuse, f.highlight = mean.highlight;
+                f.fresnel = mean.fresnel, f.reflection = mean.reflection;
+                break;
+        }
+        return detail::combine(f);
+    }
+
+    RenderOptions filtered_options_, reference_options_;
+    detail::SampleShader filtered_, reference_;
+    const EnvironmentMap* env_map_;
+    LevelZeroImages& images_;
+};
+
+}  // namespace
+
+std::span<const BudgetTerm> all_budget_terms() {
+    return kTerms;
+}
+
+const char* budget_term_name(BudgetTerm term) {
+    switch (term) {
+        case BudgetTerm::texture:
+            return "texture";
+        case BudgetTerm::texture_filter:
+            return "texture-filter";
+        case BudgetTerm::bump:
+            return "bump";
+        case BudgetTerm::diffuse:
+            return "diffuse";
+        case BudgetTerm::highlight:
+            return "highlight";
+        case BudgetTerm::fresnel:
+            return "fresnel";
+        case BudgetTerm::env_filter:
+            return "env-filter";
+        case BudgetTerm::env_footprint:
+            return "env-footprint";
+        case BudgetTerm::reflection:
+            return "reflection";
+        case BudgetTerm::factors:
+            return "factors";
+    }
+    return "?";
+}
+
+const char* budget_term_description(BudgetTerm term) {
+    switch (term) {
+        case BudgetTerm::texture:
+            return "base colour from the samples (the texture's filtering)";
+        case BudgetTerm::texture_filter:
+            return "base colour by the exact Gaussian of the mode's own footprint (the filter's "
+                   "kernel)";
+        case BudgetTerm::bump:
+            return "slope mean and covariance from the samples (the bump pyramid's filtering)";
+        case BudgetTerm::diffuse:
+            return "diffuse from the samples (Lambert of the mean normal)";
+        case BudgetTerm::highlight:
+            return "highlight from the samples (the rough lobe)";
+        case BudgetTerm::fresnel:
+            return "Fresnel from the samples (Schlick of the mean normal)";
+        case BudgetTerm::env_filter:
+            return "reflection by the exact Gaussian of the mode's own footprint (the "
+                   "environment filter's kernel)";
+        case BudgetTerm::env_footprint:
+            return "reflection by the exact Gaussian of the samples' directions (the footprint "
+                   "model)";
+        case BudgetTerm::reflection:
+            return "reflection from the samples (all of the environment term)";
+        case BudgetTerm::factors:
+            return "every factor from the samples (what remains: their correlation in the pixel)";
+    }
+    return "?";
+}
+
+ErrorBudgetImages render_error_budget(const RenderScene& scene, const ErrorBudgetOptions& options,
+                                      const std::function<void()>& tile_done) {
+    const auto start = std::chrono::steady_clock::now();
+    const int width = scene.desc().width, height = scene.desc().height;
+    const PinholeCamera camera(scene.desc().camera, width, height);
+    ErrorBudgetImages out;
+    out.reference = Image(width, height, 3);
+    out.filtered = Image(width, height, 3);
+    out.terms.assign(kTermCount, Image(width, height, 3));
+
+    std::shared_ptr<const EnvironmentMap> env_map;
+    if (const RenderEnvironment* env = scene.environment()) {
+        Result<std::shared_ptr<const EnvironmentMap>> map =
+            scene.textures().environment_map(env->map);
+        if (map) env_map = *map;
+    }
+    LevelZeroImages images(scene.textures());
+    detail::for_each_tile(width, height, options.threads, [&](const detail::Tile& tile) {
+        BudgetPixel pixel(scene, options, env_map.get(), images);
+        for (int y = tile.y0; y < tile.y1; ++y) {
+            for (int x = tile.x0; x < tile.x1; ++x) pixel.render(camera, x, y, out);
+        }
+        if (tile_done) tile_done();
+    });
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+}  // namespace footprint
