@@ -155,6 +155,12 @@ std::optional<std::string> option_problem(const EvalCommandOptions& options) {
                    "samples)";
         }
     }
+    if (options.filter_spp.empty() || options.filter_spp.front() != 1) {
+        return "--filter-spp-list: must start with 1 (the filter modes' own rate)";
+    }
+    for (int spp : options.filter_spp) {
+        if (auto problem = range_problem("--filter-spp-list", spp, 1, kMaxSpp)) return problem;
+    }
     if (options.frames != 0) {
         if (auto problem = range_problem("--frames", options.frames, 2, 1000, "0: no flicker"))
             return problem;
@@ -270,7 +276,12 @@ int run_eval_command(const EvalCommandOptions& options) {
         };
         std::vector<Method> methods;
         for (FilterMode mode : kFilterModes) {
-            methods.push_back({mode, 1, filter_mode_name(mode), "filter", filter_mode_name(mode)});
+            for (int spp : options.filter_spp) {
+                const std::string name = filter_mode_name(mode);
+                const std::string rate = std::to_string(spp) + " spp";
+                methods.push_back({mode, spp, spp == 1 ? name : name + " " + rate, "filter",
+                                   spp == 1 ? name : name + "_" + std::to_string(spp) + "spp"});
+            }
         }
         for (int spp : options.supersampling_spp) {
             methods.push_back({FilterMode::reference, spp,
@@ -289,8 +300,13 @@ int run_eval_command(const EvalCommandOptions& options) {
         eval_scene.reference_file = named.name + "/reference.png";
         eval_scene.reference_spp = options.reference_spp;
         eval_scene.reference_seconds = reference_seconds;
-        std::vector<Image> images;
-        for (const Method& m : methods) {
+        // The filter modes at more than 1 spp are measured (the convergence plot) but neither
+        // shown nor measured for flicker: the report shows what each method is at its own rate.
+        std::vector<Image> images;       // of the methods shown
+        std::vector<std::size_t> shown;  // their indices in `methods`
+        for (std::size_t i = 0; i < methods.size(); ++i) {
+            const Method& m = methods[i];
+            const bool show = m.family == "supersampling" || m.spp == 1;
             Result<Timed> rendered =
                 renderer.render_one(m.mode, m.spp, m.seed, named.name + " " + m.name);
             if (!rendered) return fail(named.name + " " + m.name + ": " + rendered.error().message);
@@ -298,11 +314,14 @@ int run_eval_command(const EvalCommandOptions& options) {
             EvalMethod em;
             em.name = m.name;
             em.family = m.family;
+            em.series = m.family == "filter" ? filter_mode_name(m.mode) : m.family;
             em.spp = m.spp;
             em.seconds = t.seconds;
-            em.image_file = named.name + "/" + m.file + ".png";
-            if (Status s = outputs.save(t.image, options.out_dir / em.image_file); !s) {
-                return fail(s.error().message);
+            if (show) {
+                em.image_file = named.name + "/" + m.file + ".png";
+                if (Status s = outputs.save(t.image, options.out_dir / em.image_file); !s) {
+                    return fail(s.error().message);
+                }
             }
             Result<ImageComparison> all = compare_images(t.image, *reference);
             if (!all) return fail(named.name + " " + m.name + ": " + all.error().message);
@@ -316,7 +335,7 @@ int run_eval_command(const EvalCommandOptions& options) {
             Result<ImageComparison> display =
                 compare_images(display_encoded(t.image), reference_display);
             if (display) em.ssim = display->ssim;
-            if (animated) {
+            if (animated && show) {
                 const Result<std::vector<Image>> sequence = renderer.sequence(
                     m.mode, m.spp, m.seed, options.frames, named.name + " " + m.name);
                 if (!sequence)
@@ -325,7 +344,10 @@ int run_eval_command(const EvalCommandOptions& options) {
                 em.flicker = f ? *f : kNaN;
             }
             eval_scene.methods.push_back(em);
-            images.push_back(std::move(t.image));
+            if (show) {
+                images.push_back(std::move(t.image));
+                shown.push_back(i);
+            }
         }
 
         // Heat maps on one scale per scene that no pixel saturates (eval_report.h), crops where
@@ -333,16 +355,15 @@ int run_eval_command(const EvalCommandOptions& options) {
         std::vector<Image> errors;
         for (const Image& image : images) errors.push_back(absolute_error(image, *reference));
         eval_scene.heat_map_scale = scene_heat_map_scale(errors);
-        for (std::size_t i = 0; i < methods.size(); ++i) {
-            EvalMethod& em = eval_scene.methods[i];
-            em.heat_map_file = named.name + "/" + methods[i].file + "_error.png";
-            const Image heat = error_heat_map(images[i], *reference, eval_scene.heat_map_scale);
+        for (std::size_t k = 0; k < shown.size(); ++k) {
+            EvalMethod& em = eval_scene.methods[shown[k]];
+            em.heat_map_file = named.name + "/" + methods[shown[k]].file + "_error.png";
+            const Image heat = error_heat_map(images[k], *reference, eval_scene.heat_map_scale);
             if (Status s = outputs.save(heat, options.out_dir / em.heat_map_file); !s) {
                 return fail(s.error().message);
             }
         }
         eval_scene.crops = hardest_regions(errors.front(), 3, std::max(12, desc.width / 10));
-
         // Rows of the CSV and JSON.
         const std::vector<EvalMethod> supersampling = supersampling_methods(eval_scene);
         nlohmann::json scene_json = {{"name", named.name},

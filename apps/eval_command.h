@@ -50,6 +50,9 @@ struct EvalCommandOptions {
     int width = 320;  // built-in demos: height = width · 9/16; scene files keep their own size
     int reference_spp = 1024;
     std::vector<int> supersampling_spp = {1, 4, 16, 64};
+    // The filter modes' rates: 1 first, then the rates of the convergence plot (supersampling on
+    // top of filtering, RenderOptions::spp).
+    std::vector<int> filter_spp = {1, 4, 16};
     int frames = 8;                   // 0: no flicker measurement
     int flicker_reference_spp = 256;  // the reference sequence's samples per pixel
     int threads = 0;

@@ -333,7 +333,8 @@ std::string error_time_plot(const EvalScene& scene, PlotLabelLayout* layout) {
     };
     std::vector<Marker> markers;
     for (const EvalMethod& m : scene.methods)
-        if (m.family != "supersampling" && positive_finite(m.rmse) && positive_finite(m.seconds))
+        if (m.family != "supersampling" && m.spp == 1 && positive_finite(m.rmse) &&
+            positive_finite(m.seconds))
             markers.push_back({&m, equal_error_speedup(m, ss)});
 
     std::ostringstream svg;
@@ -504,10 +505,112 @@ std::string error_time_plot(const EvalScene& scene, PlotLabelLayout* layout) {
     return svg.str();
 }
 
+// The convergence plot's SVG (convergence_plot_svg()).
+std::string convergence_plot(const EvalScene& scene) {
+    constexpr double svg_w = 680, svg_h = 380;
+    constexpr double left = 72, right = 170, top = 20, bottom = 52;
+    const double plot_w = svg_w - left - right, plot_h = svg_h - top - bottom;
+    bool interior = !scene.methods.empty();
+    for (const EvalMethod& m : scene.methods)
+        interior = interior && positive_finite(m.rmse_interior);
+    auto error_of = [&](const EvalMethod& m) { return interior ? m.rmse_interior : m.rmse; };
+
+    // The series in order of appearance, each with its points sorted by spp.
+    std::vector<std::pair<std::string, std::vector<const EvalMethod*>>> series;
+    for (const EvalMethod& m : scene.methods) {
+        if (!positive_finite(error_of(m)) || m.spp < 1) continue;
+        const std::string& name = m.series.empty() ? m.name : m.series;
+        auto it = std::find_if(series.begin(), series.end(),
+                               [&](const auto& s) { return s.first == name; });
+        if (it == series.end()) it = series.insert(series.end(), {name, {}});
+        it->second.push_back(&m);
+    }
+    std::ostringstream svg;
+    svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"plot\" viewBox=\"0 0 " << svg_w << " "
+        << svg_h << "\" width=\"" << svg_w << "\" height=\"" << svg_h
+        << "\" role=\"img\" aria-label=\"RMSE against samples per pixel, log-log\" "
+           "font-family=\"sans-serif\" font-size=\"12\">\n<rect x=\"0\" y=\"0\" width=\""
+        << svg_w << "\" height=\"" << svg_h << "\" fill=\"white\"/>\n";
+    std::vector<double> xs, ys;
+    for (auto& [name, points] : series) {
+        std::stable_sort(points.begin(), points.end(),
+                         [](const EvalMethod* a, const EvalMethod* b) { return a->spp < b->spp; });
+        for (const EvalMethod* m : points) {
+            xs.push_back(m->spp);
+            ys.push_back(error_of(*m));
+        }
+    }
+    if (xs.empty()) {
+        svg << "<text x=\"" << svg_w / 2 << "\" y=\"" << svg_h / 2
+            << "\" text-anchor=\"middle\" fill=\"#666\">no data</text>\n</svg>\n";
+        return svg.str();
+    }
+    const auto [x0, x1] = log_range(xs);
+    const auto [y0, y1] = log_range(ys);
+    auto px = [&](double spp) { return left + (std::log10(spp) - x0) / (x1 - x0) * plot_w; };
+    auto py = [&](double e) { return top + (y1 - std::log10(e)) / (y1 - y0) * plot_h; };
+
+    svg << "<g stroke=\"#e4e4e4\">\n";
+    for (double t : log_ticks(y0, y1))
+        svg << "<line x1=\"" << left << "\" y1=\"" << coord(py(std::pow(10.0, t))) << "\" x2=\""
+            << left + plot_w << "\" y2=\"" << coord(py(std::pow(10.0, t))) << "\"/>\n";
+    svg << "</g>\n<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << plot_w
+        << "\" height=\"" << plot_h << "\" fill=\"none\" stroke=\"#333\"/>\n<g fill=\"#333\">\n";
+    std::vector<int> rates;
+    for (double x : xs) rates.push_back(static_cast<int>(x));
+    std::sort(rates.begin(), rates.end());
+    rates.erase(std::unique(rates.begin(), rates.end()), rates.end());
+    for (int spp : rates) {
+        const double x = px(spp);
+        svg << "<line x1=\"" << coord(x) << "\" y1=\"" << top + plot_h << "\" x2=\"" << coord(x)
+            << "\" y2=\"" << top + plot_h + 5 << "\" stroke=\"#333\"/><text x=\"" << coord(x)
+            << "\" y=\"" << top + plot_h + 18 << "\" text-anchor=\"middle\">" << spp << "</text>\n";
+    }
+    for (double t : log_ticks(y0, y1)) {
+        const double y = py(std::pow(10.0, t));
+        svg << "<text x=\"" << left - 8 << "\" y=\"" << coord(y + 4) << "\" text-anchor=\"end\">"
+            << tick_label(t) << "</text>\n";
+    }
+    svg << "<text x=\"" << coord(left + plot_w / 2) << "\" y=\"" << svg_h - 10
+        << "\" text-anchor=\"middle\">samples per pixel (log scale)</text>\n<text transform=\""
+        << "translate(16 " << coord(top + plot_h / 2) << ") rotate(-90)\" text-anchor=\"middle\">"
+        << (interior ? "interior RMSE (log scale)" : "RMSE (log scale)") << "</text>\n</g>\n";
+
+    // One line per series (supersampling blue and thicker, as in the error-time plot), and the
+    // legend beside the plot.
+    std::size_t colour_index = 0;
+    for (std::size_t i = 0; i < series.size(); ++i) {
+        const auto& [name, points] = series[i];
+        const bool ss = name == "supersampling";
+        const std::string colour = ss ? "#1f77b4" : palette[colour_index++ % palette.size()];
+        svg << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\""
+            << (ss ? 2.5 : 1.5) << "\" points=\"";
+        for (const EvalMethod* m : points)
+            svg << coord(px(m->spp)) << "," << coord(py(error_of(*m))) << " ";
+        svg << "\"/>\n";
+        for (const EvalMethod* m : points) {
+            svg << "<circle cx=\"" << coord(px(m->spp)) << "\" cy=\"" << coord(py(error_of(*m)))
+                << "\" r=\"3.5\" fill=\"" << colour << "\"><title>" << html_escape(m->name) << ": "
+                << number(error_of(*m)) << "</title></circle>\n";
+        }
+        const double ly = top + 14 + 18 * static_cast<double>(i);
+        svg << "<line x1=\"" << left + plot_w + 12 << "\" y1=\"" << coord(ly - 4) << "\" x2=\""
+            << left + plot_w + 34 << "\" y2=\"" << coord(ly - 4) << "\" stroke=\"" << colour
+            << "\" stroke-width=\"2\"/><text x=\"" << left + plot_w + 40 << "\" y=\"" << coord(ly)
+            << "\">" << html_escape(name) << "</text>\n";
+    }
+    svg << "</svg>\n";
+    return svg.str();
+}
+
 }  // namespace
 
 std::string error_time_plot_svg(const EvalScene& scene) {
     return error_time_plot(scene, nullptr);
+}
+
+std::string convergence_plot_svg(const EvalScene& scene) {
+    return convergence_plot(scene);
 }
 
 PlotLabelLayout error_time_plot_labels(const EvalScene& scene) {
@@ -767,7 +870,13 @@ void HtmlWriter::scene(const EvalScene& scene) {
     out << "<p class=\"note\">Log\u2013log. The blue line is supersampling; each dashed line runs "
            "from a method to the supersampling time of the same RMSE (interpolated in "
            "log\u2013log; \u2248 extrapolated beyond the most samples measured, \u2264 worse than "
-           "the fewest samples measured).</p>\n</section>\n";
+           "the fewest samples measured).</p>\n";
+    out << "<h3>Error against samples per pixel</h3>\n" << convergence_plot_svg(scene);
+    out << "<p class=\"note\">Log\u2013log. Each filter mode with N samples per pixel on top of "
+           "its filtering (each sample's footprint 1/\u221aN of the pixel's), and supersampling. A "
+           "method without bias falls towards the reference as N grows; one that flattens "
+           "carries an error more samples do not remove (<code>footprint eval --budget</code> "
+           "says which term).</p>\n</section>\n";
 }
 
 void HtmlWriter::table(const EvalScene& scene, const std::vector<EvalMethod>& ss) {

@@ -6,6 +6,7 @@
 //   crops)
 //   * equal_error_speedup()    how much faster a method is than supersampling of the same RMSE
 //   * error_time_plot_svg()    RMSE against seconds, log–log, as inline SVG
+//   * convergence_plot_svg()   RMSE against samples per pixel per method, log–log (inline SVG)
 //   * write_eval_report()      one self-contained HTML file: tables, images, heat maps, crops,
 //   plots
 //   * check_report_in_browser() opens the file in headless Chromium and counts the images that
@@ -38,7 +39,8 @@ struct CropRect {
 // One way of rendering a scene.
 struct EvalMethod {
     std::string name;           // "fa-rough", "supersampling 16 spp", …
-    std::string family;         // "supersampling", or "filter" (a filter mode at 1 spp)
+    std::string family;         // "supersampling", or "filter" (a filter mode, at any spp)
+    std::string series;         // the line of the convergence plot: the filter mode, or family
     int spp = 1;                // samples per pixel
     std::string image_file;     // PNG, relative to the report's folder ("" : none shown)
     std::string heat_map_file;  // PNG error heat map against the reference, relative ("" : none)
@@ -131,6 +133,11 @@ std::string speedup_label(const EqualErrorSpeedup& speedup, bool short_form = fa
 // supersampling curve, labelled with its speedup ("×12"). Points without positive finite RMSE
 // and time are left out; with none left the SVG says "no data".
 std::string error_time_plot_svg(const EvalScene& scene);
+
+// An inline SVG element plotting each method's RMSE (over the interior where every method has one)
+// against its samples per pixel, log–log: one line per series (EvalMethod::series, else the name;
+// supersampling blue), a legend beside the plot. With no positive finite point: "no data".
+std::string convergence_plot_svg(const EvalScene& scene);
 
 // A rectangle of the plot in SVG pixels (x to the right, y down).
 struct PlotBox {

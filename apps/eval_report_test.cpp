@@ -481,7 +481,8 @@ TEST_F(EvalReportFile, WritesSelfContainedEscapedHtml) {
     EXPECT_EQ(text.find("<link"), std::string::npos);
     EXPECT_EQ(text.find("<script src"), std::string::npos);
     EXPECT_EQ(text.find("http://", text.find("</style>")), text.find("http://www.w3.org/2000/svg"));
-    EXPECT_EQ(count_of(text, "<svg"), 4);  // per scene the legend and the plot
+    EXPECT_EQ(count_of(text, "<svg"), 6);  // per scene the legend and the two plots
+    EXPECT_EQ(count_of(text, "samples per pixel (log scale)"), 2);
     EXPECT_NE(text.find("\u2248\u00d7256 (extrapolated)"), std::string::npos);
     EXPECT_NE(text.find("\u00d720<"), std::string::npos);
     EXPECT_NE(text.find("image-rendering: pixelated"), std::string::npos);

@@ -4,6 +4,7 @@
 //   footprint --version
 //   footprint demo [--out DIR] [--scene NAME...] [--size N] [--spp N] [--threads N] [--quiet]
 //   footprint eval [SCENE...] [--out DIR] [--size W] [--reference-spp N] [--spp-list 1,4,16,64]
+//                  [--filter-spp-list 1,4,16] [--budget [--budget-filter MODE]]
 //                  [--frames N] [--flicker-reference-spp N] [--threads N] [--no-browser-check]
 //   footprint metrics A B [--mask M] [--peak P] [--ignore-non-finite] [--json]
 //   footprint texture-demo [--out DIR] [--size N] [--samples N] [--quiet]
@@ -226,6 +227,11 @@ int run(int argc, char** argv) {
     eval_cmd
         ->add_option("--spp-list", eval.supersampling_spp,
                      "Supersampling rates, each below --reference-spp")
+        ->delimiter(',')
+        ->capture_default_str();
+    eval_cmd
+        ->add_option("--filter-spp-list", eval.filter_spp,
+                     "The filter modes' rates: 1, then those of the convergence plot")
         ->delimiter(',')
         ->capture_default_str();
     eval_cmd->add_option("--frames", eval.frames, "Frames for flicker, 2 to 1000 (0: none)")
