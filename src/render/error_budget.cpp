@@ -20,11 +20,11 @@ using detail::Rgb;
 using detail::ShadingFactors;
 using detail::SurfacePoint;
 
-constexpr BudgetTerm kTerms[] = {BudgetTerm::texture,    BudgetTerm::texture_filter,
-                                 BudgetTerm::bump,       BudgetTerm::diffuse,
-                                 BudgetTerm::highlight,  BudgetTerm::fresnel,
-                                 BudgetTerm::env_filter, BudgetTerm::env_footprint,
-                                 BudgetTerm::reflection, BudgetTerm::factors};
+constexpr BudgetTerm kTerms[] = {
+    BudgetTerm::texture,    BudgetTerm::texture_filter, BudgetTerm::bump,
+    BudgetTerm::diffuse,    BudgetTerm::lambert,        BudgetTerm::highlight,
+    BudgetTerm::fresnel,    BudgetTerm::env_filter,     BudgetTerm::env_footprint,
+    BudgetTerm::reflection, BudgetTerm::mirror,         BudgetTerm::factors};
 constexpr int kTermCount = static_cast<int>(std::size(kTerms));
 
 // The exact Gaussians are dense quadratures; these caps keep one pixel's at a few thousand taps
@@ -41,14 +41,17 @@ bool finite(const Rgb& c) {
 struct SampleSums {
     int count = 0;
     double base[3] = {}, diffuse[3] = {}, highlight[3] = {}, reflection[3] = {}, fresnel = 0;
-    double slope[2] = {}, slope2[3] = {};  // Σ b, Σ b bᵀ (xx, xy, yy)
-    double dir[3] = {}, dir2[3][3] = {};   // Σ r̂, Σ r̂ r̂ᵀ
+    double lambert[3] = {}, mirror[3] = {};  // Σ c ⊙ D, Σ F·R
+    double slope[2] = {}, slope2[3] = {};    // Σ b, Σ b bᵀ (xx, xy, yy)
+    double dir[3] = {}, dir2[3][3] = {};     // Σ r̂, Σ r̂ r̂ᵀ
 
     void add(const SurfacePoint& p, const ShadingFactors& f) {
         ++count;
         for (int c = 0; c < 3; ++c) {
             base[c] += f.base[c], diffuse[c] += f.diffuse[c];
             highlight[c] += f.highlight[c], reflection[c] += f.reflection[c];
+            lambert[c] += double(f.base[c]) * f.diffuse[c];
+            mirror[c] += double(f.fresnel) * f.reflection[c];
         }
         fresnel += f.fresnel;
         slope[0] += p.slope.x, slope[1] += p.slope.y;
@@ -277,6 +280,14 @@ class BudgetPixel {
             case BudgetTerm::diffuse:
                 f.diffuse = mean.diffuse;
                 break;
+            case BudgetTerm::lambert: {
+                Rgb out;
+                for (int c = 0; c < 3; ++c) {
+                    out[c] = static_cast<float>(sums.lambert[c] / sums.count) + f.highlight[c] +
+                             f.fresnel * f.reflection[c];
+                }
+                return out;
+            }
             case BudgetTerm::highlight:
                 f.highlight = mean.highlight;
                 break;
@@ -297,6 +308,14 @@ class BudgetPixel {
             case BudgetTerm::reflection:
                 f.reflection = mean.reflection;
                 break;
+            case BudgetTerm::mirror: {
+                Rgb out;
+                for (int c = 0; c < 3; ++c) {
+                    out[c] = f.base[c] * f.diffuse[c] + f.highlight[c] +
+                             static_cast<float>(sums.mirror[c] / sums.count);
+                }
+                return out;
+            }
             case BudgetTerm::factors:
                 f.base = mean.base, f.diffuse = mean.diffuse, f.highlight = mean.highlight;
                 f.fresnel = mean.fresnel, f.reflection = mean.reflection;
@@ -327,6 +346,8 @@ const char* budget_term_name(BudgetTerm term) {
             return "bump";
         case BudgetTerm::diffuse:
             return "diffuse";
+        case BudgetTerm::lambert:
+            return "lambert";
         case BudgetTerm::highlight:
             return "highlight";
         case BudgetTerm::fresnel:
@@ -337,6 +358,8 @@ const char* budget_term_name(BudgetTerm term) {
             return "env-footprint";
         case BudgetTerm::reflection:
             return "reflection";
+        case BudgetTerm::mirror:
+            return "mirror";
         case BudgetTerm::factors:
             return "factors";
     }
@@ -354,6 +377,8 @@ const char* budget_term_description(BudgetTerm term) {
             return "slope mean and covariance from the samples (the bump pyramid's filtering)";
         case BudgetTerm::diffuse:
             return "diffuse from the samples (Lambert of the mean normal)";
+        case BudgetTerm::lambert:
+            return "colour x diffuse from the samples (with their correlation)";
         case BudgetTerm::highlight:
             return "highlight from the samples (the rough lobe)";
         case BudgetTerm::fresnel:
@@ -366,6 +391,8 @@ const char* budget_term_description(BudgetTerm term) {
                    "model)";
         case BudgetTerm::reflection:
             return "reflection from the samples (all of the environment term)";
+        case BudgetTerm::mirror:
+            return "Fresnel x reflection from the samples (with their correlation)";
         case BudgetTerm::factors:
             return "every factor from the samples (what remains: their correlation in the pixel)";
     }

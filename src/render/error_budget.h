@@ -19,6 +19,9 @@
 //                   slopes plus the sampled micro-roughness), shaded as the mode shades: what the
 //                   bump pyramid's filtering costs
 //   diffuse         D ← mean D_k: Lambert of the mean normal against the mean of Lambert
+//   lambert         c ⊙ D ← mean c_k ⊙ D_k: the diffuse light with the colour's correlation with
+//                   the normal (dark mortar in steep grooves); lambert − texture − diffuse is that
+//                   correlation
 //   highlight       S ← mean S_k: the (rough) Blinn-Phong of the moments against the mean lobe
 //   fresnel         F ← mean F_k: Schlick of the mean normal against the mean of Schlick
 //   env-filter      R ← the exact Gaussian of the environment over the mode's own footprint K
@@ -28,6 +31,8 @@
 //                   filter together, with the directions' distribution taken as Gaussian
 //   reflection      R ← mean R_k: all of the environment term; reflection − env-footprint is the
 //                   part of the directions' distribution that is not Gaussian
+//   mirror          F·R ← mean F_k·R_k: the reflection with Fresnel's correlation with it (normals
+//                   tilted away from the eye both reflect lower and reflect more)
 //   factors         c, D, S, F and R all ← their means: what remains is the correlation of the
 //                   factors inside the pixel (mean of c·D ≠ mean c · mean D)
 //
@@ -50,11 +55,13 @@ enum class BudgetTerm {
     texture_filter,
     bump,
     diffuse,
+    lambert,
     highlight,
     fresnel,
     env_filter,
     env_footprint,
     reflection,
+    mirror,
     factors
 };
 
