@@ -12,6 +12,7 @@
 #include "envmap/env_footprint.h"
 #include "math/sample_patterns.h"
 #include "shading/blinn_phong.h"
+#include "shading/fresnel.h"
 
 namespace footprint::detail {
 
@@ -31,12 +32,17 @@ Vec2d gaussian_pair(double u1, double u2) {
     return {r * std::cos(phi), r * std::sin(phi)};
 }
 
-float schlick_fresnel(float f0, float cos_theta) {
-    const float c = std::clamp(1.0f - cos_theta, 0.0f, 1.0f);
-    const float c2 = c * c;
-    return f0 + (1.0f - f0) * c2 * c2 * c;
+// ∂(n̂·v̂)/∂b at the point's mean slope: n_m = n + |n| T (σ b) (σ the frame's slope sign), so
+// ∂(n̂_m·v̂)/∂b = σ |n|/|n_m| Tᵀ(v̂ − (n̂_m·v̂) n̂_m).
+Vec2 cos_slope_gradient(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat) {
+    const Vec3 n_m =
+        perturbed_normal(point.n, point.frame.frame, point.frame.slope_sign * point.slope);
+    const float scale = point.frame.slope_sign * length(point.n) / length(n_m);
+    const Vec3 tangential = v_hat - dot(n_hat, v_hat) * n_hat;
+    const Vec2 gradient{scale * dot(point.frame.frame.t1, tangential),
+                        scale * dot(point.frame.frame.t2, tangential)};
+    return is_finite(gradient) ? gradient : Vec2{};
 }
-
 // The scene's maps are valid once prepared (prepare_render_scene() checked them), so the lookups'
 // Status is not looked at: only a tiled texture's tile that cannot be read fails, and that gives
 // kMissing here and is reported by the texture system's take_errors().
@@ -240,41 +246,53 @@ void SampleShader::add_lights(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat,
 
 // The mirror reflection: the environment filtered over the footprint of spec §2 (the curvature,
 // the aperture and, in the rough modes, the slopes' covariance), or sampled in the reflected
-// direction; weighted by Schlick's Fresnel.
+// direction; weighted by Schlick's Fresnel. In the rough modes Fresnel is averaged over the slopes
+// and the reflection looked up under the slopes weighted by it (shading/fresnel.h).
 void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat,
                                   ShadingFactors& out) {
     const RenderEnvironment& env = *scene_.environment();
     const MaterialDesc& desc = point.material->desc;
-    if (policy_.filtered) {
-        ReflectionGeometry geometry;
-        geometry.v = point.v;
-        geometry.dv_dx = -to_float(point.diff.dpdx);  // the eye is fixed: ∂v = −∂p
-        geometry.dv_dy = -to_float(point.diff.dpdy);
-        geometry.n = point.n;
-        geometry.dn_dx = point.dndx;
-        geometry.dn_dy = point.dndy;
-        if (point.bumped) {
-            geometry.bump_slope = point.frame.slope_sign * point.slope;
-            geometry.t1 = point.frame.frame.t1;
-            geometry.t2 = point.frame.frame.t2;
-            geometry.roughness = roughness_factor(point.roughness);
-        }
-        EnvFootprintOptions env_options;
-        env_options.kappa = options_.kappa;
-        env_options.rotation = env.rotation;
-        out.env_footprint =
-            compute_env_footprint(env.layout, env.texel_scale, geometry, env_options);
-        out.map_reflection = normalize(out.env_footprint->map_direction);
-        static_cast<void>(
-            textures_.environment(env.map, *out.env_footprint, policy_.lookup, out.reflection));
-    } else {
+    if (!policy_.filtered) {
         const Vec3 r = 2.0f * dot(n_hat, v_hat) * n_hat - v_hat;
         out.map_reflection = env.rotation * r;
-        static_cast<void>(
-            textures_.environment_sample(env.map, out.map_reflection, out.reflection));
+        static_cast<void>(textures_.environment_sample(env.map, out.map_reflection, out.reflection));
+        ++lookups;
+        out.fresnel = desc.mirror * schlick_fresnel(desc.fresnel_f0, dot(n_hat, v_hat));
+        return;
     }
+    ReflectionGeometry geometry;
+    geometry.v = point.v;
+    geometry.dv_dx = -to_float(point.diff.dpdx);  // the eye is fixed: ∂v = −∂p
+    geometry.dv_dy = -to_float(point.diff.dpdy);
+    geometry.n = point.n;
+    geometry.dn_dx = point.dndx;
+    geometry.dn_dy = point.dndy;
+    float fresnel = schlick_fresnel(desc.fresnel_f0, dot(n_hat, v_hat));
+    if (point.bumped) {
+        Vec2 slope = point.slope;
+        Sym2 roughness = point.roughness;
+        if (policy_.roughness) {
+            const FresnelOverSlopes weighted =
+                fresnel_over_slopes(desc.fresnel_f0, dot(n_hat, v_hat),
+                                    cos_slope_gradient(point, n_hat, v_hat), point.roughness);
+            fresnel = weighted.mean;
+            slope = slope + weighted.mean_slope_shift;
+            roughness = weighted.covariance;
+        }
+        geometry.bump_slope = point.frame.slope_sign * slope;
+        geometry.t1 = point.frame.frame.t1;
+        geometry.t2 = point.frame.frame.t2;
+        geometry.roughness = roughness_factor(roughness);
+    }
+    EnvFootprintOptions env_options;
+    env_options.kappa = options_.kappa;
+    env_options.rotation = env.rotation;
+    out.env_footprint = compute_env_footprint(env.layout, env.texel_scale, geometry, env_options);
+    out.map_reflection = normalize(out.env_footprint->map_direction);
+    static_cast<void>(
+        textures_.environment(env.map, *out.env_footprint, policy_.lookup, out.reflection));
     ++lookups;
-    out.fresnel = desc.mirror * schlick_fresnel(desc.fresnel_f0, dot(n_hat, v_hat));
+    out.fresnel = desc.mirror * fresnel;
 }
 
 RayDifferential sample_ray(const PinholeCamera& camera, const RenderOptions& options, int x, int y,

@@ -1,10 +1,84 @@
-// gpu/shaders/shading.glsl — roughness-aware Blinn-Phong and Fresnel (shading/blinn_phong.h), and
+// gpu/shaders/shading.glsl — roughness-aware Blinn-Phong and Fresnel (shading/blinn_phong.h,
+// shading/fresnel.h), and
 // the shading of one hit (render/renderer.h's "Shading"), the same steps as the CPU renderer.
 
 float schlick_fresnel(float f0, float cos_theta) {
     float c = clamp(1.0 - cos_theta, 0.0, 1.0);
     float c2 = c * c;
     return f0 + (1.0 - f0) * c2 * c2 * c;
+}
+
+// ---- Fresnel over Gaussian slopes (shading/fresnel.h's fresnel_over_slopes()).
+
+// Φ(z) by Abramowitz & Stegun 7.1.26 (|error| < 1.5e-7): GLSL has no erf.
+float normal_cdf(float z) {
+    float x = abs(z) / sqrt(2.0);
+    float t = 1.0 / (1.0 + 0.3275911 * x);
+    float poly = t * (0.254829592 + t * (-0.284496736 + t * (1.421413741 +
+                 t * (-1.453152027 + t * 1.061405429))));
+    float tail = 0.5 * poly * exp(-x * x);  // 1 − Φ(|z|)
+    return z >= 0.0 ? 1.0 - tail : tail;
+}
+
+// T_k = ∫_a^b z^k φ(z) dz, k = 0 … 7; bounds beyond ±10 count as infinite (φ(10) ≈ 8e-23).
+void normal_moments(float a, float b, out float t[8]) {
+    a = clamp(a, -10.0, 10.0);
+    b = clamp(b, -10.0, 10.0);
+    float pa = exp(-0.5 * a * a) * 0.3989422804, pb = exp(-0.5 * b * b) * 0.3989422804;
+    t[0] = normal_cdf(b) - normal_cdf(a);
+    t[1] = pa - pb;
+    float ea = pa, eb = pb;  // a^{k−1} φ(a), b^{k−1} φ(b)
+    for (int k = 2; k < 8; ++k) {
+        ea *= a;
+        eb *= b;
+        t[k] = float(k - 1) * t[k - 2] + ea - eb;
+    }
+}
+
+struct FresnelOverSlopes {
+    float mean;  // E[F]
+    vec2 shift;  // the F-weighted mean slope − b̄
+    vec3 k;      // the F-weighted covariance (xx, xy, yy)
+};
+
+FresnelOverSlopes fresnel_over_slopes(float f0, float cos_mean, vec2 u, vec3 k) {
+    FresnelOverSlopes out_f = FresnelOverSlopes(schlick_fresnel(f0, cos_mean), vec2(0), k);
+    float variance = k.x * u.x * u.x + 2.0 * k.y * u.x * u.y + k.z * u.y * u.y;
+    if (!(variance > 1e-12)) return out_f;
+    float sigma = sqrt(variance), a = 1.0 - cos_mean;
+    float z0 = -cos_mean / sigma, z1 = (1.0 - cos_mean) / sigma;
+    float below[8], inside[8], above[8];
+    normal_moments(-10.0, z0, below);
+    normal_moments(z0, z1, inside);
+    normal_moments(z1, 10.0, above);
+    // (a − σz)⁵ = Σ_j c_j z^j, c_j = C(5, j) a^{5−j} (−σ)^j (GLSL's pow is undefined for a
+    // negative base, so the powers are products).
+    const float binomial[6] = float[6](1.0, 5.0, 10.0, 10.0, 5.0, 1.0);
+    float c[6];
+    float a_power = 1.0, s_power = 1.0;
+    for (int j = 0; j <= 5; ++j) {
+        c[5 - j] = a_power;  // a^j, for the term of z^{5−j}
+        a_power *= a;
+    }
+    for (int j = 0; j <= 5; ++j) {
+        c[j] *= binomial[j] * s_power;
+        s_power *= -sigma;
+    }
+    float moments[3];
+    for (int m = 0; m < 3; ++m) {
+        float quintic = 0.0;
+        for (int j = 0; j <= 5; ++j) quintic += c[j] * inside[m + j];
+        moments[m] = below[m] + f0 * (above[m] + inside[m]) + (1.0 - f0) * quintic;
+    }
+    if (!(moments[0] > 0.0)) return out_f;
+    vec2 ku = vec2(k.x * u.x + k.y * u.y, k.y * u.x + k.z * u.y);
+    float mean_z = moments[1] / moments[0];
+    float variance_z = max(0.0, moments[2] / moments[0] - mean_z * mean_z);
+    float narrowing = (1.0 - variance_z) / variance;
+    out_f.mean = moments[0];
+    out_f.shift = (mean_z / sigma) * ku;
+    out_f.k = k - narrowing * vec3(ku.x * ku.x, ku.x * ku.y, ku.y * ku.y);
+    return out_f;
 }
 
 float blinn_phong(float cos_a, float shininess) {
@@ -128,16 +202,31 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
         color += material.weights.x * base * u_env_mean;
     if (u_env_layout != ENV_NONE && material.weights.w > 0.0) {
         vec3 texel;
+        float fresnel = schlick_fresnel(material.bump.x, dot(n_hat, v_hat));
         if (filtered) {
+            // The rough mode averages Fresnel over the slopes and looks the reflection up under
+            // the slopes weighted by it (in b_t's coordinates, where K_b is the same).
+            vec2 b_env = b_t;
+            vec3 k_env = k_b;
+            if (bumped && rough_mode) {
+                vec3 tangential = v_hat - dot(n_hat, v_hat) * n_hat;
+                vec2 u = length(n) / length(n_m) *
+                         vec2(dot(frame.t1, tangential), dot(frame.t2, tangential));
+                if (!is_finite(u.x + u.y)) u = vec2(0);
+                FresnelOverSlopes w = fresnel_over_slopes(material.bump.x, dot(n_hat, v_hat), u, k_b);
+                fresnel = w.mean;
+                b_env = b_t + w.shift;
+                k_env = w.k;
+            }
             Frame t = bumped ? frame : Frame(vec3(1, 0, 0), vec3(0, 1, 0), 1.0);
             EnvFootprint f = reflection_footprint(v, -diff.dpdx, -diff.dpdy, n, dndx, dndy,
-                                                  bumped ? b_t : vec2(0), t,
-                                                  bumped ? roughness_factor(k_b) : vec3(0), k_b);
+                                                  bumped ? b_env : vec2(0), t,
+                                                  bumped ? roughness_factor(k_env) : vec3(0), k_env);
             texel = env_lookup(f, mode, f.k.x + f.k.z);
         } else {
             texel = env_point_sample(2.0 * dot(n_hat, v_hat) * n_hat - v_hat);
         }
-        color += material.weights.w * schlick_fresnel(material.bump.x, dot(n_hat, v_hat)) * texel;
+        color += material.weights.w * fresnel * texel;
     }
     return color;
 }

@@ -1,0 +1,43 @@
+// shading/fresnel.h — Schlick's Fresnel, and Fresnel over a distribution of slopes.
+//
+// A filtered pixel knows its bump slopes only by their mean b̄ and covariance K (spec §5). Its
+// mirror reflection is the mean over the slopes of F(n̂(b)·v̂) · R(b): Fresnel F and the
+// reflected environment R both depend on the slope, and together. At grazing angles they are
+// strongly correlated — a facet tilted away from the eye reflects both lower and more — so
+// F(n̂(b̄)·v̂) · E[R] is biased, and more samples per pixel do not remove that bias
+// (`footprint eval --budget`: the mirror term against fresnel and reflection, docs/method.md).
+//
+// The mean of the product is E[F] times the mean of R under the slopes weighted by F:
+//     E[F·R] = E[F] · E_F[R],     E_F[·] = E[F ·]/E[F]
+// With cos θ = n̂·v̂ linear in the slope near b̄, c(b) = c̄ + uᵀ(b − b̄) (u = ∂c/∂b), c is
+// Gaussian with σ_c² = uᵀKu, and with z = (c − c̄)/σ_c ~ N(0, 1) the weighted distribution of the
+// slopes has (exactly, for that linear c and Gaussian slopes)
+//     mean        b̄ + K u · E[zF] / (σ_c E[F])
+//     covariance  K − (1 − Var_F(z)) · K u uᵀ K / σ_c²,   Var_F(z) = E[z²F]/E[F] − (E[zF]/E[F])²
+// The three scalar means E[F], E[zF], E[z²F] are exact: Schlick's F is 1 for c < 0 (clamped),
+// F0 for c > 1 and a quintic in c between, so each is a sum of incomplete moments of the normal
+// distribution (erfc and the density). The reflection is then looked up with the weighted mean and
+// covariance — the same one filtered lookup as before, at a shifted slope with a narrowed
+// footprint.
+#pragma once
+
+#include <footprint/math/footprint_ellipse.h>
+#include <footprint/math/vec.h>
+
+namespace footprint {
+
+// Schlick: f0 + (1 − f0)(1 − cos θ)⁵, cos θ clamped to [0, 1].
+float schlick_fresnel(float f0, float cos_theta);
+
+// Fresnel over Gaussian slopes (above).
+struct FresnelOverSlopes {
+    float mean = 0;         // E[F]
+    Vec2 mean_slope_shift;  // the F-weighted mean slope − b̄
+    Sym2 covariance;        // the F-weighted covariance of the slopes
+};
+
+// `cos_mean` = c̄ = n̂(b̄)·v̂, `dcos_dslope` = u = ∂(n̂·v̂)/∂b at b̄, `k` = the slopes' covariance K,
+// all in the coordinates of b. K = 0 or u = 0 give F(c̄), no shift and K itself.
+FresnelOverSlopes fresnel_over_slopes(float f0, float cos_mean, Vec2 dcos_dslope, const Sym2& k);
+
+}  // namespace footprint
