@@ -37,13 +37,15 @@ bool finite(const Rgb& c) {
 }
 
 // Sums over one pixel's reference samples that hit the object (and material) the pixel centre
-// hits: each factor, the slopes' first and second moments, the reflected directions' likewise.
+// hits: each factor, the slopes' first and second moments, and the reflected directions' weighted
+// by Fresnel. The reflection's reference value is its Fresnel-weighted mean E[F·R]/E[F], so that
+// with E[F] it makes the mirror term E[F·R] (shading/fresnel.h: what the rough modes estimate).
 struct SampleSums {
     int count = 0;
     double base[3] = {}, diffuse[3] = {}, highlight[3] = {}, reflection[3] = {}, fresnel = 0;
     double lambert[3] = {}, mirror[3] = {};  // Σ c ⊙ D, Σ F·R
     double slope[2] = {}, slope2[3] = {};    // Σ b, Σ b bᵀ (xx, xy, yy)
-    double dir[3] = {}, dir2[3][3] = {};     // Σ r̂, Σ r̂ r̂ᵀ
+    double dir[3] = {}, dir2[3][3] = {};     // Σ F r̂, Σ F r̂ r̂ᵀ
 
     void add(const SurfacePoint& p, const ShadingFactors& f) {
         ++count;
@@ -59,8 +61,8 @@ struct SampleSums {
         slope2[2] += double(p.slope.y) * p.slope.y;
         const double r[3] = {f.map_reflection.x, f.map_reflection.y, f.map_reflection.z};
         for (int i = 0; i < 3; ++i) {
-            dir[i] += r[i];
-            for (int j = 0; j < 3; ++j) dir2[i][j] += r[i] * r[j];
+            dir[i] += f.fresnel * r[i];
+            for (int j = 0; j < 3; ++j) dir2[i][j] += f.fresnel * r[i] * r[j];
         }
     }
 
@@ -70,7 +72,8 @@ struct SampleSums {
             m.base[c] = static_cast<float>(base[c] / count);
             m.diffuse[c] = static_cast<float>(diffuse[c] / count);
             m.highlight[c] = static_cast<float>(highlight[c] / count);
-            m.reflection[c] = static_cast<float>(reflection[c] / count);
+            m.reflection[c] =
+                static_cast<float>(fresnel > 0 ? mirror[c] / fresnel : reflection[c] / count);
         }
         m.fresnel = static_cast<float>(fresnel / count);
         return m;
@@ -86,11 +89,13 @@ struct SampleSums {
                 static_cast<float>(std::max(0.0, slope2[2] / count - double(m.y) * m.y))};
     }
 
-    // The Gaussian of the reflected directions' mean and covariance, as a SphereGaussian: the
+    // The Gaussian of the reflected directions' Fresnel-weighted mean and covariance (a point
+    // without Fresnel), as a SphereGaussian: the
     // covariance in a tangent basis (u, w) at the mean direction, factored Σ = L Lᵀ, spread
     // vectors 2·L's columns (sphere_gaussian_from_spread's ¼).
     SphereGaussian direction_gaussian() const {
-        Vec3d mean{dir[0] / count, dir[1] / count, dir[2] / count};
+        if (!(fresnel > 0)) return {};
+        Vec3d mean{dir[0] / fresnel, dir[1] / fresnel, dir[2] / fresnel};
         const Vec3d m = normalize(mean);
         const Vec3d u = std::abs(m.x) < 0.9 ? normalize(cross(m, Vec3d{1, 0, 0}))
                                             : normalize(cross(m, Vec3d{0, 1, 0}));
@@ -102,7 +107,7 @@ struct SampleSums {
             for (int i = 0; i < 3; ++i) {
                 for (int j = 0; j < 3; ++j) sum += av[i] * dir2[i][j] * bv[j];
             }
-            return sum / count - ma * mb;
+            return sum / fresnel - ma * mb;
         };
         const double cuu = std::max(0.0, covariance(u, u)), cuw = covariance(u, w),
                      cww = std::max(0.0, covariance(w, w));
@@ -298,6 +303,13 @@ class BudgetPixel {
                 if (env_map_ && f.env_footprint) {
                     f.reflection =
                         exact_environment(*env_map_, footprint_gaussian(*f.env_footprint));
+                    if (f.away_footprint) {
+                        const Rgb away =
+                            exact_environment(*env_map_, footprint_gaussian(*f.away_footprint));
+                        for (int c = 0; c < 3; ++c) {
+                            f.reflection[c] += f.away_weight * (away[c] - f.reflection[c]);
+                        }
+                    }
                 }
                 break;
             case BudgetTerm::env_footprint:

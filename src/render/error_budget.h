@@ -23,18 +23,21 @@
 //                   the normal (dark mortar in steep grooves); lambert − texture − diffuse is that
 //                   correlation
 //   highlight       S ← mean S_k: the (rough) Blinn-Phong of the moments against the mean lobe
-//   fresnel         F ← mean F_k: Schlick of the mean normal against the mean of Schlick
-//   env-filter      R ← the exact Gaussian of the environment over the mode's own footprint K
+//   fresnel         F ← mean F_k: the mode's Fresnel (over the slopes, in the rough modes)
+//                   against the mean of Schlick
+//   env-filter      R ← the exact Gaussian of the environment over the mode's own footprint(s)
 //                   (envmap/env_reference.h): what the environment filter's kernel costs
 //   env-footprint   R ← the exact Gaussian over the covariance the samples' reflected directions
-//                   actually have: the footprint model (aperture, curvature, roughness, κ) and the
-//                   filter together, with the directions' distribution taken as Gaussian
-//   reflection      R ← mean R_k: all of the environment term; reflection − env-footprint is the
-//                   part of the directions' distribution that is not Gaussian
-//   mirror          F·R ← mean F_k·R_k: the reflection with Fresnel's correlation with it (normals
-//                   tilted away from the eye both reflect lower and reflect more)
-//   factors         c, D, S, F and R all ← their means: what remains is the correlation of the
-//                   factors inside the pixel (mean of c·D ≠ mean c · mean D)
+//                   actually have, weighted by their Fresnel: the footprint model (aperture,
+//                   curvature, roughness, κ, Fresnel's weighting) and the filter together, with
+//                   the directions' distribution taken as Gaussian
+//   reflection      R ← Σ F_k R_k / Σ F_k: all of the environment term, weighted as the mirror
+//                   term weights it; reflection − env-footprint is the part of the directions'
+//                   distribution that is not Gaussian
+//   mirror          F·R ← mean F_k·R_k: the whole mirror term (= fresnel and reflection together)
+//   factors         c, D, S, F and R all ← their means (R weighted as above): what remains is the
+//                   correlation of colour and diffuse inside the pixel (mean of c·D ≠ mean c ·
+//                   mean D)
 //
 // Hybrids are formed where the pixel is covered by one object (every sample hits the object the
 // centre hits); elsewhere they equal the filtered pixel. Their errors are meant to be read on

@@ -50,6 +50,9 @@ constexpr float kMissing[3] = {0, 0, 0};
 
 constexpr int kTileSize = 16;
 
+// Below this share of slopes facing away from the eye their second lookup is not worth it.
+constexpr float kFacingAwayThreshold = 1e-3f;
+
 // R2 quasi-random offsets (Roberts 2018), Cranley–Patterson rotated per pixel.
 constexpr double kR2a = 0.7548776662466927, kR2b = 0.5698402909980532;
 
@@ -255,7 +258,8 @@ void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_
     if (!policy_.filtered) {
         const Vec3 r = 2.0f * dot(n_hat, v_hat) * n_hat - v_hat;
         out.map_reflection = env.rotation * r;
-        static_cast<void>(textures_.environment_sample(env.map, out.map_reflection, out.reflection));
+        static_cast<void>(
+            textures_.environment_sample(env.map, out.map_reflection, out.reflection));
         ++lookups;
         out.fresnel = desc.mirror * schlick_fresnel(desc.fresnel_f0, dot(n_hat, v_hat));
         return;
@@ -268,6 +272,8 @@ void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_
     geometry.dn_dx = point.dndx;
     geometry.dn_dy = point.dndy;
     float fresnel = schlick_fresnel(desc.fresnel_f0, dot(n_hat, v_hat));
+    float facing_away = 0;
+    const ReflectionGeometry flat = geometry;
     if (point.bumped) {
         Vec2 slope = point.slope;
         Sym2 roughness = point.roughness;
@@ -278,6 +284,7 @@ void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_
             fresnel = weighted.mean;
             slope = slope + weighted.mean_slope_shift;
             roughness = weighted.covariance;
+            facing_away = weighted.facing_away;
         }
         geometry.bump_slope = point.frame.slope_sign * slope;
         geometry.t1 = point.frame.frame.t1;
@@ -292,27 +299,79 @@ void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_
     static_cast<void>(
         textures_.environment(env.map, *out.env_footprint, policy_.lookup, out.reflection));
     ++lookups;
+    const float f_away =
+        facing_away * schlick_fresnel(desc.fresnel_f0, dot(normalize(point.n), v_hat));
+    if (facing_away > kFacingAwayThreshold && fresnel + f_away > 0) {
+        // Slopes facing away from the eye are shaded with the surface's own normal (spec §4), as
+        // the reference shades them: their share of the mirror term is a second lookup.
+        out.away_footprint = compute_env_footprint(env.layout, env.texel_scale, flat, env_options);
+        Rgb texel;
+        static_cast<void>(
+            textures_.environment(env.map, *out.away_footprint, policy_.lookup, texel));
+        ++lookups;
+        out.away_weight = f_away / (fresnel + f_away);
+        for (int c = 0; c < 3; ++c) {
+            out.reflection[c] += out.away_weight * (texel[c] - out.reflection[c]);
+        }
+        fresnel += f_away;
+    }
     out.fresnel = desc.mirror * fresnel;
 }
+
+namespace {
+
+// Offset i of m: the Gaussian quantile Φ⁻¹((i + ½)/m) of a grid axis, the m of them scaled to unit
+// variance.
+double quantile_node(int i, int m) {
+    double variance = 0;
+    for (int j = 0; j < m; ++j) variance += std::pow(inverse_normal_cdf((j + 0.5) / m), 2) / m;
+    return inverse_normal_cdf((i + 0.5) / m) / std::sqrt(variance);
+}
+
+}  // namespace
 
 RayDifferential sample_ray(const PinholeCamera& camera, const RenderOptions& options, int x, int y,
                            int k, Vec2d& random) {
     const int n = std::max(1, options.spp);
-    const bool centre_only = n == 1 && options.filter != FilterMode::reference;
     const std::uint32_t seed = pixel_seed(x, y, options.seed);
-    double ox = 0, oy = 0;
-    if (!centre_only) {
+    const std::uint32_t h = hash32(seed + 2 + static_cast<std::uint32_t>(k));
+    random = {unit_float(h), unit_float(hash32(h))};
+    if (options.filter == FilterMode::reference) {
+        // Point samples: R2 points warped to the pixel filter, differentials of a 1/N share.
         const double rot_x = unit_float(hash32(seed)), rot_y = unit_float(hash32(seed + 1));
         const double ux = std::fmod(rot_x + kR2a * (k + 0.5), 1.0);
         const double uy = std::fmod(rot_y + kR2b * (k + 0.5), 1.0);
-        ox = gaussian_pixel_offset(ux), oy = gaussian_pixel_offset(uy);
+        RayDifferential ray =
+            camera.ray(x + 0.5 + gaussian_pixel_offset(ux), y + 0.5 + gaussian_pixel_offset(uy));
+        const double scale = 1.0 / std::sqrt(static_cast<double>(n));
+        ray.dodx = scale * ray.dodx, ray.dody = scale * ray.dody;
+        ray.dddx = scale * ray.dddx, ray.dddy = scale * ray.dddy;
+        return ray;
+    }
+    // Filtered samples: each sample's kernel is a Gaussian of α/4 pixel² (K/4 of differentials
+    // scaled by √α), and the sample positions spread by the rest of the pixel filter's ¼, so that
+    // the kernels add up to the σ = ½-pixel filter at any N. Positions drawn at random would make
+    // that sum lumpy — noise a 1-spp filtered pixel does not have — so N = m² takes the m × m grid
+    // of Gaussian quantiles with α = 1/m, wide kernels that overlap into a smooth sum; other N
+    // take the R2 points with α = 1/N.
+    const int m = static_cast<int>(std::lround(std::sqrt(static_cast<double>(n))));
+    double alpha = 1, ox = 0, oy = 0;
+    if (m * m == n) {
+        alpha = 1.0 / m;
+        const double spread = 0.5 * std::sqrt(1 - alpha);
+        ox = m > 1 ? spread * quantile_node(k % m, m) : 0;
+        oy = m > 1 ? spread * quantile_node(k / m, m) : 0;
+    } else {
+        alpha = 1.0 / n;
+        const double spread = std::sqrt(1 - alpha);
+        const double rot_x = unit_float(hash32(seed)), rot_y = unit_float(hash32(seed + 1));
+        ox = spread * gaussian_pixel_offset(std::fmod(rot_x + kR2a * (k + 0.5), 1.0));
+        oy = spread * gaussian_pixel_offset(std::fmod(rot_y + kR2b * (k + 0.5), 1.0));
     }
     RayDifferential ray = camera.ray(x + 0.5 + ox, y + 0.5 + oy);
-    const double differential_scale = 1.0 / std::sqrt(static_cast<double>(n));
-    ray.dodx = differential_scale * ray.dodx, ray.dody = differential_scale * ray.dody;
-    ray.dddx = differential_scale * ray.dddx, ray.dddy = differential_scale * ray.dddy;
-    const std::uint32_t h = hash32(seed + 2 + static_cast<std::uint32_t>(k));
-    random = {unit_float(h), unit_float(hash32(h))};
+    const double scale = std::sqrt(alpha);
+    ray.dodx = scale * ray.dodx, ray.dody = scale * ray.dody;
+    ray.dddx = scale * ray.dddx, ray.dddy = scale * ray.dddy;
     return ray;
 }
 

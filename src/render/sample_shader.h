@@ -57,9 +57,11 @@ struct ShadingFactors {
     float fresnel = 0;  // F = mirror·Schlick(n̂·v̂)
     Rgb reflection{};   // R = the environment in the reflected direction (filtered or not)
     // How R was looked up: the unit reflected direction in map space, and (filtered modes) the
-    // footprint.
+    // footprint; where some of the slopes face away from the eye, R = (1 − w)·R(env_footprint) +
+    // w·R(away_footprint), w = away_weight (shading/fresnel.h).
     Vec3 map_reflection;
-    std::optional<EnvFootprint> env_footprint;
+    std::optional<EnvFootprint> env_footprint, away_footprint;
+    float away_weight = 0;
 };
 
 inline Rgb combine(const ShadingFactors& f) {

@@ -58,8 +58,9 @@ FresnelOverSlopes fresnel_over_slopes(float f0, float cos_mean, Vec2 dcos_dslope
         for (int j = 0; j <= 5; ++j) {
             quintic += kBinomial[j] * std::pow(a, 5 - j) * std::pow(-sigma, j) * inside[m + j];
         }
-        moments[m] = below[m] + f0 * (above[m] + inside[m]) + (1.0 - f0) * quintic;
+        moments[m] = f0 * (above[m] + inside[m]) + (1.0 - f0) * quintic;
     }
+    out.facing_away = static_cast<float>(below[0]);
     const float f = static_cast<float>(moments[0]), zf = static_cast<float>(moments[1]),
                 z2f = static_cast<float>(moments[2]);
     out.mean = f;

@@ -36,13 +36,14 @@ void normal_moments(float a, float b, out float t[8]) {
 }
 
 struct FresnelOverSlopes {
-    float mean;  // E[F]
-    vec2 shift;  // the F-weighted mean slope − b̄
-    vec3 k;      // the F-weighted covariance (xx, xy, yy)
+    float mean;         // E[F; c ≥ 0]
+    float facing_away;  // P(c < 0)
+    vec2 shift;         // the F-weighted mean slope − b̄ (slopes facing the eye)
+    vec3 k;             // their F-weighted covariance (xx, xy, yy)
 };
 
 FresnelOverSlopes fresnel_over_slopes(float f0, float cos_mean, vec2 u, vec3 k) {
-    FresnelOverSlopes out_f = FresnelOverSlopes(schlick_fresnel(f0, cos_mean), vec2(0), k);
+    FresnelOverSlopes out_f = FresnelOverSlopes(schlick_fresnel(f0, cos_mean), 0.0, vec2(0), k);
     float variance = k.x * u.x * u.x + 2.0 * k.y * u.x * u.y + k.z * u.y * u.y;
     if (!(variance > 1e-12)) return out_f;
     float sigma = sqrt(variance), a = 1.0 - cos_mean;
@@ -68,8 +69,9 @@ FresnelOverSlopes fresnel_over_slopes(float f0, float cos_mean, vec2 u, vec3 k) 
     for (int m = 0; m < 3; ++m) {
         float quintic = 0.0;
         for (int j = 0; j <= 5; ++j) quintic += c[j] * inside[m + j];
-        moments[m] = below[m] + f0 * (above[m] + inside[m]) + (1.0 - f0) * quintic;
+        moments[m] = f0 * (above[m] + inside[m]) + (1.0 - f0) * quintic;
     }
+    out_f.facing_away = below[0];
     if (!(moments[0] > 0.0)) return out_f;
     vec2 ku = vec2(k.x * u.x + k.y * u.y, k.y * u.x + k.z * u.y);
     float mean_z = moments[1] / moments[0];
@@ -208,6 +210,7 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
             // the slopes weighted by it (in b_t's coordinates, where K_b is the same).
             vec2 b_env = b_t;
             vec3 k_env = k_b;
+            float facing_away = 0.0;
             if (bumped && rough_mode) {
                 vec3 tangential = v_hat - dot(n_hat, v_hat) * n_hat;
                 vec2 u = length(n) / length(n_m) *
@@ -215,6 +218,7 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
                 if (!is_finite(u.x + u.y)) u = vec2(0);
                 FresnelOverSlopes w = fresnel_over_slopes(material.bump.x, dot(n_hat, v_hat), u, k_b);
                 fresnel = w.mean;
+                facing_away = w.facing_away;
                 b_env = b_t + w.shift;
                 k_env = w.k;
             }
@@ -223,6 +227,15 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
                                                   bumped ? b_env : vec2(0), t,
                                                   bumped ? roughness_factor(k_env) : vec3(0), k_env);
             texel = env_lookup(f, mode, f.k.x + f.k.z);
+            // Slopes facing away from the eye are shaded with the surface's own normal (§4).
+            float f_away = facing_away * schlick_fresnel(material.bump.x, dot(normalize(n), v_hat));
+            if (facing_away > 1e-3 && fresnel + f_away > 0.0) {
+                EnvFootprint unbumped = reflection_footprint(v, -diff.dpdx, -diff.dpdy, n, dndx, dndy,
+                                                         vec2(0), t, vec3(0), vec3(0));
+                vec3 away = env_lookup(unbumped, mode, unbumped.k.x + unbumped.k.z);
+                texel = (fresnel * texel + f_away * away) / (fresnel + f_away);
+                fresnel += f_away;
+            }
         } else {
             texel = env_point_sample(2.0 * dot(n_hat, v_hat) * n_hat - v_hat);
         }
