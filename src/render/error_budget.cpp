@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <vector>
 
 #include "envmap/env_reference.h"
 #include "render/camera.h"
@@ -21,10 +22,11 @@ using detail::ShadingFactors;
 using detail::SurfacePoint;
 
 constexpr BudgetTerm kTerms[] = {
-    BudgetTerm::texture,    BudgetTerm::texture_filter, BudgetTerm::bump,
-    BudgetTerm::diffuse,    BudgetTerm::lambert,        BudgetTerm::highlight,
-    BudgetTerm::fresnel,    BudgetTerm::env_filter,     BudgetTerm::env_footprint,
-    BudgetTerm::reflection, BudgetTerm::mirror,         BudgetTerm::factors};
+    BudgetTerm::texture,       BudgetTerm::texture_filter, BudgetTerm::bump,
+    BudgetTerm::diffuse,       BudgetTerm::lambert,        BudgetTerm::highlight,
+    BudgetTerm::fresnel,       BudgetTerm::env_filter,     BudgetTerm::env_footprint,
+    BudgetTerm::env_two_lobes, BudgetTerm::reflection,     BudgetTerm::mirror,
+    BudgetTerm::factors};
 constexpr int kTermCount = static_cast<int>(std::size(kTerms));
 
 // The exact Gaussians are dense quadratures; these caps keep one pixel's at a few thousand taps
@@ -36,6 +38,51 @@ bool finite(const Rgb& c) {
     return std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]);
 }
 
+// The weighted first and second moments of unit directions, and their Gaussian on the sphere.
+struct DirectionMoments {
+    double weight = 0, dir[3] = {}, dir2[3][3] = {};  // Σ w, Σ w r̂, Σ w r̂ r̂ᵀ
+
+    void add(double w, Vec3 r) {
+        const double v[3] = {r.x, r.y, r.z};
+        weight += w;
+        for (int i = 0; i < 3; ++i) {
+            dir[i] += w * v[i];
+            for (int j = 0; j < 3; ++j) dir2[i][j] += w * v[i] * v[j];
+        }
+    }
+
+    // The Gaussian of the mean and covariance (a point without weight), as a SphereGaussian: the
+    // covariance in a tangent basis (u, w) at the mean direction, factored Σ = L Lᵀ, spread
+    // vectors 2·L's columns (sphere_gaussian_from_spread's ¼).
+    SphereGaussian gaussian() const {
+        if (!(weight > 0)) return {};
+        const Vec3d mean{dir[0] / weight, dir[1] / weight, dir[2] / weight};
+        const Vec3d m = normalize(mean);
+        const Vec3d u = std::abs(m.x) < 0.9 ? normalize(cross(m, Vec3d{1, 0, 0}))
+                                            : normalize(cross(m, Vec3d{0, 1, 0}));
+        const Vec3d w = cross(m, u);
+        auto covariance = [&](Vec3d a, Vec3d b) {
+            double sum = 0;
+            const double av[3] = {a.x, a.y, a.z}, bv[3] = {b.x, b.y, b.z};
+            for (int i = 0; i < 3; ++i) {
+                for (int j = 0; j < 3; ++j) sum += av[i] * dir2[i][j] * bv[j];
+            }
+            return sum / weight - dot(a, mean) * dot(b, mean);
+        };
+        const double cuu = std::max(0.0, covariance(u, u)), cuw = covariance(u, w),
+                     cww = std::max(0.0, covariance(w, w));
+        const double l11 = std::sqrt(cuu);
+        const double l21 = l11 > 0 ? cuw / l11 : 0;
+        const double l22 = std::sqrt(std::max(0.0, cww - l21 * l21));
+        const Vec3d spread[2] = {2.0 * (l11 * u + l21 * w), 2.0 * (l22 * w)};
+        return sphere_gaussian_from_spread(m, spread);
+    }
+};
+
+// Where a two-lobe slope model would split a pixel's slopes: beyond this Mahalanobis radius of
+// their own mean and covariance.
+constexpr double kLobeSplit = 1.5;
+
 // Sums over one pixel's reference samples that hit the object (and material) the pixel centre
 // hits: each factor, the slopes' first and second moments, and the reflected directions' weighted
 // by Fresnel. The reflection's reference value is its Fresnel-weighted mean E[F·R]/E[F], so that
@@ -45,7 +92,13 @@ struct SampleSums {
     double base[3] = {}, diffuse[3] = {}, highlight[3] = {}, reflection[3] = {}, fresnel = 0;
     double lambert[3] = {}, mirror[3] = {};  // Σ c ⊙ D, Σ F·R
     double slope[2] = {}, slope2[3] = {};    // Σ b, Σ b bᵀ (xx, xy, yy)
-    double dir[3] = {}, dir2[3][3] = {};     // Σ F r̂, Σ F r̂ r̂ᵀ
+    DirectionMoments directions;             // weighted by Fresnel
+    struct Sample {
+        Vec2 slope;
+        float fresnel;
+        Vec3 direction;
+    };
+    std::vector<Sample> samples;  // for the two-lobe split
 
     void add(const SurfacePoint& p, const ShadingFactors& f) {
         ++count;
@@ -59,11 +112,8 @@ struct SampleSums {
         slope[0] += p.slope.x, slope[1] += p.slope.y;
         slope2[0] += double(p.slope.x) * p.slope.x, slope2[1] += double(p.slope.x) * p.slope.y;
         slope2[2] += double(p.slope.y) * p.slope.y;
-        const double r[3] = {f.map_reflection.x, f.map_reflection.y, f.map_reflection.z};
-        for (int i = 0; i < 3; ++i) {
-            dir[i] += f.fresnel * r[i];
-            for (int j = 0; j < 3; ++j) dir2[i][j] += f.fresnel * r[i] * r[j];
-        }
+        directions.add(f.fresnel, f.map_reflection);
+        samples.push_back({p.slope, f.fresnel, f.map_reflection});
     }
 
     ShadingFactors means() const {
@@ -89,33 +139,29 @@ struct SampleSums {
                 static_cast<float>(std::max(0.0, slope2[2] / count - double(m.y) * m.y))};
     }
 
-    // The Gaussian of the reflected directions' Fresnel-weighted mean and covariance (a point
-    // without Fresnel), as a SphereGaussian: the
-    // covariance in a tangent basis (u, w) at the mean direction, factored Σ = L Lᵀ, spread
-    // vectors 2·L's columns (sphere_gaussian_from_spread's ¼).
-    SphereGaussian direction_gaussian() const {
-        if (!(fresnel > 0)) return {};
-        Vec3d mean{dir[0] / fresnel, dir[1] / fresnel, dir[2] / fresnel};
-        const Vec3d m = normalize(mean);
-        const Vec3d u = std::abs(m.x) < 0.9 ? normalize(cross(m, Vec3d{1, 0, 0}))
-                                            : normalize(cross(m, Vec3d{0, 1, 0}));
-        const Vec3d w = cross(m, u);
-        auto covariance = [&](Vec3d a, Vec3d b) {
-            const double ma = dot(a, mean), mb = dot(b, mean);
-            double sum = 0;
-            const double av[3] = {a.x, a.y, a.z}, bv[3] = {b.x, b.y, b.z};
-            for (int i = 0; i < 3; ++i) {
-                for (int j = 0; j < 3; ++j) sum += av[i] * dir2[i][j] * bv[j];
-            }
-            return sum / fresnel - ma * mb;
-        };
-        const double cuu = std::max(0.0, covariance(u, u)), cuw = covariance(u, w),
-                     cww = std::max(0.0, covariance(w, w));
-        const double l11 = std::sqrt(cuu);
-        const double l21 = l11 > 0 ? cuw / l11 : 0;
-        const double l22 = std::sqrt(std::max(0.0, cww - l21 * l21));
-        const Vec3d spread[2] = {2.0 * (l11 * u + l21 * w), 2.0 * (l22 * w)};
-        return sphere_gaussian_from_spread(m, spread);
+    // The reflection as two lobes: the samples split by their slope's Mahalanobis radius from the
+    // slopes' mean, each lobe the exact Gaussian of its Fresnel-weighted directions, weighted by
+    // its share of Fresnel.
+    template <class Exact>
+    Rgb two_lobes(const Exact& exact) const {
+        const Vec2 m = mean_slope();
+        const Sym2 k = slope_covariance();
+        const double det = double(k.xx) * k.yy - double(k.xy) * k.xy;
+        DirectionMoments lobes[2];
+        for (const Sample& s : samples) {
+            const double dx = s.slope.x - m.x, dy = s.slope.y - m.y;
+            const double r2 =
+                det > 0 ? (k.yy * dx * dx - 2 * k.xy * dx * dy + k.xx * dy * dy) / det : 0;
+            lobes[r2 > kLobeSplit * kLobeSplit ? 1 : 0].add(s.fresnel, s.direction);
+        }
+        Rgb out{0, 0, 0};
+        const double total = lobes[0].weight + lobes[1].weight;
+        for (const DirectionMoments& lobe : lobes) {
+            if (!(lobe.weight > 0)) continue;
+            const Rgb r = exact(lobe.gaussian());
+            for (int c = 0; c < 3; ++c) out[c] += static_cast<float>(lobe.weight / total) * r[c];
+        }
+        return out;
     }
 };
 
@@ -314,7 +360,13 @@ class BudgetPixel {
                 break;
             case BudgetTerm::env_footprint:
                 if (env_map_ && f.fresnel != 0) {
-                    f.reflection = exact_environment(*env_map_, sums.direction_gaussian());
+                    f.reflection = exact_environment(*env_map_, sums.directions.gaussian());
+                }
+                break;
+            case BudgetTerm::env_two_lobes:
+                if (env_map_ && f.fresnel != 0) {
+                    f.reflection = sums.two_lobes(
+                        [&](const SphereGaussian& g) { return exact_environment(*env_map_, g); });
                 }
                 break;
             case BudgetTerm::reflection:
@@ -368,6 +420,8 @@ const char* budget_term_name(BudgetTerm term) {
             return "env-filter";
         case BudgetTerm::env_footprint:
             return "env-footprint";
+        case BudgetTerm::env_two_lobes:
+            return "env-two-lobes";
         case BudgetTerm::reflection:
             return "reflection";
         case BudgetTerm::mirror:
@@ -401,6 +455,9 @@ const char* budget_term_description(BudgetTerm term) {
         case BudgetTerm::env_footprint:
             return "reflection by the exact Gaussian of the samples' directions (the footprint "
                    "model)";
+        case BudgetTerm::env_two_lobes:
+            return "reflection by two exact Gaussians, the samples split at 1.5 sigma of their "
+                   "slopes (what a two-lobe slope model could reach)";
         case BudgetTerm::reflection:
             return "reflection from the samples (all of the environment term)";
         case BudgetTerm::mirror:

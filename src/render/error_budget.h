@@ -31,6 +31,9 @@
 //                   actually have, weighted by their Fresnel: the footprint model (aperture,
 //                   curvature, roughness, κ, Fresnel's weighting) and the filter together, with
 //                   the directions' distribution taken as Gaussian
+//   env-two-lobes   R ← two such Gaussians, the samples split by their slope's Mahalanobis radius
+//                   (beyond 1.5) from the slopes' mean, weighted by their share of Fresnel: what a
+//                   two-lobe slope model could reach, measured before building one
 //   reflection      R ← Σ F_k R_k / Σ F_k: all of the environment term, weighted as the mirror
 //                   term weights it; reflection − env-footprint is the part of the directions'
 //                   distribution that is not Gaussian
@@ -63,6 +66,7 @@ enum class BudgetTerm {
     fresnel,
     env_filter,
     env_footprint,
+    env_two_lobes,
     reflection,
     mirror,
     factors

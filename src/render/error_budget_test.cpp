@@ -108,9 +108,10 @@ TEST(ErrorBudget, OnALitTexturedPlaneTheTextureCarriesAllTheError) {
         EXPECT_LT(max_difference(term_image(budget, term), budget.reference, &mask), kRounding)
             << budget_term_name(term);
     }
-    for (BudgetTerm term : {BudgetTerm::bump, BudgetTerm::diffuse, BudgetTerm::highlight,
-                            BudgetTerm::fresnel, BudgetTerm::env_filter, BudgetTerm::env_footprint,
-                            BudgetTerm::reflection, BudgetTerm::mirror}) {
+    for (BudgetTerm term :
+         {BudgetTerm::bump, BudgetTerm::diffuse, BudgetTerm::highlight, BudgetTerm::fresnel,
+          BudgetTerm::env_filter, BudgetTerm::env_footprint, BudgetTerm::env_two_lobes,
+          BudgetTerm::reflection, BudgetTerm::mirror}) {
         EXPECT_LT(max_difference(term_image(budget, term), budget.filtered), kRounding)
             << budget_term_name(term);
     }
@@ -158,7 +159,8 @@ TEST(ErrorBudget, OnAPerfectMirrorTheReflectionCarriesAllTheError) {
             << budget_term_name(term);
     }
     // The Gaussians differ from the filtered pixel (a different kernel) but not wildly.
-    for (BudgetTerm term : {BudgetTerm::env_filter, BudgetTerm::env_footprint}) {
+    for (BudgetTerm term :
+         {BudgetTerm::env_filter, BudgetTerm::env_footprint, BudgetTerm::env_two_lobes}) {
         const double d = max_difference(term_image(budget, term), budget.filtered, &mask);
         EXPECT_GT(d, 1e-4) << budget_term_name(term);
         EXPECT_LT(d, 0.5) << budget_term_name(term);

@@ -27,10 +27,11 @@
 // Pixel filter: a Gaussian of σ = ½ pixel (truncated at ±3σ) — the filter whose texel-space image
 // has the covariance K/4 every footprint filter implements (spec §2.6), so that filtered modes and
 // the reference measure the same thing. With spp = 1 the filtered modes sample the pixel centre;
-// with spp = N > 1 every mode takes N samples placed by a Gaussian-warped R2 sequence, each with
-// its ray differentials scaled by 1/√N (supersampling on top of filtering); a filtered mode's
-// positions spread with σ = ½√(1 − 1/N), so that with its samples' own kernels (¼/N pixel²) the
-// pixel filter is still σ = ½ pixel.
+// with spp = N > 1 the reference takes N samples placed by a Gaussian-warped R2 sequence, each
+// with its ray differentials scaled by 1/√N, and a filtered mode N samples whose own kernels
+// (α/4 pixel²) and spread (σ = ½√(1 − α)) add up to the same pixel filter: for N = m² the m × m
+// grid of Gaussian quantiles with α = 1/m, else R2 points with α = 1/N (supersampling on top of
+// filtering; docs/rendering.md).
 //
 // Shading (linear RGB). At a hit with base colour c, mean normal n̂_m, view direction v̂:
 //   L = Σ_lights E_i [ diffuse·c·max(0, n̂_m·l̂) + specular·S(n̂_m, ĥ, K_b, m)·[n̂_m·l̂ > 0] ]
