@@ -1,30 +1,45 @@
 #include "shading/fresnel.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <limits>
 #include <numbers>
 
 namespace footprint {
 
 namespace {
 
-// T_k = ∫_a^b z^k φ(z) dz for k = 0 … 7 (φ the standard normal density; a, b may be ±∞), by
-// T_0 = Φ(b) − Φ(a), T_1 = φ(a) − φ(b), T_k = (k − 1) T_{k−2} + a^{k−1} φ(a) − b^{k−1} φ(b).
-std::array<double, 8> normal_moments(double a, double b) {
-    auto phi = [](double z) {
-        return std::isfinite(z) ? std::exp(-0.5 * z * z) / std::sqrt(2 * std::numbers::pi) : 0.0;
-    };
-    auto cdf = [](double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); };
-    // z^{k−1} φ(z), 0 at ±∞.
-    auto edge = [&](double z, int power) {
-        return std::isfinite(z) ? std::pow(z, power) * phi(z) : 0.0;
-    };
-    std::array<double, 8> t{};
-    t[0] = cdf(b) - cdf(a);
-    t[1] = phi(a) - phi(b);
-    for (int k = 2; k < 8; ++k) t[k] = (k - 1) * t[k - 2] + edge(a, k - 1) - edge(b, k - 1);
+// Bounds beyond ±kEdge count as infinite: φ(10) ≈ 8e-23, far below float.
+constexpr double kEdge = 10;
+
+// The incomplete moments of the standard normal density φ from z0 on, k = 0 … 7:
+//   to_z1[k] = ∫_{z0}^{z1} z^k φ,   to_infinity[k] = ∫_{z0}^{∞} z^k φ (k ≤ 2),
+// by T_0 = Φ(b) − Φ(a), T_1 = φ(a) − φ(b), T_k = (k − 1) T_{k−2} + a^{k−1} φ(a) − b^{k−1} φ(b):
+// one erfc and one exp per bound.
+struct NormalMoments {
+    double to_z1[8], to_infinity[3], below_z0;  // below_z0 = Φ(z0)
+};
+
+NormalMoments normal_moments(double z0, double z1) {
+    if (z0 <= -kEdge && z1 >= kEdge) {
+        // The whole line (the common case: no slope turns c past 0 or 1): E[z^k] = (k − 1)!!.
+        return {{1, 0, 1, 0, 3, 0, 15, 0}, {1, 0, 1}, 0};
+    }
+    z0 = std::clamp(z0, -kEdge, kEdge), z1 = std::clamp(z1, -kEdge, kEdge);
+    const double inv_sqrt_2pi = 1 / std::sqrt(2 * std::numbers::pi);
+    const double phi0 = std::exp(-0.5 * z0 * z0) * inv_sqrt_2pi;
+    const double phi1 = std::exp(-0.5 * z1 * z1) * inv_sqrt_2pi;
+    const double cdf0 = 0.5 * std::erfc(-z0 / std::numbers::sqrt2);
+    const double cdf1 = 0.5 * std::erfc(-z1 / std::numbers::sqrt2);
+    NormalMoments t;
+    t.below_z0 = cdf0;
+    t.to_z1[0] = cdf1 - cdf0, t.to_z1[1] = phi0 - phi1;
+    t.to_infinity[0] = 1 - cdf0, t.to_infinity[1] = phi0;
+    double edge0 = phi0, edge1 = phi1;  // z^{k−1} φ(z) at both bounds
+    for (int k = 2; k < 8; ++k) {
+        edge0 *= z0, edge1 *= z1;
+        t.to_z1[k] = (k - 1) * t.to_z1[k - 2] + edge0 - edge1;
+        if (k < 3) t.to_infinity[k] = (k - 1) * t.to_infinity[k - 2] + edge0;
+    }
     return t;
 }
 
@@ -44,23 +59,22 @@ FresnelOverSlopes fresnel_over_slopes(float f0, float cos_mean, Vec2 dcos_dslope
         out.mean = schlick_fresnel(f0, cos_mean);
         return out;
     }
-    // E[z^m F], m = 0, 1, 2, with c = c̄ + σz: F = 1 where c < 0 (z < z0), F0 where c > 1 (z > z1),
-    // and between them F0 + (1 − F0)(1 − c̄ − σz)⁵, a quintic in z whose terms integrate exactly.
+    // E[z^m F; c ≥ 0], m = 0, 1, 2, with c = c̄ + σz: F0 where c > 1 (z > z1), and on [0, 1]
+    // F0 + (1 − F0)(a − σz)⁵ with a = 1 − c̄, a quintic in z: Σ_j q_j z^j, q_j = C(5, j) a^{5−j}
+    // (−σ)^j.
     const double sigma = std::sqrt(double(variance)), a = 1.0 - cos_mean;
-    const double z0 = -cos_mean / sigma, z1 = (1.0 - cos_mean) / sigma;
-    constexpr double kInf = std::numeric_limits<double>::infinity();
-    const std::array<double, 8> below = normal_moments(-kInf, z0), inside = normal_moments(z0, z1),
-                                above = normal_moments(z1, kInf);
+    const NormalMoments t = normal_moments(-cos_mean / sigma, (1.0 - cos_mean) / sigma);
     constexpr double kBinomial[6] = {1, 5, 10, 10, 5, 1};
+    double q[6], a_power = 1, s_power = 1;
+    for (int j = 5; j >= 0; --j) q[j] = a_power, a_power *= a;  // a^{5−j}
+    for (int j = 0; j <= 5; ++j) q[j] *= kBinomial[j] * s_power, s_power *= -sigma;
     double moments[3];
     for (int m = 0; m < 3; ++m) {
         double quintic = 0;
-        for (int j = 0; j <= 5; ++j) {
-            quintic += kBinomial[j] * std::pow(a, 5 - j) * std::pow(-sigma, j) * inside[m + j];
-        }
-        moments[m] = f0 * (above[m] + inside[m]) + (1.0 - f0) * quintic;
+        for (int j = 0; j <= 5; ++j) quintic += q[j] * t.to_z1[m + j];
+        moments[m] = f0 * t.to_infinity[m] + (1.0 - f0) * quintic;
     }
-    out.facing_away = static_cast<float>(below[0]);
+    out.facing_away = static_cast<float>(t.below_z0);
     const float f = static_cast<float>(moments[0]), zf = static_cast<float>(moments[1]),
                 z2f = static_cast<float>(moments[2]);
     out.mean = f;

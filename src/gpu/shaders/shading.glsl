@@ -20,18 +20,31 @@ float normal_cdf(float z) {
     return z >= 0.0 ? 1.0 - tail : tail;
 }
 
-// T_k = ∫_a^b z^k φ(z) dz, k = 0 … 7; bounds beyond ±10 count as infinite (φ(10) ≈ 8e-23).
-void normal_moments(float a, float b, out float t[8]) {
-    a = clamp(a, -10.0, 10.0);
-    b = clamp(b, -10.0, 10.0);
-    float pa = exp(-0.5 * a * a) * 0.3989422804, pb = exp(-0.5 * b * b) * 0.3989422804;
-    t[0] = normal_cdf(b) - normal_cdf(a);
-    t[1] = pa - pb;
-    float ea = pa, eb = pb;  // a^{k−1} φ(a), b^{k−1} φ(b)
+// The incomplete moments of the standard normal density from z0 on (shading/fresnel.cpp):
+// to_z1[k] = ∫_{z0}^{z1} z^k φ (k ≤ 7), to_inf[k] = ∫_{z0}^{∞} z^k φ (k ≤ 2), below = Φ(z0); bounds
+// beyond ±10 count as infinite (φ(10) ≈ 8e-23).
+void normal_moments(float z0, float z1, out float to_z1[8], out float to_inf[3], out float below) {
+    if (z0 <= -10.0 && z1 >= 10.0) {  // the whole line: E[z^k] = (k − 1)!!
+        to_z1 = float[8](1.0, 0.0, 1.0, 0.0, 3.0, 0.0, 15.0, 0.0);
+        to_inf = float[3](1.0, 0.0, 1.0);
+        below = 0.0;
+        return;
+    }
+    z0 = clamp(z0, -10.0, 10.0);
+    z1 = clamp(z1, -10.0, 10.0);
+    float phi0 = exp(-0.5 * z0 * z0) * 0.3989422804, phi1 = exp(-0.5 * z1 * z1) * 0.3989422804;
+    float cdf0 = normal_cdf(z0), cdf1 = normal_cdf(z1);
+    below = cdf0;
+    to_z1[0] = cdf1 - cdf0;
+    to_z1[1] = phi0 - phi1;
+    to_inf[0] = 1.0 - cdf0;
+    to_inf[1] = phi0;
+    float edge0 = phi0, edge1 = phi1;  // z^{k−1} φ(z) at both bounds
     for (int k = 2; k < 8; ++k) {
-        ea *= a;
-        eb *= b;
-        t[k] = float(k - 1) * t[k - 2] + ea - eb;
+        edge0 *= z0;
+        edge1 *= z1;
+        to_z1[k] = float(k - 1) * to_z1[k - 2] + edge0 - edge1;
+        if (k < 3) to_inf[k] = float(k - 1) * to_inf[k - 2] + edge0;
     }
 }
 
@@ -47,18 +60,15 @@ FresnelOverSlopes fresnel_over_slopes(float f0, float cos_mean, vec2 u, vec3 k) 
     float variance = k.x * u.x * u.x + 2.0 * k.y * u.x * u.y + k.z * u.y * u.y;
     if (!(variance > 1e-12)) return out_f;
     float sigma = sqrt(variance), a = 1.0 - cos_mean;
-    float z0 = -cos_mean / sigma, z1 = (1.0 - cos_mean) / sigma;
-    float below[8], inside[8], above[8];
-    normal_moments(-10.0, z0, below);
-    normal_moments(z0, z1, inside);
-    normal_moments(z1, 10.0, above);
+    float to_z1[8], to_inf[3], below;
+    normal_moments(-cos_mean / sigma, (1.0 - cos_mean) / sigma, to_z1, to_inf, below);
     // (a − σz)⁵ = Σ_j c_j z^j, c_j = C(5, j) a^{5−j} (−σ)^j (GLSL's pow is undefined for a
     // negative base, so the powers are products).
     const float binomial[6] = float[6](1.0, 5.0, 10.0, 10.0, 5.0, 1.0);
     float c[6];
     float a_power = 1.0, s_power = 1.0;
-    for (int j = 0; j <= 5; ++j) {
-        c[5 - j] = a_power;  // a^j, for the term of z^{5−j}
+    for (int j = 5; j >= 0; --j) {
+        c[j] = a_power;  // a^{5−j}
         a_power *= a;
     }
     for (int j = 0; j <= 5; ++j) {
@@ -68,10 +78,10 @@ FresnelOverSlopes fresnel_over_slopes(float f0, float cos_mean, vec2 u, vec3 k) 
     float moments[3];
     for (int m = 0; m < 3; ++m) {
         float quintic = 0.0;
-        for (int j = 0; j <= 5; ++j) quintic += c[j] * inside[m + j];
-        moments[m] = f0 * (above[m] + inside[m]) + (1.0 - f0) * quintic;
+        for (int j = 0; j <= 5; ++j) quintic += c[j] * to_z1[m + j];
+        moments[m] = f0 * to_inf[m] + (1.0 - f0) * quintic;
     }
-    out_f.facing_away = below[0];
+    out_f.facing_away = below;
     if (!(moments[0] > 0.0)) return out_f;
     vec2 ku = vec2(k.x * u.x + k.y * u.y, k.y * u.x + k.z * u.y);
     float mean_z = moments[1] / moments[0];
