@@ -66,6 +66,9 @@ double removed(const Row& row, const Row& mode) {
 int run_error_budget_command(const EvalCommandOptions& options) {
     if (auto problem = range_problem("--reference-spp", options.reference_spp, 1, 1 << 20))
         return fail(*problem);
+    if (!(options.kappa >= 0 && options.kappa <= 16)) {
+        return fail("--kappa: " + std::to_string(options.kappa) + " is not in 0 … 16");
+    }
     const std::optional<FilterMode> mode = parse_filter_mode(options.budget_filter);
     if (!mode || *mode == FilterMode::reference) {
         return fail("--budget-filter: '" + options.budget_filter +
@@ -102,6 +105,7 @@ int run_error_budget_command(const EvalCommandOptions& options) {
         budget_options.filter = *mode;
         budget_options.spp = options.reference_spp;
         budget_options.threads = options.threads;
+        budget_options.kappa = options.kappa;
         Progress bar(
             named.name + " budget",
             static_cast<std::uint64_t>(render_tile_count(scene.desc().width, scene.desc().height)),

@@ -154,6 +154,13 @@ TEST_F(EvalCommandTest, BadArgumentsNameTheProblem) {
     o.frames = 1;
     EXPECT_EQ(run(o, &err), 1);
     EXPECT_NE(err.find("--frames"), std::string::npos) << err;
+    o = small({"water"});
+    o.kappa = -1;
+    EXPECT_EQ(run(o, &err), 1);
+    EXPECT_NE(err.find("--kappa"), std::string::npos) << err;
+    o.budget = true;
+    EXPECT_EQ(run(o, &err), 1);
+    EXPECT_NE(err.find("--kappa"), std::string::npos) << err;
 }
 
 TEST_F(EvalCommandTest, TheBudgetWritesOneRowPerSceneAndTerm) {

@@ -53,8 +53,8 @@ struct Timed {
 
 class Renderer {
   public:
-    Renderer(const RenderScene& scene, int threads, bool progress)
-        : scene_(scene), threads_(threads), progress_(progress) {}
+    Renderer(const RenderScene& scene, int threads, float kappa, bool progress)
+        : scene_(scene), threads_(threads), kappa_(kappa), progress_(progress) {}
 
     Result<Timed> render_one(FilterMode mode, int spp, std::uint32_t seed, const std::string& label,
                              int frame = 0, int frame_count = 0) const {
@@ -63,6 +63,7 @@ class Renderer {
         options.spp = spp;
         options.seed = seed;
         options.threads = threads_;
+        options.kappa = kappa_;
         options.frame = frame;
         options.frame_count = frame_count;
         RenderStats stats;
@@ -88,6 +89,7 @@ class Renderer {
   private:
     const RenderScene& scene_;
     int threads_;
+    float kappa_;
     bool progress_;
 };
 
@@ -170,6 +172,9 @@ std::optional<std::string> option_problem(const EvalCommandOptions& options) {
         return problem;
     if (auto problem = range_problem("--threads", options.threads, 0, kMaxThreads, "0: all cores"))
         return problem;
+    if (!(options.kappa >= 0 && options.kappa <= 16)) {
+        return "--kappa: " + std::to_string(options.kappa) + " is not in 0 … 16";
+    }
     return std::nullopt;
 }
 
@@ -213,7 +218,7 @@ int run_eval_command(const EvalCommandOptions& options) {
         const SceneDesc& desc = scene.desc();
         const fs::path dir = options.out_dir / named.name;
         if (Status made = outputs.create_directories(dir); !made) return fail(made.error().message);
-        const Renderer renderer(scene, options.threads, show_progress);
+        const Renderer renderer(scene, options.threads, options.kappa, show_progress);
         const std::string key = hash_hex(scene_content_hash(desc)) + "-v" +
                                 std::to_string(kReferenceVersion) + "-" +
                                 std::to_string(desc.width) + "x" + std::to_string(desc.height);

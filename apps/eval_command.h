@@ -56,6 +56,7 @@ struct EvalCommandOptions {
     int frames = 8;                   // 0: no flicker measurement
     int flicker_reference_spp = 256;  // the reference sequence's samples per pixel
     int threads = 0;
+    float kappa = 2;  // κ of the filter modes' environment footprint (RenderOptions::kappa)
     bool browser_check = true;
     bool quiet = false;
     // --budget: the error budget of one filtered mode instead (apps/eval_budget.h), with

@@ -242,6 +242,10 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     eval_cmd->add_option("--threads", eval.threads, "Worker threads, 0 to 1024 (0: all cores)")
         ->capture_default_str();
+    eval_cmd
+        ->add_option("--kappa", eval.kappa,
+                     "κ of the filter modes' environment footprint, 0 to 16 (spec §2.6)")
+        ->capture_default_str();
     eval_cmd->add_flag("--no-browser-check", eval_no_browser,
                        "Do not open the report in headless Chromium");
     eval_cmd->add_flag("--quiet,-q", eval.quiet, "No progress output");
