@@ -66,23 +66,16 @@ double removed(const Row& row, const Row& mode) {
 int run_error_budget_command(const EvalCommandOptions& options) {
     if (auto problem = range_problem("--reference-spp", options.reference_spp, 1, 1 << 20))
         return fail(*problem);
-    if (!(options.kappa >= 0 && options.kappa <= 16)) {
-        return fail("--kappa: " + std::to_string(options.kappa) + " is not in 0 … 16");
-    }
+    if (const auto problem = kappa_problem(options.kappa)) return fail(*problem);
     const std::optional<FilterMode> mode = parse_filter_mode(options.budget_filter);
     if (!mode || *mode == FilterMode::reference) {
         return fail("--budget-filter: '" + options.budget_filter +
                     "' is not a filtered mode; it accepts bilinear, trilinear, fa, fa-rough, "
                     "ewa-rough");
     }
-    std::vector<std::string> names = options.scenes;
-    if (names.empty()) names = demo_scene_names();
-    std::vector<NamedScene> scenes;
-    for (const std::string& name : names) {
-        Result<NamedScene> scene = resolve_scene(name, options.width);
-        if (!scene) return fail(scene.error().message);
-        scenes.push_back(std::move(*scene));
-    }
+    Result<std::vector<NamedScene>> resolved = resolve_eval_scenes(options);
+    if (!resolved) return fail(resolved.error().message);
+    const std::vector<NamedScene>& scenes = *resolved;
     RunOutputs outputs;
     if (Status made = outputs.create_directories(options.out_dir); !made)
         return fail(made.error().message);

@@ -172,25 +172,34 @@ std::optional<std::string> option_problem(const EvalCommandOptions& options) {
         return problem;
     if (auto problem = range_problem("--threads", options.threads, 0, kMaxThreads, "0: all cores"))
         return problem;
-    if (!(options.kappa >= 0 && options.kappa <= 16)) {
-        return "--kappa: " + std::to_string(options.kappa) + " is not in 0 … 16";
-    }
-    return std::nullopt;
+    return kappa_problem(options.kappa);
 }
 
 }  // namespace
 
-int run_eval_command(const EvalCommandOptions& options) {
-    if (options.budget) return run_error_budget_command(options);
-    if (const auto problem = option_problem(options)) return fail(*problem);
+Result<std::vector<NamedScene>> resolve_eval_scenes(const EvalCommandOptions& options) {
     std::vector<std::string> names = options.scenes;
     if (names.empty()) names = demo_scene_names();
     std::vector<NamedScene> scenes;
     for (const std::string& name : names) {
         Result<NamedScene> scene = resolve_scene(name, options.width);
-        if (!scene) return fail(scene.error().message);
+        if (!scene) return scene.error();
         scenes.push_back(std::move(*scene));
     }
+    return scenes;
+}
+
+std::optional<std::string> kappa_problem(float kappa) {
+    if (kappa >= 0 && kappa <= 16) return std::nullopt;
+    return "--kappa: " + std::to_string(kappa) + " is not in 0 … 16";
+}
+
+int run_eval_command(const EvalCommandOptions& options) {
+    if (options.budget) return run_error_budget_command(options);
+    if (const auto problem = option_problem(options)) return fail(*problem);
+    Result<std::vector<NamedScene>> resolved = resolve_eval_scenes(options);
+    if (!resolved) return fail(resolved.error().message);
+    const std::vector<NamedScene>& scenes = *resolved;
     // A failed run leaves none of its files behind, except the cache: references of the scenes'
     // content, valid whatever failed, so that the run after the fix need not render them again.
     RunOutputs outputs;

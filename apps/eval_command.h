@@ -39,8 +39,12 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "command_util.h"
+#include "core/result.h"
 
 namespace footprint {
 
@@ -65,5 +69,12 @@ struct EvalCommandOptions {
     std::string budget_filter = "fa-rough";  // a filtered mode's name (renderer.h)
 };
 int run_eval_command(const EvalCommandOptions& options);
+
+// Shared by the evaluation and the budget (apps/eval_budget.cpp): the scenes named by
+// options.scenes (every demo if none), or an Error naming the first that cannot be resolved;
+// and the problem with --kappa, if any.
+
+Result<std::vector<NamedScene>> resolve_eval_scenes(const EvalCommandOptions& options);
+std::optional<std::string> kappa_problem(float kappa);
 
 }  // namespace footprint
