@@ -29,6 +29,7 @@
 #include <footprint/bump/roughness.h>
 #include <footprint/bump/slope_map.h>
 #include <footprint/shading/blinn_phong.h>
+#include <footprint/shading/microfacet.h>
 
 #include <footprint/envmap/env_convert.h>
 #include <footprint/envmap/env_footprint.h>

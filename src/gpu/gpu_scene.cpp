@@ -202,6 +202,19 @@ std::shared_ptr<const MipPyramid> grey_as_rgb(const MipPyramid& grey) {
     return std::make_shared<const MipPyramid>(std::move(*rgb));
 }
 
+// shading.glsl's HIGHLIGHT_* codes.
+float highlight_code(MaterialDesc::Highlight highlight) {
+    switch (highlight) {
+        case MaterialDesc::Highlight::blinn_phong:
+            return 0;
+        case MaterialDesc::Highlight::beckmann:
+            return 1;
+        case MaterialDesc::Highlight::ggx:
+            return 2;
+    }
+    return 0;
+}
+
 float bump_frame_code(BumpFrame frame) {
     switch (frame) {
         case BumpFrame::natural:
@@ -258,12 +271,14 @@ Result<MaterialRecord> material_record(const RenderMaterial& m, TextureSystem& t
     const float roughness[4] = {m.micro_roughness.xx, m.micro_roughness.xy, m.micro_roughness.yy,
                                 offset.y};
     const int maps[4] = {color.unit, color.layer, bump.unit, bump.layer};
+    const float highlight[4] = {highlight_code(d.highlight), d.roughness * d.roughness, 0, 0};
     std::copy_n(base, 4, r.base_color);
     std::copy_n(weights, 4, r.weights);
     std::copy_n(bump_info, 4, r.bump);
     std::copy_n(main_direction, 4, r.main_direction);
     std::copy_n(roughness, 4, r.roughness);
     std::copy_n(maps, 4, r.maps);
+    std::copy_n(highlight, 4, r.highlight);
     return r;
 }
 

@@ -13,6 +13,7 @@
 #include "math/sample_patterns.h"
 #include "shading/blinn_phong.h"
 #include "shading/fresnel.h"
+#include "shading/microfacet.h"
 
 namespace footprint::detail {
 
@@ -207,7 +208,8 @@ ShadingFactors SampleShader::shade(const SurfacePoint& point) {
     return out;
 }
 
-// Lambert + Blinn-Phong (rough in the rough modes) for every light.
+// Lambert + the material's highlight (Blinn-Phong or a microfacet BRDF, widened by K_b in the
+// rough modes) for every light.
 void SampleShader::add_lights(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat,
                               ShadingFactors& out) const {
     const MaterialDesc& desc = point.material->desc;
@@ -233,11 +235,15 @@ void SampleShader::add_lights(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat,
         const float cos_l = dot(n_hat, l);
         if (cos_l <= 0) continue;
         const Vec3 h = normalize(l + v_hat);
-        const float spec =
-            desc.specular > 0
-                ? desc.specular * specular(model, to_array(n_hat), to_array(e1), to_array(e2),
-                                           to_array(h), k_e, desc.shininess)
-                : 0.0f;
+        float spec = 0;
+        if (desc.specular > 0 && desc.highlight == MaterialDesc::Highlight::blinn_phong) {
+            spec = desc.specular * specular(model, to_array(n_hat), to_array(e1), to_array(e2),
+                                            to_array(h), k_e, desc.shininess);
+        } else if (desc.specular > 0) {  // f_r·cos_l
+            spec = desc.specular * microfacet_highlight(microfacet, to_array(n_hat), to_array(e1),
+                                                        to_array(e2), to_array(l), to_array(v_hat),
+                                                        k_microfacet, alpha, desc.fresnel_f0);
+        }
         const float diffuse = desc.diffuse * cos_l;
         const float rgb[3] = {light.color.x, light.color.y, light.color.z};
         for (int c = 0; c < 3; ++c) {
@@ -347,6 +353,13 @@ RayDifferential sample_ray(const PinholeCamera& camera, const RenderOptions& opt
         ray.dodx = scale * ray.dodx, ray.dody = scale * ray.dody;
         ray.dddx = scale * ray.dddx, ray.dddy = scale * ray.dddy;
         return ray;
+    // A microfacet highlight (shading/microfacet.h) is widened by the filtered K_b in the rough
+    // modes and by nothing in the others, as specular() with `model`.
+    const Sym2 k_microfacet = policy_.roughness ? k_e : Sym2{};
+    const float alpha = desc.roughness * desc.roughness;
+    const MicrofacetModel microfacet = desc.highlight == MaterialDesc::Highlight::ggx
+                                           ? MicrofacetModel::ggx
+                                           : MicrofacetModel::beckmann;
     }
     // Filtered samples: each sample's kernel is a Gaussian of α/4 pixel² (K/4 of differentials
     // scaled by √α), and the sample positions spread by the rest of the pixel filter's ¼, so that

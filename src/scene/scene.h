@@ -92,10 +92,18 @@ struct MaterialDesc {
     Vec3 base_color{0.8f, 0.8f, 0.8f};  // linear RGB; multiplied by base_color_map where given
     ImageSource base_color_map;         // sRGB-decoded on load (colour)
     float diffuse = 1;                  // Lambert weight
-    float specular = 0;                 // Blinn-Phong weight
+    float specular = 0;                 // the lights' highlight weight
     float shininess = 50;               // Blinn-Phong exponent m
-    float mirror = 0;                   // environment reflection weight (× Fresnel)
-    float fresnel_f0 = 1;               // Schlick's F0; 1 = a perfect mirror
+    // The lights' highlight: Blinn-Phong (shading/blinn_phong.h; rough in the rough modes) or a
+    // microfacet BRDF (shading/microfacet.h) of roughness `roughness`, Fresnel `fresnel_f0`.
+    enum class Highlight { blinn_phong, beckmann, ggx };
+    Highlight highlight = Highlight::blinn_phong;
+    // glTF's perceptual roughness r ∈ (0, 1] of the beckmann and ggx highlights: α = r². The
+    // default α = 0.2 is a lobe as wide as the default shininess (Blinn-Phong ≈ Beckmann at
+    // α² = 2/(m + 2)). Shapes the lights' highlight only, not the environment reflection.
+    float roughness = 0.45f;
+    float mirror = 0;      // environment reflection weight (× Fresnel)
+    float fresnel_f0 = 1;  // Schlick's F0; 1 = a perfect mirror
     BumpDesc bump;
     float micro_roughness = 0;  // slope standard deviation below the bump map's resolution
     // What an invalid texel (NaN/Inf, n_z ≤ 0: an all-black map) of the material's normal maps

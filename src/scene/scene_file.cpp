@@ -8,6 +8,7 @@
 #include <functional>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -598,9 +599,10 @@ class SceneParser {
 
     // `mesh`: the material of a mesh object, whose file may bring its own normal textures.
     MaterialDesc parse_material(const json& j, const std::string& path, bool mesh) const {
-        check_keys(j, path,
-                   {"base_color", "diffuse", "specular", "shininess", "mirror", "fresnel_f0",
-                    "bump", "micro_roughness", "invalid_normals", "non_finite"});
+        check_keys(
+            j, path,
+            {"base_color", "diffuse", "specular", "shininess", "highlight", "roughness", "mirror",
+             "fresnel_f0", "bump", "micro_roughness", "invalid_normals", "non_finite"});
         MaterialDesc m;
         auto at = [&](std::string_view key) { return member(path, key); };
         if (const json* v = find(j, "base_color")) {
@@ -617,6 +619,24 @@ class SceneParser {
         if (const json* v = find(j, "diffuse")) m.diffuse = non_negative(*v, at("diffuse"));
         if (const json* v = find(j, "specular")) m.specular = non_negative(*v, at("specular"));
         if (const json* v = find(j, "shininess")) m.shininess = non_negative(*v, at("shininess"));
+        if (const json* v = find(j, "highlight"))
+            m.highlight = parse_highlight(*v, at("highlight"));
+        if (const json* v = find(j, "roughness")) {
+            const double r = number(*v, at("roughness"));
+            if (!(r > 0 && r <= 1))
+                fail(at("roughness"), "must be in (0, 1], got " + format_number(r));
+            m.roughness = narrow(r);
+        }
+        // Each highlight takes its own width: shininess (Blinn-Phong) or roughness (microfacet).
+        const bool microfacet = m.highlight != MaterialDesc::Highlight::blinn_phong;
+        if (!microfacet && find(j, "roughness"))
+            fail(at("roughness"),
+                 "is used only with \"highlight\": \"beckmann\" or \"ggx\" (blinn-phong, "
+                 "the default, takes shininess)");
+        if (microfacet && find(j, "shininess"))
+            fail(at("shininess"), "is the Blinn-Phong exponent: the " +
+                                      std::string(highlight_name(m.highlight)) +
+                                      " highlight takes roughness");
         if (const json* v = find(j, "mirror")) m.mirror = non_negative(*v, at("mirror"));
         if (const json* v = find(j, "fresnel_f0")) {
             m.fresnel_f0 = single(*v, at("fresnel_f0"));
@@ -636,6 +656,25 @@ class SceneParser {
                      "bump.height_map (for a normal map's NaN texels: invalid_normals)");
         }
         return m;
+    }
+
+    static constexpr std::string_view kHighlightNames[] = {"blinn-phong", "beckmann", "ggx"};
+    static std::string_view highlight_name(MaterialDesc::Highlight h) {
+        return kHighlightNames[static_cast<int>(h)];
+    }
+
+    // "blinn-phong" (the default), "beckmann" or "ggx" (scene.h's MaterialDesc::Highlight).
+    MaterialDesc::Highlight parse_highlight(const json& j, const std::string& path) const {
+        const std::string name = string(j, path);
+        for (const MaterialDesc::Highlight h :
+             {MaterialDesc::Highlight::blinn_phong, MaterialDesc::Highlight::beckmann,
+              MaterialDesc::Highlight::ggx})
+            if (name == highlight_name(h)) return h;
+        const Keys names(std::begin(kHighlightNames), std::end(kHighlightNames));
+        const std::optional<std::string_view> best = closest_name(name, names);
+        fail(path, "unknown highlight " + quoted(name) + " (" +
+                       (best ? "did you mean " + quoted(std::string(*best)) + "? " : "") +
+                       "expected one of: " + join_names(names, ", ") + ")");
     }
 
     // "error" (the default: a NaN or infinite texel stops the render, named) or "repair"

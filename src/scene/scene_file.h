@@ -20,7 +20,8 @@
 // uv_scale}, sphere {center, radius}, cylinder {center, axis, radius, height}, paraboloid {focus,
 // axis, focal_length, radius}, torus {center, axis, major_radius, minor_radius}, mesh {file
 // (.obj .gltf .glb), transform {translate, rotate_deg, scale (number or [x,y,z])}}. A material is
-// {base_color ([r,g,b] or a texture file), diffuse, specular, shininess, mirror, fresnel_f0,
+// {base_color ([r,g,b] or a texture file), diffuse, specular, highlight ("blinn-phong" |
+// "beckmann" | "ggx"), shininess (blinn-phong), roughness (beckmann, ggx), mirror, fresnel_f0,
 // micro_roughness, bump {height_map | normal_map (exactly one), strength, frame (natural |
 // normalized | main_direction), main_direction}, invalid_normals ("error" | "clamp": what an
 // invalid texel of the material's normal maps does, scene.h), non_finite ("error" | "repair": what

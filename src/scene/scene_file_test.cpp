@@ -73,7 +73,7 @@ constexpr const char* kCompleteScene = R"({
                   "micro_roughness": 0.1875}},
     {"shape": "plane", "size": "infinite"},
     {"name": "ball", "shape": "sphere", "center": [1, 2, 3], "radius": 0.5,
-     "material": {"base_color": [0.5, 0.25, 1],
+     "material": {"base_color": [0.5, 0.25, 1], "highlight": "ggx", "roughness": 0.25,
                   "bump": {"normal_map": "normal.png", "strength": -2,
                            "main_direction": [1, 0, 0]}}},
     {"shape": "cylinder", "center": [4, 5, 6], "axis": [1, 0, 0], "radius": 0.75, "height": 3,
@@ -146,6 +146,7 @@ TEST(SceneFile, CompleteSceneParsesToTheExactValues) {
         EXPECT_EQ(m.diffuse, 0.75f);
         EXPECT_EQ(m.specular, 0.125f);
         EXPECT_EQ(m.shininess, 12.0f);
+        EXPECT_EQ(m.highlight, MaterialDesc::Highlight::blinn_phong);
         EXPECT_EQ(m.mirror, 0.5f);
         EXPECT_EQ(m.fresnel_f0, 0.0625f);
         EXPECT_EQ(m.micro_roughness, 0.1875f);
@@ -168,6 +169,8 @@ TEST(SceneFile, CompleteSceneParsesToTheExactValues) {
         EXPECT_EQ(o.material.diffuse, 1.0f);
         EXPECT_EQ(o.material.specular, 0.0f);
         EXPECT_EQ(o.material.shininess, 50.0f);
+        EXPECT_EQ(o.material.highlight, MaterialDesc::Highlight::blinn_phong);
+        EXPECT_EQ(o.material.roughness, 0.45f);
         EXPECT_EQ(o.material.mirror, 0.0f);
         EXPECT_EQ(o.material.fresnel_f0, 1.0f);
         EXPECT_EQ(o.material.micro_roughness, 0.0f);
@@ -183,6 +186,9 @@ TEST(SceneFile, CompleteSceneParsesToTheExactValues) {
         EXPECT_EQ(sphere->radius, 0.5);
         EXPECT_VEC3_EQ(o.material.base_color, 0.5f, 0.25f, 1.0f);
         EXPECT_TRUE(o.material.base_color_map.empty());
+        EXPECT_EQ(o.material.highlight, MaterialDesc::Highlight::ggx);
+        EXPECT_EQ(o.material.roughness, 0.25f);
+        EXPECT_EQ(o.material.shininess, 50.0f);  // the default, unused by ggx
         const BumpDesc& b = o.material.bump;
         EXPECT_EQ(b.source, BumpDesc::Source::normal_map);
         EXPECT_EQ(b.map.file, d / "normal.png");
@@ -675,6 +681,36 @@ const ErrorCase kErrorCases[] = {
      "objects[0].material.fresnel_f0", "must be in [0, 1], got 1.5"},
     {"FresnelNegative", R"({"objects": [{"shape": "sphere", "material": {"fresnel_f0": -0.5}}]})",
      "objects[0].material.fresnel_f0", "must be in [0, 1]"},
+    {"HighlightUnknown",
+     R"({"objects": [{"shape": "sphere", "material": {"highlight": "phong"}}]})",
+     "objects[0].material.highlight",
+     "unknown highlight 'phong' (expected one of: blinn-phong, beckmann, ggx)"},
+    {"HighlightMisspelt", R"({"objects": [{"shape": "sphere", "material": {"highlight": "gxx"}}]})",
+     "objects[0].material.highlight",
+     "unknown highlight 'gxx' (did you mean 'ggx'? expected one of: blinn-phong, beckmann, ggx)"},
+    {"HighlightUnderscore", R"({"objects": [{"shape": "sphere",
+        "material": {"highlight": "blinn_phong"}}]})",
+     "objects[0].material.highlight", "did you mean 'blinn-phong'?"},
+    {"HighlightNotAString", R"({"objects": [{"shape": "sphere", "material": {"highlight": 1}}]})",
+     "objects[0].material.highlight", "expected a string, got a number"},
+    {"RoughnessZero", R"({"objects": [{"shape": "sphere",
+        "material": {"highlight": "ggx", "roughness": 0}}]})",
+     "objects[0].material.roughness", "must be in (0, 1], got 0"},
+    {"RoughnessAboveOne", R"({"objects": [{"shape": "sphere",
+        "material": {"highlight": "beckmann", "roughness": 1.5}}]})",
+     "objects[0].material.roughness", "must be in (0, 1], got 1.5"},
+    {"RoughnessString", R"({"objects": [{"shape": "sphere",
+        "material": {"highlight": "ggx", "roughness": "0.3"}}]})",
+     "objects[0].material.roughness", "expected a number, got a string"},
+    {"RoughnessWithBlinnPhong", R"({"objects": [{"shape": "sphere",
+        "material": {"roughness": 0.3}}]})",
+     "objects[0].material.roughness",
+     "is used only with \"highlight\": \"beckmann\" or \"ggx\" (blinn-phong, the default, "
+     "takes shininess)"},
+    {"ShininessWithGgx", R"({"objects": [{"shape": "sphere",
+        "material": {"highlight": "ggx", "shininess": 80}}]})",
+     "objects[0].material.shininess",
+     "is the Blinn-Phong exponent: the ggx highlight takes roughness"},
     {"MicroRoughnessNegative", R"({"objects": [{"shape": "sphere",
         "material": {"micro_roughness": -0.01}}]})",
      "objects[0].material.micro_roughness", "must be >= 0"},
@@ -1116,6 +1152,24 @@ TEST(SceneFile, QuickstartExampleRendersFromTheRepositorysAssets) {
               "assets");
     desc->width = 16;
     desc->height = 9;
+    const Result<RenderScene> scene = prepare_render_scene(*desc);
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+}
+
+// The three highlights side by side (examples/scenes/ggx_spheres.json), from assets/ alone.
+TEST(SceneFile, GgxSpheresExampleLoadsFromTheRepositorysAssets) {
+    const fs::path file = (examples_dir() / "ggx_spheres.json").lexically_normal();
+    if (!fs::exists(file))
+        GTEST_SKIP() << file << " not found (run from the repository root or set "
+                     << "FOOTPRINT_EXAMPLES_DIR)";
+    Result<SceneDesc> desc = load_scene_file(file);
+    ASSERT_TRUE(desc.ok()) << desc.error().message;
+    ASSERT_EQ(desc->objects.size(), 4u);
+    EXPECT_EQ(desc->objects[1].material.highlight, MaterialDesc::Highlight::blinn_phong);
+    EXPECT_EQ(desc->objects[2].material.highlight, MaterialDesc::Highlight::beckmann);
+    EXPECT_EQ(desc->objects[3].material.highlight, MaterialDesc::Highlight::ggx);
+    desc->width = 16;
+    desc->height = 8;
     const Result<RenderScene> scene = prepare_render_scene(*desc);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
 }

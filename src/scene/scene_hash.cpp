@@ -69,6 +69,7 @@ void add_material(Fnv1a& h, const MaterialDesc& m) {
     if (!m.base_color_map.empty()) h.image(m.base_color_map);
     h.add(m.diffuse), h.add(m.specular), h.add(m.shininess), h.add(m.mirror);
     h.add(m.fresnel_f0), h.add(m.micro_roughness);
+    h.add(static_cast<int>(m.highlight)), h.add(m.roughness);
     h.add(static_cast<int>(m.bump.source));
     if (m.bump.source != BumpDesc::Source::none) h.image(m.bump.map);
     h.add(m.bump.strength), h.add(static_cast<int>(m.bump.frame)), h.add(m.bump.main_direction);

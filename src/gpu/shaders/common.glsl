@@ -45,6 +45,7 @@ struct Material {
     vec4 main_direction;  // xyz; zero: ∂p/∂v; w: the bump map's mean slope b1
     vec4 roughness;       // micro-roughness K_0 = (xx, xy, yy) in xyz; w: mean slope b2
     ivec4 maps;  // the base colour map's u_maps index (−1: none) and layer, the bump map's
+    vec4 highlight;  // HIGHLIGHT_* (shading.glsl), microfacet α, unused, unused
 };
 
 struct Light {

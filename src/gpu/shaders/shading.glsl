@@ -1,5 +1,5 @@
-// gpu/shaders/shading.glsl — roughness-aware Blinn-Phong and Fresnel (shading/blinn_phong.h,
-// shading/fresnel.h), and
+// gpu/shaders/shading.glsl — roughness-aware Blinn-Phong, microfacet highlights and Fresnel
+// (shading/blinn_phong.h, shading/microfacet.h, shading/fresnel.h), and
 // the shading of one hit (render/renderer.h's "Shading"), the same steps as the CPU renderer.
 
 float schlick_fresnel(float f0, float cos_theta) {
@@ -124,6 +124,62 @@ float specular_lobe(bool rough, vec3 n, vec3 e1, vec3 e2, vec3 h, vec3 k_b, floa
     return rough_blinn_phong(cos_a, vec2(-dot(h, e1), -dot(h, e2)), k_b, shininess);
 }
 
+// ---- Microfacet highlights (shading/microfacet.h's microfacet_highlight()), in float: M's
+// eigenvalues are ≥ α² ≥ 1e-6, so det M ≥ 1e-12 and D ≤ 3.2e5 stay in range.
+
+const int HIGHLIGHT_BLINN_PHONG = 0;  // MaterialDesc::Highlight, gpu_scene.cpp's highlight_code()
+const int HIGHLIGHT_BECKMANN = 1;
+const int HIGHLIGHT_GGX = 2;
+
+// D(ĥ) for the local coordinates h = (ĥ·e1, ĥ·e2, ĥ·n̂) of a unit ĥ and M = α² I + 2 K_b
+// (xx, xy, yy): Q = tᵀM⁻¹t, Beckmann exp(−Q/z²)/(π √det M z⁴), GGX 1/(π √det M (z² + Q)²).
+float microfacet_distribution(int model, vec3 h, vec3 m) {
+    if (!(h.z > 0.0)) return 0.0;
+    float det = m.x * m.z - m.y * m.y;
+    float q = max(0.0, m.z * h.x * h.x - 2.0 * m.y * h.x * h.y + m.x * h.y * h.y) / det;
+    float z2 = h.z * h.z;
+    if (model == HIGHLIGHT_GGX) {
+        float den = z2 + q;
+        return 1.0 / (PI * sqrt(det) * den * den);
+    }
+    float exponent = q / z2;
+    if (!(exponent < 80.0)) return 0.0;  // e^{−80} ≈ 2e-35; z⁴ might underflow beyond
+    return exp(-exponent) / (PI * sqrt(det) * z2 * z2);
+}
+
+// Smith's Λ(ω), q = α_ω² tan²θ = tᵀM t / z²: Beckmann (e^{−a²}/(a√π) − erfc a)/2 with a = 1/√q,
+// GGX q/(2(1 + √(1 + q))).
+float smith_lambda(int model, vec3 w, vec3 m) {
+    float q = max(0.0, m.x * w.x * w.x + 2.0 * m.y * w.x * w.y + m.z * w.y * w.y) / (w.z * w.z);
+    if (!(q > 0.0)) return 0.0;
+    if (!(q < 1e30)) return 1e30;  // at the horizon (z² rounded to 0): G2 = 0
+    if (model == HIGHLIGHT_GGX) return q / (2.0 * (1.0 + sqrt(1.0 + q)));
+    // erfc(a) = e^{−a²}·t·poly(t) by Abramowitz & Stegun 7.1.26 (as normal_cdf(); absolute error
+    // < 1.5e-7, so Λ's is < 1e-7).
+    float a = inversesqrt(q);
+    float t = 1.0 / (1.0 + 0.3275911 * a);
+    float poly = t * (0.254829592 + t * (-0.284496736 + t * (1.421413741 +
+                 t * (-1.453152027 + t * 1.061405429))));
+    return max(0.0, 0.5 * exp(-a * a) * (1.0 / (a * sqrt(PI)) - poly));
+}
+
+// f_r·cos_l = D G2 F / (4 cos_v): the height-correlated G2 = 1/(1 + Λ(l̂) + Λ(v̂)), Schlick's F at
+// v̂·ĥ; α clamped to [1e-3, 1] and K_b to PSD, as on the CPU.
+float microfacet_highlight(int model, vec3 n, vec3 e1, vec3 e2, vec3 l, vec3 v, vec3 k_b,
+                           float alpha, float f0) {
+    float cos_l = dot(n, l), cos_v = dot(n, v);
+    if (!(cos_l > 0.0) || !(cos_v > 0.0)) return 0.0;
+    vec3 h = normalize(l + v);
+    float a = clamp(alpha, 1e-3, 1.0);
+    float xx = max(0.0, k_b.x), yy = max(0.0, k_b.z);
+    float bound = sqrt(xx * yy), xy = clamp(k_b.y, -bound, bound);
+    vec3 m = vec3(a * a + 2.0 * xx, 2.0 * xy, a * a + 2.0 * yy);
+    float d = microfacet_distribution(model, vec3(dot(h, e1), dot(h, e2), dot(h, n)), m);
+    float g = 1.0 / (1.0 + smith_lambda(model, vec3(dot(l, e1), dot(l, e2), cos_l), m) +
+                     smith_lambda(model, vec3(dot(v, e1), dot(v, e2), cos_v), m));
+    return d * g * schlick_fresnel(clamp(f0, 0.0, 1.0), dot(v, h)) / (4.0 * cos_v);
+}
+
 void tangent_basis(vec3 n, out vec3 u, out vec3 v) {
     u = normalize(cross(n, abs(n.x) < 0.6 ? vec3(1, 0, 0) : vec3(0, 1, 0)));
     v = cross(n, u);
@@ -203,10 +259,16 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
         float cos_l = dot(n_hat, l);
         if (cos_l <= 0.0) continue;
         vec3 h = normalize(l + v_hat);
-        float spec = material.weights.y > 0.0
-                         ? material.weights.y *
-                               specular_lobe(rough_mode, n_hat, e1, e2, h, k_e, material.weights.z)
-                         : 0.0;
+        int highlight = int(material.highlight.x);
+        float spec = 0.0;
+        if (material.weights.y > 0.0 && highlight == HIGHLIGHT_BLINN_PHONG) {
+            spec = material.weights.y *
+                   specular_lobe(rough_mode, n_hat, e1, e2, h, k_e, material.weights.z);
+        } else if (material.weights.y > 0.0) {  // f_r·cos_l, widened by K_b in the rough mode
+            spec = material.weights.y * microfacet_highlight(highlight, n_hat, e1, e2, l, v_hat,
+                                                             rough_mode ? k_e : vec3(0),
+                                                             material.highlight.y, material.bump.x);
+        }
         color += scale * light.color.rgb * (material.weights.x * cos_l * base + spec);
     }
 
