@@ -6,7 +6,8 @@
 //   footprint eval [SCENE...] [--out DIR] [--size W] [--reference-spp N] [--spp-list 1,4,16,64]
 //                  [--filter-spp-list 1,4,16] [--budget [--budget-filter MODE]]
 //                  [--frames N] [--flicker-reference-spp N] [--threads N] [--no-browser-check]
-//   footprint metrics A B [--mask M] [--peak P] [--ignore-non-finite] [--json]
+//   footprint metrics A B [--mask M] [--peak P] [--ignore-non-finite] [--ppd N]
+//                     [--flip-range ldr|hdr|auto] [--flip-map FILE] [--json]
 //   footprint texture-demo [--out DIR] [--size N] [--samples N] [--quiet]
 //   footprint plane TEXTURE -o OUT [--filter F] [--size N] [--uv-scale X] [--repair-non-finite]
 //                   [--quiet]
@@ -195,10 +196,11 @@ int run(int argc, char** argv) {
     scene_demo_cmd->add_flag("--quiet,-q", scene_demo.quiet, "No progress output");
 
     footprint::MetricsCommandOptions metrics;
-    std::string metrics_a, metrics_b, metrics_mask;
+    std::string metrics_a, metrics_b, metrics_mask, metrics_flip_map, metrics_flip_range = "auto";
     CLI::App* metrics_cmd = app.add_subcommand(
-        "metrics", "Compare two images (linear light): RMSE, PSNR and SSIM, optionally masked");
-    metrics_cmd->add_option("a", metrics_a, "First image")->required();
+        "metrics",
+        "Compare two images (linear light): RMSE, PSNR, SSIM and mean FLIP, optionally masked");
+    metrics_cmd->add_option("a", metrics_a, "First image (the test)")->required();
     metrics_cmd->add_option("b", metrics_b, "Second image (the reference)")->required();
     metrics_cmd->add_option("--mask", metrics_mask, "Mask image: pixels where channel 0 > 0.5");
     metrics_cmd->add_option("--peak", metrics.peak, "PSNR peak and SSIM dynamic range")
@@ -206,11 +208,24 @@ int run(int argc, char** argv) {
     metrics_cmd->add_flag("--json", metrics.json, "Print one JSON line");
     metrics_cmd->add_flag("--ignore-non-finite", metrics.ignore_non_finite,
                           "Leave pixels with NaN or infinity in A or B out of every metric "
-                          "(default: an error)");
+                          "(default: an error; FLIP is then not computed)");
 
     footprint::EvalCommandOptions eval;
     std::string eval_out = eval.out_dir.string();
     bool eval_no_browser = false;
+    metrics_cmd
+        ->add_option("--ppd", metrics.ppd,
+                     "FLIP's pixels per degree of visual angle, > 0 to 1000 (default: 0.7 m from "
+                     "a 0.7 m wide 3840-pixel monitor)")
+        ->capture_default_str();
+    metrics_cmd
+        ->add_option("--flip-range", metrics_flip_range,
+                     "ldr: LDR-FLIP on values clamped to [0, 1]; hdr: HDR-FLIP (exposures from B); "
+                     "auto: HDR-FLIP when a colour value of A or B is > 1")
+        ->check(CLI::IsMember({"ldr", "hdr", "auto"}))
+        ->capture_default_str();
+    metrics_cmd->add_option("--flip-map", metrics_flip_map,
+                            "Write the per-pixel FLIP error (1 channel, in [0, 1]) to this image");
     CLI::App* eval_cmd = app.add_subcommand(
         "eval", "Measure every filter mode and supersampling against a reference; HTML report");
     eval_cmd->add_option("scenes", eval.scenes,
@@ -363,6 +378,10 @@ int run(int argc, char** argv) {
     if (*maketx_cmd) {
         maketx.input = maketx_input;
         maketx.output = maketx_output;
+        metrics.flip_map = metrics_flip_map;
+        metrics.flip_range = metrics_flip_range == "ldr"   ? footprint::FlipRange::ldr
+                             : metrics_flip_range == "hdr" ? footprint::FlipRange::hdr
+                                                           : footprint::FlipRange::automatic;
         maketx.clamp_invalid_normals = maketx_invalid == "clamp";
         maketx.downsample = maketx_downsample == "tent" ? footprint::DownsampleFilter::tent
                                                         : footprint::DownsampleFilter::box;

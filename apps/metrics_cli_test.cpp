@@ -1,15 +1,19 @@
 // Tests of `footprint metrics`, called as a function (metrics_command.h): the JSON and human
-// lines against compare_images, masks, linear-light loading, one-line errors naming the file.
+// lines against compare_images and flip, masks, linear-light loading, the FLIP options and error
+// map, one-line errors naming the file.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "image/image_io.h"
+#include "metrics/flip.h"
 #include "metrics/image_metrics.h"
 #include "metrics_command.h"
 
@@ -74,6 +78,17 @@ TEST_F(MetricsCommandTest, JsonLineMatchesCompareImages) {
     EXPECT_DOUBLE_EQ(j.at("ssim").get<double>(), expected->ssim);
     EXPECT_EQ(j.at("pixels").get<std::size_t>(), 30u);
     EXPECT_GT(expected->rmse, 0.01);
+    // FLIP of A (the test) against B (the reference); B reaches 1.05, so HDR-FLIP.
+    const Result<FlipResult> flip_expected = flip(a_, b_);
+    ASSERT_TRUE(flip_expected.ok()) << flip_expected.error().message;
+    ASSERT_TRUE(flip_expected->hdr);
+    EXPECT_DOUBLE_EQ(j.at("flip").get<double>(), flip_expected->mean);
+    EXPECT_EQ(j.at("flip_range").get<std::string>(), "hdr");
+    EXPECT_DOUBLE_EQ(j.at("flip_exposures").at("start").get<double>(),
+                     flip_expected->start_exposure);
+    EXPECT_DOUBLE_EQ(j.at("flip_exposures").at("stop").get<double>(), flip_expected->stop_exposure);
+    EXPECT_EQ(j.at("flip_exposures").at("count").get<int>(), flip_expected->exposures);
+    EXPECT_GT(flip_expected->mean, 0.01);
 }
 
 TEST_F(MetricsCommandTest, IdenticalImagesPrintNullPsnrAndHumanLine) {
@@ -85,12 +100,118 @@ TEST_F(MetricsCommandTest, IdenticalImagesPrintNullPsnrAndHumanLine) {
     EXPECT_TRUE(j.at("psnr").is_null());
     EXPECT_EQ(j.at("rmse").get<double>(), 0.0);
     EXPECT_NEAR(j.at("ssim").get<double>(), 1.0, 1e-12);
+    EXPECT_EQ(j.at("flip").get<double>(), 0.0);
+    EXPECT_EQ(j.at("flip_range").get<std::string>(), "ldr");  // a_ lies in [0, 1]
+    EXPECT_TRUE(j.at("flip_exposures").is_null());
 
     o = options("a.exr", "b.exr");
     ASSERT_EQ(metrics_cmd(o, &out, &err), 0) << err;
     EXPECT_EQ(out.rfind("rmse ", 0), 0u) << out;
     EXPECT_NE(out.find(" dB  ssim "), std::string::npos) << out;
+    EXPECT_NE(out.find("  flip 0."), std::string::npos) << out;
+    EXPECT_NE(out.find(" (hdr, 2 exposures "), std::string::npos) << out;
     EXPECT_NE(out.find("(pixels 30)\n"), std::string::npos) << out;
+}
+
+TEST_F(MetricsCommandTest, FlipRangeAndPixelsPerDegreeReachFlip) {
+    MetricsCommandOptions o = options("a.exr", "b.exr");
+    o.json = true;
+    o.ppd = 30;
+    o.flip_range = FlipRange::ldr;
+    std::string out, err;
+    ASSERT_EQ(metrics_cmd(o, &out, &err), 0) << err;
+    nlohmann::json j = nlohmann::json::parse(out);
+    FlipOptions f;
+    f.pixels_per_degree = 30;
+    f.range = FlipRange::ldr;
+    Result<FlipResult> expected = flip(a_, b_, f);
+    ASSERT_TRUE(expected.ok()) << expected.error().message;
+    EXPECT_DOUBLE_EQ(j.at("flip").get<double>(), expected->mean);
+    EXPECT_EQ(j.at("flip_range").get<std::string>(), "ldr");
+    EXPECT_TRUE(j.at("flip_exposures").is_null());
+    o.json = false;
+    ASSERT_EQ(metrics_cmd(o, &out, &err), 0) << err;
+    EXPECT_NE(out.find(" (ldr)  (pixels 30)\n"), std::string::npos) << out;
+
+    // HDR-FLIP forced, B as the test and A as the reference: exposures from A.
+    o = options("b.exr", "a.exr");
+    o.json = true;
+    o.flip_range = FlipRange::hdr;
+    ASSERT_EQ(metrics_cmd(o, &out, &err), 0) << err;
+    j = nlohmann::json::parse(out);
+    f = FlipOptions{};
+    f.range = FlipRange::hdr;
+    expected = flip(b_, a_, f);
+    ASSERT_TRUE(expected.ok()) << expected.error().message;
+    EXPECT_DOUBLE_EQ(j.at("flip").get<double>(), expected->mean);
+    EXPECT_EQ(j.at("flip_exposures").at("count").get<int>(), expected->exposures);
+
+    o.ppd = 0;
+    EXPECT_EQ(metrics_cmd(o, &out, &err), 1);
+    EXPECT_EQ(err.rfind("footprint: --ppd: must be finite, > 0 and <= 1000 (got 0", 0), 0u) << err;
+    EXPECT_EQ(out, "");
+
+    // FLIP's own errors name both files: HDR-FLIP against a black reference has no exposures.
+    ASSERT_TRUE(save_image(Image(6, 5, 3, 0.0f), dir_ / "black.exr").ok());
+    o = options("a.exr", "black.exr");
+    o.flip_range = FlipRange::hdr;
+    EXPECT_EQ(metrics_cmd(o, &out, &err), 1);
+    EXPECT_EQ(err, "footprint: cannot compare A = '" + (dir_ / "a.exr").string() + "' and B = '" +
+                       (dir_ / "black.exr").string() +
+                       "': FLIP: B has no pixel of positive luminance: HDR-FLIP's automatic "
+                       "exposures are undefined; give the start and stop exposures\n");
+    EXPECT_EQ(out, "");
+}
+
+TEST_F(MetricsCommandTest, FlipMapIsWrittenWholeOrNotAtAll) {
+    MetricsCommandOptions o = options("a.exr", "b.exr");
+    o.flip_range = FlipRange::ldr;
+    o.flip_map = dir_ / "flip.exr";
+    std::string out, err;
+    ASSERT_EQ(metrics_cmd(o, &out, &err), 0) << err;
+    FlipOptions f;
+    f.range = FlipRange::ldr;
+    f.error_map = true;
+    const Result<FlipResult> expected = flip(a_, b_, f);
+    ASSERT_TRUE(expected.ok()) << expected.error().message;
+    Result<Image> map = load_image(dir_ / "flip.exr");
+    ASSERT_TRUE(map.ok()) << map.error().message;
+    EXPECT_EQ(map->channels, 1);
+    EXPECT_EQ(map->pixels, expected->error_map.pixels);  // 32-bit float EXR: exact
+
+    // PNG: codes round(255 FLIP), written linear, so loading gives FLIP back to 1/510.
+    o.flip_map = dir_ / "flip.png";
+    ASSERT_EQ(metrics_cmd(o, &out, &err), 0) << err;
+    map = load_image(dir_ / "flip.png");
+    ASSERT_TRUE(map.ok()) << map.error().message;
+    ASSERT_EQ(map->pixels.size(), expected->error_map.pixels.size());
+    for (std::size_t i = 0; i < map->pixels.size(); ++i)
+        EXPECT_NEAR(map->pixels[i], expected->error_map.pixels[i], 0.5 / 255 + 1e-6) << i;
+
+    // A path that cannot be written is refused before any work, and nothing is left.
+    const auto entries = [&] {
+        std::vector<std::string> names;
+        for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().string());
+        std::sort(names.begin(), names.end());
+        return names;
+    };
+    const std::vector<std::string> before = entries();
+    o.flip_map = dir_ / "missing" / "flip.exr";
+    EXPECT_EQ(metrics_cmd(o, &out, &err), 1);
+    EXPECT_NE(err.find("'" + (dir_ / "missing" / "flip.exr").string() + "'"), std::string::npos)
+        << err;
+    EXPECT_EQ(out, "");
+    o.flip_map = dir_ / "flip.txt";
+    EXPECT_EQ(metrics_cmd(o, &out, &err), 1);
+    EXPECT_NE(err.find("unsupported extension '.txt'"), std::string::npos) << err;
+    // A directory in the way is refused too.
+    fs::create_directories(dir_ / "taken.exr");
+    o.flip_map = dir_ / "taken.exr";
+    EXPECT_EQ(metrics_cmd(o, &out, &err), 1);
+    EXPECT_EQ(err.rfind("footprint: ", 0), 0u) << err;
+    EXPECT_EQ(out, "");
+    fs::remove(dir_ / "taken.exr");
+    EXPECT_EQ(entries(), before);
 }
 
 TEST_F(MetricsCommandTest, MaskSelectsPixels) {
@@ -111,6 +232,12 @@ TEST_F(MetricsCommandTest, MaskSelectsPixels) {
     EXPECT_EQ(j.at("pixels").get<std::size_t>(), 2u);
     EXPECT_DOUBLE_EQ(j.at("rmse").get<double>(), expected->rmse);
     EXPECT_DOUBLE_EQ(j.at("ssim").get<double>(), expected->ssim);
+    FlipOptions f;
+    f.mask = &mask;
+    const Result<FlipResult> flip_expected = flip(a_, b_, f);
+    ASSERT_TRUE(flip_expected.ok()) << flip_expected.error().message;
+    EXPECT_EQ(flip_expected->pixels, 2u);
+    EXPECT_DOUBLE_EQ(j.at("flip").get<double>(), flip_expected->mean);
 }
 
 TEST_F(MetricsCommandTest, SrgbFilesAreComparedInLinearLight) {
@@ -171,8 +298,13 @@ TEST_F(MetricsCommandTest, IgnoreNonFiniteExcludesAndCountsThePixels) {
     o.json = true;
     std::string out, err;
     ASSERT_EQ(metrics_cmd(o, &out, &err), 0) << err;
-    EXPECT_EQ(err, "");
+    // FLIP cannot leave pixels out (its filters spread them): not computed, with a warning.
+    EXPECT_EQ(err,
+              "footprint: warning: FLIP not computed: FLIP's filters spread each pixel over its "
+              "neighbours, so the non-finite pixels cannot be left out of it\n");
     const nlohmann::json j = nlohmann::json::parse(out);
+    EXPECT_TRUE(j.at("flip").is_null());
+    EXPECT_TRUE(j.at("flip_range").is_null());
     EXPECT_EQ(j.at("non_finite_a").get<std::size_t>(), 1u);
     EXPECT_EQ(j.at("non_finite_b").get<std::size_t>(), 2u);
     EXPECT_EQ(j.at("excluded").get<std::size_t>(), 2u);
@@ -187,8 +319,16 @@ TEST_F(MetricsCommandTest, IgnoreNonFiniteExcludesAndCountsThePixels) {
 
     o.json = false;
     ASSERT_EQ(metrics_cmd(o, &out, &err), 0) << err;
-    EXPECT_NE(out.find("(pixels 28; non-finite pixels: A 1, B 2, 2 excluded)\n"), std::string::npos)
+    EXPECT_NE(out.find("flip n/a  (pixels 28; non-finite pixels: A 1, B 2, 2 excluded)\n"),
+              std::string::npos)
         << out;
+    // An error map cannot be made: an error.
+    o.flip_map = dir_ / "flip.exr";
+    EXPECT_EQ(metrics_cmd(o, &out, &err), 1);
+    EXPECT_EQ(err.rfind("footprint: --flip-map: FLIP's filters spread", 0), 0u) << err;
+    EXPECT_EQ(out, "");
+    EXPECT_FALSE(fs::exists(dir_ / "flip.exr"));
+    o.flip_map.clear();
     // Finite images: the JSON's counts are 0, the line unchanged.
     o = options("a.exr", "b.exr");
     o.json = true;

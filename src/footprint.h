@@ -51,6 +51,7 @@
 #include <footprint/render/render_scene.h>
 #include <footprint/render/renderer.h>
 
+#include <footprint/metrics/flip.h>
 #include <footprint/metrics/image_metrics.h>
 
 #include <footprint/gpu/gpu_renderer.h>
