@@ -158,7 +158,10 @@ TEST_F(CommandTest, UnknownFiltersAreAnsweredFromTheVocabulary) {
 // The names the two kinds of command share mean the same filter: render's bilinear, trilinear and
 // fa are the texture filters of those names.
 TEST(FilterVocabulary, SharedNamesAreTheSameFilter) {
-    EXPECT_EQ(render_filter_names(", "), "bilinear, trilinear, fa, fa-rough, ewa-rough, reference");
+    EXPECT_EQ(
+        render_filter_names(", "),
+        "bilinear, trilinear, fa, fa-rough, ewa-rough, reference, lean, toksvig, specular-aa, "
+        "stochastic");
     EXPECT_EQ(plane_filter_names("|"), "nearest|bilinear|trilinear|fa|ewa|sat");
     for (TextureFilter filter : plane_filters()) {
         const Result<FilterMode> mode = parse_render_filter(to_string(filter));

@@ -71,7 +71,7 @@ int run_error_budget_command(const EvalCommandOptions& options) {
     if (!mode || *mode == FilterMode::reference) {
         return fail("--budget-filter: '" + options.budget_filter +
                     "' is not a filtered mode; it accepts bilinear, trilinear, fa, fa-rough, "
-                    "ewa-rough");
+                    "ewa-rough, lean, toksvig, specular-aa, stochastic");
     }
     Result<std::vector<NamedScene>> resolved = resolve_eval_scenes(options);
     if (!resolved) return fail(resolved.error().message);

@@ -79,6 +79,8 @@ TEST_F(EvalCommandTest, WritesTheReportRowsAndEveryImage) {
         for (const auto& m : scene["methods"]) {
             EXPECT_GT(m["rmse"].get<double>(), 0) << m["method"];
             EXPECT_LE(m["ssim"].get<double>(), 1.0);
+            EXPECT_GT(m["flip_interior"].get<double>(), 0) << m["method"];
+            EXPECT_LE(m["flip_interior"].get<double>(), 1.0) << m["method"];
             const bool shown = m["family"] == "supersampling" || m["spp"] == 1;
             EXPECT_EQ(m["flicker"].is_number(), shown) << m["method"];
             if (shown) {
@@ -96,6 +98,29 @@ TEST_F(EvalCommandTest, WritesTheReportRowsAndEveryImage) {
     if (!check.chromium_found) GTEST_SKIP() << "headless Chromium not installed: " << check.problem;
     EXPECT_TRUE(check.passed()) << check.problem;
     EXPECT_EQ(check.images_failed, 0);
+}
+
+TEST_F(EvalCommandTest, PeersAreMethodsOfTheirOwnFamily) {
+    EvalCommandOptions o = small({"water"});
+    o.filter_spp = {1, 4};
+    o.peers = true;
+    std::string err;
+    ASSERT_EQ(run(o, &err), 0) << err;
+    const nlohmann::json scene = results(o)["scenes"][0];
+    // 5 filter modes and 4 peers at 1 and 4 spp, 2 supersampling rates.
+    ASSERT_EQ(scene["methods"].size(), 9u * 2 + 2);
+    std::vector<std::string> peers;
+    for (const auto& m : scene["methods"]) {
+        if (m["family"] != "peer") continue;
+        EXPECT_GT(m["rmse_interior"].get<double>(), 0) << m["method"];
+        if (m["spp"] == 1) {
+            peers.push_back(m["method"]);
+            EXPECT_TRUE(m["flicker"].is_number()) << m["method"];
+            EXPECT_TRUE(fs::exists(o.out_dir / "water" / (m["method"].get<std::string>() + ".png")))
+                << m["method"];
+        }
+    }
+    EXPECT_EQ(peers, (std::vector<std::string>{"lean", "toksvig", "specular-aa", "stochastic"}));
 }
 
 TEST_F(EvalCommandTest, ReferencesAreCachedByContent) {

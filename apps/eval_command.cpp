@@ -17,6 +17,7 @@
 #include "eval_report.h"
 #include "image/color.h"
 #include "image/image_io.h"
+#include "metrics/flip.h"
 #include "metrics/image_metrics.h"
 #include "plane_view.h"
 #include "progress.h"
@@ -109,6 +110,11 @@ Result<Image> cached(const fs::path& file, bool& was_cached,
     if (!image) return image;
     if (Status s = save_image(*image, file); !s) return s.error();
     return image;
+}
+
+// Whether any value of an image is above 1: HDR, for FLIP.
+bool has_hdr_values(const Image& image) {
+    return std::any_of(image.pixels.begin(), image.pixels.end(), [](float v) { return v > 1; });
 }
 
 // What people look at: sRGB of the value clamped to [0, 1].
@@ -217,7 +223,7 @@ int run_eval_command(const EvalCommandOptions& options) {
                               {"flicker_reference_spp", options.flicker_reference_spp},
                               {"scenes", nlohmann::json::array()}};
     std::string csv =
-        "scene,method,family,spp,rmse,rmse_interior,ssim,flicker,seconds,"
+        "scene,method,family,spp,rmse,rmse_interior,ssim,flip_interior,flicker,seconds,"
         "equal_error_speedup\n";
 
     for (const NamedScene& named : scenes) {
@@ -278,6 +284,10 @@ int run_eval_command(const EvalCommandOptions& options) {
         }
 
         const Image mask = interior_mask(scene);
+        // FLIP over the interior, LDR or HDR as the reference is, for every method alike.
+        FlipOptions flip_options;
+        flip_options.mask = &mask;
+        flip_options.range = has_hdr_values(*reference) ? FlipRange::hdr : FlipRange::ldr;
         double interior_fraction = 0;
         for (float m : mask.pixels) interior_fraction += m;
         interior_fraction /= static_cast<double>(std::max<std::size_t>(1, mask.pixels.size()));
@@ -289,14 +299,18 @@ int run_eval_command(const EvalCommandOptions& options) {
             std::uint32_t seed = 0;
         };
         std::vector<Method> methods;
-        for (FilterMode mode : kFilterModes) {
-            for (int spp : options.filter_spp) {
-                const std::string name = filter_mode_name(mode);
-                const std::string rate = std::to_string(spp) + " spp";
-                methods.push_back({mode, spp, spp == 1 ? name : name + " " + rate, "filter",
-                                   spp == 1 ? name : name + "_" + std::to_string(spp) + "spp"});
+        auto add_modes = [&](std::span<const FilterMode> modes, const std::string& family) {
+            for (FilterMode mode : modes) {
+                for (int spp : options.filter_spp) {
+                    const std::string name = filter_mode_name(mode);
+                    const std::string rate = std::to_string(spp) + " spp";
+                    methods.push_back({mode, spp, spp == 1 ? name : name + " " + rate, family,
+                                       spp == 1 ? name : name + "_" + std::to_string(spp) + "spp"});
+                }
             }
-        }
+        };
+        add_modes(kFilterModes, "filter");
+        if (options.peers) add_modes(peer_filter_modes(), "peer");
         for (int spp : options.supersampling_spp) {
             methods.push_back({FilterMode::reference, spp,
                                "supersampling " + std::to_string(spp) + " spp", "supersampling",
@@ -328,7 +342,7 @@ int run_eval_command(const EvalCommandOptions& options) {
             EvalMethod em;
             em.name = m.name;
             em.family = m.family;
-            em.series = m.family == "filter" ? filter_mode_name(m.mode) : m.family;
+            em.series = m.family == "supersampling" ? m.family : filter_mode_name(m.mode);
             em.spp = m.spp;
             em.seconds = t.seconds;
             if (show) {
@@ -349,6 +363,10 @@ int run_eval_command(const EvalCommandOptions& options) {
             Result<ImageComparison> display =
                 compare_images(display_encoded(t.image), reference_display);
             if (display) em.ssim = display->ssim;
+            if (interior_fraction > 0) {
+                Result<FlipResult> f = flip(t.image, *reference, flip_options);
+                if (f) em.flip_interior = f->mean;
+            }
             if (animated && show) {
                 const Result<std::vector<Image>> sequence = renderer.sequence(
                     m.mode, m.spp, m.seed, options.frames, named.name + " " + m.name);
@@ -402,13 +420,15 @@ int run_eval_command(const EvalCommandOptions& options) {
                                              {"rmse", em.rmse},
                                              {"rmse_interior", json_number(em.rmse_interior)},
                                              {"ssim", em.ssim},
+                                             {"flip_interior", json_number(em.flip_interior)},
                                              {"flicker", json_number(em.flicker)},
                                              {"seconds", em.seconds},
                                              {"equal_error_speedup", json_number(speedup)}});
             csv += named.name + "," + em.name + "," + em.family + "," + std::to_string(em.spp) +
                    "," + csv_number(em.rmse) + "," + csv_number(em.rmse_interior) + "," +
-                   csv_number(em.ssim) + "," + csv_number(em.flicker) + "," +
-                   csv_number(em.seconds) + "," + csv_number(speedup) + "\n";
+                   csv_number(em.ssim) + "," + csv_number(em.flip_interior) + "," +
+                   csv_number(em.flicker) + "," + csv_number(em.seconds) + "," +
+                   csv_number(speedup) + "\n";
         }
         results["scenes"].push_back(scene_json);
         report.scenes.push_back(std::move(eval_scene));

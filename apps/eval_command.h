@@ -2,14 +2,16 @@
 // truth, with a visual report.
 //
 //   footprint eval [SCENE...] --out DIR [--size W] [--reference-spp N] [--spp-list 1,4,16,64]
-//                  [--frames N] [--flicker-reference-spp N] [--threads N] [--no-browser-check]
+//                  [--filter-spp-list 1,4,16] [--peers] [--kappa K] [--frames N]
+//                  [--flicker-reference-spp N] [--threads N] [--no-browser-check]
 //                  [--quiet]
 //   footprint eval --budget [SCENE...] --out DIR [--budget-filter MODE] ... (apps/eval_budget.h)
 //
 // SCENE is a built-in demo name (apps/demo_scenes.h; default: all of them) or a scene file
 // (.json). For each scene it renders
 //   * every filter mode at 1 spp (bilinear, trilinear, fa, fa-rough, ewa-rough:
-//   apps/cli_options.h),
+//     apps/cli_options.h) and at the other rates of --filter-spp-list, and with --peers the
+//     peers' modes (lean, toksvig, specular-aa, stochastic) likewise,
 //   * supersampling at each spp of --spp-list: the `reference` mode (finest-level bilinear
 //     lookups, micro-roughness sampled) with N samples per pixel, N below --reference-spp,
 // and compares each with a high-spp reference (`reference` at --reference-spp, 1024 by default).
@@ -61,6 +63,9 @@ struct EvalCommandOptions {
     int flicker_reference_spp = 256;  // the reference sequence's samples per pixel
     int threads = 0;
     float kappa = 2;  // κ of the filter modes' environment footprint (RenderOptions::kappa)
+    // --peers: also the peers' modes (render/renderer.h: lean, toksvig, specular-aa, stochastic)
+    // at every rate of filter_spp, family "peer".
+    bool peers = false;
     bool browser_check = true;
     bool quiet = false;
     // --budget: the error budget of one filtered mode instead (apps/eval_budget.h), with

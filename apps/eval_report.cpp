@@ -881,11 +881,11 @@ void HtmlWriter::scene(const EvalScene& scene) {
 
 void HtmlWriter::table(const EvalScene& scene, const std::vector<EvalMethod>& ss) {
     out << "<table>\n<tr><th>method</th><th>spp</th><th>RMSE</th><th>RMSE interior</th>"
-           "<th>SSIM</th><th>flicker</th>"
+           "<th>SSIM</th><th>FLIP interior</th><th>flicker</th>"
            "<th>seconds</th><th>equal-error speedup over supersampling</th></tr>\n";
     out << "<tr class=\"reference\"><td class=\"name\">reference</td><td class=\"num\">"
         << scene.reference_spp << "</td><td class=\"num\">0</td><td class=\"num\">0</td>"
-        << "<td class=\"num\">1</td>"
+        << "<td class=\"num\">1</td><td class=\"num\">0</td>"
         << "<td class=\"num\">\u2014</td><td class=\"num\">" << number(scene.reference_seconds, 3)
         << "</td><td></td></tr>\n";
     for (const EvalMethod& m : scene.methods) {
@@ -894,6 +894,7 @@ void HtmlWriter::table(const EvalScene& scene, const std::vector<EvalMethod>& ss
             << html_escape(m.name) << "</td><td class=\"num\">" << m.spp
             << "</td><td class=\"num\">" << number(m.rmse) << "</td><td class=\"num\">"
             << number(m.rmse_interior) << "</td><td class=\"num\">" << number(m.ssim) << "</td>"
+            << "<td class=\"num\">" << number(m.flip_interior) << "</td>"
             << "<td class=\"num\">" << number(m.flicker, 3) << "</td><td class=\"num\">"
             << number(m.seconds, 3) << "</td><td class=\"num\">"
             << (is_ss ? "\u2014" : html_escape(speedup_label(equal_error_speedup(m, ss))))
@@ -1005,6 +1006,20 @@ std::string filter_description(const std::string& name) {
         {"ewa-rough",
          "elliptical weighted average (Heckbert 1989) with the roughness pyramid: a costlier "
          "filter of the same footprint, for comparison"},
+        {"lean",
+         "peer: LEAN mapping (Olano & Baker 2010), the slopes' first and second moments in the "
+         "MIP pyramid, read by a GPU's 16x anisotropic filter; Fresnel at the mean normal"},
+        {"toksvig",
+         "peer: Toksvig (2005), a MIP pyramid of unit normals whose shortened mean gives an "
+         "isotropic roughness"},
+        {"specular-aa",
+         "peer: geometric specular antialiasing (Kaplanyan et al. 2016; Tokuyoshi & Kaplanyan "
+         "2019), roughness from the normal's change across the pixel, clamped; what Filament, "
+         "Unity and Unreal ship"},
+        {"stochastic",
+         "peer: stochastic texture filtering (Pharr, Wronski, Salvi & Fajardo 2024), each lookup "
+         "reads one position the filter picks at random and the shading is averaged by the "
+         "pixel's samples: unbiased, noisy"},
     };
     for (const auto& [key, text] : kFilters)
         if (name == key) return text;
@@ -1033,7 +1048,9 @@ void methods_header(std::ostringstream& out, const EvalReport& report) {
                "own samples, independent of the reference's</dd>\n";
     out << "<dt>reference</dt><dd>the ground truth: that supersampling with many more samples "
            "per pixel (the spp in each scene's table)</dd>\n</dl>\n<p class=\"note\">RMSE in "
-           "linear light against the reference; SSIM on the displayed (sRGB) images; heat maps "
+           "linear light against the reference; SSIM on the displayed (sRGB) images; mean FLIP "
+           "(Andersson et al. 2020; HDR-FLIP where the reference is HDR) over the interior; "
+           "heat maps "
            "show each pixel's error on the scene's colour scale (legend above the images).</p>\n"
            "</section>\n";
 }

@@ -48,6 +48,9 @@ struct EvalMethod {
     // The same over the scene's interior mask (no silhouettes); NaN: not measured
     double rmse_interior = std::numeric_limits<double>::quiet_NaN();
     double ssim = 1;
+    // Mean FLIP over the interior mask (metrics/flip.h; HDR-FLIP where the reference is HDR);
+    // NaN: not measured
+    double flip_interior = std::numeric_limits<double>::quiet_NaN();
     double seconds = 0;                                         // render time
     double flicker = std::numeric_limits<double>::quiet_NaN();  // NaN: not measured
 };

@@ -4,7 +4,8 @@
 //   footprint --version
 //   footprint demo [--out DIR] [--scene NAME...] [--size N] [--spp N] [--threads N] [--quiet]
 //   footprint eval [SCENE...] [--out DIR] [--size W] [--reference-spp N] [--spp-list 1,4,16,64]
-//                  [--filter-spp-list 1,4,16] [--budget [--budget-filter MODE]]
+//                  [--filter-spp-list 1,4,16] [--peers] [--kappa K]
+//                  [--budget [--budget-filter MODE]]
 //                  [--frames N] [--flicker-reference-spp N] [--threads N] [--no-browser-check]
 //   footprint metrics A B [--mask M] [--peak P] [--ignore-non-finite] [--ppd N]
 //                     [--flip-range ldr|hdr|auto] [--flip-map FILE] [--json]
@@ -58,6 +59,13 @@ Filters (--filter; a name means the same filter in every command):
   sat        summed-area table                                   plane, texture-demo
   reference  the ground truth: --spp samples per pixel, each     render (demo, eval and
              a finest-level bilinear lookup                      texture-demo render one)
+  lean       peer: LEAN mapping (the slope moments) at a GPU's    render, eval --peers
+             anisotropic filter
+  toksvig    peer: Toksvig's normal-length roughness             render, eval --peers
+  specular-aa  peer: roughness from the normal's change across   render, eval --peers
+             the pixel (Kaplanyan 2016, Tokuyoshi 2019)
+  stochastic peer: stochastic texture filtering (Pharr 2024),    render, eval --peers
+             one random position per lookup
   point      the GPU path's bilinear                             render --device gpu, view
   hw-aniso   the GPU's own anisotropic filtering (no roughness)  render --device gpu, view
   (render --device gpu and view also take trilinear, fa, fa-rough)
@@ -205,14 +213,6 @@ int run(int argc, char** argv) {
     metrics_cmd->add_option("--mask", metrics_mask, "Mask image: pixels where channel 0 > 0.5");
     metrics_cmd->add_option("--peak", metrics.peak, "PSNR peak and SSIM dynamic range")
         ->capture_default_str();
-    metrics_cmd->add_flag("--json", metrics.json, "Print one JSON line");
-    metrics_cmd->add_flag("--ignore-non-finite", metrics.ignore_non_finite,
-                          "Leave pixels with NaN or infinity in A or B out of every metric "
-                          "(default: an error; FLIP is then not computed)");
-
-    footprint::EvalCommandOptions eval;
-    std::string eval_out = eval.out_dir.string();
-    bool eval_no_browser = false;
     metrics_cmd
         ->add_option("--ppd", metrics.ppd,
                      "FLIP's pixels per degree of visual angle, > 0 to 1000 (default: 0.7 m from "
@@ -226,6 +226,14 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     metrics_cmd->add_option("--flip-map", metrics_flip_map,
                             "Write the per-pixel FLIP error (1 channel, in [0, 1]) to this image");
+    metrics_cmd->add_flag("--json", metrics.json, "Print one JSON line");
+    metrics_cmd->add_flag("--ignore-non-finite", metrics.ignore_non_finite,
+                          "Leave pixels with NaN or infinity in A or B out of every metric "
+                          "(default: an error; FLIP is then not computed)");
+
+    footprint::EvalCommandOptions eval;
+    std::string eval_out = eval.out_dir.string();
+    bool eval_no_browser = false;
     CLI::App* eval_cmd = app.add_subcommand(
         "eval", "Measure every filter mode and supersampling against a reference; HTML report");
     eval_cmd->add_option("scenes", eval.scenes,
@@ -261,6 +269,9 @@ int run(int argc, char** argv) {
         ->add_option("--kappa", eval.kappa,
                      "κ of the filter modes' environment footprint, 0 to 16 (spec §2.6)")
         ->capture_default_str();
+    eval_cmd->add_flag("--peers", eval.peers,
+                       "Also the peers' modes: lean, toksvig, specular-aa, stochastic "
+                       "(docs/rendering.md#peers)");
     eval_cmd->add_flag("--no-browser-check", eval_no_browser,
                        "Do not open the report in headless Chromium");
     eval_cmd->add_flag("--quiet,-q", eval.quiet, "No progress output");
@@ -270,7 +281,7 @@ int run(int argc, char** argv) {
     eval_cmd
         ->add_option("--budget-filter", eval.budget_filter,
                      "The filtered mode the budget examines (bilinear, trilinear, fa, fa-rough, "
-                     "ewa-rough)")
+                     "ewa-rough, or a peer's)")
         ->capture_default_str();
 
     footprint::RenderCommandOptions render;
@@ -367,6 +378,10 @@ int run(int argc, char** argv) {
         metrics.a = metrics_a;
         metrics.b = metrics_b;
         metrics.mask = metrics_mask;
+        metrics.flip_map = metrics_flip_map;
+        metrics.flip_range = metrics_flip_range == "ldr"   ? footprint::FlipRange::ldr
+                             : metrics_flip_range == "hdr" ? footprint::FlipRange::hdr
+                                                           : footprint::FlipRange::automatic;
         return footprint::run_metrics_command(metrics);
     }
     if (*render_cmd) {
@@ -378,10 +393,6 @@ int run(int argc, char** argv) {
     if (*maketx_cmd) {
         maketx.input = maketx_input;
         maketx.output = maketx_output;
-        metrics.flip_map = metrics_flip_map;
-        metrics.flip_range = metrics_flip_range == "ldr"   ? footprint::FlipRange::ldr
-                             : metrics_flip_range == "hdr" ? footprint::FlipRange::hdr
-                                                           : footprint::FlipRange::automatic;
         maketx.clamp_invalid_normals = maketx_invalid == "clamp";
         maketx.downsample = maketx_downsample == "tent" ? footprint::DownsampleFilter::tent
                                                         : footprint::DownsampleFilter::box;

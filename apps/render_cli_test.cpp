@@ -272,16 +272,18 @@ TEST_F(RenderCommandTest, AMissingSharedDataFileSaysWhereItComesFrom) {
 TEST_F(RenderCommandTest, UnknownFiltersAreAnsweredFromTheVocabulary) {
     const std::string accepted =
         "footprint render accepts bilinear, trilinear, fa, fa-rough, "
-        "ewa-rough, reference\n";
+        "ewa-rough, reference, lean, toksvig, specular-aa, stochastic\n";
     const std::pair<const char*, std::string> cases[] = {
         {"fa_rough",
          "footprint: --filter: unknown filter 'fa_rough' (did you mean 'fa-rough'?); " + accepted},
         {"point",
          "footprint: --filter: footprint render has no filter 'point' (did you mean 'bilinear'?); "
-         "it accepts bilinear, trilinear, fa, fa-rough, ewa-rough, reference\n"},
+         "it accepts bilinear, trilinear, fa, fa-rough, ewa-rough, reference, lean, toksvig, "
+         "specular-aa, stochastic\n"},
         {"sat",
          "footprint: --filter: footprint render has no filter 'sat'; it accepts bilinear, "
-         "trilinear, fa, fa-rough, ewa-rough, reference\n"},
+         "trilinear, fa, fa-rough, ewa-rough, reference, lean, toksvig, specular-aa, "
+         "stochastic\n"},
         {"anisotropic", "footprint: --filter: unknown filter 'anisotropic'; " + accepted},
     };
     for (const auto& [filter, message] : cases) {

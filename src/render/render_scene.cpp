@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <map>
+#include <mutex>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -12,13 +13,20 @@
 #include "envmap/env_image_io.h"
 #include "envmap/env_pyramid_file.h"
 #include "image/image_io.h"
+#include "render/peer_filters.h"
 #include "scene/mesh.h"
 #include "scene/mesh_accel.h"
 #include "scene/shapes.h"
 
 namespace footprint {
 
-RenderScene::RenderScene() = default;
+// toksvig_normals()'s maps: one per bump map and strength, made on first use.
+struct RenderScene::ToksvigMaps {
+    std::mutex mutex;
+    std::map<std::pair<const BumpHandle*, float>, TextureHandle*> maps;
+};
+
+RenderScene::RenderScene() : toksvig_(std::make_unique<ToksvigMaps>()) {}
 RenderScene::~RenderScene() = default;
 RenderScene::RenderScene(RenderScene&&) noexcept = default;
 RenderScene& RenderScene::operator=(RenderScene&&) noexcept = default;
@@ -388,6 +396,33 @@ Result<RenderScene> prepare_render_scene(const SceneDesc& desc,
         scene.mesh_accel_ = std::make_unique<MeshAccel>(std::move(*accel));
     }
     return scene;
+}
+
+TextureHandle* RenderScene::toksvig_normals(const RenderMaterial& material) const {
+    const std::lock_guard lock(toksvig_->mutex);
+    const auto key =
+        std::pair{static_cast<const BumpHandle*>(material.bump), material.bump_strength};
+    if (auto it = toksvig_->maps.find(key); it != toksvig_->maps.end()) return it->second;
+    TextureHandle* handle = nullptr;
+    if (Result<std::shared_ptr<const BumpPyramid>> bump = textures_->bump_pyramid(material.bump)) {
+        const BumpPyramid& pyramid = **bump;
+        // Level 0's slopes: the moments' first two channels plus the offset they are centred on.
+        const Image moments = pyramid.moments().level_image(0);
+        Image slopes(moments.width, moments.height, 2);
+        for (int y = 0; y < moments.height; ++y) {
+            for (int x = 0; x < moments.width; ++x) {
+                slopes.at(x, y, 0) = moments.at(x, y, 0) + pyramid.slope_offset().x;
+                slopes.at(x, y, 1) = moments.at(x, y, 1) + pyramid.slope_offset().y;
+            }
+        }
+        const std::string name = "toksvig normals #" + std::to_string(toksvig_->maps.size());
+        const Result<TextureHandle*> added =
+            textures_->add_image(name, detail::unit_normals(slopes, material.bump_strength),
+                                 pyramid.options().wrap_s, pyramid.options().wrap_t);
+        if (added) handle = *added;
+    }
+    toksvig_->maps.emplace(key, handle);
+    return handle;
 }
 
 Status RenderScene::take_texture_errors() const {

@@ -111,6 +111,11 @@ class RenderScene {
     // The nearest hit along the ray with t in (t_min, t_max), over all objects. Thread-safe.
     std::optional<SceneHit> intersect(const Ray& ray, double t_min, double t_max) const;
 
+    // The unit normals of a bumped material's slopes (× its strength) as a texture of the scene's
+    // texture system, for the `toksvig` peer mode: made at the first call for that bump map, then
+    // shared. Thread-safe.
+    TextureHandle* toksvig_normals(const RenderMaterial& material) const;
+
   private:
     friend Result<RenderScene> prepare_render_scene(const SceneDesc& desc,
                                                     std::shared_ptr<TextureSystem> textures);
@@ -127,6 +132,8 @@ class RenderScene {
     };
     std::vector<MeshPart> accel_parts_;  // MeshAccel's mesh index → (object, part)
     std::unique_ptr<MeshAccel> mesh_accel_;
+    struct ToksvigMaps;
+    std::unique_ptr<ToksvigMaps> toksvig_;
 };
 
 // `textures`: the texture system to hold the scene's maps (shared with other scenes, or made with

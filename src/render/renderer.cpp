@@ -13,9 +13,12 @@ namespace footprint {
 
 namespace {
 
-constexpr FilterMode kAllModes[] = {FilterMode::bilinear,  FilterMode::trilinear,
-                                    FilterMode::fa,        FilterMode::fa_rough,
-                                    FilterMode::ewa_rough, FilterMode::reference};
+constexpr FilterMode kAllModes[] = {
+    FilterMode::bilinear,    FilterMode::trilinear, FilterMode::fa,   FilterMode::fa_rough,
+    FilterMode::ewa_rough,   FilterMode::reference, FilterMode::lean, FilterMode::toksvig,
+    FilterMode::specular_aa, FilterMode::stochastic};
+constexpr FilterMode kPeerModes[] = {FilterMode::lean, FilterMode::toksvig, FilterMode::specular_aa,
+                                     FilterMode::stochastic};
 
 using detail::Rgb;
 
@@ -77,12 +80,24 @@ const char* filter_mode_name(FilterMode mode) {
             return "ewa-rough";
         case FilterMode::reference:
             return "reference";
+        case FilterMode::lean:
+            return "lean";
+        case FilterMode::toksvig:
+            return "toksvig";
+        case FilterMode::specular_aa:
+            return "specular-aa";
+        case FilterMode::stochastic:
+            return "stochastic";
     }
     return "?";
 }
 
 std::span<const FilterMode> all_filter_modes() {
     return kAllModes;
+}
+
+std::span<const FilterMode> peer_filter_modes() {
+    return kPeerModes;
 }
 
 Image interior_mask(const RenderScene& scene) {

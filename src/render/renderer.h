@@ -10,7 +10,7 @@
 //   → perturbed normal n_m = n + |n| T b (frame T per material)  bump/local_frame.h
 //   → environment footprint K = D Dᵀ + κ² B'B'ᵀ (form (b))        envmap/env_footprint.h
 //       → reflection = filter(environment, v_r, K)               envmap/environment_map.h
-//   → Fresnel mirror + Lambert + (rough) Blinn-Phong lights      shading/
+//   → Fresnel mirror + Lambert + (rough) Blinn-Phong or microfacet highlights   shading/
 //
 // Filter modes (FilterMode; the CLI's --filter names, the same names as texture_lookup.h's
 // TextureFilter wherever both have the filter):
@@ -24,6 +24,17 @@
 //   ewa-rough  EWA for textures, bumps and the environment, with roughness
 //   reference  the ground truth: spp samples per pixel, each a finest-level bilinear lookup of
 //              every map, the micro-roughness sampled as random slopes
+// Peers (what engines ship, for the evaluation; sources and how each is built here in
+// docs/rendering.md#peers and render/peer_filters.h). Textures, bumps and the environment are
+// filtered as a GPU's 16× anisotropic filter does (footprint assembly with the EXT rule), and
+// Fresnel is taken at the mean normal:
+//   lean         LEAN mapping (Olano & Baker 2010): the pyramid's slope moments, K_b in the
+//                highlights and the environment footprint — fa-rough's model at a GPU's filter
+//   toksvig      Toksvig (2005): a pyramid of unit normals, K_b = (1 − |n̄|)/|n̄| I
+//   specular-aa  geometric specular antialiasing (Kaplanyan et al. 2016, Tokuyoshi & Kaplanyan
+//                2019): the mean slope, K_b from its change across the pixel
+//   stochastic   stochastic texture filtering (Pharr et al. 2024): each lookup reads one random
+//                position the filter picks, shading at the slope it reads (unbiased, noisy)
 // Pixel filter: a Gaussian of σ = ½ pixel (truncated at ±3σ) — the filter whose texel-space image
 // has the covariance K/4 every footprint filter implements (spec §2.6), so that filtered modes and
 // the reference measure the same thing. With spp = 1 the filtered modes sample the pixel centre;
@@ -38,7 +49,9 @@
 //     + diffuse·c·Ē  (ambient: the environment's mean colour Ē)
 //     + mirror·F(n̂_m·v̂)·env(v_r)
 // E_i = colour (directional) or colour/d² (point), no shadows; S = shading/blinn_phong.h's
-// specular() (plain for bilinear/trilinear/fa, gaussian with the filtered K_b for the rough modes);
+// specular() (plain for bilinear/trilinear/fa, gaussian with the filtered K_b for the rough modes),
+// or for a material whose highlight is beckmann or ggx shading/microfacet.h's
+// microfacet_highlight() with α = roughness² and K_b likewise;
 // F = Schlick's Fresnel with fresnel_f0. Reflections show the environment only (no
 // inter-reflections), as in the papers. Rays that miss show the environment (filtered over the
 // camera ray's own differentials) or the background colour.
@@ -60,13 +73,27 @@
 
 namespace footprint {
 
-enum class FilterMode { bilinear, trilinear, fa, fa_rough, ewa_rough, reference };
+enum class FilterMode {
+    bilinear,
+    trilinear,
+    fa,
+    fa_rough,
+    ewa_rough,
+    reference,
+    lean,
+    toksvig,
+    specular_aa,
+    stochastic
+};
 
 std::optional<FilterMode> parse_filter_mode(std::string_view name);
-// "bilinear", "trilinear", "fa", "fa-rough", "ewa-rough", "reference"
+// "bilinear", "trilinear", "fa", "fa-rough", "ewa-rough", "reference", "lean", "toksvig",
+// "specular-aa", "stochastic"
 const char* filter_mode_name(FilterMode mode);
 // Every mode, in the order above.
 std::span<const FilterMode> all_filter_modes();
+// The peers, in the order above.
+std::span<const FilterMode> peer_filter_modes();
 
 struct RenderOptions {
     FilterMode filter = FilterMode::fa_rough;

@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <memory>
 
@@ -64,8 +66,10 @@ SceneDesc mirror_plane_scene(float f0) {
     return scene;
 }
 
-const FilterMode kAllModes[] = {FilterMode::bilinear, FilterMode::trilinear, FilterMode::fa,
-                                FilterMode::fa_rough, FilterMode::ewa_rough, FilterMode::reference};
+const FilterMode kAllModes[] = {
+    FilterMode::bilinear,    FilterMode::trilinear, FilterMode::fa,   FilterMode::fa_rough,
+    FilterMode::ewa_rough,   FilterMode::reference, FilterMode::lean, FilterMode::toksvig,
+    FilterMode::specular_aa, FilterMode::stochastic};
 
 TEST(Renderer, MirrorPlaneInConstantEnvironmentIsEnvironmentTimesFresnel) {
     constexpr float kF0 = 0.04f;
@@ -130,7 +134,8 @@ SceneDesc busy_scene() {
 TEST(Renderer, OneAndTwoThreadsAreBitIdentical) {
     Result<RenderScene> scene = prepare_render_scene(busy_scene());
     ASSERT_TRUE(scene.ok()) << scene.error().message;
-    for (FilterMode mode : {FilterMode::fa_rough, FilterMode::reference, FilterMode::ewa_rough}) {
+    for (FilterMode mode : {FilterMode::fa_rough, FilterMode::reference, FilterMode::ewa_rough,
+                            FilterMode::stochastic}) {
         RenderOptions options;
         options.filter = mode;
         options.spp = mode == FilterMode::reference ? 4 : 1;
@@ -246,7 +251,7 @@ TEST(Renderer, FilteredModesApproachTheReference) {
     options.spp = 256;
     const Image reference = render(*scene, options);
     options.spp = 1;
-    double error[6] = {};
+    double error[std::size(kAllModes)] = {};
     for (FilterMode mode : kAllModes) {
         if (mode == FilterMode::reference) continue;
         options.filter = mode;
@@ -268,6 +273,113 @@ TEST(Renderer, FilterModeNamesRoundTrip) {
     }
     EXPECT_FALSE(parse_filter_mode("fa_rough").has_value());
     EXPECT_FALSE(parse_filter_mode("point").has_value());  // bilinear: the texture filters' name
+    ASSERT_EQ(peer_filter_modes().size(), 4u);
+    for (FilterMode mode : peer_filter_modes()) {
+        EXPECT_NE(std::find(std::begin(kAllModes), std::end(kAllModes), mode), std::end(kAllModes));
+    }
+}
+
+// A rippled mirror plane at a grazing angle with a highlight, the ripples finer than a pixel far
+// away: where the peers' sources of slopes and roughness differ.
+SceneDesc rippled_plane_scene() {
+    SceneDesc scene;
+    scene.width = 40, scene.height = 24;
+    scene.camera.position = {0, 0.8, 3};
+    scene.camera.look_at = {0, 0, -2};
+    scene.environment = latlong_environment(striped_latlong());
+    scene.lights.push_back({LightType::directional, {0, -0.5, 1}, {}, {1, 1, 1}});
+    auto height = std::make_shared<Image>(64, 64, 1);
+    for (int y = 0; y < 64; ++y) {
+        for (int x = 0; x < 64; ++x) {
+            height->at(x, y, 0) =
+                std::sin(0.9f * x) * std::cos(0.5f * y) + 0.3f * std::sin(2.3f * y);
+        }
+    }
+    MaterialDesc m = mirror_material(0.5f);
+    m.diffuse = 0.3f, m.specular = 0.5f, m.shininess = 200;
+    m.bump.source = BumpDesc::Source::height_map;
+    m.bump.map = {{}, height, "ripples"};
+    m.bump.strength = 0.01f;
+    m.micro_roughness = 0.02f;
+    PlaneShape plane;
+    plane.infinite = true;
+    plane.uv_scale = 2;
+    scene.objects.push_back({"water", plane, m});
+    return scene;
+}
+
+// Every peer renders the bumped scene with finite pixels, and bit-identically on one and two
+// threads (toksvig makes its normal map at the first lookup, from whichever thread comes first).
+TEST(Renderer, PeersRenderFiniteAndDeterministic) {
+    Result<RenderScene> scene = prepare_render_scene(rippled_plane_scene());
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    for (FilterMode mode : peer_filter_modes()) {
+        RenderOptions options;
+        options.filter = mode;
+        options.threads = 1;
+        RenderStats stats;
+        const Image one = render(*scene, options, &stats);
+        EXPECT_EQ(stats.non_finite_samples, 0u) << filter_mode_name(mode);
+        options.threads = 2;
+        const Image two = render(*scene, options);
+        ASSERT_EQ(one.pixels.size(), two.pixels.size());
+        EXPECT_EQ(
+            0, std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(float)))
+            << filter_mode_name(mode);
+    }
+}
+
+// Stochastic texture filtering is unbiased: with more samples per pixel it converges to the
+// reference, where a filtered mode keeps its bias. At 64 spp its error is a fraction of its
+// 1-spp noise (noise alone would fall to 1/8) and near the reference's own at that rate (its
+// levels' box prefilter is its only bias).
+constexpr double kConvergedShare = 0.35, kSupersamplingMargin = 1.5;
+// How much closer widening must bring the highlight (it is most of the image's error there).
+constexpr double kWideningGain = 0.8;
+TEST(Renderer, StochasticFilteringConvergesToTheReference) {
+    Result<RenderScene> scene = prepare_render_scene(rippled_plane_scene());
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    RenderOptions options;
+    options.filter = FilterMode::reference;
+    options.spp = 1024;
+    const Image reference = render(*scene, options);
+    options.spp = 64;
+    options.seed = 2;
+    const double supersampled = rmse(render(*scene, options), reference);
+    options.filter = FilterMode::stochastic;
+    const double stochastic_64 = rmse(render(*scene, options), reference);
+    options.spp = 1;
+    const double stochastic_1 = rmse(render(*scene, options), reference);
+    EXPECT_LT(stochastic_64, kConvergedShare * stochastic_1)
+        << stochastic_64 << " at 64 spp, " << stochastic_1 << " at 1";
+    EXPECT_LT(stochastic_64, kSupersamplingMargin * supersampled)
+        << stochastic_64 << " against supersampling's " << supersampled;
+}
+
+// A microfacet highlight on the ripples: the rough modes widen its distribution by the filtered
+// K_b (shading/microfacet.h), which brings it closer to the reference's many sharp highlights than
+// the mean normal's alone.
+TEST(Renderer, RoughModesWidenMicrofacetHighlightsTowardsTheReference) {
+    for (auto highlight : {MaterialDesc::Highlight::beckmann, MaterialDesc::Highlight::ggx}) {
+        SceneDesc desc = rippled_plane_scene();
+        MaterialDesc& m = desc.objects[0].material;
+        m.highlight = highlight;
+        m.roughness = 0.2f;
+        m.mirror = 0;
+        Result<RenderScene> scene = prepare_render_scene(desc);
+        ASSERT_TRUE(scene.ok()) << scene.error().message;
+        RenderOptions options;
+        options.filter = FilterMode::reference;
+        options.spp = 256;
+        const Image reference = render(*scene, options);
+        options.spp = 1;
+        options.filter = FilterMode::fa;
+        const double plain = rmse(render(*scene, options), reference);
+        options.filter = FilterMode::fa_rough;
+        const double rough = rmse(render(*scene, options), reference);
+        EXPECT_LT(rough, kWideningGain * plain)
+            << static_cast<int>(highlight) << ": fa-rough " << rough << ", fa " << plain;
+    }
 }
 
 TEST(RenderScene, MissingImageFileNamesTheKeyAndTheFile) {

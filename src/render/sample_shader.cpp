@@ -51,6 +51,29 @@ constexpr float kMissing[3] = {0, 0, 0};
 
 constexpr int kTileSize = 16;
 
+// The peers' texture filter: a GPU's anisotropic filtering, up to 16 trilinear probes along the
+// major axis placed by EXT_texture_filter_anisotropic's rule.
+LookupOptions gpu_anisotropic() {
+    LookupOptions options;
+    options.filter = TextureFilter::footprint_assembly;
+    options.probe_rule = ProbeRule::ext;
+    options.max_probes = 16;
+    return options;
+}
+
+// A map's size (zero if the texture system cannot say: level0_size() then takes 1 × 1).
+template <class Handle>
+TextureInfo info_of(TextureSystem& textures, Handle* map) {
+    const Result<TextureInfo> info = textures.info(map);
+    return info ? *info : TextureInfo{};
+}
+
+// The seed of a sample's stream of draws, from its two uniforms (24 bits each, sample_ray()).
+std::uint32_t stream_seed(Vec2d random) {
+    const auto bits = [](double u) { return static_cast<std::uint32_t>(u * 16777216.0); };
+    return hash32(bits(random.x) ^ hash32(bits(random.y) + 1));
+}
+
 // Below this share of slopes facing away from the eye their second lookup is not worth it.
 constexpr float kFacingAwayThreshold = 1e-3f;
 
@@ -83,12 +106,31 @@ ModePolicy policy_of(FilterMode mode) {
             policy.lookup.filter = TextureFilter::footprint_assembly;
             break;
         case FilterMode::fa_rough:
-            policy.roughness = true;
+            policy.roughness = policy.fresnel_over_slopes = true;
             policy.lookup.filter = TextureFilter::footprint_assembly;
             break;
         case FilterMode::ewa_rough:
-            policy.roughness = true;
+            policy.roughness = policy.fresnel_over_slopes = true;
             policy.lookup.filter = TextureFilter::ewa;
+            break;
+        case FilterMode::lean:
+            policy.roughness = true;
+            policy.lookup = gpu_anisotropic();
+            break;
+        case FilterMode::toksvig:
+            policy.roughness = true;
+            policy.slopes = SlopeSource::toksvig;
+            policy.lookup = gpu_anisotropic();
+            break;
+        case FilterMode::specular_aa:
+            policy.roughness = true;
+            policy.slopes = SlopeSource::screen_space;
+            policy.lookup = gpu_anisotropic();
+            break;
+        case FilterMode::stochastic:
+            policy.stochastic = policy.sample_micro_roughness = true;
+            policy.slopes = SlopeSource::sampled;
+            policy.lookup.filter = TextureFilter::trilinear;  // reads the one level it picks
             break;
     }
     return policy;
@@ -144,28 +186,20 @@ std::optional<SurfacePoint> SampleShader::trace(const RayDifferential& ray, Vec2
         coords.dtdy = static_cast<float>(-diff.duvdy.y);
     }
 
-    point.base = {desc.base_color.x, desc.base_color.y, desc.base_color.z};
-    if (material.base_color_map) {
-        Rgb texel;
-        static_cast<void>(
-            textures_.texture(material.base_color_map, coords, policy_.lookup, texel, kMissing));
-        ++lookups;
-        if (material.base_color_grey) texel[1] = texel[2] = texel[0];
-        for (int c = 0; c < 3; ++c) point.base[c] *= texel[c];
-    }
+    point.random_seed = stream_seed(random);
+    RandomStream draws(point.random_seed);
+    point.base = base_color(material, coords, draws);
 
     // Bump: mean slope b and roughness K_b of the filtered region (spec §5.4).
     point.roughness = material.micro_roughness;
     if (material.bump) {
-        SlopeStatistics stats;
-        const BumpLookupOptions bump_options(policy_.lookup, material.bump_strength,
-                                             material.bump_micro_roughness);
-        static_cast<void>(textures_.bump(material.bump, coords, bump_options, &stats));
-        ++lookups;
+        const SlopeStatistics stats = slopes(material, coords, draws);
         point.slope = stats.mean;
         point.roughness = stats.covariance;
     }
-    if (policy_.sample_micro_roughness && desc.micro_roughness > 0) {
+    // The micro-roughness as a random slope where it is not in a bump map's sampled moments.
+    const bool sampled = material.bump && policy_.slopes == SlopeSource::sampled;
+    if (policy_.sample_micro_roughness && desc.micro_roughness > 0 && !sampled) {
         const Vec2d z = gaussian_pair(random.x, random.y);
         point.slope = point.slope +
                       desc.micro_roughness * Vec2{static_cast<float>(z.x), static_cast<float>(z.y)};
@@ -186,6 +220,108 @@ std::optional<SurfacePoint> SampleShader::trace(const RayDifferential& ray, Vec2
         point.frame.frame.t1 = -point.frame.frame.t1, point.frame.frame.t2 = -point.frame.frame.t2;
     }
     return point;
+}
+
+// c: the material's colour × its texture.
+Rgb SampleShader::base_color(const RenderMaterial& material, const TextureCoords& coords,
+                             RandomStream& random) {
+    const Vec3 colour = material.desc.base_color;
+    Rgb base{colour.x, colour.y, colour.z};
+    if (!material.base_color_map) return base;
+    TextureCoords at = coords;
+    if (policy_.stochastic) {
+        const auto [width, height] = level0_size(
+            material.base_color_map, [&] { return info_of(textures_, material.base_color_map); });
+        at = stochastic_probe(coords, width, height, random);
+    }
+    Rgb texel;
+    static_cast<void>(
+        textures_.texture(material.base_color_map, at, policy_.lookup, texel, kMissing));
+    ++lookups;
+    if (material.base_color_grey) texel[1] = texel[2] = texel[0];
+    for (int c = 0; c < 3; ++c) base[c] *= texel[c];
+    return base;
+}
+
+// b and K_b where the mode takes them from (SlopeSource).
+SlopeStatistics SampleShader::slopes(const RenderMaterial& material, const TextureCoords& coords,
+                                     RandomStream& random) {
+    switch (policy_.slopes) {
+        case SlopeSource::moments:
+            return read_moments(material, coords);
+        case SlopeSource::toksvig:
+            return read_toksvig(material, coords);
+        case SlopeSource::screen_space:
+            return read_screen_space(material, coords);
+        case SlopeSource::sampled:
+            return read_sampled(material, coords, random);
+    }
+    return {};
+}
+
+SlopeStatistics SampleShader::read_moments(const RenderMaterial& material,
+                                           const TextureCoords& coords) {
+    SlopeStatistics stats;
+    const BumpLookupOptions options(policy_.lookup, material.bump_strength,
+                                    material.bump_micro_roughness);
+    static_cast<void>(textures_.bump(material.bump, coords, options, &stats));
+    ++lookups;
+    return stats;
+}
+
+// Toksvig: the filtered unit normals' mean and length, plus the material's micro-roughness (the
+// artist's base roughness, which a map of unit normals cannot hold).
+SlopeStatistics SampleShader::read_toksvig(const RenderMaterial& material,
+                                           const TextureCoords& coords) {
+    float n[3];
+    static_cast<void>(
+        textures_.texture(scene_.toksvig_normals(material), coords, policy_.lookup, n, kMissing));
+    ++lookups;
+    SlopeStatistics stats = toksvig_slopes(Vec3{n[0], n[1], n[2]});
+    stats.covariance = stats.covariance + material.micro_roughness;
+    return stats;
+}
+
+// Specular AA: the mean slope here and one pixel step away in x and in y (a GPU quad's
+// derivatives), K_b from their differences plus the material's micro-roughness. The bump map's
+// own K_b is not used: engines without a roughness pyramid do not have it.
+SlopeStatistics SampleShader::read_screen_space(const RenderMaterial& material,
+                                                const TextureCoords& coords) {
+    const Vec2 b = read_moments(material, coords).mean;
+    const auto [dx, dy] = slope_steps(material, coords, b);
+    return {b, screen_space_roughness(dx, dy) + material.micro_roughness};
+}
+
+// The filtered mean slope's change per pixel step in x and in y, as a GPU quad's derivatives
+// take it: its value one step away less `slope`, its value here.
+std::pair<Vec2, Vec2> SampleShader::slope_steps(const RenderMaterial& material,
+                                                const TextureCoords& coords, Vec2 slope) {
+    TextureCoords next_x = coords, next_y = coords;
+    next_x.s += coords.dsdx, next_x.t += coords.dtdx;
+    next_y.s += coords.dsdy, next_y.t += coords.dtdy;
+    return {read_moments(material, next_x).mean - slope,
+            read_moments(material, next_y).mean - slope};
+}
+
+// Stochastic: the moments of a texel the filter picks, and one slope drawn from them (their
+// covariance holds the micro-roughness).
+SlopeStatistics SampleShader::read_sampled(const RenderMaterial& material,
+                                           const TextureCoords& coords, RandomStream& random) {
+    const auto [width, height] =
+        level0_size(material.bump, [&] { return info_of(textures_, material.bump); });
+    const SlopeStatistics moments =
+        read_moments(material, stochastic_probe(coords, width, height, random));
+    return {sample_slope(moments, random.gaussian()), Sym2{}};
+}
+
+std::pair<int, int> SampleShader::level0_size(const void* handle,
+                                              const std::function<TextureInfo()>& info) {
+    auto it = sizes_.find(handle);
+    if (it == sizes_.end()) {
+        const TextureInfo i = info();
+        it = sizes_.emplace(handle, std::pair{std::max(1, i.width), std::max(1, i.height)}).first;
+    }
+    return it->second;
 }
 
 ShadingFactors SampleShader::shade(const SurfacePoint& point) {
@@ -220,6 +356,13 @@ void SampleShader::add_lights(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat,
                          : point.roughness;
     const RoughShadingModel model =
         policy_.roughness ? RoughShadingModel::gaussian : RoughShadingModel::plain;
+    // A microfacet highlight (shading/microfacet.h) is widened by the filtered K_b in the rough
+    // modes and by nothing in the others, as specular() with `model`.
+    const Sym2 k_microfacet = policy_.roughness ? k_e : Sym2{};
+    const float alpha = desc.roughness * desc.roughness;
+    const MicrofacetModel microfacet = desc.highlight == MaterialDesc::Highlight::ggx
+                                           ? MicrofacetModel::ggx
+                                           : MicrofacetModel::beckmann;
     for (const LightDesc& light : scene_.desc().lights) {
         Vec3 l;
         float scale = 1;
@@ -283,7 +426,7 @@ void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_
     if (point.bumped) {
         Vec2 slope = point.slope;
         Sym2 roughness = point.roughness;
-        if (policy_.roughness) {
+        if (policy_.fresnel_over_slopes) {
             const FresnelOverSlopes weighted =
                 fresnel_over_slopes(desc.fresnel_f0, dot(n_hat, v_hat),
                                     cos_slope_gradient(point, n_hat, v_hat), point.roughness);
@@ -302,8 +445,18 @@ void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_
     env_options.rotation = env.rotation;
     out.env_footprint = compute_env_footprint(env.layout, env.texel_scale, geometry, env_options);
     out.map_reflection = normalize(out.env_footprint->map_direction);
-    static_cast<void>(
-        textures_.environment(env.map, *out.env_footprint, policy_.lookup, out.reflection));
+    if (policy_.stochastic) {
+        // One direction the footprint's Gaussian picks (the pixel filter's σ = ½ pixel), read at
+        // level 0.
+        RandomStream draws(point.random_seed ^ 0x5bd1e995u);
+        const Vec2 z = 0.5f * draws.gaussian();
+        const EnvFootprint& f = *out.env_footprint;
+        const Vec3 r = f.map_direction + z.x * f.map_dr_dx + z.y * f.map_dr_dy;
+        static_cast<void>(textures_.environment_sample(env.map, r, out.reflection));
+    } else {
+        static_cast<void>(
+            textures_.environment(env.map, *out.env_footprint, policy_.lookup, out.reflection));
+    }
     ++lookups;
     const float f_away =
         facing_away * schlick_fresnel(desc.fresnel_f0, dot(normalize(point.n), v_hat));
@@ -353,13 +506,6 @@ RayDifferential sample_ray(const PinholeCamera& camera, const RenderOptions& opt
         ray.dodx = scale * ray.dodx, ray.dody = scale * ray.dody;
         ray.dddx = scale * ray.dddx, ray.dddy = scale * ray.dddy;
         return ray;
-    // A microfacet highlight (shading/microfacet.h) is widened by the filtered K_b in the rough
-    // modes and by nothing in the others, as specular() with `model`.
-    const Sym2 k_microfacet = policy_.roughness ? k_e : Sym2{};
-    const float alpha = desc.roughness * desc.roughness;
-    const MicrofacetModel microfacet = desc.highlight == MaterialDesc::Highlight::ggx
-                                           ? MicrofacetModel::ggx
-                                           : MicrofacetModel::beckmann;
     }
     // Filtered samples: each sample's kernel is a Gaussian of α/4 pixel² (K/4 of differentials
     // scaled by √α), and the sample positions spread by the rest of the pixel filter's ¼, so that

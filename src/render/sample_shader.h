@@ -13,9 +13,12 @@
 #include <array>
 #include <functional>
 #include <optional>
+#include <unordered_map>
+#include <utility>
 
 #include "render/bump_frame.h"
 #include "render/camera.h"
+#include "render/peer_filters.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
 #include "scene/ray_differentials.h"
@@ -24,11 +27,22 @@ namespace footprint::detail {
 
 using Rgb = std::array<float, 3>;
 
+// Where a mode's mean slope b and slope covariance K_b come from.
+enum class SlopeSource {
+    moments,       // the bump pyramid's first and second moments (Schilling; LEAN mapping)
+    toksvig,       // the mean of unit normals and its length (render/peer_filters.h)
+    screen_space,  // the mean slope, K_b from its change across the pixel (specular AA)
+    sampled,       // one slope drawn from the moments of a texel the filter picks (stochastic)
+};
+
 // What one mode does at every lookup.
 struct ModePolicy {
-    bool filtered = true;    // use the ray differentials (false: finest-level bilinear)
-    bool roughness = false;  // the roughness pyramid enters the env footprint and the highlights
-    bool sample_micro_roughness = false;  // reference: micro-roughness as random slopes
+    bool filtered = true;              // use the ray differentials (false: finest-level bilinear)
+    bool roughness = false;            // K_b enters the env footprint and the highlights
+    bool fresnel_over_slopes = false;  // Fresnel averaged over the slopes (shading/fresnel.h)
+    bool sample_micro_roughness = false;  // micro-roughness as random slopes (no bump map)
+    bool stochastic = false;  // lookups at positions the filter picks at random (peer_filters.h)
+    SlopeSource slopes = SlopeSource::moments;
     LookupOptions lookup;
 };
 ModePolicy policy_of(FilterMode mode);
@@ -47,6 +61,7 @@ struct SurfacePoint {
     Vec3 p, n, dndx, dndy;  // n any length, ∂n per pixel step
     Vec3 v;                 // surface → eye
     SurfaceDifferentials diff;
+    std::uint32_t random_seed = 0;  // the sample's draws, for stochastic lookups
 };
 
 // The factors of one sample's colour: combine() = c ⊙ D + S + F·R.
@@ -92,11 +107,25 @@ class SampleShader {
   private:
     void add_lights(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat, ShadingFactors& out) const;
     void add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat, ShadingFactors& out);
+    Rgb base_color(const RenderMaterial& material, const TextureCoords& coords,
+                   RandomStream& random);
+    SlopeStatistics slopes(const RenderMaterial& material, const TextureCoords& coords,
+                           RandomStream& random);
+    SlopeStatistics read_moments(const RenderMaterial& material, const TextureCoords& coords);
+    SlopeStatistics read_toksvig(const RenderMaterial& material, const TextureCoords& coords);
+    SlopeStatistics read_screen_space(const RenderMaterial& material, const TextureCoords& coords);
+    std::pair<Vec2, Vec2> slope_steps(const RenderMaterial& material, const TextureCoords& coords,
+                                      Vec2 slope);
+    SlopeStatistics read_sampled(const RenderMaterial& material, const TextureCoords& coords,
+                                 RandomStream& random);
+    // Level 0's size of a map (cached: the texture system's info() takes a lock).
+    std::pair<int, int> level0_size(const void* handle, const std::function<TextureInfo()>& info);
 
     const RenderScene& scene_;
     TextureSystem& textures_;
     const RenderOptions& options_;
     ModePolicy policy_;
+    std::unordered_map<const void*, std::pair<int, int>> sizes_;
 };
 
 // The ray of sample k of n in pixel (x, y): the pixel centre for a filtered mode's single sample,
