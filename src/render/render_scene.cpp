@@ -415,11 +415,19 @@ TextureHandle* RenderScene::toksvig_normals(const RenderMaterial& material) cons
                 slopes.at(x, y, 1) = moments.at(x, y, 1) + pyramid.slope_offset().y;
             }
         }
-        const std::string name = "toksvig normals #" + std::to_string(toksvig_->maps.size());
+        // Named after the bump map's entry and strength: another scene sharing the texture system
+        // and the map finds the same normals under that name.
+        std::ostringstream name;
+        name << "toksvig normals of bump map " << static_cast<const void*>(material.bump) << " × "
+             << material.bump_strength;
         const Result<TextureHandle*> added =
-            textures_->add_image(name, detail::unit_normals(slopes, material.bump_strength),
+            textures_->add_image(name.str(), detail::unit_normals(slopes, material.bump_strength),
                                  pyramid.options().wrap_s, pyramid.options().wrap_t);
-        if (added) handle = *added;
+        if (added) {
+            handle = *added;
+        } else if (TextureHandle* shared = textures_->handle(name.str()); textures_->info(shared)) {
+            handle = shared;
+        }
     }
     toksvig_->maps.emplace(key, handle);
     return handle;

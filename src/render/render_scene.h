@@ -113,7 +113,7 @@ class RenderScene {
 
     // The unit normals of a bumped material's slopes (× its strength) as a texture of the scene's
     // texture system, for the `toksvig` peer mode: made at the first call for that bump map, then
-    // shared. Thread-safe.
+    // shared; null if the bump map cannot be read whole. Thread-safe.
     TextureHandle* toksvig_normals(const RenderMaterial& material) const;
 
   private:

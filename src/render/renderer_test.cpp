@@ -329,6 +329,25 @@ TEST(Renderer, PeersRenderFiniteAndDeterministic) {
     }
 }
 
+// Two scenes sharing one texture system and bump map both get Toksvig's normal map (the second
+// finds the name the first took), and render alike.
+TEST(Renderer, ScenesSharingATextureSystemShareToksvigNormals) {
+    Result<std::unique_ptr<TextureSystem>> made = TextureSystem::create();
+    ASSERT_TRUE(made) << made.error().message;
+    const std::shared_ptr<TextureSystem> textures = std::move(*made);
+    const SceneDesc desc = rippled_plane_scene();
+    Result<RenderScene> a = prepare_render_scene(desc, textures);
+    Result<RenderScene> b = prepare_render_scene(desc, textures);
+    ASSERT_TRUE(a && b);
+    RenderOptions options;
+    options.filter = FilterMode::toksvig;
+    EXPECT_EQ(render(*a, options).pixels, render(*b, options).pixels);
+    const RenderMaterial* material = a->analytic_material(0);
+    ASSERT_NE(material, nullptr);
+    EXPECT_NE(a->toksvig_normals(*material), nullptr);
+    EXPECT_NE(b->toksvig_normals(*b->analytic_material(0)), nullptr);
+}
+
 // Stochastic texture filtering is unbiased: with more samples per pixel it converges to the
 // reference, where a filtered mode keeps its bias. At 64 spp its error is a fraction of its
 // 1-spp noise (noise alone would fall to 1/8) and near the reference's own at that rate (its

@@ -273,9 +273,10 @@ SlopeStatistics SampleShader::read_moments(const RenderMaterial& material,
 // artist's base roughness, which a map of unit normals cannot hold).
 SlopeStatistics SampleShader::read_toksvig(const RenderMaterial& material,
                                            const TextureCoords& coords) {
+    TextureHandle* normals = scene_.toksvig_normals(material);
+    if (!normals) return read_moments(material, coords);  // no map to make them from
     float n[3];
-    static_cast<void>(
-        textures_.texture(scene_.toksvig_normals(material), coords, policy_.lookup, n, kMissing));
+    static_cast<void>(textures_.texture(normals, coords, policy_.lookup, n, kMissing));
     ++lookups;
     SlopeStatistics stats = toksvig_slopes(Vec3{n[0], n[1], n[2]});
     stats.covariance = stats.covariance + material.micro_roughness;
