@@ -9,6 +9,7 @@
 #include "cli_options.h"
 #include "command_util.h"
 #include "demo_scenes.h"
+#include "number_format.h"
 #include "metrics/image_metrics.h"
 #include "progress.h"
 #include "render/error_budget.h"
@@ -43,17 +44,6 @@ Result<Row> measure(const Image& image, const Image& reference, const Image& mas
         row.rmse_interior = inside->rmse;
     }
     return row;
-}
-
-std::string number(double v, const char* format = "%.4g") {
-    if (!std::isfinite(v)) return "";
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, format, v);
-    return buffer;
-}
-
-nlohmann::json json_number(double v) {
-    return std::isfinite(v) ? nlohmann::json(v) : nullptr;
 }
 
 // 1 − rmse/base on the interior: the share of the mode's error the term removes.
@@ -152,12 +142,12 @@ int run_error_budget_command(const EvalCommandOptions& options) {
             const double share = removed(row, rows.front());
             std::snprintf(
                 line, sizeof line, "  %-16s %12s %12s %9s\n", row.term.c_str(),
-                number(row.rmse).c_str(), number(row.rmse_interior).c_str(),
-                &row == &rows.front() ? "" : (number(100 * share, "%.1f") + " %").c_str());
+                format_number(row.rmse, "%.4g").c_str(), format_number(row.rmse_interior, "%.4g").c_str(),
+                &row == &rows.front() ? "" : (format_number(100 * share, "%.1f") + " %").c_str());
             table += line;
             csv += named.name + "," + row.term + ",\"" + row.description + "\"," +
-                   number(row.rmse, "%.6g") + "," + number(row.rmse_interior, "%.6g") + "," +
-                   (&row == &rows.front() ? "" : number(share, "%.6g")) + "\n";
+                   format_number(row.rmse) + "," + format_number(row.rmse_interior) + "," +
+                   (&row == &rows.front() ? "" : format_number(share)) + "\n";
             scene_json["terms"].push_back(
                 {{"term", row.term},
                  {"description", row.description},

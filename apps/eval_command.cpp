@@ -19,6 +19,7 @@
 #include "image/image_io.h"
 #include "metrics/flip.h"
 #include "metrics/image_metrics.h"
+#include "number_format.h"
 #include "plane_view.h"
 #include "progress.h"
 #include "render/camera.h"
@@ -135,17 +136,6 @@ Image absolute_error(const Image& a, const Image& b) {
         e.pixels[p] = static_cast<float>(sum / a.channels);
     }
     return e;
-}
-
-std::string csv_number(double v) {
-    if (!std::isfinite(v)) return "";
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%.6g", v);
-    return buffer;
-}
-
-nlohmann::json json_number(double v) {
-    return std::isfinite(v) ? nlohmann::json(v) : nullptr;
 }
 
 // The first problem with the command line's numbers, if any.
@@ -425,10 +415,10 @@ int run_eval_command(const EvalCommandOptions& options) {
                                              {"seconds", em.seconds},
                                              {"equal_error_speedup", json_number(speedup)}});
             csv += named.name + "," + em.name + "," + em.family + "," + std::to_string(em.spp) +
-                   "," + csv_number(em.rmse) + "," + csv_number(em.rmse_interior) + "," +
-                   csv_number(em.ssim) + "," + csv_number(em.flip_interior) + "," +
-                   csv_number(em.flicker) + "," + csv_number(em.seconds) + "," +
-                   csv_number(speedup) + "\n";
+                   "," + format_number(em.rmse) + "," + format_number(em.rmse_interior) + "," +
+                   format_number(em.ssim) + "," + format_number(em.flip_interior) + "," +
+                   format_number(em.flicker) + "," + format_number(em.seconds) + "," +
+                   format_number(speedup) + "\n";
         }
         results["scenes"].push_back(scene_json);
         report.scenes.push_back(std::move(eval_scene));
