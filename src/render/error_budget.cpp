@@ -1,6 +1,7 @@
 #include "render/error_budget.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -21,12 +22,43 @@ using detail::Rgb;
 using detail::ShadingFactors;
 using detail::SurfacePoint;
 
-constexpr BudgetTerm kTerms[] = {
-    BudgetTerm::texture,       BudgetTerm::texture_filter, BudgetTerm::bump,
-    BudgetTerm::diffuse,       BudgetTerm::lambert,        BudgetTerm::highlight,
-    BudgetTerm::fresnel,       BudgetTerm::env_filter,     BudgetTerm::env_footprint,
-    BudgetTerm::env_two_lobes, BudgetTerm::reflection,     BudgetTerm::mirror,
-    BudgetTerm::factors};
+// Every term, in the order of all_budget_terms(), with its name and what it takes from the
+// samples.
+struct TermInfo {
+    BudgetTerm term;
+    const char* name;
+    const char* description;
+};
+constexpr TermInfo kTermInfo[] = {
+    {BudgetTerm::texture, "texture", "base colour from the samples (the texture's filtering)"},
+    {BudgetTerm::texture_filter, "texture-filter",
+     "base colour by the exact Gaussian of the mode's own footprint (the filter's kernel)"},
+    {BudgetTerm::bump, "bump",
+     "slope mean and covariance from the samples (the bump pyramid's filtering)"},
+    {BudgetTerm::diffuse, "diffuse", "diffuse from the samples (Lambert of the mean normal)"},
+    {BudgetTerm::lambert, "lambert", "colour x diffuse from the samples (with their correlation)"},
+    {BudgetTerm::highlight, "highlight", "highlight from the samples (the rough lobe)"},
+    {BudgetTerm::fresnel, "fresnel", "Fresnel from the samples (Schlick of the mean normal)"},
+    {BudgetTerm::env_filter, "env-filter",
+     "reflection by the exact Gaussian of the mode's own footprint (the environment filter's "
+     "kernel)"},
+    {BudgetTerm::env_footprint, "env-footprint",
+     "reflection by the exact Gaussian of the samples' directions (the footprint model)"},
+    {BudgetTerm::env_two_lobes, "env-two-lobes",
+     "reflection by two exact Gaussians, the samples split at 1.5 sigma of their slopes (what a "
+     "two-lobe slope model could reach)"},
+    {BudgetTerm::reflection, "reflection",
+     "reflection from the samples (all of the environment term)"},
+    {BudgetTerm::mirror, "mirror",
+     "Fresnel x reflection from the samples (with their correlation)"},
+    {BudgetTerm::factors, "factors",
+     "every factor from the samples (what remains: their correlation in the pixel)"},
+};
+constexpr auto kTerms = [] {
+    std::array<BudgetTerm, std::size(kTermInfo)> terms{};
+    for (std::size_t i = 0; i < terms.size(); ++i) terms[i] = kTermInfo[i].term;
+    return terms;
+}();
 constexpr int kTermCount = static_cast<int>(std::size(kTerms));
 
 // The exact Gaussians are dense quadratures; these caps keep one pixel's at a few thousand taps
@@ -401,69 +433,15 @@ std::span<const BudgetTerm> all_budget_terms() {
 }
 
 const char* budget_term_name(BudgetTerm term) {
-    switch (term) {
-        case BudgetTerm::texture:
-            return "texture";
-        case BudgetTerm::texture_filter:
-            return "texture-filter";
-        case BudgetTerm::bump:
-            return "bump";
-        case BudgetTerm::diffuse:
-            return "diffuse";
-        case BudgetTerm::lambert:
-            return "lambert";
-        case BudgetTerm::highlight:
-            return "highlight";
-        case BudgetTerm::fresnel:
-            return "fresnel";
-        case BudgetTerm::env_filter:
-            return "env-filter";
-        case BudgetTerm::env_footprint:
-            return "env-footprint";
-        case BudgetTerm::env_two_lobes:
-            return "env-two-lobes";
-        case BudgetTerm::reflection:
-            return "reflection";
-        case BudgetTerm::mirror:
-            return "mirror";
-        case BudgetTerm::factors:
-            return "factors";
+    for (const TermInfo& info : kTermInfo) {
+        if (info.term == term) return info.name;
     }
     return "?";
 }
 
 const char* budget_term_description(BudgetTerm term) {
-    switch (term) {
-        case BudgetTerm::texture:
-            return "base colour from the samples (the texture's filtering)";
-        case BudgetTerm::texture_filter:
-            return "base colour by the exact Gaussian of the mode's own footprint (the filter's "
-                   "kernel)";
-        case BudgetTerm::bump:
-            return "slope mean and covariance from the samples (the bump pyramid's filtering)";
-        case BudgetTerm::diffuse:
-            return "diffuse from the samples (Lambert of the mean normal)";
-        case BudgetTerm::lambert:
-            return "colour x diffuse from the samples (with their correlation)";
-        case BudgetTerm::highlight:
-            return "highlight from the samples (the rough lobe)";
-        case BudgetTerm::fresnel:
-            return "Fresnel from the samples (Schlick of the mean normal)";
-        case BudgetTerm::env_filter:
-            return "reflection by the exact Gaussian of the mode's own footprint (the "
-                   "environment filter's kernel)";
-        case BudgetTerm::env_footprint:
-            return "reflection by the exact Gaussian of the samples' directions (the footprint "
-                   "model)";
-        case BudgetTerm::env_two_lobes:
-            return "reflection by two exact Gaussians, the samples split at 1.5 sigma of their "
-                   "slopes (what a two-lobe slope model could reach)";
-        case BudgetTerm::reflection:
-            return "reflection from the samples (all of the environment term)";
-        case BudgetTerm::mirror:
-            return "Fresnel x reflection from the samples (with their correlation)";
-        case BudgetTerm::factors:
-            return "every factor from the samples (what remains: their correlation in the pixel)";
+    for (const TermInfo& info : kTermInfo) {
+        if (info.term == term) return info.description;
     }
     return "?";
 }
