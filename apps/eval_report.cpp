@@ -239,6 +239,25 @@ std::pair<double, double> log_range(const std::vector<double>& values) {
     return {lo - pad, hi + pad};
 }
 
+// An SVG plot's opening tag and white background (`label`: what it shows, for screen readers).
+std::string svg_open(double width, double height, const char* label) {
+    std::ostringstream svg;
+    svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"plot\" viewBox=\"0 0 " << width << " "
+        << height << "\" width=\"" << width << "\" height=\"" << height
+        << "\" role=\"img\" aria-label=\"" << label
+        << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect x=\"0\" y=\"0\" width=\""
+        << width << "\" height=\"" << height << "\" fill=\"white\"/>\n";
+    return svg.str();
+}
+
+// The rest of a plot that has nothing to show.
+std::string svg_no_data(double width, double height) {
+    std::ostringstream svg;
+    svg << "<text x=\"" << width / 2 << "\" y=\"" << height / 2
+        << "\" text-anchor=\"middle\" fill=\"#666\">no data</text>\n</svg>\n";
+    return svg.str();
+}
+
 constexpr std::array<const char*, 8> palette = {"#d62728", "#2ca02c", "#9467bd", "#ff7f0e",
                                                 "#17becf", "#8c564b", "#e377c2", "#bcbd22"};
 
@@ -338,12 +357,7 @@ std::string error_time_plot(const EvalScene& scene, PlotLabelLayout* layout) {
             markers.push_back({&m, equal_error_speedup(m, ss)});
 
     std::ostringstream svg;
-    svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"plot\" viewBox=\"0 0 " << svg_w << " "
-        << svg_h << "\" width=\"" << svg_w << "\" height=\"" << svg_h
-        << "\" role=\"img\" aria-label=\"RMSE against seconds, log-log\" "
-           "font-family=\"sans-serif\" font-size=\"12\">\n";
-    svg << "<rect x=\"0\" y=\"0\" width=\"" << svg_w << "\" height=\"" << svg_h
-        << "\" fill=\"white\"/>\n";
+    svg << svg_open(svg_w, svg_h, "RMSE against seconds, log-log");
 
     std::vector<double> xs, ys;
     for (const EvalMethod& m : ss) {
@@ -356,11 +370,7 @@ std::string error_time_plot(const EvalScene& scene, PlotLabelLayout* layout) {
         if (k.speedup.defined && positive_finite(k.speedup.seconds))
             xs.push_back(k.speedup.seconds);
     }
-    if (xs.empty()) {
-        svg << "<text x=\"" << svg_w / 2 << "\" y=\"" << svg_h / 2
-            << "\" text-anchor=\"middle\" fill=\"#666\">no data</text>\n</svg>\n";
-        return svg.str();
-    }
+    if (xs.empty()) return svg.str() + svg_no_data(svg_w, svg_h);
     const auto [x0, x1] = log_range(xs);
     const auto [y0, y1] = log_range(ys);
     auto px = [&](double seconds) {
@@ -526,11 +536,7 @@ std::string convergence_plot(const EvalScene& scene) {
         it->second.push_back(&m);
     }
     std::ostringstream svg;
-    svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"plot\" viewBox=\"0 0 " << svg_w << " "
-        << svg_h << "\" width=\"" << svg_w << "\" height=\"" << svg_h
-        << "\" role=\"img\" aria-label=\"RMSE against samples per pixel, log-log\" "
-           "font-family=\"sans-serif\" font-size=\"12\">\n<rect x=\"0\" y=\"0\" width=\""
-        << svg_w << "\" height=\"" << svg_h << "\" fill=\"white\"/>\n";
+    svg << svg_open(svg_w, svg_h, "RMSE against samples per pixel, log-log");
     std::vector<double> xs, ys;
     for (auto& [name, points] : series) {
         std::stable_sort(points.begin(), points.end(),
@@ -540,11 +546,7 @@ std::string convergence_plot(const EvalScene& scene) {
             ys.push_back(error_of(*m));
         }
     }
-    if (xs.empty()) {
-        svg << "<text x=\"" << svg_w / 2 << "\" y=\"" << svg_h / 2
-            << "\" text-anchor=\"middle\" fill=\"#666\">no data</text>\n</svg>\n";
-        return svg.str();
-    }
+    if (xs.empty()) return svg.str() + svg_no_data(svg_w, svg_h);
     const auto [x0, x1] = log_range(xs);
     const auto [y0, y1] = log_range(ys);
     auto px = [&](double spp) { return left + (std::log10(spp) - x0) / (x1 - x0) * plot_w; };
