@@ -8,7 +8,7 @@
 //   image = footprint.render("scene.json", filter="fa-rough", spp=1)             # H × W × 3
 //   image = footprint.render("scene.json", textures=ts)        # its maps through ts's cache
 //   footprint.metrics(image, reference)                                           # rmse, psnr,
-//   ssim footprint.save_image("out.exr", image); footprint.load_image("in.png")        # linear
+//   ssim, flip footprint.save_image("out.exr", image); footprint.load_image("in.png")        # linear
 //   light
 //
 // Lookups release the GIL and run on the calling thread. Every error is a RuntimeError with the
@@ -27,6 +27,7 @@
 #include "cli_options.h"
 #include "command_util.h"
 #include "image/image_io.h"
+#include "metrics/flip.h"
 #include "metrics/image_metrics.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
@@ -214,12 +215,16 @@ FloatArray render_scene(const std::string& scene, const std::string& filter, int
 py::dict metrics(const FloatArray& a, const FloatArray& b, double peak) {
     MetricsOptions options;
     options.peak = peak;
-    Result<ImageComparison> c = compare_images(to_image(a, "a"), to_image(b, "b"), options);
+    const Image image_a = to_image(a, "a"), image_b = to_image(b, "b");
+    Result<ImageComparison> c = compare_images(image_a, image_b, options);
     if (!c) raise(c.error());
+    Result<FlipResult> f = flip(image_a, image_b);  // b the reference; HDR-FLIP above 1
+    if (!f) raise(f.error());
     py::dict d;
     d["rmse"] = c->rmse;
     d["psnr"] = c->psnr;
     d["ssim"] = c->ssim;
+    d["flip"] = f->mean;
     d["pixels"] = c->pixels;
     return d;
 }
@@ -266,5 +271,6 @@ PYBIND11_MODULE(footprint, m) {
     m.def("save_image", &save, py::arg("file"), py::arg("image"),
           "An H × W [× C] array written by the file's extension (save_image; atomic)");
     m.def("metrics", &metrics, py::arg("a"), py::arg("b"), py::arg("peak") = 1.0,
-          "RMSE, PSNR and SSIM of a against b (H × W [× C] arrays, linear light)");
+          "RMSE, PSNR, SSIM and mean FLIP (HDR-FLIP where a value is above 1) of a against the "
+          "reference b (H × W [× C] arrays, linear light)");
 }

@@ -74,9 +74,10 @@ def test_render_and_metrics():
     assert image.shape == (27, 48, 3) and image.dtype == np.float32
     assert np.isfinite(image).all() and image.max() > 0
     same = footprint.metrics(image, image)
-    assert same["rmse"] == 0 and same["ssim"] == pytest.approx(1.0)
+    assert same["rmse"] == 0 and same["ssim"] == pytest.approx(1.0) and same["flip"] == 0
     other = footprint.metrics(image, image * 0.5)
     assert other["rmse"] == pytest.approx(math.sqrt(np.mean((image * 0.5) ** 2)), rel=1e-4)
+    assert 0 < other["flip"] <= 1
 
 
 def test_render_reads_its_maps_through_a_given_texture_system(tmp_path, texture):
