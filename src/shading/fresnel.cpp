@@ -57,6 +57,7 @@ FresnelOverSlopes fresnel_over_slopes(float f0, float cos_mean, Vec2 dcos_dslope
     const float variance = k.quadratic_form(dcos_dslope);  // σ_c²
     if (!(variance > 0) || !std::isfinite(variance)) {
         out.mean = schlick_fresnel(f0, cos_mean);
+        out.schlick = schlick_fresnel(0, cos_mean);
         return out;
     }
     // E[z^m F; c ≥ 0], m = 0, 1, 2, with c = c̄ + σz: F0 where c > 1 (z > z1), and on [0, 1]
@@ -68,13 +69,14 @@ FresnelOverSlopes fresnel_over_slopes(float f0, float cos_mean, Vec2 dcos_dslope
     double q[6], a_power = 1, s_power = 1;
     for (int j = 5; j >= 0; --j) q[j] = a_power, a_power *= a;  // a^{5−j}
     for (int j = 0; j <= 5; ++j) q[j] *= kBinomial[j] * s_power, s_power *= -sigma;
-    double moments[3];
+    double moments[3], quintic[3];
     for (int m = 0; m < 3; ++m) {
-        double quintic = 0;
-        for (int j = 0; j <= 5; ++j) quintic += q[j] * t.to_z1[m + j];
-        moments[m] = f0 * t.to_infinity[m] + (1.0 - f0) * quintic;
+        quintic[m] = 0;
+        for (int j = 0; j <= 5; ++j) quintic[m] += q[j] * t.to_z1[m + j];
+        moments[m] = f0 * t.to_infinity[m] + (1.0 - f0) * quintic[m];
     }
     out.facing_away = static_cast<float>(t.below_z0);
+    out.schlick = static_cast<float>(quintic[0]);
     const float f = static_cast<float>(moments[0]), zf = static_cast<float>(moments[1]),
                 z2f = static_cast<float>(moments[2]);
     out.mean = f;
@@ -89,6 +91,10 @@ FresnelOverSlopes fresnel_over_slopes(float f0, float cos_mean, Vec2 dcos_dslope
     out.covariance = Sym2{k.xx - narrowing * ku.x * ku.x, k.xy - narrowing * ku.x * ku.y,
                           k.yy - narrowing * ku.y * ku.y};
     return out;
+}
+
+float mean_fresnel(const FresnelOverSlopes& over, float f0) {
+    return f0 * (1 - over.facing_away) + (1 - f0) * over.schlick;
 }
 
 }  // namespace footprint

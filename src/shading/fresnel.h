@@ -37,11 +37,19 @@ struct FresnelOverSlopes {
     float facing_away = 0;  // P(c < 0)
     Vec2 mean_slope_shift;  // the F-weighted mean slope − b̄
     Sym2 covariance;        // the F-weighted covariance of the slopes
+    // E[(1 − c)⁵; 0 ≤ c ≤ 1], Schlick's angular factor over the facets that face the eye. F is
+    // linear in F0, so this and facing_away give the mean of every F0 (mean_fresnel()): a colour's
+    // three channels from one call.
+    float schlick = 0;
 };
 
 // `cos_mean` = c̄ = n̂(b̄)·v̂, `dcos_dslope` = u = ∂(n̂·v̂)/∂b at b̄, `k` = the slopes' covariance K,
 // all in the coordinates of b. K = 0 or u = 0 give F(c̄), no shift, K itself and none facing
 // away.
 FresnelOverSlopes fresnel_over_slopes(float f0, float cos_mean, Vec2 dcos_dslope, const Sym2& k);
+
+// E[F; c ≥ 0] for Schlick's F of `f0` over the slopes `over` was computed for (with any F0):
+// f0 (1 − facing_away) + (1 − f0) schlick.
+float mean_fresnel(const FresnelOverSlopes& over, float f0);
 
 }  // namespace footprint

@@ -100,5 +100,21 @@ TEST(FresnelOverSlopes, APerfectMirrorWeighsOnlyWhichSlopesFaceTheEye) {
     EXPECT_NEAR(perfect.covariance.yy, k.yy, 1e-9);
 }
 
+// One call gives every F0's mean: a metal's three channels (F is linear in F0). Checked against a
+// call per F0, at a grazing angle with a third of the slopes facing away, and without spread.
+TEST(FresnelOverSlopes, OneCallGivesTheMeanOfEveryF0) {
+    const Sym2 k{0.04f, 0.005f, 0.01f};
+    for (const auto& [cos_mean, u] :
+         {std::pair{0.1f, Vec2{1, 0.2f}}, std::pair{0.6f, Vec2{0.5f, 0}},
+          std::pair{0.3f, Vec2{0, 0}}}) {
+        const FresnelOverSlopes any = fresnel_over_slopes(0.3f, cos_mean, u, k);
+        for (float f0 : {0.0f, 0.04f, 0.56f, 0.95f, 1.0f}) {
+            const float own = fresnel_over_slopes(f0, cos_mean, u, k).mean;
+            EXPECT_NEAR(mean_fresnel(any, f0), own, 1e-6f) << cos_mean << " " << f0;
+        }
+        EXPECT_GT(any.schlick, 0.0f);
+    }
+}
+
 }  // namespace
 }  // namespace footprint

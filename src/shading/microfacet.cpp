@@ -126,12 +126,12 @@ float smith_masking_shadowing(MicrofacetModel model, const std::array<float, 3>&
     return to_float(masking_shadowing(model, to_local(l), to_local(v), to_double(m)));
 }
 
-float microfacet_highlight(MicrofacetModel model, const std::array<float, 3>& n,
-                           const std::array<float, 3>& e1, const std::array<float, 3>& e2,
-                           const std::array<float, 3>& l, const std::array<float, 3>& v,
-                           const Sym2& k_b, float alpha, float f0) {
+MicrofacetTerms microfacet_terms(MicrofacetModel model, const std::array<float, 3>& n,
+                                 const std::array<float, 3>& e1, const std::array<float, 3>& e2,
+                                 const std::array<float, 3>& l, const std::array<float, 3>& v,
+                                 const Sym2& k_b, float alpha) {
     const double cos_l = dot3(n, l), cos_v = dot3(n, v);
-    if (!(cos_l > 0) || !(cos_v > 0)) return 0;
+    if (!(cos_l > 0) || !(cos_v > 0)) return {};
     // ĥ = normalize(l̂ + v̂): never zero with both above the horizon.
     std::array<float, 3> h;
     for (int i = 0; i < 3; ++i) h[i] = l[i] + v[i];
@@ -142,8 +142,19 @@ float microfacet_highlight(MicrofacetModel model, const std::array<float, 3>& n,
     const Sym2d m = roughness_matrix(alpha, k_b);
     const double d = distribution(model, h_local, m);
     const double g = masking_shadowing(model, l_local, v_local, m);
-    const double f = schlick_fresnel(std::clamp(f0, 0.0f, 1.0f), static_cast<float>(cos_vh));
-    return to_float(d * g * f / (4 * cos_v));  // f_r cos_l = D G2 F / (4 cos_l cos_v) · cos_l
+    return {to_float(d * g / (4 * cos_v)), schlick_fresnel(0, static_cast<float>(cos_vh))};
+}
+
+float MicrofacetTerms::times(float f0) const {
+    const float f = std::clamp(f0, 0.0f, 1.0f);
+    return dg * (f + (1 - f) * schlick);
+}
+
+float microfacet_highlight(MicrofacetModel model, const std::array<float, 3>& n,
+                           const std::array<float, 3>& e1, const std::array<float, 3>& e2,
+                           const std::array<float, 3>& l, const std::array<float, 3>& v,
+                           const Sym2& k_b, float alpha, float f0) {
+    return microfacet_terms(model, n, e1, e2, l, v, k_b, alpha).times(f0);
 }
 
 }  // namespace footprint

@@ -108,4 +108,17 @@ float microfacet_highlight(MicrofacetModel model, const std::array<float, 3>& n,
                            const std::array<float, 3>& l, const std::array<float, 3>& v,
                            const Sym2& k_b, float alpha, float f0);
 
+// The same highlight split where F0 enters it: Schlick's F = F0 + (1 − F0)(1 − v̂·ĥ)⁵ is linear in
+// F0, so a coloured F0 (a metal's) takes one evaluation for its three channels:
+//     f_r · cos_l = dg · (f0 + (1 − f0) · schlick)
+struct MicrofacetTerms {
+    float dg = 0;                 // D G2 / (4 cos_v)
+    float schlick = 0;            // (1 − v̂·ĥ)⁵
+    float times(float f0) const;  // dg · F(f0), f0 clamped to [0, 1]
+};
+MicrofacetTerms microfacet_terms(MicrofacetModel model, const std::array<float, 3>& n,
+                                 const std::array<float, 3>& e1, const std::array<float, 3>& e2,
+                                 const std::array<float, 3>& l, const std::array<float, 3>& v,
+                                 const Sym2& k_b, float alpha);
+
 }  // namespace footprint

@@ -201,6 +201,13 @@ TEST(Microfacet, WithoutRoughnessTheTextbookFormulas) {
         const double expected = g2 * f / (kPi * alpha * alpha * 4 * std::sqrt(0.5));
         EXPECT_NEAR(microfacet_highlight(model, n, e1, e2, l, v, {}, 0.3f, 0.04f), expected,
                     kFloatRel * expected);
+        // A coloured F0 (gold's, per channel) from one evaluation of the terms.
+        const MicrofacetTerms terms = microfacet_terms(model, n, e1, e2, l, v, {}, 0.3f);
+        for (const double f0 : {1.0, 0.78, 0.34}) {
+            const double fc = f0 + (1 - f0) * std::pow(1 - std::sqrt(0.5), 5);
+            const double want = g2 * fc / (kPi * alpha * alpha * 4 * std::sqrt(0.5));
+            EXPECT_NEAR(terms.times(static_cast<float>(f0)), want, kFloatRel * want) << f0;
+        }
     }
     // Off the mirror direction: v̂ at 60° along e1, l̂ at 30° along e2; everything by the textbook
     // in double, ĥ's angle from its components.
