@@ -30,6 +30,20 @@ Result<BumpPyramid> BumpPyramid::build(const Image& slopes, const BumpPyramidOpt
         return Error{"micro-roughness [[" + std::to_string(k0.xx) + ", " + std::to_string(k0.xy) +
                      "], [" + std::to_string(k0.xy) + ", " + std::to_string(k0.yy) +
                      "]] is not a covariance (PSD)"};
+    const Image& extra = options.micro_variance;
+    if (!extra.empty()) {
+        if (extra.channels != 1 || extra.width != slopes.width || extra.height != slopes.height)
+            return Error{"micro-variance map is " + std::to_string(extra.width) + "×" +
+                         std::to_string(extra.height) + "×" + std::to_string(extra.channels) +
+                         "; expected 1 channel of the slope map's size " +
+                         std::to_string(slopes.width) + "×" + std::to_string(slopes.height)};
+        for (std::size_t i = 0; i < extra.pixels.size(); ++i)
+            if (!(extra.pixels[i] >= 0) || !std::isfinite(extra.pixels[i]))
+                return Error{"micro-variance texel " +
+                             texel_name(static_cast<int>(i % extra.width),
+                                        static_cast<int>(i / extra.width)) +
+                             " is " + std::to_string(extra.pixels[i]) + "; expected finite ≥ 0"};
+    }
 
     // The mean slope, in double (rows in parallel, combined in row order: deterministic).
     std::vector<double> row_sums(std::size_t(slopes.height) * 2, 0.0);
@@ -59,6 +73,7 @@ Result<BumpPyramid> BumpPyramid::build(const Image& slopes, const BumpPyramidOpt
                                      std::to_string(slopes.at(x, y, c)) + ")"};
     BumpPyramid p;
     p.options_ = options;
+    p.options_.micro_variance = {};  // in level 0's moments now
     p.offset_ = {float(mean[0]), float(mean[1])};
 
     // Level 0: μ' and M2' = μ'μ'ᵀ + K_0, computed in double, stored as float.
@@ -69,12 +84,13 @@ Result<BumpPyramid> BumpPyramid::build(const Image& slopes, const BumpPyramidOpt
         tbb::parallel_for(std::size_t(0), slopes.pixel_count(), [&](std::size_t i) {
             const double m1 = slopes.pixels[2 * i] - double(p.offset_.x);
             const double m2 = slopes.pixels[2 * i + 1] - double(p.offset_.y);
+            const double own = extra.empty() ? 0.0 : double(extra.pixels[i]);
             float* o = &l0.pixels[i * kMomentChannels];
             o[0] = float(m1);
             o[1] = float(m2);
-            o[2] = float(m1 * m1 + k0.xx);
+            o[2] = float(m1 * m1 + k0.xx + own);
             o[3] = float(m1 * m2 + k0.xy);
-            o[4] = float(m2 * m2 + k0.yy);
+            o[4] = float(m2 * m2 + k0.yy + own);
         });
     }
 

@@ -11,7 +11,8 @@
 // the 2×2 box this is the recursion exactly; for the tent and for odd sizes (fractional box
 // weights) it is the covariance of the weighted mixture, which is what §5.3 prescribes for non-box
 // filters. The finest level starts at K_0 = the optional micro-roughness (an artist-supplied
-// constant covariance of the slopes below the map's resolution).
+// constant covariance of the slopes below the map's resolution, plus an optional per-texel
+// variance).
 //
 // Storage: one float MipPyramid with 5 channels (μ'1, μ'2, M2'11, M2'12, M2'22), where
 // μ' = μ − slope_offset() is centred on the map's mean slope (so that M2' − μ'μ'ᵀ cancels only the
@@ -45,6 +46,10 @@ struct BumpPyramidOptions {
     WrapMode wrap_t = WrapMode::repeat;
     DownsampleFilter downsample = DownsampleFilter::box;  // box: §5.3 exactly; tent: mixture form
     Sym2 micro_roughness;  // K_0 of every finest texel (PSD, slope units²); default none
+    // Optional, added to K_0 texel by texel: an isotropic variance σ² I per finest texel (1
+    // channel, the slope map's size, finite and ≥ 0), for a roughness that varies over the map
+    // (a glTF roughness texture: α²/2 per texel, scene/material_model.h).
+    Image micro_variance;
 };
 
 // A bump lookup's options: the filter's (LookupOptions), and how the slopes read are scaled —

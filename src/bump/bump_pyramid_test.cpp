@@ -91,6 +91,47 @@ TEST(BumpPyramid, EveryLevelHoldsTheCovarianceOfItsFinestTexels) {
     }
 }
 
+// A roughness that varies texel by texel (micro_variance): each coarser texel's K is the
+// covariance of its finest slopes plus the mean of their own variances, by brute force.
+TEST(BumpPyramid, PerTexelVarianceAddsItsMeanToEveryLevel) {
+    const int size = 32;
+    const Image slopes = random_slopes(size, size, 5);
+    BumpPyramidOptions options;
+    options.micro_variance = Image(size, size, 1);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x)
+            options.micro_variance.at(x, y, 0) = 0.002f * static_cast<float>((x * 7 + y * 3) % 11);
+    const Result<BumpPyramid> p = BumpPyramid::build(slopes, options);
+    ASSERT_TRUE(p.ok()) << p.error().message;
+    EXPECT_TRUE(p->options().micro_variance.empty());  // not kept twice
+    for (int l = 0; l < p->level_count(); ++l) {
+        const int block = 1 << l;
+        for (int y = 0; y < p->height(l); ++y)
+            for (int x = 0; x < p->width(l); ++x) {
+                Brute b;
+                double variance = 0;
+                for (int j = y * block; j < (y + 1) * block; ++j)
+                    for (int i = x * block; i < (x + 1) * block; ++i) {
+                        add(b, slopes, i, j, 1.0);
+                        variance += options.micro_variance.at(i, j, 0);
+                    }
+                const float own = static_cast<float>(variance / (block * block));
+                expect_statistics(p->statistics(l, x, y), b, Sym2{own, 0, own}, p->slope_offset(),
+                                  kPyramidRelTolerance, "level " + std::to_string(l));
+            }
+    }
+    // A map of the wrong size, or a negative variance, is refused and says so.
+    BumpPyramidOptions small;
+    small.micro_variance = Image(4, 4, 1);
+    Result<BumpPyramid> bad = BumpPyramid::build(slopes, small);
+    ASSERT_FALSE(bad.ok());
+    EXPECT_NE(bad.error().message.find("4×4×1"), std::string::npos) << bad.error().message;
+    options.micro_variance.at(3, 2, 0) = -1;
+    bad = BumpPyramid::build(slopes, options);
+    ASSERT_FALSE(bad.ok());
+    EXPECT_NE(bad.error().message.find("(3, 2)"), std::string::npos) << bad.error().message;
+}
+
 // A map large enough that a sum of its slopes is far from their mean: the offset must be the
 // mean (with the sum as the offset, K would lose its digits to M2 − μμᵀ in float).
 TEST(BumpPyramid, TheOffsetIsTheMeanSlopeAndLargeMapsKeepTheirCovariance) {
