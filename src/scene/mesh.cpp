@@ -154,6 +154,13 @@ Result<std::shared_ptr<const Image>> load_texture(const fs::path& mesh_file,
     return std::shared_ptr<const Image>(std::make_shared<Image>(std::move(img).value()));
 }
 
+// A value as a message shows it: its shortest round-trip form (1.5, not 1.500000).
+std::string number(double value) {
+    char text[32];
+    const auto [end, ec] = std::to_chars(text, text + sizeof text, value);
+    return ec == std::errc() ? std::string(text, end) : std::to_string(value);
+}
+
 // Whether `field` is a finite number as OBJ writes one (an optional sign, decimal or exponent).
 bool finite_number(std::string_view field) {
     if (field.starts_with('+')) field.remove_prefix(1);
@@ -469,7 +476,8 @@ struct GltfReader {
     }
 
     bool material(int index, MeshMaterial& out) {
-        if (index < 0) return true;  // glTF's default material: white, no textures
+        out.metallic_roughness = true;
+        if (index < 0) return true;  // glTF's default material: white, metallic 1, roughness 1
         if (static_cast<std::size_t>(index) >= model.materials.size())
             return fail("material " + std::to_string(index) + " does not exist");
         const tinygltf::Material& m = model.materials[index];
@@ -479,12 +487,23 @@ struct GltfReader {
             out.base_color = {static_cast<float>(f[0]), static_cast<float>(f[1]),
                               static_cast<float>(f[2])};
         out.normal_scale = static_cast<float>(m.normalTexture.scale);
+        const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
+        out.metallic = static_cast<float>(pbr.metallicFactor);
+        out.roughness = static_cast<float>(pbr.roughnessFactor);
+        for (const auto& [key, value] : {std::pair{"metallicFactor", pbr.metallicFactor},
+                                         std::pair{"roughnessFactor", pbr.roughnessFactor}})
+            if (!(value >= 0 && value <= 1))
+                return fail(std::string(key) + " of material " +
+                            (m.name.empty() ? std::to_string(index) : "'" + m.name + "'") + " is " +
+                            number(value) + "; glTF allows [0, 1]");
         const std::string of_material =
             " of material " + (m.name.empty() ? std::to_string(index) : "'" + m.name + "'");
         return texture(m.pbrMetallicRoughness.baseColorTexture.index, true,
                        "baseColorTexture" + of_material, out.base_color_texture) &&
                texture(m.normalTexture.index, false, "normalTexture" + of_material,
-                       out.normal_texture);
+                       out.normal_texture) &&
+               texture(pbr.metallicRoughnessTexture.index, false,
+                       "metallicRoughnessTexture" + of_material, out.metallic_roughness_texture);
     }
 
     bool primitive(const tinygltf::Mesh& gmesh, const tinygltf::Primitive& prim, const Affine& xf,

@@ -76,6 +76,12 @@ struct MeshMaterial {
     // Tangent-space normal map, OpenGL convention, raw values in [0, 1] (not decoded: data).
     std::shared_ptr<const Image> normal_texture;
     float normal_scale = 1;  // glTF normalTexture.scale: scales the map's x and y
+    // glTF's pbrMetallicRoughness (every glTF material has it; an OBJ material does not): metallic
+    // and perceptual roughness factors, each × its channel of metallic_roughness_texture where
+    // there is one (B metallic, G roughness; raw values in [0, 1], not decoded: data).
+    bool metallic_roughness = false;
+    float metallic = 1, roughness = 1;  // glTF's defaults
+    std::shared_ptr<const Image> metallic_roughness_texture;
 
     bool has_base_color_texture() const { return base_color_texture != nullptr; }
     bool has_normal_texture() const { return normal_texture != nullptr; }

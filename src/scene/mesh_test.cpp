@@ -145,6 +145,7 @@ TEST(MeshObj, LoadsPositionsUvsNormalsAndMaterials) {
     EXPECT_FLOAT_EQ(red.material.base_color.z, 0.125f);
     EXPECT_FALSE(red.material.has_base_color_texture());
     EXPECT_FALSE(red.material.has_normal_texture());
+    EXPECT_FALSE(red.material.metallic_roughness);  // OBJ: the scene's model
 
     const TriangleMesh& textured = asset->meshes[1];
     EXPECT_EQ(textured.triangles.size(), 1u);
@@ -290,7 +291,8 @@ struct QuadGltf {
                s(pos) +
                R"(},"mode":0}]}],)"
                R"("materials":[{"name":"mat","pbrMetallicRoughness":{"baseColorFactor":)"
-               R"([0.5,0.25,1,1],"baseColorTexture":{"index":0}},)"
+               R"([0.5,0.25,1,1],"baseColorTexture":{"index":0},"metallicFactor":0.25,)"
+               R"("roughnessFactor":0.75,"metallicRoughnessTexture":{"index":1}},)"
                R"("normalTexture":{"index":1,"scale":0.5}}],)"
                R"("textures":[{"source":0},{"source":1}],)";
     }
@@ -349,6 +351,12 @@ void check_quad(const MeshAsset& asset) {
         EXPECT_FLOAT_EQ(base.pixels[i], srgb_to_linear(kBaseCodes[i] / 255.0f)) << i;
         EXPECT_FLOAT_EQ(normal.pixels[i], kNormalCodes[i] / 255.0f) << i;
     }
+    // Metallic-roughness: the factors, and the texture as data (here the normal map's image).
+    EXPECT_TRUE(mat.metallic_roughness);
+    EXPECT_FLOAT_EQ(mat.metallic, 0.25f);
+    EXPECT_FLOAT_EQ(mat.roughness, 0.75f);
+    ASSERT_NE(mat.metallic_roughness_texture, nullptr);
+    EXPECT_EQ(mat.metallic_roughness_texture->pixels, normal.pixels);
 }
 
 TEST(MeshGltf, LoadsEmbeddedBufferNodesMaterialsAndTextures) {
@@ -542,6 +550,19 @@ TEST(MeshErrors, MissingGltfTextureNamesTheFileAndItsMaterial) {
         << message;
 }
 
+TEST(MeshErrors, MetallicRoughnessFactorsOutsideTheGltfRangeNameTheMaterial) {
+    TempDir dir;
+    QuadGltf q(kU16);
+    std::string body = q.body;
+    body.replace(body.find("\"roughnessFactor\":0.75"), 22, "\"roughnessFactor\":1.50");
+    write_file(dir / "quad.gltf", q.b.json(body + q.images(dir), true));
+    const Result<MeshAsset> r = load_mesh(dir / "quad.gltf");
+    ASSERT_FALSE(r.ok());
+    EXPECT_TRUE(contains(r.error().message, "roughnessFactor of material 'mat' is 1.5"))
+        << r.error().message;
+    EXPECT_TRUE(contains(r.error().message, "glTF allows [0, 1]")) << r.error().message;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Shared data (skipped when absent)
 
@@ -604,6 +625,12 @@ TEST(MeshSharedData, FlightHelmetGltf) {
         double blue = 0;
         for (std::size_t i = 0; i < nt.pixel_count(); ++i) blue += nt.pixels[i * nt.channels + 2];
         EXPECT_GT(blue / static_cast<double>(nt.pixel_count()), 0.5);
+    }
+    // Every part is metallic-roughness, with a texture (roughness in G, metallic in B).
+    for (const TriangleMesh& m : asset->meshes) {
+        EXPECT_TRUE(m.material.metallic_roughness);
+        ASSERT_NE(m.material.metallic_roughness_texture, nullptr) << m.name;
+        EXPECT_GE(m.material.metallic_roughness_texture->channels, 3);
     }
     // Materials shared by meshes share their decoded images.
     EXPECT_EQ(asset->meshes[0].material.base_color_texture,
