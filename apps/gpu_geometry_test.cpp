@@ -223,6 +223,50 @@ TEST(GpuGeometry, AGltfMeshWithTangentFramesMatchesTheCpu) {
     expect_gpu_matches_cpu(desc, "glTF FlightHelmet");
 }
 
+// The same helmet shaded by its file's metallic-roughness materials (render/material_model.h):
+// diffuse-colour and F0 maps made texel by texel, the roughness texture in the bump pyramid's K_0.
+TEST(GpuGeometry, AGltfMeshWithItsMetallicRoughnessMaterialsMatchesTheCpu) {
+    FOOTPRINT_GPU_DEVICE_OR_SKIP();
+    const fs::path file = test::shared_data_dir() / "meshes/FlightHelmet/FlightHelmet.gltf";
+    if (!fs::exists(file)) GTEST_SKIP() << test::missing_shared_data(file);
+    SceneDesc desc = base_scene();
+    desc.camera = {{0.25, 0.45, 0.55}, {0, 0.3, 0}, {0, 1, 0}, 40};
+    ObjectDesc helmet;
+    MeshShape mesh;
+    mesh.file = file;
+    helmet.shape = mesh;
+    helmet.material.model = MaterialDesc::Model::metallic_roughness;
+    helmet.material.highlight = MaterialDesc::Highlight::ggx;
+    desc.objects.push_back(helmet);
+    expect_gpu_matches_cpu(desc, "glTF metal-rough");
+}
+
+// A metallic-roughness sphere with a colour map, a metallic-roughness map (stripes of metal and
+// rough dielectric) and a bump map: the F0 map, per-channel Fresnel and per-texel roughness.
+TEST(GpuGeometry, MetallicRoughnessMapsMatchTheCpu) {
+    FOOTPRINT_GPU_DEVICE_OR_SKIP();
+    SceneDesc desc = base_scene();
+    auto stripes = std::make_shared<Image>(32, 32, 3);
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) {
+            const bool metal = (x / 4) % 2 == 0;
+            stripes->at(x, y, 1) = metal ? 0.3f : 0.8f;  // roughness
+            stripes->at(x, y, 2) = metal ? 1.0f : 0.0f;  // metallic
+        }
+    ObjectDesc ball;
+    ball.shape = SphereShape{{0, 0.4, 0}, 0.6};
+    MaterialDesc& m = ball.material;
+    m.model = MaterialDesc::Model::metallic_roughness;
+    m.highlight = MaterialDesc::Highlight::ggx;
+    m.base_color_map = {{}, std::make_shared<Image>(checker(8, 0.1f)), "checker"};
+    m.metallic_roughness_map = {{}, stripes, "stripes"};
+    m.bump.source = BumpDesc::Source::height_map;
+    m.bump.map = {{}, std::make_shared<Image>(make_water_height_map(64)), "waves"};
+    m.bump.strength = 0.01f;
+    desc.objects.push_back(ball);
+    expect_gpu_matches_cpu(desc, "metal-rough maps");
+}
+
 // More maps than units: maps of one size share an array texture (gpu/gpu_scene.h), so twelve
 // colour and twelve bump maps in three sizes take six units.
 TEST(GpuGeometry, ManyMapsOfAFewSizesMatchTheCpu) {

@@ -246,6 +246,14 @@ Result<MaterialRecord> material_record(const RenderMaterial& m, TextureSystem& t
         if (!ref) return ref.error();
         color = *ref;
     }
+    MapRef f0;
+    if (m.f0_map) {
+        Result<std::shared_ptr<const MipPyramid>> pyramid = textures.pyramid(m.f0_map);
+        if (!pyramid) return Error{name + ": " + pyramid.error().message};
+        Result<MapRef> ref = place(std::move(*pyramid), 1);
+        if (!ref) return ref.error();
+        f0 = *ref;
+    }
     Vec2 offset;
     if (m.bump) {
         Result<std::shared_ptr<const BumpPyramid>> pyramid = textures.bump_pyramid(m.bump);
@@ -267,11 +275,15 @@ Result<MaterialRecord> material_record(const RenderMaterial& m, TextureSystem& t
     const float base[4] = {d.base_color.x, d.base_color.y, d.base_color.z,
                            m.frame_from_mesh_tangents ? 1.0f : 0.0f};
     const float weights[4] = {d.diffuse, d.specular, d.shininess, d.mirror};
-    const float bump_info[4] = {d.fresnel_f0, 0, bump_frame_code(d.bump.frame), d.micro_roughness};
+    const float bump_info[4] = {0, 0, bump_frame_code(d.bump.frame), d.micro_roughness};
     const float roughness[4] = {m.micro_roughness.xx, m.micro_roughness.xy, m.micro_roughness.yy,
                                 offset.y};
     const int maps[4] = {color.unit, color.layer, bump.unit, bump.layer};
-    const float highlight[4] = {highlight_code(d.highlight), d.roughness * d.roughness, 0, 0};
+    // A metallic-roughness material's α is in K_b (render/material_model.h).
+    const float alpha = m.metallic_roughness() ? 0 : d.roughness * d.roughness;
+    const float highlight[4] = {highlight_code(d.highlight), alpha, 0, 0};
+    const float f0_info[4] = {m.f0[0], m.f0[1], m.f0[2], m.ambient_weight};
+    const int f0_map[4] = {f0.unit, f0.layer, -1, -1};
     std::copy_n(base, 4, r.base_color);
     std::copy_n(weights, 4, r.weights);
     std::copy_n(bump_info, 4, r.bump);
@@ -279,6 +291,8 @@ Result<MaterialRecord> material_record(const RenderMaterial& m, TextureSystem& t
     std::copy_n(roughness, 4, r.roughness);
     std::copy_n(maps, 4, r.maps);
     std::copy_n(highlight, 4, r.highlight);
+    std::copy_n(f0_info, 4, r.f0);
+    std::copy_n(f0_map, 4, r.f0_map);
     return r;
 }
 

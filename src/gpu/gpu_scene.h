@@ -45,7 +45,8 @@ struct ObjectRecord {  // common.glsl's Object
 struct MaterialRecord {  // common.glsl's Material
     float base_color[4], weights[4], bump[4], main_direction[4], roughness[4];
     int maps[4];
-    float highlight[4];
+    float highlight[4], f0[4];
+    int f0_map[4];
 };
 struct LightRecord {  // common.glsl's Light
     float direction[4], position[4], color[4];

@@ -121,7 +121,7 @@ constexpr double kLobeSplit = 1.5;
 // with E[F] it makes the mirror term E[F·R] (shading/fresnel.h: what the rough modes estimate).
 struct SampleSums {
     int count = 0;
-    double base[3] = {}, diffuse[3] = {}, highlight[3] = {}, reflection[3] = {}, fresnel = 0;
+    double base[3] = {}, diffuse[3] = {}, highlight[3] = {}, reflection[3] = {}, fresnel[3] = {};
     double lambert[3] = {}, mirror[3] = {};  // Σ c ⊙ D, Σ F·R
     double slope[2] = {}, slope2[3] = {};    // Σ b, Σ b bᵀ (xx, xy, yy)
     DirectionMoments directions;             // weighted by Fresnel
@@ -138,14 +138,16 @@ struct SampleSums {
             base[c] += f.base[c], diffuse[c] += f.diffuse[c];
             highlight[c] += f.highlight[c], reflection[c] += f.reflection[c];
             lambert[c] += double(f.base[c]) * f.diffuse[c];
-            mirror[c] += double(f.fresnel) * f.reflection[c];
+            mirror[c] += double(f.fresnel[c]) * f.reflection[c];
+            fresnel[c] += f.fresnel[c];
         }
-        fresnel += f.fresnel;
+        // The directions weighted by the channels' mean Fresnel.
+        const float weight = (f.fresnel[0] + f.fresnel[1] + f.fresnel[2]) / 3;
         slope[0] += p.slope.x, slope[1] += p.slope.y;
         slope2[0] += double(p.slope.x) * p.slope.x, slope2[1] += double(p.slope.x) * p.slope.y;
         slope2[2] += double(p.slope.y) * p.slope.y;
-        directions.add(f.fresnel, f.map_reflection);
-        samples.push_back({p.slope, f.fresnel, f.map_reflection});
+        directions.add(weight, f.map_reflection);
+        samples.push_back({p.slope, weight, f.map_reflection});
     }
 
     ShadingFactors means() const {
@@ -155,9 +157,9 @@ struct SampleSums {
             m.diffuse[c] = static_cast<float>(diffuse[c] / count);
             m.highlight[c] = static_cast<float>(highlight[c] / count);
             m.reflection[c] =
-                static_cast<float>(fresnel > 0 ? mirror[c] / fresnel : reflection[c] / count);
+                static_cast<float>(fresnel[c] > 0 ? mirror[c] / fresnel[c] : reflection[c] / count);
+            m.fresnel[c] = static_cast<float>(fresnel[c] / count);
         }
-        m.fresnel = static_cast<float>(fresnel / count);
         return m;
     }
 
@@ -367,7 +369,7 @@ class BudgetPixel {
                 Rgb out;
                 for (int c = 0; c < 3; ++c) {
                     out[c] = static_cast<float>(sums.lambert[c] / sums.count) + f.highlight[c] +
-                             f.fresnel * f.reflection[c];
+                             f.fresnel[c] * f.reflection[c];
                 }
                 return out;
             }
@@ -391,12 +393,12 @@ class BudgetPixel {
                 }
                 break;
             case BudgetTerm::env_footprint:
-                if (env_map_ && f.fresnel != 0) {
+                if (env_map_ && f.fresnel != Rgb{}) {
                     f.reflection = exact_environment(*env_map_, sums.directions.gaussian());
                 }
                 break;
             case BudgetTerm::env_two_lobes:
-                if (env_map_ && f.fresnel != 0) {
+                if (env_map_ && f.fresnel != Rgb{}) {
                     f.reflection = sums.two_lobes(
                         [&](const SphereGaussian& g) { return exact_environment(*env_map_, g); });
                 }

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -13,6 +15,7 @@
 #include "envmap/env_image_io.h"
 #include "envmap/env_pyramid_file.h"
 #include "image/image_io.h"
+#include "render/material_model.h"
 #include "render/peer_filters.h"
 #include "scene/mesh.h"
 #include "scene/mesh_accel.h"
@@ -155,15 +158,26 @@ Result<Image> bump_slopes(const BumpDesc& bump, const Image& map, InvalidNormalP
                  " (the material key \"invalid_normals\": \"clamp\" replaces such texels)"};
 }
 
-// The bump pyramid of a material's bump map, registered (once per map, strength and roughness).
-Result<BumpHandle*> bump_map(const MaterialDesc& desc, Sym2 micro_roughness, SceneMaps& maps) {
+// The slopes and the per-texel variance (if any) at one size, the larger of the two.
+void common_size(Image& slopes, Image& variance) {
+    if (variance.empty()) return;
+    const int width = std::max(slopes.width, variance.width);
+    const int height = std::max(slopes.height, variance.height);
+    slopes = detail::resampled(slopes, width, height);
+    variance = detail::resampled(variance, width, height);
+}
+
+// The bump pyramid of a material's bump map, registered (once per map, strength and roughness);
+// `variance` (keyed `variance_key`): a per-texel slope variance added to K_0, or empty.
+Result<BumpHandle*> bump_map(const MaterialDesc& desc, Sym2 micro_roughness, SceneMaps& maps,
+                             const Image& variance = {}, const std::string& variance_key = {}) {
     const BumpDesc& bump = desc.bump;
     const bool height = bump.source == BumpDesc::Source::height_map;
     // A normal map's NaN texels are kept: the material's invalid_normals policy decides.
     const NonFinitePolicy non_finite = height ? desc.non_finite : NonFinitePolicy::keep;
     std::ostringstream key;
     key << source_key(bump.map) << (height ? " as heights" : " as normals") << " × "
-        << bump.strength << ", σ² " << micro_roughness.xx << ", policies "
+        << bump.strength << ", σ² " << micro_roughness.xx << variance_key << ", policies "
         << static_cast<int>(non_finite) << static_cast<int>(desc.invalid_normals);
     return maps.find_or_add<BumpHandle>(key.str(), [&](const std::string& name) {
         using R = Result<BumpHandle*>;
@@ -173,7 +187,23 @@ Result<BumpHandle*> bump_map(const MaterialDesc& desc, Sym2 micro_roughness, Sce
         if (!slopes) return R(Error{"'" + bump.map.label() + "': " + slopes.error().message});
         BumpPyramidOptions options;
         options.micro_roughness = micro_roughness;
+        options.micro_variance = variance;
+        common_size(*slopes, options.micro_variance);
         Result<BumpPyramid> pyramid = BumpPyramid::build(*slopes, options);
+        if (!pyramid) return R(pyramid.error());
+        return maps.textures.add_bump(name, std::move(*pyramid));
+    });
+}
+
+// A flat bump pyramid holding only a per-texel slope variance (a roughness texture without a
+// normal map).
+Result<BumpHandle*> flat_bump_map(const Image& variance, const std::string& key, SceneMaps& maps) {
+    return maps.find_or_add<BumpHandle>(key + " (flat)", [&](const std::string& name) {
+        using R = Result<BumpHandle*>;
+        BumpPyramidOptions options;
+        options.micro_variance = variance;
+        Result<BumpPyramid> pyramid =
+            BumpPyramid::build(Image(variance.width, variance.height, 2), options);
         if (!pyramid) return R(pyramid.error());
         return maps.textures.add_bump(name, std::move(*pyramid));
     });
@@ -190,9 +220,15 @@ Result<BumpHandle*> stored_bump_map(const BumpDesc& bump, Sym2 micro_roughness,
     return handle;
 }
 
-Result<RenderMaterial> prepare_material(const MaterialDesc& desc, SceneMaps& maps) {
+// A material of the footprint model, or a metallic-roughness one reduced to it
+// (prepare_metallic_roughness()); `variance`: a per-texel slope variance (keyed `variance_key`)
+// for the bump pyramid's K_0, or empty.
+Result<RenderMaterial> prepare_material(const MaterialDesc& desc, SceneMaps& maps,
+                                        const Image& variance, const std::string& variance_key) {
     RenderMaterial material;
     material.desc = desc;
+    material.f0 = {desc.fresnel_f0, desc.fresnel_f0, desc.fresnel_f0};
+    material.ambient_weight = desc.diffuse;
     const float sigma2 = desc.micro_roughness * desc.micro_roughness;
     material.micro_roughness = Sym2{sigma2, 0, sigma2};
     if (!desc.base_color_map.empty()) {
@@ -205,17 +241,113 @@ Result<RenderMaterial> prepare_material(const MaterialDesc& desc, SceneMaps& map
         const char* key = desc.bump.source == BumpDesc::Source::height_map ? "bump.height_map"
                                                                            : "bump.normal_map";
         const bool stored = !desc.bump.map.image && bump_pyramid_file_offset(desc.bump.map.file);
+        if (stored && !variance.empty())
+            return Error{std::string(key) +
+                         ": a bump pyramid file cannot take a roughness texture's variance (give "
+                         "the normal map itself)"};
         Result<BumpHandle*> bump =
             stored ? stored_bump_map(desc.bump, material.micro_roughness, material, maps)
-                   : bump_map(desc, material.micro_roughness, maps);
+                   : bump_map(desc, material.micro_roughness, maps, variance, variance_key);
         if (!bump) return Error{std::string(key) + ": " + bump.error().message};
+        material.bump = *bump;
+    } else if (!variance.empty()) {
+        Result<BumpHandle*> bump = flat_bump_map(variance, variance_key, maps);
+        if (!bump) return Error{"roughness: " + bump.error().message};
         material.bump = *bump;
     }
     return material;
 }
 
+Result<RenderMaterial> prepare_material(const MaterialDesc& desc, SceneMaps& maps) {
+    return prepare_material(desc, maps, {}, {});
+}
+
+// A metallic-roughness material (render/material_model.h) in the footprint model's terms:
+// Lambert of BRDF c (1 − m)/π for the lights and c (1 − m) times the environment's mean, the
+// highlight and the mirror at F0 per channel, the roughness as slope variance (per texel in the
+// bump pyramid's K_0 where `texture`, glTF's metallicRoughnessTexture, varies it, else as
+// micro-roughness). Textures make a diffuse-colour and an F0 map, texel by texel.
+Result<RenderMaterial> prepare_metallic_roughness(MaterialDesc desc, ImageSource texture,
+                                                  SceneMaps& maps) {
+    if (!texture.empty() && !texture.image) {  // the scene's file: read as data
+        Result<Image> loaded = load_source(texture, ColorEncoding::linear, desc.non_finite);
+        if (!loaded) return Error{"metallic_roughness: " + loaded.error().message};
+        texture.name = texture.file.string();
+        texture.image = std::make_shared<const Image>(std::move(*loaded));
+    }
+    desc.diffuse = 1 / static_cast<float>(M_PI);
+    desc.specular = desc.mirror = 1;
+    desc.micro_roughness = 0;
+    const Vec3 base = desc.base_color;
+    std::array<float, 3> f0{1, 1, 1};
+    Image variance;
+    std::ostringstream key;
+    TextureHandle *diffuse_map = nullptr, *f0_map = nullptr;
+    if (!desc.base_color_map.empty() || texture.image) {
+        std::optional<Image> colour;
+        if (!desc.base_color_map.empty()) {
+            Result<Image> loaded =
+                load_source(desc.base_color_map, ColorEncoding::automatic, desc.non_finite);
+            if (!loaded) return Error{"base_color: " + loaded.error().message};
+            colour = std::move(*loaded);
+        }
+        detail::MetallicRoughnessTexels texels = detail::metallic_roughness_texels(
+            colour ? &*colour : nullptr, base, texture.image.get(), desc.metallic, desc.roughness);
+        key << (desc.base_color_map.empty() ? "" : source_key(desc.base_color_map)) << " × ("
+            << base.x << ", " << base.y << ", " << base.z << "), "
+            << (texture.image ? source_key(texture) : "") << " × (" << desc.metallic << ", "
+            << desc.roughness << ")";
+        auto add = [&](const char* what, const Image& image) {
+            return maps.find_or_add<TextureHandle>(key.str() + what, [&](const std::string& name) {
+                return maps.textures.add_image(name, image);
+            });
+        };
+        Result<TextureHandle*> d = add(": diffuse colour", texels.diffuse);
+        if (!d) return Error{"base_color: " + d.error().message};
+        Result<TextureHandle*> f = add(": F0", texels.f0);
+        if (!f) return Error{"base_color: " + f.error().message};
+        diffuse_map = *d, f0_map = *f;
+        desc.base_color = {1, 1, 1};
+        if (texture.image) variance = std::move(texels.variance);
+    } else {
+        desc.base_color = detail::diffuse_color(base, desc.metallic);
+        const Vec3 f = detail::specular_f0(base, desc.metallic);
+        f0 = {f.x, f.y, f.z};
+    }
+    if (variance.empty()) desc.micro_roughness = std::sqrt(detail::slope_variance(desc.roughness));
+    desc.base_color_map = {};
+    Result<RenderMaterial> material =
+        prepare_material(desc, maps, variance, variance.empty() ? "" : ", σ² of " + key.str());
+    if (!material) return material;
+    material->base_color_map = diffuse_map;
+    material->f0 = f0;
+    material->f0_map = f0_map;
+    material->ambient_weight = 1;
+    if (!variance.empty()) {
+        Result<TextureHandle*> map = maps.find_or_add<TextureHandle>(
+            key.str() + ": slope variance",
+            [&](const std::string& name) { return maps.textures.add_image(name, variance); });
+        if (!map) return Error{"roughness: " + map.error().message};
+        material->micro_variance_map = *map;
+    }
+    return material;
+}
+
+// The material of an object: its model's.
+Result<RenderMaterial> object_material(const MaterialDesc& desc, SceneMaps& maps,
+                                       const ImageSource& metallic_roughness_texture = {}) {
+    if (desc.model == MaterialDesc::Model::metallic_roughness)
+        return prepare_metallic_roughness(desc,
+                                          metallic_roughness_texture.empty()
+                                              ? desc.metallic_roughness_map
+                                              : metallic_roughness_texture,
+                                          maps);
+    return prepare_material(desc, maps);
+}
+
 // The material of one part of mesh file `file`: the scene's material combined with the file's own
-// colours and normal map (render_scene.h).
+// colours, normal map and (metallic-roughness, from a glTF file) metallic and roughness
+// (render_scene.h).
 Result<RenderMaterial> mesh_part_material(const TriangleMesh& part, const MaterialDesc& scene,
                                           const std::filesystem::path& file, SceneMaps& maps) {
     const std::string in_file = " of '" + part.name + "' in '" + file.string() + "'";
@@ -226,17 +358,24 @@ Result<RenderMaterial> mesh_part_material(const TriangleMesh& part, const Materi
     if (desc.base_color_map.empty() && own.has_base_color_texture()) {
         desc.base_color_map = ImageSource{{}, own.base_color_texture, "base colour" + in_file};
     }
-    if (desc.bump.source == BumpDesc::Source::none && own.has_normal_texture()) {
+    ImageSource metallic_roughness;
+    if (desc.model == MaterialDesc::Model::metallic_roughness && own.metallic_roughness) {
+        desc.metallic = own.metallic, desc.roughness = own.roughness;
+        if (own.metallic_roughness_texture)
+            metallic_roughness = ImageSource{
+                {}, own.metallic_roughness_texture, "metallic-roughness texture" + in_file};
+    }
+    const bool own_normals = desc.bump.source == BumpDesc::Source::none && own.has_normal_texture();
+    if (own_normals) {
         desc.bump.source = BumpDesc::Source::normal_map;
         desc.bump.map = ImageSource{{}, own.normal_texture, "normal texture" + in_file};
         desc.bump.strength = own.normal_scale;
         desc.bump.frame = BumpFrame::main_direction;
         desc.bump.main_direction = {};
-        Result<RenderMaterial> material = prepare_material(desc, maps);
-        if (material) material->frame_from_mesh_tangents = part.has_tangents();
-        return material;
     }
-    return prepare_material(desc, maps);
+    Result<RenderMaterial> material = object_material(desc, maps, metallic_roughness);
+    if (material && own_normals) material->frame_from_mesh_tangents = part.has_tangents();
+    return material;
 }
 
 // An environment pyramid file's map (`footprint maketx --env`) in RGB × intensity, levels and caps
@@ -362,9 +501,9 @@ Result<RenderScene> prepare_render_scene(const SceneDesc& desc,
     std::vector<MeshInstance> accel_inputs;
     for (int i = 0; i < object_count; ++i) {
         const ObjectDesc& object = desc.objects[i];
-        Result<RenderMaterial> material = prepare_material(object.material, maps);
+        Result<RenderMaterial> material = object_material(object.material, maps);
         if (!material) {
-            // prepare_material's messages start with the key inside the material.
+            // object_material's messages start with the key inside the material.
             return scene_error(desc, object_key(i) + ".material." + material.error().message, {});
         }
         const auto* mesh = std::get_if<MeshShape>(&object.shape);

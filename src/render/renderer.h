@@ -52,7 +52,9 @@
 // specular() (plain for bilinear/trilinear/fa, gaussian with the filtered K_b for the rough modes),
 // or for a material whose highlight is beckmann or ggx shading/microfacet.h's
 // microfacet_highlight() with α = roughness² and K_b likewise;
-// F = Schlick's Fresnel with fresnel_f0. Reflections show the environment only (no
+// F = Schlick's Fresnel with fresnel_f0. A metallic-roughness material (glTF's) is the same sum
+// with its diffuse colour c(1 − m), diffuse 1/π for the lights and 1 for Ē, F0 per channel, and
+// its roughness in K_b (render/material_model.h). Reflections show the environment only (no
 // inter-reflections), as in the papers. Rays that miss show the environment (filtered over the
 // camera ray's own differentials) or the background colour.
 //

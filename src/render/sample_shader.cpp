@@ -188,7 +188,13 @@ std::optional<SurfacePoint> SampleShader::trace(const RayDifferential& ray, Vec2
 
     point.random_seed = stream_seed(random);
     RandomStream draws(point.random_seed);
-    point.base = base_color(material, coords, draws);
+    const Vec3 colour = desc.base_color;
+    point.base = this->colour(material.base_color_map, {colour.x, colour.y, colour.z},
+                              material.base_color_grey, coords, draws);
+    point.f0 = this->colour(material.f0_map, material.f0, false, coords, draws);
+    if (material.f0_map) {
+        for (float& f : point.f0) f = std::clamp(f, 0.0f, 1.0f);
+    }
 
     // Bump: mean slope b and roughness K_b of the filtered region (spec §5.4).
     point.roughness = material.micro_roughness;
@@ -197,17 +203,13 @@ std::optional<SurfacePoint> SampleShader::trace(const RayDifferential& ray, Vec2
         point.slope = stats.mean;
         point.roughness = stats.covariance;
     }
-    // The micro-roughness as a random slope where it is not in a bump map's sampled moments.
-    const bool sampled = material.bump && policy_.slopes == SlopeSource::sampled;
-    if (policy_.sample_micro_roughness && desc.micro_roughness > 0 && !sampled) {
-        const Vec2d z = gaussian_pair(random.x, random.y);
-        point.slope = point.slope +
-                      desc.micro_roughness * Vec2{static_cast<float>(z.x), static_cast<float>(z.y)};
-    }
+    point.highlight_alpha = desc.roughness * desc.roughness;
+    if (material.metallic_roughness()) point.highlight_alpha = 0;  // in K_b (material_model.h)
+    if (policy_.sample_micro_roughness) sample_micro_slopes(material, random, point);
     if (!policy_.roughness) point.roughness = Sym2{};
 
     // A frame is needed wherever there are slopes: a bump map or micro-roughness.
-    point.bumped = material.bump != nullptr || desc.micro_roughness > 0;
+    point.bumped = material.bump != nullptr || material.has_micro_slopes();
     if (point.bumped) point.frame = bump_frame(desc.bump, *hit);
 
     // Face the viewer: a surface seen from behind is shaded as its mirror image (n, ∂n and the
@@ -222,25 +224,62 @@ std::optional<SurfacePoint> SampleShader::trace(const RayDifferential& ray, Vec2
     return point;
 }
 
-// c: the material's colour × its texture.
-Rgb SampleShader::base_color(const RenderMaterial& material, const TextureCoords& coords,
-                             RandomStream& random) {
-    const Vec3 colour = material.desc.base_color;
-    Rgb base{colour.x, colour.y, colour.z};
-    if (!material.base_color_map) return base;
+namespace {
+
+// The mean of three channels; exactly their value where they are equal (a grey F0).
+float channel_mean(const Rgb& rgb) {
+    if (rgb[0] == rgb[1] && rgb[1] == rgb[2]) return rgb[0];
+    return (rgb[0] + rgb[1] + rgb[2]) / 3;
+}
+
+}  // namespace
+
+// The micro-roughness as a random slope, in the modes that sample slopes, where it is not in a
+// bump map's sampled moments already (stochastic's). A metallic-roughness material's tilts the
+// mirror only, its σ² becoming the highlight's α (SurfacePoint::micro_slope).
+void SampleShader::sample_micro_slopes(const RenderMaterial& material, Vec2d random,
+                                       SurfacePoint& point) {
+    const bool pbr = material.metallic_roughness();
+    const bool sampled = material.bump && policy_.slopes == SlopeSource::sampled;
+    if (!material.has_micro_slopes() || (sampled && !pbr)) return;
+    const float sigma = std::sqrt(micro_covariance(material, point.coords).xx);
+    const Vec2d z = gaussian_pair(random.x, random.y);
+    const Vec2 slope = sigma * Vec2{static_cast<float>(z.x), static_cast<float>(z.y)};
+    if (!pbr) {
+        point.slope = point.slope + slope;
+        return;
+    }
+    point.micro_slope = slope;
+    point.highlight_alpha = std::sqrt(2.0f) * sigma;
+}
+
+// c or F0: a material's constant × its texture (filtered as the mode filters).
+Rgb SampleShader::colour(TextureHandle* map, Rgb constant, bool grey, const TextureCoords& coords,
+                         RandomStream& random) {
+    if (!map) return constant;
     TextureCoords at = coords;
     if (policy_.stochastic) {
-        const auto [width, height] = level0_size(
-            material.base_color_map, [&] { return info_of(textures_, material.base_color_map); });
+        const auto [width, height] = level0_size(map, [&] { return info_of(textures_, map); });
         at = stochastic_probe(coords, width, height, random);
     }
     Rgb texel;
-    static_cast<void>(
-        textures_.texture(material.base_color_map, at, policy_.lookup, texel, kMissing));
+    static_cast<void>(textures_.texture(map, at, policy_.lookup, texel, kMissing));
     ++lookups;
-    if (material.base_color_grey) texel[1] = texel[2] = texel[0];
-    for (int c = 0; c < 3; ++c) base[c] *= texel[c];
-    return base;
+    if (grey) texel[1] = texel[2] = texel[0];
+    for (int c = 0; c < 3; ++c) constant[c] *= texel[c];
+    return constant;
+}
+
+// The slopes' covariance below the maps' resolution here: the material's micro-roughness, or its
+// per-texel σ² I filtered as the mode filters.
+Sym2 SampleShader::micro_covariance(const RenderMaterial& material, const TextureCoords& coords) {
+    if (!material.micro_variance_map) return material.micro_roughness;
+    float variance = 0;
+    static_cast<void>(textures_.texture(material.micro_variance_map, coords, policy_.lookup,
+                                        std::span<float>(&variance, 1), kMissing));
+    ++lookups;
+    variance = std::max(0.0f, variance);
+    return material.micro_roughness + Sym2{variance, 0, variance};
 }
 
 // b and K_b where the mode takes them from (SlopeSource).
@@ -279,7 +318,7 @@ SlopeStatistics SampleShader::read_toksvig(const RenderMaterial& material,
     static_cast<void>(textures_.texture(normals, coords, policy_.lookup, n, kMissing));
     ++lookups;
     SlopeStatistics stats = toksvig_slopes(Vec3{n[0], n[1], n[2]});
-    stats.covariance = stats.covariance + material.micro_roughness;
+    stats.covariance = stats.covariance + micro_covariance(material, coords);
     return stats;
 }
 
@@ -290,7 +329,7 @@ SlopeStatistics SampleShader::read_screen_space(const RenderMaterial& material,
                                                 const TextureCoords& coords) {
     const Vec2 b = read_moments(material, coords).mean;
     const auto [dx, dy] = slope_steps(material, coords, b);
-    return {b, screen_space_roughness(dx, dy) + material.micro_roughness};
+    return {b, screen_space_roughness(dx, dy) + micro_covariance(material, coords)};
 }
 
 // The filtered mean slope's change per pixel step in x and in y, as a GPU quad's derivatives
@@ -310,8 +349,14 @@ SlopeStatistics SampleShader::read_sampled(const RenderMaterial& material,
                                            const TextureCoords& coords, RandomStream& random) {
     const auto [width, height] =
         level0_size(material.bump, [&] { return info_of(textures_, material.bump); });
-    const SlopeStatistics moments =
-        read_moments(material, stochastic_probe(coords, width, height, random));
+    const TextureCoords probe = stochastic_probe(coords, width, height, random);
+    SlopeStatistics moments = read_moments(material, probe);
+    if (material.metallic_roughness()) {
+        // The texel's own σ² is drawn apart (sample_micro_slopes()): the mirror's alone.
+        const Sym2 own = micro_covariance(material, probe);
+        Sym2& k = moments.covariance;
+        k = {std::max(0.0f, k.xx - own.xx), k.xy - own.xy, std::max(0.0f, k.yy - own.yy)};
+    }
     return {sample_slope(moments, random.gaussian()), Sym2{}};
 }
 
@@ -338,8 +383,9 @@ ShadingFactors SampleShader::shade(const SurfacePoint& point) {
     out.base = point.base;
     add_lights(point, n_hat, v_hat, out);
     const RenderEnvironment* env = scene_.environment();
-    if (env && desc.diffuse > 0) {
-        for (int c = 0; c < 3; ++c) out.diffuse[c] += desc.diffuse * env->mean[c];
+    const float ambient = point.material->ambient_weight;
+    if (env && ambient > 0) {
+        for (int c = 0; c < 3; ++c) out.diffuse[c] += ambient * env->mean[c];
     }
     if (env && desc.mirror > 0) add_reflection(point, n_hat, v_hat, out);
     return out;
@@ -360,7 +406,7 @@ void SampleShader::add_lights(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat,
     // A microfacet highlight (shading/microfacet.h) is widened by the filtered K_b in the rough
     // modes and by nothing in the others, as specular() with `model`.
     const Sym2 k_microfacet = policy_.roughness ? k_e : Sym2{};
-    const float alpha = desc.roughness * desc.roughness;
+    const float alpha = point.highlight_alpha;
     const MicrofacetModel microfacet = desc.highlight == MaterialDesc::Highlight::ggx
                                            ? MicrofacetModel::ggx
                                            : MicrofacetModel::beckmann;
@@ -379,20 +425,22 @@ void SampleShader::add_lights(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat,
         const float cos_l = dot(n_hat, l);
         if (cos_l <= 0) continue;
         const Vec3 h = normalize(l + v_hat);
-        float spec = 0;
+        Rgb spec{};
         if (desc.specular > 0 && desc.highlight == MaterialDesc::Highlight::blinn_phong) {
-            spec = desc.specular * specular(model, to_array(n_hat), to_array(e1), to_array(e2),
-                                            to_array(h), k_e, desc.shininess);
-        } else if (desc.specular > 0) {  // f_r·cos_l
-            spec = desc.specular * microfacet_highlight(microfacet, to_array(n_hat), to_array(e1),
-                                                        to_array(e2), to_array(l), to_array(v_hat),
-                                                        k_microfacet, alpha, desc.fresnel_f0);
+            const float lobe = specular(model, to_array(n_hat), to_array(e1), to_array(e2),
+                                        to_array(h), k_e, desc.shininess);
+            spec.fill(desc.specular * lobe);
+        } else if (desc.specular > 0) {  // f_r·cos_l, at F0 per channel
+            const MicrofacetTerms terms =
+                microfacet_terms(microfacet, to_array(n_hat), to_array(e1), to_array(e2),
+                                 to_array(l), to_array(v_hat), k_microfacet, alpha);
+            for (int c = 0; c < 3; ++c) spec[c] = desc.specular * terms.times(point.f0[c]);
         }
         const float diffuse = desc.diffuse * cos_l;
         const float rgb[3] = {light.color.x, light.color.y, light.color.z};
         for (int c = 0; c < 3; ++c) {
             out.diffuse[c] += scale * rgb[c] * diffuse;
-            out.highlight[c] += scale * rgb[c] * spec;
+            out.highlight[c] += scale * rgb[c] * spec[c];
         }
     }
 }
@@ -405,13 +453,22 @@ void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_
                                   ShadingFactors& out) {
     const RenderEnvironment& env = *scene_.environment();
     const MaterialDesc& desc = point.material->desc;
+    const Rgb& f0 = point.f0;
+    // One F0 steers the Fresnel-weighted slopes: the channels' mean (their means are exact).
+    const float f0_mean = channel_mean(f0);
     if (!policy_.filtered) {
+        if (point.bumped && (point.micro_slope.x != 0 || point.micro_slope.y != 0)) {
+            const Vec2 b_t = point.frame.slope_sign * (point.slope + point.micro_slope);
+            const Vec3 n_m = normalize(perturbed_normal(point.n, point.frame.frame, b_t));
+            if (dot(n_m, v_hat) > 0) n_hat = n_m;  // else the bump is dropped (§4)
+        }
         const Vec3 r = 2.0f * dot(n_hat, v_hat) * n_hat - v_hat;
         out.map_reflection = env.rotation * r;
         static_cast<void>(
             textures_.environment_sample(env.map, out.map_reflection, out.reflection));
         ++lookups;
-        out.fresnel = desc.mirror * schlick_fresnel(desc.fresnel_f0, dot(n_hat, v_hat));
+        for (int c = 0; c < 3; ++c)
+            out.fresnel[c] = desc.mirror * schlick_fresnel(f0[c], dot(n_hat, v_hat));
         return;
     }
     ReflectionGeometry geometry;
@@ -421,17 +478,18 @@ void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_
     geometry.n = point.n;
     geometry.dn_dx = point.dndx;
     geometry.dn_dy = point.dndy;
-    float fresnel = schlick_fresnel(desc.fresnel_f0, dot(n_hat, v_hat));
+    Rgb fresnel;
+    for (int c = 0; c < 3; ++c) fresnel[c] = schlick_fresnel(f0[c], dot(n_hat, v_hat));
     float facing_away = 0;
     const ReflectionGeometry flat = geometry;
     if (point.bumped) {
-        Vec2 slope = point.slope;
+        Vec2 slope = point.slope + point.micro_slope;  // stochastic: a drawn micro-slope
         Sym2 roughness = point.roughness;
         if (policy_.fresnel_over_slopes) {
             const FresnelOverSlopes weighted =
-                fresnel_over_slopes(desc.fresnel_f0, dot(n_hat, v_hat),
+                fresnel_over_slopes(f0_mean, dot(n_hat, v_hat),
                                     cos_slope_gradient(point, n_hat, v_hat), point.roughness);
-            fresnel = weighted.mean;
+            for (int c = 0; c < 3; ++c) fresnel[c] = mean_fresnel(weighted, f0[c]);
             slope = slope + weighted.mean_slope_shift;
             roughness = weighted.covariance;
             facing_away = weighted.facing_away;
@@ -459,9 +517,10 @@ void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_
             textures_.environment(env.map, *out.env_footprint, policy_.lookup, out.reflection));
     }
     ++lookups;
-    const float f_away =
-        facing_away * schlick_fresnel(desc.fresnel_f0, dot(normalize(point.n), v_hat));
-    if (facing_away > kFacingAwayThreshold && fresnel + f_away > 0) {
+    const float cos_surface = dot(normalize(point.n), v_hat);
+    const float f_away = facing_away * schlick_fresnel(f0_mean, cos_surface);
+    const float f_mean = channel_mean(fresnel);
+    if (facing_away > kFacingAwayThreshold && f_mean + f_away > 0) {
         // Slopes facing away from the eye are shaded with the surface's own normal (spec §4), as
         // the reference shades them: their share of the mirror term is a second lookup.
         out.away_footprint = compute_env_footprint(env.layout, env.texel_scale, flat, env_options);
@@ -469,13 +528,13 @@ void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_
         static_cast<void>(
             textures_.environment(env.map, *out.away_footprint, policy_.lookup, texel));
         ++lookups;
-        out.away_weight = f_away / (fresnel + f_away);
+        out.away_weight = f_away / (f_mean + f_away);
         for (int c = 0; c < 3; ++c) {
             out.reflection[c] += out.away_weight * (texel[c] - out.reflection[c]);
+            fresnel[c] += facing_away * schlick_fresnel(f0[c], cos_surface);
         }
-        fresnel += f_away;
     }
-    out.fresnel = desc.mirror * fresnel;
+    for (int c = 0; c < 3; ++c) out.fresnel[c] = desc.mirror * fresnel[c];
 }
 
 namespace {

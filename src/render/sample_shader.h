@@ -53,9 +53,16 @@ struct SurfacePoint {
     int object = -1;       // SurfaceHit::object
     TextureCoords coords;  // (s, t) of the maps and, in filtered modes, their derivatives
     Rgb base{};            // c: the material's colour × its (filtered) texture
+    Rgb f0{};              // Schlick's F0 per channel (RenderMaterial::f0 × its filtered map)
     Vec2 slope;            // b: the mean bump slope (plus a sampled micro-slope in the reference)
     Sym2 roughness;        // K_b: the slopes' covariance (zero where the mode ignores roughness)
-    bool bumped = false;   // a bump map or micro-roughness: the normal is perturbed in `frame`
+    // A metallic-roughness material where the mode samples slopes (reference, stochastic): the
+    // micro-slope drawn from the texel's σ², which tilts the mirror's normal only, while the
+    // lights' highlight takes that σ² as its own α = √2 σ (sampling a microfacet BRDF's peak
+    // instead would take millions of samples to converge).
+    Vec2 micro_slope;
+    float highlight_alpha = 0;  // the microfacet highlight's α beyond K_b
+    bool bumped = false;        // a bump map or micro-roughness: the normal is perturbed in `frame`
     BumpFrameAtHit frame;
     // Facing the viewer (a surface seen from behind is shaded as its mirror image).
     Vec3 p, n, dndx, dndy;  // n any length, ∂n per pixel step
@@ -66,11 +73,11 @@ struct SurfacePoint {
 
 // The factors of one sample's colour: combine() = c ⊙ D + S + F·R.
 struct ShadingFactors {
-    Rgb base{};         // c
-    Rgb diffuse{};      // D = diffuse·(Σ_i E_i max(0, n̂·l̂_i) + Ē)
-    Rgb highlight{};    // S = specular·Σ_i E_i S(n̂, ĥ_i, K_b)
-    float fresnel = 0;  // F = mirror·Schlick(n̂·v̂)
-    Rgb reflection{};   // R = the environment in the reflected direction (filtered or not)
+    Rgb base{};        // c
+    Rgb diffuse{};     // D = diffuse·(Σ_i E_i max(0, n̂·l̂_i) + Ē)
+    Rgb highlight{};   // S = specular·Σ_i E_i S(n̂, ĥ_i, K_b)
+    Rgb fresnel{};     // F = mirror·Schlick(F0, n̂·v̂), per channel of F0
+    Rgb reflection{};  // R = the environment in the reflected direction (filtered or not)
     // How R was looked up: the unit reflected direction in map space, and (filtered modes) the
     // footprint; where some of the slopes face away from the eye, R = (1 − w)·R(env_footprint) +
     // w·R(away_footprint), w = away_weight (shading/fresnel.h).
@@ -82,7 +89,7 @@ struct ShadingFactors {
 inline Rgb combine(const ShadingFactors& f) {
     Rgb out;
     for (int c = 0; c < 3; ++c) {
-        out[c] = f.base[c] * f.diffuse[c] + f.highlight[c] + f.fresnel * f.reflection[c];
+        out[c] = f.base[c] * f.diffuse[c] + f.highlight[c] + f.fresnel[c] * f.reflection[c];
     }
     return out;
 }
@@ -107,8 +114,10 @@ class SampleShader {
   private:
     void add_lights(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat, ShadingFactors& out) const;
     void add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat, ShadingFactors& out);
-    Rgb base_color(const RenderMaterial& material, const TextureCoords& coords,
-                   RandomStream& random);
+    Rgb colour(TextureHandle* map, Rgb constant, bool grey, const TextureCoords& coords,
+               RandomStream& random);
+    Sym2 micro_covariance(const RenderMaterial& material, const TextureCoords& coords);
+    void sample_micro_slopes(const RenderMaterial& material, Vec2d random, SurfacePoint& point);
     SlopeStatistics slopes(const RenderMaterial& material, const TextureCoords& coords,
                            RandomStream& random);
     SlopeStatistics read_moments(const RenderMaterial& material, const TextureCoords& coords);

@@ -89,18 +89,30 @@ struct BumpDesc {
 };
 
 struct MaterialDesc {
+    // The shading model (docs/scene-format.md#material-models):
+    //   footprint           c ⊙ D + S + F·R with the weights below (diffuse, specular, mirror,
+    //                       fresnel_f0, micro_roughness);
+    //   metallic_roughness  glTF's: base_color, metallic and roughness (render/material_model.h),
+    //                       the default of a glTF mesh (its file's materials).
+    enum class Model { footprint, metallic_roughness };
+    Model model = Model::footprint;
     Vec3 base_color{0.8f, 0.8f, 0.8f};  // linear RGB; multiplied by base_color_map where given
     ImageSource base_color_map;         // sRGB-decoded on load (colour)
-    float diffuse = 1;                  // Lambert weight
-    float specular = 0;                 // the lights' highlight weight
-    float shininess = 50;               // Blinn-Phong exponent m
+    float metallic = 0;                 // metallic-roughness: 0 a dielectric, 1 a metal
+    // metallic-roughness: glTF's metallicRoughnessTexture (G roughness, B metallic; data, not
+    // decoded), × roughness and metallic. A glTF mesh's come from its file.
+    ImageSource metallic_roughness_map;
+    float diffuse = 1;     // Lambert weight
+    float specular = 0;    // the lights' highlight weight
+    float shininess = 50;  // Blinn-Phong exponent m
     // The lights' highlight: Blinn-Phong (shading/blinn_phong.h; rough in the rough modes) or a
     // microfacet BRDF (shading/microfacet.h) of roughness `roughness`, Fresnel `fresnel_f0`.
     enum class Highlight { blinn_phong, beckmann, ggx };
     Highlight highlight = Highlight::blinn_phong;
     // glTF's perceptual roughness r ∈ (0, 1] of the beckmann and ggx highlights: α = r². The
     // default α = 0.2 is a lobe as wide as the default shininess (Blinn-Phong ≈ Beckmann at
-    // α² = 2/(m + 2)). Shapes the lights' highlight only, not the environment reflection.
+    // α² = 2/(m + 2)). Shapes the lights' highlight only, not the environment reflection — except
+    // in the metallic-roughness model, where r ∈ [0, 1] roughens both.
     float roughness = 0.45f;
     float mirror = 0;      // environment reflection weight (× Fresnel)
     float fresnel_f0 = 1;  // Schlick's F0; 1 = a perfect mirror

@@ -470,8 +470,22 @@ class SceneParser {
         if (!contains(shapes, shape))
             fail(shape_path, "unknown shape " + quoted(shape) + suggest(shape, shapes));
         check_object_keys(j, path, shape);
+        // A glTF file's materials are metallic-roughness: its meshes take that model unless the
+        // scene's material names another.
+        const json* file_key = shape == "mesh" ? find(j, "file") : nullptr;
+        const std::string extension =
+            file_key && file_key->is_string()
+                ? lowercase(fs::path(file_key->get<std::string>()).extension().string())
+                : "";
+        const MeshFileKind kind = shape != "mesh"                               ? MeshFileKind::none
+                                  : extension == ".gltf" || extension == ".glb" ? MeshFileKind::gltf
+                                                                                : MeshFileKind::obj;
+        if (kind == MeshFileKind::gltf) {
+            object.material.model = MaterialDesc::Model::metallic_roughness;
+            object.material.highlight = MaterialDesc::Highlight::ggx;
+        }
         if (const json* material = find(j, "material"))
-            object.material = parse_material(*material, member(path, "material"), shape == "mesh");
+            object.material = parse_material(*material, member(path, "material"), kind);
 
         auto get = [&](std::string_view key) { return find(j, key); };
         auto at = [&](std::string_view key) { return member(path, key); };
@@ -597,14 +611,22 @@ class SceneParser {
         return t;
     }
 
-    // `mesh`: the material of a mesh object, whose file may bring its own normal textures.
-    MaterialDesc parse_material(const json& j, const std::string& path, bool mesh) const {
-        check_keys(
-            j, path,
-            {"base_color", "diffuse", "specular", "shininess", "highlight", "roughness", "mirror",
-             "fresnel_f0", "bump", "micro_roughness", "invalid_normals", "non_finite"});
+    // What a material's object is: a mesh's file may bring normal textures (both kinds) and, a
+    // glTF's, metallic-roughness materials.
+    enum class MeshFileKind { none, obj, gltf };
+
+    MaterialDesc parse_material(const json& j, const std::string& path, MeshFileKind mesh) const {
+        check_keys(j, path,
+                   {"model", "base_color", "diffuse", "specular", "shininess", "highlight",
+                    "roughness", "metallic", "metallic_roughness", "mirror", "fresnel_f0", "bump",
+                    "micro_roughness", "invalid_normals", "non_finite"});
         MaterialDesc m;
         auto at = [&](std::string_view key) { return member(path, key); };
+        if (mesh == MeshFileKind::gltf) m.model = MaterialDesc::Model::metallic_roughness;
+        if (const json* v = find(j, "model")) m.model = parse_model(*v, at("model"));
+        const bool pbr = m.model == MaterialDesc::Model::metallic_roughness;
+        if (pbr) m.highlight = MaterialDesc::Highlight::ggx;
+        check_model_keys(j, path, m.model, mesh);
         if (const json* v = find(j, "base_color")) {
             if (v->is_string()) {
                 m.base_color_map = image_file(*v, at("base_color"));
@@ -621,12 +643,23 @@ class SceneParser {
         if (const json* v = find(j, "shininess")) m.shininess = non_negative(*v, at("shininess"));
         if (const json* v = find(j, "highlight"))
             m.highlight = parse_highlight(*v, at("highlight"));
+        if (pbr && m.highlight == MaterialDesc::Highlight::blinn_phong)
+            fail(at("highlight"), "the metallic-roughness model's highlight is beckmann or ggx");
         if (const json* v = find(j, "roughness")) {
+            // glTF's range is [0, 1]; the footprint model's microfacet highlight has no mirror.
             const double r = number(*v, at("roughness"));
-            if (!(r > 0 && r <= 1))
-                fail(at("roughness"), "must be in (0, 1], got " + format_number(r));
+            if (!((pbr ? r >= 0 : r > 0) && r <= 1))
+                fail(at("roughness"), std::string("must be in ") + (pbr ? "[0, 1]" : "(0, 1]") +
+                                          ", got " + format_number(r));
             m.roughness = narrow(r);
         }
+        if (const json* v = find(j, "metallic")) {
+            m.metallic = single(*v, at("metallic"));
+            if (!(m.metallic >= 0 && m.metallic <= 1))
+                fail(at("metallic"), "must be in [0, 1], got " + format_number(m.metallic));
+        }
+        if (const json* v = find(j, "metallic_roughness"))
+            m.metallic_roughness_map = image_file(*v, at("metallic_roughness"));
         // Each highlight takes its own width: shininess (Blinn-Phong) or roughness (microfacet).
         const bool microfacet = m.highlight != MaterialDesc::Highlight::blinn_phong;
         if (!microfacet && find(j, "roughness"))
@@ -647,7 +680,8 @@ class SceneParser {
             m.micro_roughness = non_negative(*v, at("micro_roughness"));
         if (const json* v = find(j, "bump")) m.bump = parse_bump(*v, at("bump"));
         if (const json* v = find(j, "invalid_normals"))
-            m.invalid_normals = parse_invalid_normals(*v, at("invalid_normals"), m.bump, mesh);
+            m.invalid_normals = parse_invalid_normals(*v, at("invalid_normals"), m.bump,
+                                                      mesh != MeshFileKind::none);
         if (const json* v = find(j, "non_finite")) {
             m.non_finite = parse_non_finite(*v, at("non_finite"));
             if (m.base_color_map.empty() && m.bump.source != BumpDesc::Source::height_map)
@@ -656,6 +690,45 @@ class SceneParser {
                      "bump.height_map (for a normal map's NaN texels: invalid_normals)");
         }
         return m;
+    }
+
+    // "footprint" or "metallic-roughness" (scene.h's MaterialDesc::Model).
+    MaterialDesc::Model parse_model(const json& j, const std::string& path) const {
+        const std::string name = string(j, path);
+        if (name == "footprint") return MaterialDesc::Model::footprint;
+        if (name == "metallic-roughness") return MaterialDesc::Model::metallic_roughness;
+        fail(path,
+             "unknown model " + quoted(name) + suggest(name, {"footprint", "metallic-roughness"}));
+    }
+
+    // Each model takes its own keys; a key of the other model says which one it belongs to. A glTF
+    // mesh's metallic and roughness come from its file.
+    void check_model_keys(const json& j, const std::string& path, MaterialDesc::Model model,
+                          MeshFileKind mesh) const {
+        static const Keys footprint_only = {"diffuse", "specular",   "shininess",
+                                            "mirror",  "fresnel_f0", "micro_roughness"};
+        const bool pbr = model == MaterialDesc::Model::metallic_roughness;
+        const std::string why = mesh == MeshFileKind::gltf && !find(j, "model")
+                                    ? " (a glTF mesh's default: its file's materials)"
+                                    : "";
+        for (const auto& item : j.items()) {
+            const std::string& key = item.key();
+            if (pbr && contains(footprint_only, key))
+                fail(member(path, key),
+                     "is a key of the footprint model; this material is metallic-roughness" + why +
+                         ": it takes base_color, metallic and roughness, or give \"model\": " +
+                         "\"footprint\"");
+            const bool pbr_only = key == "metallic" || key == "metallic_roughness";
+            if (!pbr && pbr_only)
+                fail(member(path, key),
+                     "is a key of the metallic-roughness model: give "
+                     "\"model\": \"metallic-roughness\"");
+            if (pbr && mesh == MeshFileKind::gltf && (pbr_only || key == "roughness"))
+                fail(member(path, key),
+                     "comes from the glTF file's materials (base_color "
+                     "multiplies the file's colours; metallic and roughness "
+                     "are the file's)");
+        }
     }
 
     static constexpr std::string_view kHighlightNames[] = {"blinn-phong", "beckmann", "ggx"};

@@ -244,6 +244,35 @@ TEST(SceneFile, CompleteSceneParsesToTheExactValues) {
     EXPECT_VEC3_EQ(std::get<MeshShape>(s.objects[8].shape).transform.scale, 1, 1, 1);
     ASSERT_TRUE(std::holds_alternative<MeshShape>(s.objects[9].shape));
     EXPECT_EQ(std::get<MeshShape>(s.objects[9].shape).file, d / "CAPS.OBJ");
+    // A glTF mesh takes its file's metallic-roughness materials; everything else the footprint
+    // model.
+    using Model = MaterialDesc::Model;
+    for (int i : {7, 8}) EXPECT_EQ(s.objects[i].material.model, Model::metallic_roughness) << i;
+    for (int i : {0, 1, 2, 6, 9}) EXPECT_EQ(s.objects[i].material.model, Model::footprint) << i;
+    EXPECT_EQ(s.objects[7].material.highlight, MaterialDesc::Highlight::ggx);
+}
+
+TEST(SceneFile, MetallicRoughnessMaterialsParse) {
+    TempDir dir;
+    create_assets(dir.path());
+    write_file(dir.path() / "rm.png", "");
+    write_file(dir.path() / "scene.json",
+               R"({"camera": {"position": [0, 1, 5], "look_at": [0, 0, 0]},
+        "objects": [
+        {"shape": "sphere",
+         "material": {"model": "metallic-roughness", "base_color": [1, 0.78, 0.34], "metallic": 1,
+                      "roughness": 0, "highlight": "beckmann", "metallic_roughness": "rm.png"}},
+        {"shape": "mesh", "file": "helmet.gltf", "material": {"model": "footprint", "mirror": 1}}]})");
+    const Result<SceneDesc> s = load_scene_file(dir.path() / "scene.json");
+    ASSERT_TRUE(s.ok()) << s.error().message;
+    const MaterialDesc& m = s->objects[0].material;
+    EXPECT_EQ(m.model, MaterialDesc::Model::metallic_roughness);
+    EXPECT_EQ(m.metallic, 1.0f);
+    EXPECT_EQ(m.roughness, 0.0f);
+    EXPECT_EQ(m.highlight, MaterialDesc::Highlight::beckmann);
+    EXPECT_EQ(m.metallic_roughness_map.file, dir.path() / "rm.png");
+    EXPECT_EQ(s->objects[1].material.model, MaterialDesc::Model::footprint);
+    EXPECT_EQ(s->objects[1].material.mirror, 1.0f);
 }
 
 TEST(SceneFile, MinimalSceneTakesTheDefaultsOfSceneDesc) {
@@ -711,6 +740,32 @@ const ErrorCase kErrorCases[] = {
         "material": {"highlight": "ggx", "shininess": 80}}]})",
      "objects[0].material.shininess",
      "is the Blinn-Phong exponent: the ggx highlight takes roughness"},
+    // Material models.
+    {"ModelUnknown", R"({"objects": [{"shape": "sphere", "material": {"model": "pbr"}}]})",
+     "objects[0].material.model", "unknown model 'pbr'"},
+    {"MetallicInTheFootprintModel", R"({"objects": [{"shape": "sphere",
+        "material": {"metallic": 1}}]})",
+     "objects[0].material.metallic",
+     "is a key of the metallic-roughness model: give \"model\": \"metallic-roughness\""},
+    {"MirrorInTheMetallicRoughnessModel", R"({"objects": [{"shape": "sphere",
+        "material": {"model": "metallic-roughness", "mirror": 1}}]})",
+     "objects[0].material.mirror",
+     "is a key of the footprint model; this material is metallic-roughness: it takes base_color, "
+     "metallic and roughness, or give \"model\": \"footprint\""},
+    {"DiffuseOnAGltfMesh", R"({"objects": [{"shape": "mesh", "file": "helmet.gltf",
+        "material": {"diffuse": 0.5}}]})",
+     "objects[0].material.diffuse",
+     "this material is metallic-roughness (a glTF mesh's default: its file's materials)"},
+    {"RoughnessOnAGltfMesh", R"({"objects": [{"shape": "mesh", "file": "helmet.glb",
+        "material": {"roughness": 0.5}}]})",
+     "objects[0].material.roughness", "comes from the glTF file's materials"},
+    {"MetallicOutOfRange", R"({"objects": [{"shape": "sphere",
+        "material": {"model": "metallic-roughness", "metallic": 1.5}}]})",
+     "objects[0].material.metallic", "must be in [0, 1], got 1.5"},
+    {"MetallicRoughnessBlinnPhong", R"({"objects": [{"shape": "sphere",
+        "material": {"model": "metallic-roughness", "highlight": "blinn-phong"}}]})",
+     "objects[0].material.highlight",
+     "the metallic-roughness model's highlight is beckmann or ggx"},
     {"MicroRoughnessNegative", R"({"objects": [{"shape": "sphere",
         "material": {"micro_roughness": -0.01}}]})",
      "objects[0].material.micro_roughness", "must be >= 0"},

@@ -70,6 +70,12 @@ void add_material(Fnv1a& h, const MaterialDesc& m) {
     h.add(m.diffuse), h.add(m.specular), h.add(m.shininess), h.add(m.mirror);
     h.add(m.fresnel_f0), h.add(m.micro_roughness);
     h.add(static_cast<int>(m.highlight)), h.add(m.roughness);
+    // Only where it is not the default, so that the footprint model's hashes stay as they were.
+    if (m.model == MaterialDesc::Model::metallic_roughness) {
+        h.add(1), h.add(m.metallic);
+        h.add(!m.metallic_roughness_map.empty());
+        if (!m.metallic_roughness_map.empty()) h.image(m.metallic_roughness_map);
+    }
     h.add(static_cast<int>(m.bump.source));
     if (m.bump.source != BumpDesc::Source::none) h.image(m.bump.map);
     h.add(m.bump.strength), h.add(static_cast<int>(m.bump.frame)), h.add(m.bump.main_direction);

@@ -8,6 +8,17 @@ float schlick_fresnel(float f0, float cos_theta) {
     return f0 + (1.0 - f0) * c2 * c2 * c;
 }
 
+// Per channel of a coloured F0 (a metal's).
+vec3 schlick_fresnel3(vec3 f0, float cos_theta) {
+    float w = schlick_fresnel(0.0, cos_theta);
+    return f0 + (1.0 - f0) * w;
+}
+
+// The channels' mean; exactly their value where they are equal (as the CPU's channel_mean()).
+float channel_mean(vec3 c) {
+    return c.x == c.y && c.y == c.z ? c.x : (c.x + c.y + c.z) / 3.0;
+}
+
 // ---- Fresnel over Gaussian slopes (shading/fresnel.h's fresnel_over_slopes()).
 
 // Φ(z) by Abramowitz & Stegun 7.1.26 (|error| < 1.5e-7): GLSL has no erf.
@@ -51,12 +62,15 @@ void normal_moments(float z0, float z1, out float to_z1[8], out float to_inf[3],
 struct FresnelOverSlopes {
     float mean;         // E[F; c ≥ 0]
     float facing_away;  // P(c < 0)
+    float schlick;      // E[(1 − c)⁵; 0 ≤ c ≤ 1]: any F0's mean is
+                        // F0 (1 − facing_away) + (1 − F0) schlick
     vec2 shift;         // the F-weighted mean slope − b̄ (slopes facing the eye)
     vec3 k;             // their F-weighted covariance (xx, xy, yy)
 };
 
 FresnelOverSlopes fresnel_over_slopes(float f0, float cos_mean, vec2 u, vec3 k) {
-    FresnelOverSlopes out_f = FresnelOverSlopes(schlick_fresnel(f0, cos_mean), 0.0, vec2(0), k);
+    FresnelOverSlopes out_f = FresnelOverSlopes(schlick_fresnel(f0, cos_mean), 0.0,
+                                                schlick_fresnel(0.0, cos_mean), vec2(0), k);
     float variance = k.x * u.x * u.x + 2.0 * k.y * u.x * u.y + k.z * u.y * u.y;
     if (!(variance > 1e-12)) return out_f;
     float sigma = sqrt(variance), a = 1.0 - cos_mean;
@@ -80,6 +94,7 @@ FresnelOverSlopes fresnel_over_slopes(float f0, float cos_mean, vec2 u, vec3 k) 
         float quintic = 0.0;
         for (int j = 0; j <= 5; ++j) quintic += c[j] * to_z1[m + j];
         moments[m] = f0 * to_inf[m] + (1.0 - f0) * quintic;
+        if (m == 0) out_f.schlick = quintic;
     }
     out_f.facing_away = below;
     if (!(moments[0] > 0.0)) return out_f;
@@ -164,11 +179,11 @@ float smith_lambda(int model, vec3 w, vec3 m) {
 }
 
 // f_r·cos_l = D G2 F / (4 cos_v): the height-correlated G2 = 1/(1 + Λ(l̂) + Λ(v̂)), Schlick's F at
-// v̂·ĥ; α clamped to [1e-3, 1] and K_b to PSD, as on the CPU.
-float microfacet_highlight(int model, vec3 n, vec3 e1, vec3 e2, vec3 l, vec3 v, vec3 k_b,
-                           float alpha, float f0) {
+// v̂·ĥ per channel of F0; α clamped to [1e-3, 1] and K_b to PSD, as on the CPU.
+vec3 microfacet_highlight(int model, vec3 n, vec3 e1, vec3 e2, vec3 l, vec3 v, vec3 k_b,
+                          float alpha, vec3 f0) {
     float cos_l = dot(n, l), cos_v = dot(n, v);
-    if (!(cos_l > 0.0) || !(cos_v > 0.0)) return 0.0;
+    if (!(cos_l > 0.0) || !(cos_v > 0.0)) return vec3(0);
     vec3 h = normalize(l + v);
     float a = clamp(alpha, 1e-3, 1.0);
     float xx = max(0.0, k_b.x), yy = max(0.0, k_b.z);
@@ -177,7 +192,7 @@ float microfacet_highlight(int model, vec3 n, vec3 e1, vec3 e2, vec3 l, vec3 v, 
     float d = microfacet_distribution(model, vec3(dot(h, e1), dot(h, e2), dot(h, n)), m);
     float g = 1.0 / (1.0 + smith_lambda(model, vec3(dot(l, e1), dot(l, e2), cos_l), m) +
                      smith_lambda(model, vec3(dot(v, e1), dot(v, e2), cos_v), m));
-    return d * g * schlick_fresnel(clamp(f0, 0.0, 1.0), dot(v, h)) / (4.0 * cos_v);
+    return d * g * schlick_fresnel3(clamp(f0, 0.0, 1.0), dot(v, h)) / (4.0 * cos_v);
 }
 
 void tangent_basis(vec3 n, out vec3 u, out vec3 v) {
@@ -206,6 +221,10 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
     vec3 base = material.base_color.rgb;
     if (material.maps.x >= 0)
         base *= lookup_2d(material.maps.x, material.maps.y, 1, st, dst, mode).a.rgb;
+    vec3 f0 = material.f0.rgb;
+    if (material.f0_map.x >= 0)
+        f0 = clamp(f0 * lookup_2d(material.f0_map.x, material.f0_map.y, 1, st, dst, mode).a.rgb,
+                   0.0, 1.0);
 
     // Bump: the mean slope b and roughness K_b of the filtered region (spec §5.4).
     vec2 slope = vec2(0);
@@ -260,23 +279,24 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
         if (cos_l <= 0.0) continue;
         vec3 h = normalize(l + v_hat);
         int highlight = int(material.highlight.x);
-        float spec = 0.0;
+        vec3 spec = vec3(0);
         if (material.weights.y > 0.0 && highlight == HIGHLIGHT_BLINN_PHONG) {
-            spec = material.weights.y *
-                   specular_lobe(rough_mode, n_hat, e1, e2, h, k_e, material.weights.z);
+            spec = vec3(material.weights.y *
+                        specular_lobe(rough_mode, n_hat, e1, e2, h, k_e, material.weights.z));
         } else if (material.weights.y > 0.0) {  // f_r·cos_l, widened by K_b in the rough mode
             spec = material.weights.y * microfacet_highlight(highlight, n_hat, e1, e2, l, v_hat,
                                                              rough_mode ? k_e : vec3(0),
-                                                             material.highlight.y, material.bump.x);
+                                                             material.highlight.y, f0);
         }
         color += scale * light.color.rgb * (material.weights.x * cos_l * base + spec);
     }
 
-    if (u_env_layout != ENV_NONE && material.weights.x > 0.0)
-        color += material.weights.x * base * u_env_mean;
+    if (u_env_layout != ENV_NONE && material.f0.w > 0.0)
+        color += material.f0.w * base * u_env_mean;
     if (u_env_layout != ENV_NONE && material.weights.w > 0.0) {
         vec3 texel;
-        float fresnel = schlick_fresnel(material.bump.x, dot(n_hat, v_hat));
+        vec3 fresnel = schlick_fresnel3(f0, dot(n_hat, v_hat));
+        float f0_mean = channel_mean(f0);  // steers the Fresnel-weighted slopes
         if (filtered) {
             // The rough mode averages Fresnel over the slopes and looks the reflection up under
             // the slopes weighted by it (in b_t's coordinates, where K_b is the same).
@@ -288,8 +308,8 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
                 vec2 u = length(n) / length(n_m) *
                          vec2(dot(frame.t1, tangential), dot(frame.t2, tangential));
                 if (!is_finite(u.x + u.y)) u = vec2(0);
-                FresnelOverSlopes w = fresnel_over_slopes(material.bump.x, dot(n_hat, v_hat), u, k_b);
-                fresnel = w.mean;
+                FresnelOverSlopes w = fresnel_over_slopes(f0_mean, dot(n_hat, v_hat), u, k_b);
+                fresnel = f0 * (1.0 - w.facing_away) + (1.0 - f0) * w.schlick;
                 facing_away = w.facing_away;
                 b_env = b_t + w.shift;
                 k_env = w.k;
@@ -300,13 +320,15 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
                                                   bumped ? roughness_factor(k_env) : vec3(0), k_env);
             texel = env_lookup(f, mode, f.k.x + f.k.z);
             // Slopes facing away from the eye are shaded with the surface's own normal (§4).
-            float f_away = facing_away * schlick_fresnel(material.bump.x, dot(normalize(n), v_hat));
-            if (facing_away > 1e-3 && fresnel + f_away > 0.0) {
+            float cos_surface = dot(normalize(n), v_hat);
+            float f_away = facing_away * schlick_fresnel(f0_mean, cos_surface);
+            float f_mean = channel_mean(fresnel);
+            if (facing_away > 1e-3 && f_mean + f_away > 0.0) {
                 EnvFootprint unbumped = reflection_footprint(v, -diff.dpdx, -diff.dpdy, n, dndx, dndy,
                                                          vec2(0), t, vec3(0), vec3(0));
                 vec3 away = env_lookup(unbumped, mode, unbumped.k.x + unbumped.k.z);
-                texel = (fresnel * texel + f_away * away) / (fresnel + f_away);
-                fresnel += f_away;
+                texel = (f_mean * texel + f_away * away) / (f_mean + f_away);
+                fresnel += facing_away * schlick_fresnel3(f0, cos_surface);
             }
         } else {
             texel = env_point_sample(2.0 * dot(n_hat, v_hat) * n_hat - v_hat);
