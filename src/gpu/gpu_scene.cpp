@@ -279,9 +279,9 @@ Result<MaterialRecord> material_record(const RenderMaterial& m, TextureSystem& t
     const float roughness[4] = {m.micro_roughness.xx, m.micro_roughness.xy, m.micro_roughness.yy,
                                 offset.y};
     const int maps[4] = {color.unit, color.layer, bump.unit, bump.layer};
-    // A metallic-roughness material's α is in K_b (render/material_model.h).
-    const float alpha = m.metallic_roughness() ? 0 : d.roughness * d.roughness;
-    const float highlight[4] = {highlight_code(d.highlight), alpha, 0, 0};
+    // A metallic-roughness material's α is its slope variance's (render/material_model.h).
+    const float highlight[4] = {highlight_code(d.highlight), d.roughness * d.roughness,
+                                m.metallic_roughness() ? 1.0f : 0.0f, 0};
     const float f0_info[4] = {m.f0[0], m.f0[1], m.f0[2], m.ambient_weight};
     const int f0_map[4] = {f0.unit, f0.layer, -1, -1};
     std::copy_n(base, 4, r.base_color);

@@ -175,6 +175,32 @@ TEST(MaterialModel, DielectricLambertIsColourOverPi) {
                     << x << "," << y;
 }
 
+// The modes that leave K_b out take the texel's own α for the highlight (no pinpoint highlight of
+// α → 0): on a flat, constantly rough plane under a light, fa renders what fa-rough renders, and
+// the reference converges to it.
+TEST(MaterialModel, WithoutRoughnessModesTheHighlightKeepsTheMaterialsAlpha) {
+    SceneDesc desc = plane_scene(metallic_roughness({0.9f, 0.6f, 0.3f}, 1, 0.5f));
+    LightDesc lamp;
+    lamp.type = LightType::point;
+    lamp.position = {0, 1.2, 0.5};
+    lamp.color = {2, 2, 2};
+    desc.lights.push_back(lamp);
+    Result<RenderScene> scene = prepare_render_scene(desc);
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    RenderOptions options;
+    options.filter = FilterMode::fa_rough;
+    const Image rough = render(*scene, options);
+    float peak = 0;
+    for (float v : rough.pixels) peak = std::max(peak, v);
+    EXPECT_GT(peak, 0.1f);  // the highlight is in the image
+    for (FilterMode mode : {FilterMode::fa, FilterMode::trilinear, FilterMode::bilinear}) {
+        options.filter = mode;
+        const Image plain = render(*scene, options);
+        for (std::size_t i = 0; i < plain.pixels.size(); ++i)
+            ASSERT_NEAR(plain.pixels[i], rough.pixels[i], 1e-4f * peak) << filter_mode_name(mode);
+    }
+}
+
 double rmse(const Image& a, const Image& b) {
     double sum = 0;
     for (std::size_t i = 0; i < a.pixels.size(); ++i)

@@ -158,6 +158,16 @@ Result<Image> bump_slopes(const BumpDesc& bump, const Image& map, InvalidNormalP
                  " (the material key \"invalid_normals\": \"clamp\" replaces such texels)"};
 }
 
+// The F0 map of a textured metallic-roughness material: F0 in RGB, the slope variance in A.
+Image f0_and_variance(const detail::MetallicRoughnessTexels& texels) {
+    Image out(texels.f0.width, texels.f0.height, 4);
+    for (std::size_t i = 0; i < texels.f0.pixel_count(); ++i) {
+        std::copy_n(&texels.f0.pixels[3 * i], 3, &out.pixels[4 * i]);
+        out.pixels[4 * i + 3] = texels.variance.pixels[i];
+    }
+    return out;
+}
+
 // The slopes and the per-texel variance (if any) at one size, the larger of the two.
 void common_size(Image& slopes, Image& variance) {
     if (variance.empty()) return;
@@ -264,9 +274,10 @@ Result<RenderMaterial> prepare_material(const MaterialDesc& desc, SceneMaps& map
 
 // A metallic-roughness material (render/material_model.h) in the footprint model's terms:
 // Lambert of BRDF c (1 − m)/π for the lights and c (1 − m) times the environment's mean, the
-// highlight and the mirror at F0 per channel, the roughness as slope variance (per texel in the
-// bump pyramid's K_0 where `texture`, glTF's metallicRoughnessTexture, varies it, else as
-// micro-roughness). Textures make a diffuse-colour and an F0 map, texel by texel.
+// highlight and the mirror at F0 per channel, the roughness as slope variance. Textures (the
+// colour map, glTF's metallicRoughnessTexture `texture`) make a diffuse-colour map and an F0 map
+// with the slope variance beside it, texel by texel, and the variance enters the bump pyramid's
+// K_0 texel by texel; without them every term is a constant and the variance micro-roughness.
 Result<RenderMaterial> prepare_metallic_roughness(MaterialDesc desc, ImageSource texture,
                                                   SceneMaps& maps) {
     if (!texture.empty() && !texture.image) {  // the scene's file: read as data
@@ -277,59 +288,48 @@ Result<RenderMaterial> prepare_metallic_roughness(MaterialDesc desc, ImageSource
     }
     desc.diffuse = 1 / static_cast<float>(M_PI);
     desc.specular = desc.mirror = 1;
-    desc.micro_roughness = 0;
     const Vec3 base = desc.base_color;
-    std::array<float, 3> f0{1, 1, 1};
-    Image variance;
-    std::ostringstream key;
-    TextureHandle *diffuse_map = nullptr, *f0_map = nullptr;
-    if (!desc.base_color_map.empty() || texture.image) {
-        std::optional<Image> colour;
-        if (!desc.base_color_map.empty()) {
-            Result<Image> loaded =
-                load_source(desc.base_color_map, ColorEncoding::automatic, desc.non_finite);
-            if (!loaded) return Error{"base_color: " + loaded.error().message};
-            colour = std::move(*loaded);
-        }
-        detail::MetallicRoughnessTexels texels = detail::metallic_roughness_texels(
-            colour ? &*colour : nullptr, base, texture.image.get(), desc.metallic, desc.roughness);
-        key << (desc.base_color_map.empty() ? "" : source_key(desc.base_color_map)) << " × ("
-            << base.x << ", " << base.y << ", " << base.z << "), "
-            << (texture.image ? source_key(texture) : "") << " × (" << desc.metallic << ", "
-            << desc.roughness << ")";
-        auto add = [&](const char* what, const Image& image) {
-            return maps.find_or_add<TextureHandle>(key.str() + what, [&](const std::string& name) {
-                return maps.textures.add_image(name, image);
-            });
-        };
-        Result<TextureHandle*> d = add(": diffuse colour", texels.diffuse);
-        if (!d) return Error{"base_color: " + d.error().message};
-        Result<TextureHandle*> f = add(": F0", texels.f0);
-        if (!f) return Error{"base_color: " + f.error().message};
-        diffuse_map = *d, f0_map = *f;
-        desc.base_color = {1, 1, 1};
-        if (texture.image) variance = std::move(texels.variance);
-    } else {
+    if (desc.base_color_map.empty() && !texture.image) {
         desc.base_color = detail::diffuse_color(base, desc.metallic);
-        const Vec3 f = detail::specular_f0(base, desc.metallic);
-        f0 = {f.x, f.y, f.z};
+        desc.micro_roughness = std::sqrt(detail::slope_variance(desc.roughness));
+        Result<RenderMaterial> material = prepare_material(desc, maps);
+        if (!material) return material;
+        const Vec3 f0 = detail::specular_f0(base, desc.metallic);
+        material->f0 = {f0.x, f0.y, f0.z};
+        material->ambient_weight = 1;
+        return material;
     }
-    if (variance.empty()) desc.micro_roughness = std::sqrt(detail::slope_variance(desc.roughness));
+    std::optional<Image> colour;
+    if (!desc.base_color_map.empty()) {
+        Result<Image> loaded =
+            load_source(desc.base_color_map, ColorEncoding::automatic, desc.non_finite);
+        if (!loaded) return Error{"base_color: " + loaded.error().message};
+        colour = std::move(*loaded);
+    }
+    detail::MetallicRoughnessTexels texels = detail::metallic_roughness_texels(
+        colour ? &*colour : nullptr, base, texture.image.get(), desc.metallic, desc.roughness);
+    std::ostringstream key;
+    key << (desc.base_color_map.empty() ? "" : source_key(desc.base_color_map)) << " × (" << base.x
+        << ", " << base.y << ", " << base.z << "), " << (texture.image ? source_key(texture) : "")
+        << " × (" << desc.metallic << ", " << desc.roughness << ")";
+    auto add = [&](const char* what, const Image& image) {
+        return maps.find_or_add<TextureHandle>(key.str() + what, [&](const std::string& name) {
+            return maps.textures.add_image(name, image);
+        });
+    };
+    Result<TextureHandle*> diffuse = add(": diffuse colour", texels.diffuse);
+    if (!diffuse) return Error{"base_color: " + diffuse.error().message};
+    Result<TextureHandle*> f0 = add(": F0 and slope variance", f0_and_variance(texels));
+    if (!f0) return Error{"base_color: " + f0.error().message};
+    desc.base_color = {1, 1, 1};
     desc.base_color_map = {};
+    desc.micro_roughness = 0;
     Result<RenderMaterial> material =
-        prepare_material(desc, maps, variance, variance.empty() ? "" : ", σ² of " + key.str());
+        prepare_material(desc, maps, texels.variance, ", σ² of " + key.str());
     if (!material) return material;
-    material->base_color_map = diffuse_map;
-    material->f0 = f0;
-    material->f0_map = f0_map;
+    material->base_color_map = *diffuse;
+    material->f0_map = *f0;
     material->ambient_weight = 1;
-    if (!variance.empty()) {
-        Result<TextureHandle*> map = maps.find_or_add<TextureHandle>(
-            key.str() + ": slope variance",
-            [&](const std::string& name) { return maps.textures.add_image(name, variance); });
-        if (!map) return Error{"roughness: " + map.error().message};
-        material->micro_variance_map = *map;
-    }
     return material;
 }
 

@@ -61,23 +61,23 @@ struct RenderMaterial {
     Sym2 micro_roughness;  // σ² I: the slope covariance when there is no bump map
     bool frame_from_mesh_tangents = false;  // a glTF normal texture on a part with tangents
     // Schlick's F0 of the highlight and the mirror, per channel: f0 × f0_map where there is one
-    // (the metallic-roughness model's 0.04 (1 − m) + c m; the footprint model's fresnel_f0).
+    // (the metallic-roughness model's 0.04 (1 − m) + c m; the footprint model's fresnel_f0). The
+    // map is a textured metallic-roughness material's, and holds in its fourth channel the slope
+    // variance σ² per texel below the bump map's resolution (render/material_model.h), for the
+    // modes that read it apart from the slope moments (which hold it in K_0): the highlight's α
+    // where K_b is left out, the sampled slopes of the reference and stochastic modes, toksvig and
+    // specular-aa. Without a map the variance is micro_roughness.
     std::array<float, 3> f0{1, 1, 1};
     TextureHandle* f0_map = nullptr;
     // The environment's diffuse weight (its mean radiance × c): the footprint model's `diffuse`;
     // 1 in the metallic-roughness model, whose lights' Lambert weight (desc.diffuse) is 1/π.
     float ambient_weight = 1;
-    // A slope variance σ² per texel below the bump map's resolution (a metallic-roughness
-    // material's roughness texture, render/material_model.h), for the modes that read it apart from
-    // the slope moments (which hold it in K_0): the sampled slopes and highlight of the reference
-    // and stochastic modes, toksvig and specular-aa. Null: micro_roughness throughout.
-    TextureHandle* micro_variance_map = nullptr;
 
     bool metallic_roughness() const {
         return desc.model == MaterialDesc::Model::metallic_roughness;
     }
-    // Slopes below the maps' resolution: micro-roughness, constant or per texel.
-    bool has_micro_slopes() const { return desc.micro_roughness > 0 || micro_variance_map; }
+    // Slopes below the maps' resolution: micro-roughness, constant or per texel (f0_map).
+    bool has_micro_slopes() const { return desc.micro_roughness > 0 || f0_map; }
 };
 
 struct RenderEnvironment {

@@ -191,21 +191,23 @@ std::optional<SurfacePoint> SampleShader::trace(const RayDifferential& ray, Vec2
     const Vec3 colour = desc.base_color;
     point.base = this->colour(material.base_color_map, {colour.x, colour.y, colour.z},
                               material.base_color_grey, coords, draws);
-    point.f0 = this->colour(material.f0_map, material.f0, false, coords, draws);
-    if (material.f0_map) {
-        for (float& f : point.f0) f = std::clamp(f, 0.0f, 1.0f);
-    }
+    read_f0(material, coords, draws, point);
+    const Sym2 micro =
+        material.micro_roughness + Sym2{point.micro_variance, 0, point.micro_variance};  // K_0 here
 
     // Bump: mean slope b and roughness K_b of the filtered region (spec §5.4).
     point.roughness = material.micro_roughness;
     if (material.bump) {
-        const SlopeStatistics stats = slopes(material, coords, draws);
+        const SlopeStatistics stats = slopes(material, coords, micro, draws);
         point.slope = stats.mean;
         point.roughness = stats.covariance;
     }
     point.highlight_alpha = desc.roughness * desc.roughness;
-    if (material.metallic_roughness()) point.highlight_alpha = 0;  // in K_b (material_model.h)
-    if (policy_.sample_micro_roughness) sample_micro_slopes(material, random, point);
+    if (material.metallic_roughness()) {
+        // Its own α is in K_b (material_model.h); where the mode leaves K_b out, the texel's.
+        point.highlight_alpha = policy_.roughness ? 0 : std::sqrt(2 * micro.xx);
+    }
+    if (policy_.sample_micro_roughness) sample_micro_slopes(material, micro, random, point);
     if (!policy_.roughness) point.roughness = Sym2{};
 
     // A frame is needed wherever there are slopes: a bump map or micro-roughness.
@@ -234,66 +236,70 @@ float channel_mean(const Rgb& rgb) {
 
 }  // namespace
 
-// The micro-roughness as a random slope, in the modes that sample slopes, where it is not in a
-// bump map's sampled moments already (stochastic's). A metallic-roughness material's tilts the
-// mirror only, its σ² becoming the highlight's α (SurfacePoint::micro_slope).
-void SampleShader::sample_micro_slopes(const RenderMaterial& material, Vec2d random,
-                                       SurfacePoint& point) {
+// The micro-roughness `micro` (σ² I) as a random slope, in the modes that sample slopes, where
+// it is not in a bump map's sampled moments already (stochastic's). A metallic-roughness
+// material's tilts the mirror only, its σ² being the highlight's α (SurfacePoint::micro_slope).
+void SampleShader::sample_micro_slopes(const RenderMaterial& material, const Sym2& micro,
+                                       Vec2d random, SurfacePoint& point) {
     const bool pbr = material.metallic_roughness();
     const bool sampled = material.bump && policy_.slopes == SlopeSource::sampled;
     if (!material.has_micro_slopes() || (sampled && !pbr)) return;
-    const float sigma = std::sqrt(micro_covariance(material, point.coords).xx);
+    const float sigma = std::sqrt(micro.xx);
     const Vec2d z = gaussian_pair(random.x, random.y);
     const Vec2 slope = sigma * Vec2{static_cast<float>(z.x), static_cast<float>(z.y)};
-    if (!pbr) {
+    if (pbr) {
+        point.micro_slope = slope;
+    } else {
         point.slope = point.slope + slope;
-        return;
     }
-    point.micro_slope = slope;
-    point.highlight_alpha = std::sqrt(2.0f) * sigma;
 }
 
-// c or F0: a material's constant × its texture (filtered as the mode filters).
-Rgb SampleShader::colour(TextureHandle* map, Rgb constant, bool grey, const TextureCoords& coords,
-                         RandomStream& random) {
-    if (!map) return constant;
+// A material map's texel at `coords`, filtered as the mode filters (out.size() channels).
+void SampleShader::read_map(TextureHandle* map, const TextureCoords& coords, RandomStream& random,
+                            std::span<float> out) {
     TextureCoords at = coords;
     if (policy_.stochastic) {
         const auto [width, height] = level0_size(map, [&] { return info_of(textures_, map); });
         at = stochastic_probe(coords, width, height, random);
     }
-    Rgb texel;
-    static_cast<void>(textures_.texture(map, at, policy_.lookup, texel, kMissing));
+    static_cast<void>(textures_.texture(map, at, policy_.lookup, out, kMissing));
     ++lookups;
+}
+
+// c: a material's colour × its texture.
+Rgb SampleShader::colour(TextureHandle* map, Rgb constant, bool grey, const TextureCoords& coords,
+                         RandomStream& random) {
+    if (!map) return constant;
+    Rgb texel;
+    read_map(map, coords, random, texel);
     if (grey) texel[1] = texel[2] = texel[0];
     for (int c = 0; c < 3; ++c) constant[c] *= texel[c];
     return constant;
 }
 
-// The slopes' covariance below the maps' resolution here: the material's micro-roughness, or its
-// per-texel σ² I filtered as the mode filters.
-Sym2 SampleShader::micro_covariance(const RenderMaterial& material, const TextureCoords& coords) {
-    if (!material.micro_variance_map) return material.micro_roughness;
-    float variance = 0;
-    static_cast<void>(textures_.texture(material.micro_variance_map, coords, policy_.lookup,
-                                        std::span<float>(&variance, 1), kMissing));
-    ++lookups;
-    variance = std::max(0.0f, variance);
-    return material.micro_roughness + Sym2{variance, 0, variance};
+// F0 and, from a textured metallic-roughness material's F0 map, the slope variance σ².
+void SampleShader::read_f0(const RenderMaterial& material, const TextureCoords& coords,
+                           RandomStream& random, SurfacePoint& point) {
+    point.f0 = material.f0;
+    if (!material.f0_map) return;
+    float texel[4];
+    read_map(material.f0_map, coords, random, texel);
+    for (int c = 0; c < 3; ++c) point.f0[c] = std::clamp(point.f0[c] * texel[c], 0.0f, 1.0f);
+    point.micro_variance = std::max(0.0f, texel[3]);
 }
 
 // b and K_b where the mode takes them from (SlopeSource).
 SlopeStatistics SampleShader::slopes(const RenderMaterial& material, const TextureCoords& coords,
-                                     RandomStream& random) {
+                                     const Sym2& micro, RandomStream& random) {
     switch (policy_.slopes) {
         case SlopeSource::moments:
             return read_moments(material, coords);
         case SlopeSource::toksvig:
-            return read_toksvig(material, coords);
+            return read_toksvig(material, coords, micro);
         case SlopeSource::screen_space:
-            return read_screen_space(material, coords);
+            return read_screen_space(material, coords, micro);
         case SlopeSource::sampled:
-            return read_sampled(material, coords, random);
+            return read_sampled(material, coords, micro, random);
     }
     return {};
 }
@@ -311,14 +317,14 @@ SlopeStatistics SampleShader::read_moments(const RenderMaterial& material,
 // Toksvig: the filtered unit normals' mean and length, plus the material's micro-roughness (the
 // artist's base roughness, which a map of unit normals cannot hold).
 SlopeStatistics SampleShader::read_toksvig(const RenderMaterial& material,
-                                           const TextureCoords& coords) {
+                                           const TextureCoords& coords, const Sym2& micro) {
     TextureHandle* normals = scene_.toksvig_normals(material);
     if (!normals) return read_moments(material, coords);  // no map to make them from
     float n[3];
     static_cast<void>(textures_.texture(normals, coords, policy_.lookup, n, kMissing));
     ++lookups;
     SlopeStatistics stats = toksvig_slopes(Vec3{n[0], n[1], n[2]});
-    stats.covariance = stats.covariance + micro_covariance(material, coords);
+    stats.covariance = stats.covariance + micro;
     return stats;
 }
 
@@ -326,10 +332,10 @@ SlopeStatistics SampleShader::read_toksvig(const RenderMaterial& material,
 // derivatives), K_b from their differences plus the material's micro-roughness. The bump map's
 // own K_b is not used: engines without a roughness pyramid do not have it.
 SlopeStatistics SampleShader::read_screen_space(const RenderMaterial& material,
-                                                const TextureCoords& coords) {
+                                                const TextureCoords& coords, const Sym2& micro) {
     const Vec2 b = read_moments(material, coords).mean;
     const auto [dx, dy] = slope_steps(material, coords, b);
-    return {b, screen_space_roughness(dx, dy) + micro_covariance(material, coords)};
+    return {b, screen_space_roughness(dx, dy) + micro};
 }
 
 // The filtered mean slope's change per pixel step in x and in y, as a GPU quad's derivatives
@@ -346,16 +352,16 @@ std::pair<Vec2, Vec2> SampleShader::slope_steps(const RenderMaterial& material,
 // Stochastic: the moments of a texel the filter picks, and one slope drawn from them (their
 // covariance holds the micro-roughness).
 SlopeStatistics SampleShader::read_sampled(const RenderMaterial& material,
-                                           const TextureCoords& coords, RandomStream& random) {
+                                           const TextureCoords& coords, const Sym2& micro,
+                                           RandomStream& random) {
     const auto [width, height] =
         level0_size(material.bump, [&] { return info_of(textures_, material.bump); });
     const TextureCoords probe = stochastic_probe(coords, width, height, random);
     SlopeStatistics moments = read_moments(material, probe);
     if (material.metallic_roughness()) {
         // The texel's own σ² is drawn apart (sample_micro_slopes()): the mirror's alone.
-        const Sym2 own = micro_covariance(material, probe);
         Sym2& k = moments.covariance;
-        k = {std::max(0.0f, k.xx - own.xx), k.xy - own.xy, std::max(0.0f, k.yy - own.yy)};
+        k = {std::max(0.0f, k.xx - micro.xx), k.xy - micro.xy, std::max(0.0f, k.yy - micro.yy)};
     }
     return {sample_slope(moments, random.gaussian()), Sym2{}};
 }

@@ -13,6 +13,7 @@
 #include <array>
 #include <functional>
 #include <optional>
+#include <span>
 #include <unordered_map>
 #include <utility>
 
@@ -62,7 +63,10 @@ struct SurfacePoint {
     // instead would take millions of samples to converge).
     Vec2 micro_slope;
     float highlight_alpha = 0;  // the microfacet highlight's α beyond K_b
-    bool bumped = false;        // a bump map or micro-roughness: the normal is perturbed in `frame`
+    // σ² of the slopes below the maps' resolution beyond micro_roughness: a textured
+    // metallic-roughness material's, from its F0 map (RenderMaterial::f0_map).
+    float micro_variance = 0;
+    bool bumped = false;  // a bump map or micro-roughness: the normal is perturbed in `frame`
     BumpFrameAtHit frame;
     // Facing the viewer (a surface seen from behind is shaded as its mirror image).
     Vec3 p, n, dndx, dndy;  // n any length, ∂n per pixel step
@@ -114,19 +118,26 @@ class SampleShader {
   private:
     void add_lights(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat, ShadingFactors& out) const;
     void add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat, ShadingFactors& out);
+    void read_map(TextureHandle* map, const TextureCoords& coords, RandomStream& random,
+                  std::span<float> out);
     Rgb colour(TextureHandle* map, Rgb constant, bool grey, const TextureCoords& coords,
                RandomStream& random);
-    Sym2 micro_covariance(const RenderMaterial& material, const TextureCoords& coords);
-    void sample_micro_slopes(const RenderMaterial& material, Vec2d random, SurfacePoint& point);
+    void read_f0(const RenderMaterial& material, const TextureCoords& coords, RandomStream& random,
+                 SurfacePoint& point);
+    void sample_micro_slopes(const RenderMaterial& material, const Sym2& micro, Vec2d random,
+                             SurfacePoint& point);
+    // b and K_b; `micro` = K_0 here (the micro-roughness), for the sources outside the moments.
     SlopeStatistics slopes(const RenderMaterial& material, const TextureCoords& coords,
-                           RandomStream& random);
+                           const Sym2& micro, RandomStream& random);
     SlopeStatistics read_moments(const RenderMaterial& material, const TextureCoords& coords);
-    SlopeStatistics read_toksvig(const RenderMaterial& material, const TextureCoords& coords);
-    SlopeStatistics read_screen_space(const RenderMaterial& material, const TextureCoords& coords);
+    SlopeStatistics read_toksvig(const RenderMaterial& material, const TextureCoords& coords,
+                                 const Sym2& micro);
+    SlopeStatistics read_screen_space(const RenderMaterial& material, const TextureCoords& coords,
+                                      const Sym2& micro);
     std::pair<Vec2, Vec2> slope_steps(const RenderMaterial& material, const TextureCoords& coords,
                                       Vec2 slope);
     SlopeStatistics read_sampled(const RenderMaterial& material, const TextureCoords& coords,
-                                 RandomStream& random);
+                                 const Sym2& micro, RandomStream& random);
     // Level 0's size of a map (cached: the texture system's info() takes a lock).
     std::pair<int, int> level0_size(const void* handle, const std::function<TextureInfo()>& info);
 

@@ -45,9 +45,10 @@ struct Material {
     vec4 main_direction;  // xyz; zero: ∂p/∂v; w: the bump map's mean slope b1
     vec4 roughness;       // micro-roughness K_0 = (xx, xy, yy) in xyz; w: mean slope b2
     ivec4 maps;  // the base colour map's u_maps index (−1: none) and layer, the bump map's
-    vec4 highlight;  // HIGHLIGHT_* (shading.glsl), microfacet α, unused, unused
+    vec4 highlight;  // HIGHLIGHT_* (shading.glsl), microfacet α, 1: metallic-roughness, unused
     vec4 f0;         // Schlick's F0 per channel (× the F0 map); w: the environment's diffuse weight
-    ivec4 f0_map;    // the F0 map's u_maps index (−1: none) and layer, unused, unused
+    ivec4 f0_map;    // the F0 map's u_maps index (−1: none; its alpha: the slope variance σ²)
+                     // and layer, unused, unused
 };
 
 struct Light {

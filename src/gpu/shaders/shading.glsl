@@ -222,9 +222,12 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
     if (material.maps.x >= 0)
         base *= lookup_2d(material.maps.x, material.maps.y, 1, st, dst, mode).a.rgb;
     vec3 f0 = material.f0.rgb;
-    if (material.f0_map.x >= 0)
-        f0 = clamp(f0 * lookup_2d(material.f0_map.x, material.f0_map.y, 1, st, dst, mode).a.rgb,
-                   0.0, 1.0);
+    float micro_variance = material.bump.w * material.bump.w;  // σ² of the micro-roughness
+    if (material.f0_map.x >= 0) {
+        vec4 texel = lookup_2d(material.f0_map.x, material.f0_map.y, 1, st, dst, mode).a;
+        f0 = clamp(f0 * texel.rgb, 0.0, 1.0);
+        micro_variance = max(0.0, texel.a);
+    }
 
     // Bump: the mean slope b and roughness K_b of the filtered region (spec §5.4).
     vec2 slope = vec2(0);
@@ -262,6 +265,9 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
     vec3 e1, e2;
     tangent_basis(n_hat, e1, e2);
     vec3 k_e = bumped && rough_mode ? covariance_in_frame(k_b, frame, e1, e2) : k_b;
+    // A metallic-roughness material's α is in K_b; where the mode leaves K_b out, its texel's.
+    float alpha = material.highlight.z > 0.0 ? (rough_mode ? 0.0 : sqrt(2.0 * micro_variance))
+                                             : material.highlight.y;
     for (int i = 0; i < u_light_count; ++i) {
         Light light = lights[i];
         vec3 l;
@@ -286,7 +292,7 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
         } else if (material.weights.y > 0.0) {  // f_r·cos_l, widened by K_b in the rough mode
             spec = material.weights.y * microfacet_highlight(highlight, n_hat, e1, e2, l, v_hat,
                                                              rough_mode ? k_e : vec3(0),
-                                                             material.highlight.y, f0);
+                                                             alpha, f0);
         }
         color += scale * light.color.rgb * (material.weights.x * cos_l * base + spec);
     }
