@@ -9,8 +9,8 @@
 #include "cli_options.h"
 #include "command_util.h"
 #include "demo_scenes.h"
-#include "number_format.h"
 #include "metrics/image_metrics.h"
+#include "number_format.h"
 #include "progress.h"
 #include "render/error_budget.h"
 #include "render/render_scene.h"
@@ -89,6 +89,7 @@ int run_error_budget_command(const EvalCommandOptions& options) {
         budget_options.spp = options.reference_spp;
         budget_options.threads = options.threads;
         budget_options.kappa = options.kappa;
+        budget_options.max_probes = options.max_probes;
         Progress bar(
             named.name + " budget",
             static_cast<std::uint64_t>(render_tile_count(scene.desc().width, scene.desc().height)),
@@ -142,7 +143,8 @@ int run_error_budget_command(const EvalCommandOptions& options) {
             const double share = removed(row, rows.front());
             std::snprintf(
                 line, sizeof line, "  %-16s %12s %12s %9s\n", row.term.c_str(),
-                format_number(row.rmse, "%.4g").c_str(), format_number(row.rmse_interior, "%.4g").c_str(),
+                format_number(row.rmse, "%.4g").c_str(),
+                format_number(row.rmse_interior, "%.4g").c_str(),
                 &row == &rows.front() ? "" : (format_number(100 * share, "%.1f") + " %").c_str());
             table += line;
             csv += named.name + "," + row.term + ",\"" + row.description + "\"," +

@@ -28,6 +28,7 @@
 #include "render_progress.h"
 #include "scene/scene_file.h"
 #include "scene/scene_hash.h"
+#include "texture/footprint_assembly.h"
 
 namespace footprint {
 
@@ -55,17 +56,16 @@ struct Timed {
 
 class Renderer {
   public:
-    Renderer(const RenderScene& scene, int threads, float kappa, bool progress)
-        : scene_(scene), threads_(threads), kappa_(kappa), progress_(progress) {}
+    // `base`: the threads and the filters' tuning (κ, N_max) of every render.
+    Renderer(const RenderScene& scene, const RenderOptions& base, bool progress)
+        : scene_(scene), base_(base), progress_(progress) {}
 
     Result<Timed> render_one(FilterMode mode, int spp, std::uint32_t seed, const std::string& label,
                              int frame = 0, int frame_count = 0) const {
-        RenderOptions options;
+        RenderOptions options = base_;
         options.filter = mode;
         options.spp = spp;
         options.seed = seed;
-        options.threads = threads_;
-        options.kappa = kappa_;
         options.frame = frame;
         options.frame_count = frame_count;
         RenderStats stats;
@@ -90,8 +90,7 @@ class Renderer {
 
   private:
     const RenderScene& scene_;
-    int threads_;
-    float kappa_;
+    RenderOptions base_;
     bool progress_;
 };
 
@@ -168,6 +167,8 @@ std::optional<std::string> option_problem(const EvalCommandOptions& options) {
         return problem;
     if (auto problem = range_problem("--threads", options.threads, 0, kMaxThreads, "0: all cores"))
         return problem;
+    if (auto problem = range_problem("--max-probes", options.max_probes, 1, kMaxProbeCount))
+        return problem;
     return kappa_problem(options.kappa);
 }
 
@@ -223,7 +224,11 @@ int run_eval_command(const EvalCommandOptions& options) {
         const SceneDesc& desc = scene.desc();
         const fs::path dir = options.out_dir / named.name;
         if (Status made = outputs.create_directories(dir); !made) return fail(made.error().message);
-        const Renderer renderer(scene, options.threads, options.kappa, show_progress);
+        RenderOptions base;
+        base.threads = options.threads;
+        base.kappa = options.kappa;
+        base.max_probes = options.max_probes;
+        const Renderer renderer(scene, base, show_progress);
         const std::string key = hash_hex(scene_content_hash(desc)) + "-v" +
                                 std::to_string(kReferenceVersion) + "-" +
                                 std::to_string(desc.width) + "x" + std::to_string(desc.height);

@@ -2,7 +2,7 @@
 // truth, with a visual report.
 //
 //   footprint eval [SCENE...] --out DIR [--size W] [--reference-spp N] [--spp-list 1,4,16,64]
-//                  [--filter-spp-list 1,4,16] [--peers] [--kappa K] [--frames N]
+//                  [--filter-spp-list 1,4,16] [--peers] [--kappa K] [--max-probes N] [--frames N]
 //                  [--flicker-reference-spp N] [--threads N] [--no-browser-check]
 //                  [--quiet]
 //   footprint eval --budget [SCENE...] --out DIR [--budget-filter MODE] ... (apps/eval_budget.h)
@@ -62,7 +62,8 @@ struct EvalCommandOptions {
     int frames = 8;                   // 0: no flicker measurement
     int flicker_reference_spp = 256;  // the reference sequence's samples per pixel
     int threads = 0;
-    float kappa = 2;  // κ of the filter modes' environment footprint (RenderOptions::kappa)
+    float kappa = 2;      // κ of the filter modes' environment footprint (RenderOptions::kappa)
+    int max_probes = 30;  // footprint assembly's N_max (RenderOptions::max_probes)
     // --peers: also the peers' modes (render/renderer.h: lean, toksvig, specular-aa, stochastic)
     // at every rate of filter_spp, family "peer".
     bool peers = false;

@@ -269,6 +269,11 @@ int run(int argc, char** argv) {
         ->add_option("--kappa", eval.kappa,
                      "κ of the filter modes' environment footprint, 0 to 16 (spec §2.6)")
         ->capture_default_str();
+    eval_cmd
+        ->add_option("--max-probes", eval.max_probes,
+                     "N_max of fa's and fa-rough's probe lines, 1 to 1024 (more anisotropy raises "
+                     "their level)")
+        ->capture_default_str();
     eval_cmd->add_flag("--peers", eval.peers,
                        "Also the peers' modes: lean, toksvig, specular-aa, stochastic "
                        "(docs/rendering.md#peers)");

@@ -335,6 +335,7 @@ class BudgetPixel {
         r.filter = mode;
         r.spp = spp;
         r.kappa = options.kappa;
+        r.max_probes = options.max_probes;
         r.seed = options.seed;
         return r;
     }

@@ -83,6 +83,7 @@ struct ErrorBudgetOptions {
     int spp = 1024;                            // the reference's samples per pixel
     int threads = 0;                           // 0: all cores
     float kappa = 2;                           // κ of the environment footprint
+    int max_probes = 30;                       // RenderOptions::max_probes
     std::uint32_t seed = 1;                    // the reference's samples (RenderOptions::seed)
 };
 

@@ -102,6 +102,9 @@ struct RenderOptions {
     int spp = 1;      // samples per pixel, ≥ 1 (the reference's default is set by the caller)
     int threads = 0;  // 0: all cores
     float kappa = 2;  // κ of the environment footprint (spec §2.6)
+    // N_max of footprint assembly's probe lines in fa, fa-rough and the budget's hybrids (1 …
+    // kMaxProbeCount; LookupOptions::max_probes): more anisotropy raises the probes' level.
+    int max_probes = 30;
     // The sample positions and random numbers of every pixel are a hash of (pixel, sample, seed):
     // renders with different seeds have independent samples.
     std::uint32_t seed = 1;

@@ -266,6 +266,26 @@ TEST(Renderer, FilteredModesApproachTheReference) {
     EXPECT_LT(fa_rough, fa) << fa_rough << " vs fa " << fa;
 }
 
+// RenderOptions::max_probes is footprint assembly's N_max in fa and fa-rough: one probe per lookup
+// blurs the grazing floor, the default 30 do not, and the peers' GPU-style filter keeps its own.
+TEST(Renderer, MaxProbesBoundsFootprintAssemblysProbeLines) {
+    Result<RenderScene> scene = prepare_render_scene(busy_scene());
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    RenderOptions options;
+    for (FilterMode mode : {FilterMode::fa, FilterMode::fa_rough, FilterMode::lean}) {
+        options.filter = mode;
+        options.max_probes = 30;
+        const Image many = render(*scene, options);
+        options.max_probes = 1;
+        const Image one = render(*scene, options);
+        if (mode == FilterMode::lean) {
+            EXPECT_EQ(one.pixels, many.pixels);
+        } else {
+            EXPECT_GT(rmse(one, many), 1e-3) << filter_mode_name(mode);
+        }
+    }
+}
+
 TEST(Renderer, FilterModeNamesRoundTrip) {
     ASSERT_EQ(all_filter_modes().size(), std::size(kAllModes));
     for (FilterMode mode : kAllModes) {

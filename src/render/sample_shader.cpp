@@ -14,6 +14,7 @@
 #include "shading/blinn_phong.h"
 #include "shading/fresnel.h"
 #include "shading/microfacet.h"
+#include "texture/footprint_assembly.h"
 
 namespace footprint::detail {
 
@@ -140,7 +141,12 @@ SampleShader::SampleShader(const RenderScene& scene, const RenderOptions& option
     : scene_(scene),
       textures_(scene.textures()),
       options_(options),
-      policy_(policy_of(options.filter)) {}
+      policy_(policy_of(options.filter)) {
+    // footprint's own footprint assembly (the peers' GPU-style filter keeps its 16).
+    if (policy_.lookup.filter == TextureFilter::footprint_assembly &&
+        policy_.lookup.probe_rule == ProbeRule::gaussian)
+        policy_.lookup.max_probes = std::clamp(options.max_probes, 1, kMaxProbeCount);
+}
 
 Rgb SampleShader::background(const RayDifferential& ray) {
     const RenderEnvironment* env = scene_.environment();
