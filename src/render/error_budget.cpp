@@ -142,7 +142,7 @@ struct SampleSums {
             fresnel[c] += f.fresnel[c];
         }
         // The directions weighted by the channels' mean Fresnel.
-        const float weight = (f.fresnel[0] + f.fresnel[1] + f.fresnel[2]) / 3;
+        const float weight = detail::channel_mean(f.fresnel);
         slope[0] += p.slope.x, slope[1] += p.slope.y;
         slope2[0] += double(p.slope.x) * p.slope.x, slope2[1] += double(p.slope.x) * p.slope.y;
         slope2[2] += double(p.slope.y) * p.slope.y;

@@ -234,7 +234,8 @@ Result<BumpHandle*> stored_bump_map(const BumpDesc& bump, Sym2 micro_roughness,
 // (prepare_metallic_roughness()); `variance`: a per-texel slope variance (keyed `variance_key`)
 // for the bump pyramid's K_0, or empty.
 Result<RenderMaterial> prepare_material(const MaterialDesc& desc, SceneMaps& maps,
-                                        const Image& variance, const std::string& variance_key) {
+                                        const Image& variance = {},
+                                        const std::string& variance_key = {}) {
     RenderMaterial material;
     material.desc = desc;
     material.f0 = {desc.fresnel_f0, desc.fresnel_f0, desc.fresnel_f0};
@@ -266,10 +267,6 @@ Result<RenderMaterial> prepare_material(const MaterialDesc& desc, SceneMaps& map
         material.bump = *bump;
     }
     return material;
-}
-
-Result<RenderMaterial> prepare_material(const MaterialDesc& desc, SceneMaps& maps) {
-    return prepare_material(desc, maps, {}, {});
 }
 
 // A metallic-roughness material (render/material_model.h) in the footprint model's terms:

@@ -232,16 +232,6 @@ std::optional<SurfacePoint> SampleShader::trace(const RayDifferential& ray, Vec2
     return point;
 }
 
-namespace {
-
-// The mean of three channels; exactly their value where they are equal (a grey F0).
-float channel_mean(const Rgb& rgb) {
-    if (rgb[0] == rgb[1] && rgb[1] == rgb[2]) return rgb[0];
-    return (rgb[0] + rgb[1] + rgb[2]) / 3;
-}
-
-}  // namespace
-
 // The micro-roughness `micro` (σ² I) as a random slope, in the modes that sample slopes, where
 // it is not in a bump map's sampled moments already (stochastic's). A metallic-roughness
 // material's tilts the mirror only, its σ² being the highlight's α (SurfacePoint::micro_slope).

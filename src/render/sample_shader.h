@@ -98,6 +98,13 @@ inline Rgb combine(const ShadingFactors& f) {
     return out;
 }
 
+// The mean of three channels; exactly their value where they are equal (a grey F0): the one F0
+// that steers the Fresnel-weighted slopes, and the weight of a sample's reflected direction.
+inline float channel_mean(const Rgb& rgb) {
+    if (rgb[0] == rgb[1] && rgb[1] == rgb[2]) return rgb[0];
+    return (rgb[0] + rgb[1] + rgb[2]) / 3;
+}
+
 class SampleShader {
   public:
     SampleShader(const RenderScene& scene, const RenderOptions& options);
