@@ -21,6 +21,13 @@
 
 namespace footprint::env_route {
 
+// The anisotropy EWA allows a lat-long footprint beyond footprint assembly's probe budget
+// (LookupOptions::ewa_beyond_probes). Such footprints are longer than ~15 times their probes' size
+// by definition, so the texture filters' 16:1 would give back most of the blur the fallback
+// removes; 64:1 keeps the mirror cylinder's 36:1 reflections sharp (docs/performance.md) and bounds
+// a lookup to about 3 600 texels.
+constexpr float kEwaBeyondProbesAnisotropy = 64;
+
 // Probe placement on the sphere for the curved layouts (lat-long, sphere, paraboloid): a probe
 // offset o (level-0 texels, along r1) is taken back to the tangent plane at r̂ through the inverse
 // of the tangent Jacobian J_t = S·J_P·[e1 e2] and placed at the direction r̂ + J_t⁻¹o (the gnomonic
@@ -183,10 +190,22 @@ template <class Map>
         map.layout() == EnvLayout::sphere
             ? sphere_probe_limit(map, footprint.map_direction, options.max_probes)
             : options.max_probes;
-    return lookup_plan(map, footprint,
-                       plan_probes(e, options.probe_rule, max_probes, centre.max_level(),
-                                   options.lod_bias, options.isotropic_ratio),
-                       options, out, defer);
+    const ProbePlan plan = plan_probes(e, options.probe_rule, max_probes, centre.max_level(),
+                                       options.lod_bias, options.isotropic_ratio);
+    if (options.ewa_beyond_probes && map.layout() == EnvLayout::latlong &&
+        exceeds_probe_budget(plan, e)) {
+        LookupOptions ewa = options;
+        ewa.filter = TextureFilter::ewa;
+        ewa.max_anisotropy = kEwaBeyondProbesAnisotropy;
+        // Larger than four maps is the map's mean whatever its size: bounded, as the GPU bounds it.
+        const float limit = 4.0f * std::max(size.x, size.y);
+        e.major_radius = std::min(e.major_radius, limit);
+        e.minor_radius = std::min(e.minor_radius, limit);
+        e.matrix = e.from_axes();
+        texture_route::lookup_ellipse(centre, c.s, c.t, e, ewa, out);  // the centre face only
+        return false;
+    }
+    return lookup_plan(map, footprint, plan, options, out, defer);
 }
 
 // Footprint assembly of a planned line (general_lookup()'s, or the batch's short_plans4()):

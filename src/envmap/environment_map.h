@@ -22,7 +22,12 @@
 // none on the conformal paraboloid, but without bound towards the sphere map's rim, where a round
 // footprint is 2/(1 + r̂_z):1 (6.7:1 at r̂_z = −0.7, 67:1 at −0.97). A sphere-map line may therefore
 // take N_max times the map's distortion at its centre (the ratio of the singular values of its
-// Jacobian), up to 1 024 probes, instead of raising its lod and blurring across the rim.
+// Jacobian), up to 1 024 probes, instead of raising its lod and blurring across the rim. Where a
+// lat-long footprint needs more probes than N_max, LookupOptions::ewa_beyond_probes filters it by
+// EWA on the map (up to 64:1) instead of raising the probes' level, which blurs its minor axis.
+// Only there: EWA is an ellipse in the face's (s, t), which cannot follow a cube's or a
+// paraboloid's line onto the next face (measured worse than the raised level on the paraboloid
+// near its equator), nor the sphere map's rim.
 //
 // Lat-long polar caps (beyond the spec's §3.4). Towards a pole a lat-long texel shrinks to nothing
 // in s, a footprint there is 1/sin θ long in s (Rule B needs that many probes, and its probe budget

@@ -172,6 +172,12 @@ void GpuRenderer::Impl::set_frame_uniforms(const CameraDesc& camera, int width, 
         glUniform2f(uniform("u_env_texel_scale"), s.x, s.y);
         glUniform1i(uniform("u_env_caps"), gpu.has_caps ? 1 : 0);
         glUniform3f(uniform("u_env_mean"), env->mean[0], env->mean[1], env->mean[2]);
+        constexpr int kMaxEnvLevels = 16;  // environment.glsl's
+        std::array<float, kMaxEnvLevels> prefilter{};
+        for (std::size_t l = 0; l < gpu.env_prefilter.size(); ++l)
+            prefilter[std::min<std::size_t>(l, kMaxEnvLevels - 1)] = gpu.env_prefilter[l];
+        glUniform1fv(uniform("u_env_prefilter"), kMaxEnvLevels, prefilter.data());
+        glUniform2i(uniform("u_env_wrap"), gpu.env_repeat[0] ? 1 : 0, gpu.env_repeat[1] ? 1 : 0);
     }
 }
 

@@ -179,6 +179,12 @@ Status upload_environment(const RenderScene& scene, GpuScene& gpu, float anisotr
     std::vector<const MipPyramid*> faces;
     for (int f = 0; f < map.face_count(); ++f) faces.push_back(&map.face(f));
     gpu.env_map = upload_maps(faces, 1, anisotropy);
+    const MipPyramid& face = map.face(0);
+    for (int l = 0; l < face.level_count(); ++l) {
+        const Vec2 v = face.prefilter_variance(l);
+        gpu.env_prefilter.push_back(std::max(v.x, v.y));
+    }
+    gpu.env_repeat = {face.wrap_s() == WrapMode::repeat, face.wrap_t() == WrapMode::repeat};
     if (map.polar_cap(0)) {
         gpu.caps = upload_maps({map.polar_cap(0), map.polar_cap(1)}, 1, 1);
         gpu.has_caps = true;

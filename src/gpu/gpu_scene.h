@@ -77,6 +77,10 @@ struct GpuScene {
     EnvLayout layout = EnvLayout::latlong;
     MapTexture env_map;  // lat-long, sphere, paraboloid (layer 0 front, 1 back)
     MapTexture caps;     // lat-long: the polar caps (layer 0 +Y, 1 −Y)
+    // env_map's per-level prefilter variance (level-0 texels², MipPyramid::prefilter_variance) and
+    // whether it repeats in s and t: what EWA beyond the probe budget reads (environment.glsl).
+    std::vector<float> env_prefilter;
+    std::array<bool, 2> env_repeat{false, false};
     bool has_caps = false;
     Texture cube;
     Sampler cube_sampler;

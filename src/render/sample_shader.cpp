@@ -105,10 +105,12 @@ ModePolicy policy_of(FilterMode mode) {
             break;
         case FilterMode::fa:
             policy.lookup.filter = TextureFilter::footprint_assembly;
+            policy.lookup.ewa_beyond_probes = true;
             break;
         case FilterMode::fa_rough:
             policy.roughness = policy.fresnel_over_slopes = true;
             policy.lookup.filter = TextureFilter::footprint_assembly;
+            policy.lookup.ewa_beyond_probes = true;
             break;
         case FilterMode::ewa_rough:
             policy.roughness = policy.fresnel_over_slopes = true;

@@ -22,6 +22,8 @@
 // log2(λ1/N).
 #pragma once
 
+#include <algorithm>
+
 #include <footprint/math/footprint_ellipse.h>
 #include <footprint/texture/texture_lookup.h>
 
@@ -92,5 +94,11 @@ inline LodBlend effective_lod_blend(const ProbePlan& plan, LodBlend blend) {
 // pyramid's coarsest level. lod_bias is added before clamping.
 ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max_probes,
                       int max_level, float lod_bias = 0, float isotropic_ratio = kIsotropicRatio);
+
+// Whether `plan`, for footprint `e`, had to raise its probes' level because the line would have
+// needed more than its max_probes (the clamped anisotropy that blurs the minor axis).
+inline bool exceeds_probe_budget(const ProbePlan& plan, const FootprintEllipse& e) {
+    return plan.count > 1 && plan.texel_size > 1.0001f * std::max(e.minor_radius, 1.0f);
+}
 
 }  // namespace footprint

@@ -79,6 +79,10 @@ struct LookupOptions {
     // 1, is Rule B exactly (spec §2.8); what 1.25 gains and costs: footprint-bench env
     // --isotropic-ratio 1.25 (docs/performance.md).
     float isotropic_ratio = 1.0f;
+    // Footprint assembly of a lat-long environment map: a footprint more anisotropic than
+    // max_probes probes can cover is filtered by EWA instead of raising the probes' level
+    // (environment_map.h). Off: spec §2.8's rule. The renderer's fa modes turn it on.
+    bool ewa_beyond_probes = false;
 };
 
 // Where and how large a lookup is: position and derivatives in normalised units (see above).

@@ -19,6 +19,9 @@ uniform mat3 u_env_rotation;   // A: world → map
 uniform vec2 u_env_texel_scale;  // S = (W0, H0) of level 0 (a cube face's size for both)
 uniform int u_env_caps;        // 1: the lat-long map has polar caps
 uniform vec3 u_env_mean;       // the map's mean colour (ambient light)
+const int kMaxEnvLevels = 16;
+uniform float u_env_prefilter[kMaxEnvLevels];  // each level's prefilter variance (level-0 texels²)
+uniform ivec2 u_env_wrap;  // the map's wrap in s and t: 1 repeat, 0 clamp
 uniform samplerCube u_env_cube;  // the lat-long map and its caps are u_maps[MAP_ENV], [MAP_CAPS]
 
 // Where a direction lands on the map and the Jacobian J_P = ∂(s,t)/∂r there (rows ds, dt).
@@ -494,6 +497,74 @@ vec3 env_line(EnvFootprint f, Plan plan) {
     return sum / weights;
 }
 
+// ---- EWA on the lat-long map (texture/ewa.h's filter_ewa()): where footprint assembly would need
+// more probes than its budget. A truncated Gaussian of covariance K/4 less the level's prefilter,
+// summed texel by texel over the exact span of the truncation ellipse, on the two levels around
+// log2(λ2) − 1.5, the anisotropy clamped to 64 by growing the minor axis
+// (env_lookup_general.h's kEwaBeyondProbesAnisotropy).
+const float kEwaBeyondProbesAnisotropy = 64.0;
+
+int ewa_wrap(int i, int n, int repeat) {
+    if (i >= 0 && i < n) return i;
+    return repeat == 1 ? ((i % n) + n) % n : clamp(i, 0, n - 1);
+}
+
+vec3 env_ewa_level(int face, int level, vec2 st, Ellipse e) {
+    // The level's size as the CPU's pyramid halves it (textureSize() on this array gave level 0's).
+    vec2 level0 = map_size(MAP_ENV);
+    ivec2 size = max(ivec2(1), ivec2(level0) >> level);
+    float tx = level0.x / float(size.x), ty = level0.y / float(size.y);
+    float shrink = u_env_prefilter[min(level, kMaxEnvLevels - 1)] + 1.0 / 12.0;
+    float floor_variance = 0.36 * max(tx, ty) * max(tx, ty);  // (kEwaMinSigma·T)²
+    float major = max(0.25 * e.l1 * e.l1 - shrink, floor_variance);
+    float minor = max(0.25 * e.l2 * e.l2 - shrink, floor_variance);
+    vec2 a = e.r1, b = vec2(-e.r1.y, e.r1.x);
+    vec3 sigma = vec3(major * a.x * a.x + minor * b.x * b.x, major * a.x * a.y + minor * b.x * b.y,
+                      major * a.y * a.y + minor * b.y * b.y);
+    // In this level's texels, enlarged so that the truncated Gaussian keeps covariance Σ.
+    float c = exp(-4.5);
+    float keep = (2.0 - 11.0 * c - c * 81.0 / 4.0) / (2.0 * ((1.0 - c) - 4.5 * c));
+    sigma = vec3(sigma.x / (tx * tx), sigma.y / (tx * ty), sigma.z / (ty * ty)) / keep;
+    float det = sigma.x * sigma.z - sigma.y * sigma.y;
+    vec3 q = vec3(sigma.z, -sigma.y, sigma.x) / det;  // Σ'⁻¹
+    float cx = st.x * float(size.x) - 0.5, cy = st.y * float(size.y) - 0.5;
+    float half_h = 3.0 * sqrt(sigma.z);
+    vec3 sum = vec3(0);
+    float weights = 0.0;
+    for (int y = int(ceil(cy - half_h)); y <= int(floor(cy + half_h)); ++y) {
+        float dy = float(y) - cy;
+        float by = q.y * dy;
+        float disc = by * by - q.x * (q.z * dy * dy - 9.0);
+        if (disc <= 0.0) continue;
+        float root = sqrt(disc);
+        int wy = ewa_wrap(y, size.y, u_env_wrap.y);
+        for (int x = int(ceil(cx + (-by - root) / q.x)); x <= int(floor(cx + (-by + root) / q.x));
+             ++x) {
+            float dx = float(x) - cx;
+            float r2 = q.x * dx * dx + 2.0 * q.y * dx * dy + q.z * dy * dy;
+            if (r2 >= 9.0) continue;
+            float w = exp(-0.5 * r2) - c;
+            sum += w * texelFetch(u_maps[MAP_ENV], ivec3(ewa_wrap(x, size.x, u_env_wrap.x), wy, face),
+                                  level).rgb;
+            weights += w;
+        }
+    }
+    if (!(weights > 0.0)) return sample_lod(MAP_ENV, vec3(st, face), float(level)).rgb;
+    return sum / weights;
+}
+
+vec3 env_ewa(int face, vec2 st, Ellipse e, int max_level) {
+    if (e.l1 <= 1.0) return sample_lod(MAP_ENV, vec3(st, face), 0.0).rgb;
+    if (e.l2 * kEwaBeyondProbesAnisotropy < e.l1) e.l2 = e.l1 / kEwaBeyondProbesAnisotropy;
+    float lod = clamp(log2(max(e.l2, 1e-30)) - 1.5, 0.0, float(max_level));
+    int l0 = int(lod);
+    float w = l0 < max_level ? lod - float(l0) : 0.0;
+    vec3 out_c = vec3(0);
+    if (w < 1.0) out_c += (1.0 - w) * env_ewa_level(face, l0, st, e);
+    if (w > 0.0) out_c += w * env_ewa_level(face, l0 + 1, st, e);
+    return out_c;
+}
+
 // The environment filtered over footprint f in `mode` (trilinear, fa, fa-rough, hw-aniso);
 // latlong_trace: tr K of a form (b) footprint (0 for form (a)), which decides whether a cap takes a
 // fallback footprint.
@@ -516,7 +587,7 @@ vec3 env_lookup(EnvFootprint f, int mode, float latlong_trace) {
     e.l2 = min(e.l2, limit);
     Plan plan;
     if (mode == MODE_TRILINEAR) {
-        plan = Plan(1, vec2(0), clamp(log2(max(e.l1, 1e-30)), 0.0, float(max_level)), 0.0);
+        plan = Plan(1, vec2(0), clamp(log2(max(e.l1, 1e-30)), 0.0, float(max_level)), 0.0, e.l1);
     } else {
         // Towards the sphere map's rim the map adds up to 67:1 of its own anisotropy: a line
         // there may take N_max × its distortion (environment_map.cpp's sphere_probe_limit).
@@ -528,6 +599,10 @@ vec3 env_lookup(EnvFootprint f, int mode, float latlong_trace) {
                                      float(gaussian_spacing.length() - 1)));
         }
         plan = plan_probes(e, max_probes, max_level);
+        // Beyond the probe budget on a lat-long map: EWA (LookupOptions::ewa_beyond_probes, the
+        // fa modes' setting); the other layouts keep the raised level.
+        if (u_env_layout == ENV_LATLONG && exceeds_probe_budget(plan, e))
+            return env_ewa(f.point.face, f.point.st, e, max_level);
     }
     // Trilinear filters the centre face alone, its taps wrapped or clamped as the pyramid's
     // (environment_map.cpp's general_lookup() → texture_lookup()).

@@ -103,6 +103,7 @@ struct Plan {
     vec2 step;     // level-0 texels between neighbouring probes, along r1
     float lod;     // the probes' level (a hardware lod: the blend is already applied)
     float falloff; // a: weights ∝ exp(−½(a·k)²), k = i − (N−1)/2
+    float texel_size;  // T_p, raised where the line needed more than max_probes probes
 };
 
 const float kGaussianProbeExtent = 2.0;
@@ -115,7 +116,8 @@ float probe_lod(float texel_size, int max_level) {
 Plan plan_probes(Ellipse e, int max_probes, int max_level) {
     float l1 = e.l1, tp = max(e.l2, 1.0);
     if (l1 <= tp * kIsotropicRatio)  // one probe of size √(λ1 T_p)
-        return Plan(1, vec2(0), probe_lod(sqrt(tp * max(l1, 1.0)), max_level), 0.0);
+        return Plan(1, vec2(0), probe_lod(sqrt(tp * max(l1, 1.0)), max_level), 0.0,
+                    sqrt(tp * max(l1, 1.0)));
     float sigma = 0.5 * sqrt(l1 * l1 - tp * tp);
     int n = 2;
     if (!(sigma * gaussian_spacing[2] <= tp)) {
@@ -125,7 +127,8 @@ Plan plan_probes(Ellipse e, int max_probes, int max_level) {
     }
     if (n >= max_probes) {
         n = max(2, max_probes);
-        if (max_probes == 1) return Plan(1, vec2(0), probe_lod(max(tp, l1), max_level), 0.0);
+        if (max_probes == 1)
+            return Plan(1, vec2(0), probe_lod(max(tp, l1), max_level), 0.0, max(tp, l1));
         // Raise T_p until the spacing closes the gaps.
         float c = gaussian_spacing[n];
         tp = max(tp, l1 * 0.5 * c / sqrt(1.0 + 0.25 * c * c));
@@ -133,7 +136,13 @@ Plan plan_probes(Ellipse e, int max_probes, int max_level) {
     }
     float lod = variance_matched_lod(probe_lod(tp, max_level), max_level);
     return Plan(n, (sigma * gaussian_spacing[n]) * e.r1, lod,
-                2.0 * kGaussianProbeExtent / float(n - 1));
+                2.0 * kGaussianProbeExtent / float(n - 1), tp);
+}
+
+// Whether `plan` raised its probes' level because the line needed more than its max_probes
+// (texture/footprint_assembly.h's exceeds_probe_budget()).
+bool exceeds_probe_budget(Plan plan, Ellipse e) {
+    return plan.count > 1 && plan.texel_size > 1.0001 * max(e.l2, 1.0);
 }
 
 // Probe i's offset from the centre (level-0 texels) and weight.
