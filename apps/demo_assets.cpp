@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "math/sample_patterns.h"
+#include "scene/terrain.h"
 
 namespace footprint {
 
@@ -524,6 +525,56 @@ Image make_secret_writing_texture(int size) {
                 }
             }
             store(image, x, y, c);
+        }
+    }
+    return image;
+}
+
+Image make_topographic_texture(const TerrainShape& terrain, double contour, int size) {
+    size = std::max(size, 16);
+    const std::vector<double> h = terrain_heights(terrain);
+    const int n = static_cast<int>(std::lround(std::sqrt(static_cast<double>(h.size()))));
+    const auto [low, high] = std::minmax_element(h.begin(), h.end());
+    const double range = std::max(*high - *low, 1e-12);
+    // The height at (x, y) in texels of the texture, bilinear between the samples.
+    auto height = [&](double x, double y) {
+        const double i = std::clamp(x / size * (n - 1), 0.0, n - 1.0);
+        const double j = std::clamp(y / size * (n - 1), 0.0, n - 1.0);
+        const int i0 = std::min(static_cast<int>(i), n - 2),
+                  j0 = std::min(static_cast<int>(j), n - 2);
+        const double fi = i - i0, fj = j - j0;
+        auto at = [&](int a, int b) { return h[static_cast<std::size_t>(b) * n + a]; };
+        return (1 - fj) * ((1 - fi) * at(i0, j0) + fi * at(i0 + 1, j0)) +
+               fj * ((1 - fi) * at(i0, j0 + 1) + fi * at(i0 + 1, j0 + 1));
+    };
+    struct Stop {
+        double at;
+        std::array<float, 3> colour;
+    };
+    static constexpr Stop ramp[] = {{0.0, {0.16f, 0.32f, 0.10f}},
+                                    {0.35, {0.34f, 0.44f, 0.16f}},
+                                    {0.6, {0.45f, 0.35f, 0.24f}},
+                                    {0.8, {0.50f, 0.49f, 0.47f}},
+                                    {1.0, {0.92f, 0.93f, 0.95f}}};
+    Image image(size, size, 3);
+    for (int y = 0; y < size; ++y) {
+        for (int x = 0; x < size; ++x) {
+            const double px = x + 0.5, py = y + 0.5, value = height(px, py);
+            const double a = (value - *low) / range;
+            std::size_t k = 1;
+            while (k + 1 < std::size(ramp) && a > ramp[k].at) ++k;
+            const double w =
+                std::clamp((a - ramp[k - 1].at) / (ramp[k].at - ramp[k - 1].at), 0.0, 1.0);
+            // Distance to the nearest contour in texels: its height distance over the slope.
+            const double slope = std::hypot(height(px + 0.5, py) - height(px - 0.5, py),
+                                            height(px, py + 0.5) - height(px, py - 0.5));
+            const double to_line =
+                std::abs(value / contour - std::round(value / contour)) * contour;
+            const double line = std::clamp(1 - to_line / std::max(slope, 1e-12) / 0.75, 0.0, 1.0);
+            for (int c = 0; c < 3; ++c) {
+                const double colour = (1 - w) * ramp[k - 1].colour[c] + w * ramp[k].colour[c];
+                image.at(x, y, c) = static_cast<float>(colour * (1 - 0.7 * line));
+            }
         }
     }
     return image;

@@ -15,6 +15,7 @@
 //     make_brushed_metal_height_map   grooves along u plus a few scratches
 //   textures (RGB, values in [0, 1]):
 //     make_secret_writing_texture  stretched text, texture paper Fig. 1/2 ("secret writing")
+//     make_topographic_texture     a terrain's heights as colours with contour lines
 //
 // Height units: a height map's values are dimensionless, in [−1, 1]; the surface height is
 // value × HeightMapOptions::height_scale (bump/slope_map.h), the "strength" of the bumps, in the
@@ -23,6 +24,7 @@
 
 #include "image/image.h"
 #include "math/vec3.h"
+#include "scene/scene.h"
 
 namespace footprint {
 
@@ -109,5 +111,12 @@ Image make_brushed_metal_height_map(int size = 512);
 // 0.72) with faint blue ruled lines under each line of text, ink dark blue-black (one line in
 // five red); mean luminance ≈ 0.67.
 Image make_secret_writing_texture(int size = 1024);
+
+// A topographic map of `terrain` (scene/terrain.h) for its uv: colour by height (green lowlands,
+// brown slopes, grey rock, white peaks, over the terrain's own range) and a dark contour line every
+// `contour` world units of height, about 1.5 texels wide at any slope — thin lines that crowd where
+// the terrain is steep, the detail a filter must keep from aliasing towards the horizon.
+// size × size RGB (size ≥ 16), rows along +z as the terrain's uv.
+Image make_topographic_texture(const TerrainShape& terrain, double contour, int size = 1024);
 
 }  // namespace footprint

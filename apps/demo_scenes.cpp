@@ -208,6 +208,39 @@ DemoScene brushed_sphere(const DemoSceneOptions& options) {
     return demo;
 }
 
+DemoScene terrain(const DemoSceneOptions& options) {
+    DemoScene demo{"terrain",
+                   "fractal terrain with a topographic map's contour lines, and a lake",
+                   "terrain and its texture generated, ",
+                   {}};
+    SceneDesc& scene = demo.scene = base_scene(options);
+    scene.camera = {{0, 3, 16}, {0, 0.5, 0}, {0, 1, 0}, 45};
+    scene.environment = daylight_environment(options, demo.assets);
+    scene.environment->rotation_deg = {0, 180, 0};  // the sun behind the camera, out of the lake
+    scene.lights.push_back({LightType::directional, {-0.5, -0.6, -0.4}, {}, {0.8f, 0.75f, 0.65f}});
+    TerrainShape land;
+    land.size = {60, 60};
+    land.subdivisions = 9;
+    land.roughness = 0.85;
+    land.height = 5;
+    land.seed = 11;
+    MaterialDesc ground;
+    ground.specular = 0.05f;
+    ground.base_color_map =
+        generated(make_topographic_texture(land, 0.25, 2048), "generated topographic map");
+    scene.objects.push_back({"land", land, ground});
+    PlaneShape lake;
+    lake.center = {0, -0.5, 0};
+    lake.size = {60, 60};
+    MaterialDesc water = mirror(0.02f);
+    water.diffuse = 0.05f;
+    water.base_color = {0.05f, 0.1f, 0.12f};
+    water.micro_roughness = 0.01f;
+    scene.objects.push_back({"lake", lake, water});
+    add_camera_move(scene, {0.3, 0, 0}, {0.3, 0, 0});
+    return demo;
+}
+
 }  // namespace
 
 fs::path DemoSceneOptions::default_demo_data_dir() {
@@ -221,7 +254,8 @@ fs::path DemoSceneOptions::default_demo_assets_dir() {
 
 const std::vector<std::string>& demo_scene_names() {
     static const std::vector<std::string> names = {
-        "cylinder", "parabolic_mirror", "water", "bump_plate", "secret_writing", "brushed_sphere"};
+        "cylinder",       "parabolic_mirror", "water",  "bump_plate",
+        "secret_writing", "brushed_sphere",   "terrain"};
     return names;
 }
 
@@ -232,6 +266,7 @@ Result<DemoScene> make_demo_scene(const std::string& name, const DemoSceneOption
     if (name == "bump_plate") return bump_plate(options);
     if (name == "secret_writing") return secret_writing(options);
     if (name == "brushed_sphere") return brushed_sphere(options);
+    if (name == "terrain") return terrain(options);
     std::string valid;
     for (const std::string& n : demo_scene_names()) valid += (valid.empty() ? "" : ", ") + n;
     return Error{"unknown demo scene '" + name + "' (valid: " + valid + ")"};

@@ -14,6 +14,9 @@
 //                     blurs the writing away, footprint assembly keeps it legible)
 //   brushed_sphere    a brushed-metal sphere: anisotropic roughness stretches the highlights
 //                     and the reflections across the grooves
+//   terrain           a fractal terrain (the lecture's "Fractal landscapes", scene/terrain.h)
+//                     wearing its own topographic map, contour lines crowding towards the
+//                     horizon, around a lake that mirrors the sky
 // Each scene also has a short camera_path (a dolly, truck or pan over a fraction of a unit) for
 // temporal-stability measurements. Assets come from apps/demo_assets.h (generated in code) and
 // from real files (an HDR environment, a normal map), looked up in the data folder and then in

@@ -190,7 +190,7 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     scene_demo_cmd->add_option("--scene", scene_demo.scenes,
                                "Scenes to render (default: all): cylinder parabolic_mirror water "
-                               "bump_plate secret_writing brushed_sphere");
+                               "bump_plate secret_writing brushed_sphere terrain");
     scene_demo_cmd
         ->add_option("--size", scene_demo.width,
                      footprint::width_help("Image width in pixels", footprint::kDemoWidths))

@@ -408,7 +408,7 @@ Result<GpuScene> upload_scene(const RenderScene& scene) {
         // Meshes are drawn by upload_meshes()'s buffers; an invalid shape never hits
         // (scene/shapes.h): both are left out of the analytic objects.
         const ShapeDesc& shape = desc.objects[static_cast<std::size_t>(i)].shape;
-        if (std::holds_alternative<MeshShape>(shape) || !evaluate_analytic(shape, {0.5, 0.5})) {
+        if (renders_as_mesh(shape) || !evaluate_analytic(shape, {0.5, 0.5})) {
             gpu.object_material.push_back(-1);
             continue;
         }
@@ -477,6 +477,7 @@ ObjectRecord object_record(const ShapeDesc& shape, Vec3d eye) {
             store(r.params, {s.major_radius, s.minor_radius, 0});
         }
         void operator()(const MeshShape&) const {}  // drawn from GpuMeshes
+        void operator()(const TerrainShape&) const {}
     };
     std::visit(Visitor{r, eye}, shape);
     return r;

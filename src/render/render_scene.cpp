@@ -20,6 +20,7 @@
 #include "scene/mesh.h"
 #include "scene/mesh_accel.h"
 #include "scene/shapes.h"
+#include "scene/terrain.h"
 
 namespace footprint {
 
@@ -502,6 +503,13 @@ Result<RenderScene> prepare_render_scene(const SceneDesc& desc,
         if (!material) {
             // object_material's messages start with the key inside the material.
             return scene_error(desc, object_key(i) + ".material." + material.error().message, {});
+        }
+        if (const auto* terrain = std::get_if<TerrainShape>(&object.shape)) {
+            // One generated part, in the object's own material.
+            scene.meshes_[i].push_back(make_terrain_mesh(*terrain, object_key(i)));
+            scene.mesh_part_material_[i].push_back(static_cast<int>(scene.materials_.size()));
+            scene.materials_.push_back(std::move(*material));
+            continue;
         }
         const auto* mesh = std::get_if<MeshShape>(&object.shape);
         if (!mesh) {

@@ -7,10 +7,12 @@
 // generate theirs): ImageSource holds one or the other.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -173,8 +175,28 @@ struct MeshShape {
     MeshTransform transform;
 };
 
-using ShapeDesc =
-    std::variant<PlaneShape, SphereShape, CylinderShape, ParaboloidShape, TorusShape, MeshShape>;
+// A fractal height field (scene/terrain.h), rendered as a triangle mesh.
+inline constexpr int kMaxTerrainSubdivisions = 11;  // 2049² samples, 8.4 M triangles
+struct TerrainShape {
+    Vec3d center{0, 0, 0};
+    Vec2d size{10, 10};      // extent along x and z
+    int subdivisions = 7;    // L: 2^L + 1 samples per side, 1 … kMaxTerrainSubdivisions
+    double roughness = 0.7;  // H, the Hurst exponent, (0, 1]: small is jagged
+    double height = 1;       // A: the displacement's standard deviation over the terrain's width
+    std::uint32_t seed = 1;
+};
+
+using ShapeDesc = std::variant<PlaneShape, SphereShape, CylinderShape, ParaboloidShape, TorusShape,
+                               MeshShape, TerrainShape>;
+
+// Whether a shape is rendered as triangles (a mesh file, or a terrain's generated mesh) rather
+// than intersected analytically (scene/shapes.h).
+template <class S>
+inline constexpr bool is_mesh_shape =
+    std::is_same_v<S, MeshShape> || std::is_same_v<S, TerrainShape>;
+inline bool renders_as_mesh(const ShapeDesc& shape) {
+    return std::holds_alternative<MeshShape>(shape) || std::holds_alternative<TerrainShape>(shape);
+}
 
 struct ObjectDesc {
     std::string name;  // for messages ("objects[2]" if unnamed)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cfloat>
+#include <climits>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -466,7 +467,8 @@ class SceneParser {
         if (const json* name = find(j, "name")) object.name = string(*name, member(path, "name"));
         const std::string shape_path = member(path, "shape");
         const std::string shape = string(require(j, path, "shape"), shape_path);
-        static const Keys shapes = {"plane", "sphere", "cylinder", "paraboloid", "torus", "mesh"};
+        static const Keys shapes = {"plane", "sphere",  "cylinder", "paraboloid",
+                                    "torus", "terrain", "mesh"};
         if (!contains(shapes, shape))
             fail(shape_path, "unknown shape " + quoted(shape) + suggest(shape, shapes));
         check_object_keys(j, path, shape);
@@ -540,6 +542,8 @@ class SceneParser {
                                              format_number(s.minor_radius) +
                                              " >= " + format_number(s.major_radius) + ")");
             object.shape = s;
+        } else if (shape == "terrain") {
+            object.shape = parse_terrain(j, path);
         } else {  // mesh
             MeshShape s;
             const std::string file_path = at("file");
@@ -572,6 +576,9 @@ class SceneParser {
              {"name", "shape", "material", "focus", "axis", "focal_length", "radius"}},
             {"torus",
              {"name", "shape", "material", "center", "axis", "major_radius", "minor_radius"}},
+            {"terrain",
+             {"name", "shape", "material", "center", "size", "subdivisions", "roughness", "height",
+              "seed"}},
             {"mesh", {"name", "shape", "material", "file", "transform"}},
         };
         const ShapeKeys* own = nullptr;
@@ -586,6 +593,34 @@ class SceneParser {
                                                 " (it takes: " + join_names(own->keys, ", ") + ")");
             fail(member(path, key), "unknown key" + suggest(key, own->keys));
         }
+    }
+
+    TerrainShape parse_terrain(const json& j, const std::string& path) const {
+        auto at = [&](std::string_view key) { return member(path, key); };
+        TerrainShape s;
+        if (const json* v = find(j, "center")) s.center = vec3(*v, at("center"));
+        if (const json* v = find(j, "size")) {
+            if (!v->is_array() || v->size() != 2)
+                fail(at("size"), "expected [width, depth], got " + describe(*v));
+            s.size = {positive((*v)[0], element(at("size"), 0)),
+                      positive((*v)[1], element(at("size"), 1))};
+        }
+        if (const json* v = find(j, "subdivisions"))
+            s.subdivisions = integer(*v, at("subdivisions"), 1, kMaxTerrainSubdivisions);
+        if (const json* v = find(j, "roughness")) {
+            s.roughness = number(*v, at("roughness"));
+            if (!(s.roughness > 0 && s.roughness <= 1))
+                fail(at("roughness"),
+                     "must be in (0, 1] (the Hurst exponent), got " + format_number(s.roughness));
+        }
+        if (const json* v = find(j, "height")) {
+            s.height = number(*v, at("height"));
+            if (!(s.height >= 0))
+                fail(at("height"), "must be >= 0, got " + format_number(s.height));
+        }
+        if (const json* v = find(j, "seed"))
+            s.seed = static_cast<std::uint32_t>(integer(*v, at("seed"), 0, INT_MAX));
+        return s;
     }
 
     MeshTransform parse_transform(const json& j, const std::string& path) const {

@@ -275,6 +275,32 @@ TEST(SceneFile, MetallicRoughnessMaterialsParse) {
     EXPECT_EQ(s->objects[1].material.mirror, 1.0f);
 }
 
+TEST(SceneFile, TerrainParsesToTheExactValuesAndDefaults) {
+    const Result<SceneDesc> result = parse_scene(R"({"camera": {}, "objects": [
+        {"shape": "terrain", "center": [1, 2, 3], "size": [20, 10], "subdivisions": 9,
+         "roughness": 0.5, "height": 2.5, "seed": 42},
+        {"shape": "terrain"}]})",
+                                                 "terrain.json");
+    ASSERT_TRUE(result.ok()) << result.error().message;
+    ASSERT_EQ(result->objects.size(), 2u);
+    const auto& t = std::get<TerrainShape>(result->objects[0].shape);
+    EXPECT_VEC3_EQ(t.center, 1, 2, 3);
+    EXPECT_EQ(t.size.x, 20.0);
+    EXPECT_EQ(t.size.y, 10.0);
+    EXPECT_EQ(t.subdivisions, 9);
+    EXPECT_EQ(t.roughness, 0.5);
+    EXPECT_EQ(t.height, 2.5);
+    EXPECT_EQ(t.seed, 42u);
+    const auto& d = std::get<TerrainShape>(result->objects[1].shape);
+    const TerrainShape defaults;
+    EXPECT_EQ(d.size.x, defaults.size.x);
+    EXPECT_EQ(d.subdivisions, defaults.subdivisions);
+    EXPECT_EQ(d.roughness, defaults.roughness);
+    EXPECT_EQ(d.height, defaults.height);
+    EXPECT_EQ(d.seed, defaults.seed);
+    EXPECT_TRUE(renders_as_mesh(result->objects[0].shape));
+}
+
 TEST(SceneFile, MinimalSceneTakesTheDefaultsOfSceneDesc) {
     const Result<SceneDesc> result = parse_scene(
         R"({"camera": {}, "objects": [{"shape": "sphere"}, {"shape": "torus"}]})", "minimal.json");
@@ -663,6 +689,25 @@ const ErrorCase kErrorCases[] = {
      "objects[0].minor_radius", "must be less than major_radius"},
     {"TorusAxisZero", R"({"objects": [{"shape": "torus", "axis": [0, 0, 0]}]})", "objects[0].axis",
      "must be nonzero"},
+    // Terrain.
+    {"TerrainSubdivisionsTooMany", R"({"objects": [{"shape": "terrain", "subdivisions": 12}]})",
+     "objects[0].subdivisions", "must be in 1..11, got 12"},
+    {"TerrainSubdivisionsFraction", R"({"objects": [{"shape": "terrain", "subdivisions": 2.5}]})",
+     "objects[0].subdivisions", "expected an integer, got 2.5"},
+    {"TerrainRoughnessZero", R"({"objects": [{"shape": "terrain", "roughness": 0}]})",
+     "objects[0].roughness", "must be in (0, 1] (the Hurst exponent), got 0"},
+    {"TerrainRoughnessAboveOne", R"({"objects": [{"shape": "terrain", "roughness": 1.5}]})",
+     "objects[0].roughness", "must be in (0, 1]"},
+    {"TerrainHeightNegative", R"({"objects": [{"shape": "terrain", "height": -1}]})",
+     "objects[0].height", "must be >= 0, got -1"},
+    {"TerrainSizeOneNumber", R"({"objects": [{"shape": "terrain", "size": [4]}]})",
+     "objects[0].size", "expected [width, depth]"},
+    {"TerrainSizeZero", R"({"objects": [{"shape": "terrain", "size": [4, 0]}]})",
+     "objects[0].size[1]", "must be > 0"},
+    {"TerrainSeedNegative", R"({"objects": [{"shape": "terrain", "seed": -1}]})", "objects[0].seed",
+     "must be in 0..2147483647, got -1"},
+    {"TerrainKeyOfAnotherShape", R"({"objects": [{"shape": "terrain", "radius": 1}]})",
+     "objects[0].radius", "not a key of shape 'terrain'"},
     // Mesh.
     {"MeshFileMissing", R"({"objects": [{"shape": "mesh"}]})", "objects[0].file",
      "required key is missing"},

@@ -111,6 +111,9 @@ void add_shape(Fnv1a& h, const ShapeDesc& shape) {
                 h.add(s.focus), h.add(s.axis), h.add(s.focal_length), h.add(s.radius);
             } else if constexpr (std::is_same_v<S, TorusShape>) {
                 h.add(s.center), h.add(s.axis), h.add(s.major_radius), h.add(s.minor_radius);
+            } else if constexpr (std::is_same_v<S, TerrainShape>) {
+                h.add(s.center), h.add(s.size), h.add(s.subdivisions), h.add(s.roughness);
+                h.add(s.height), h.add(s.seed);
             } else {
                 add_mesh_files(h, s.file);
                 h.add(s.transform.translate), h.add(s.transform.rotate_deg);

@@ -527,7 +527,7 @@ std::optional<SurfaceHit> intersect_analytic(const ShapeDesc& shape, const Ray& 
                                              double t_max) {
     return std::visit(
         [&](const auto& s) -> std::optional<SurfaceHit> {
-            if constexpr (std::is_same_v<std::decay_t<decltype(s)>, MeshShape>) {
+            if constexpr (is_mesh_shape<std::decay_t<decltype(s)>>) {
                 return std::nullopt;
             } else {
                 return intersect(s, ray, t_min, t_max);
@@ -539,7 +539,7 @@ std::optional<SurfaceHit> intersect_analytic(const ShapeDesc& shape, const Ray& 
 std::optional<SurfaceHit> evaluate_analytic(const ShapeDesc& shape, Vec2d uv) {
     return std::visit(
         [&](const auto& s) -> std::optional<SurfaceHit> {
-            if constexpr (std::is_same_v<std::decay_t<decltype(s)>, MeshShape>) {
+            if constexpr (is_mesh_shape<std::decay_t<decltype(s)>>) {
                 return std::nullopt;
             } else {
                 return evaluate(s, uv);

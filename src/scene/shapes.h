@@ -100,7 +100,8 @@ std::optional<SurfaceHit> intersect(const ParaboloidShape& shape, const Ray& ray
                                     double t_max);
 std::optional<SurfaceHit> intersect(const TorusShape& shape, const Ray& ray, double t_min,
                                     double t_max);
-// Dispatches on the variant; nullopt for MeshShape (meshes are intersected elsewhere).
+// Dispatches on the variant; nullopt for the shapes rendered as meshes (is_mesh_shape), which are
+// intersected elsewhere.
 std::optional<SurfaceHit> intersect_analytic(const ShapeDesc& shape, const Ray& ray, double t_min,
                                              double t_max);
 
@@ -111,7 +112,7 @@ std::optional<SurfaceHit> evaluate(const SphereShape& shape, Vec2d uv);
 std::optional<SurfaceHit> evaluate(const CylinderShape& shape, Vec2d uv);
 std::optional<SurfaceHit> evaluate(const ParaboloidShape& shape, Vec2d uv);
 std::optional<SurfaceHit> evaluate(const TorusShape& shape, Vec2d uv);
-// Dispatches on the variant; nullopt for MeshShape.
+// Dispatches on the variant; nullopt for the shapes rendered as meshes.
 std::optional<SurfaceHit> evaluate_analytic(const ShapeDesc& shape, Vec2d uv);
 
 }  // namespace footprint

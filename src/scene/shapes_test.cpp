@@ -319,7 +319,7 @@ TEST(ShapesIntersect, HitsAreOnTheSurfaceNearestAndConsistent) {
             // The direct overload agrees with the dispatcher.
             const std::optional<SurfaceHit> direct = std::visit(
                 [&](const auto& shape) -> std::optional<SurfaceHit> {
-                    if constexpr (std::is_same_v<std::decay_t<decltype(shape)>, MeshShape>) {
+                    if constexpr (is_mesh_shape<std::decay_t<decltype(shape)>>) {
                         return std::nullopt;
                     } else {
                         return intersect(shape, ray, 0, t_max);
