@@ -11,9 +11,9 @@ namespace footprint {
 namespace {
 
 constexpr TextureFilter kPlaneFilters[] = {
-    TextureFilter::nearest,   TextureFilter::bilinear,
-    TextureFilter::trilinear, TextureFilter::footprint_assembly,
-    TextureFilter::ewa,       TextureFilter::summed_area};
+    TextureFilter::nearest,    TextureFilter::bilinear,           TextureFilter::trilinear,
+    TextureFilter::brilinear,  TextureFilter::footprint_assembly, TextureFilter::ewa,
+    TextureFilter::summed_area};
 
 // Names that are no filter of the vocabulary but are what a user may reach for: each is answered
 // with "did you mean" the vocabulary's name for that filter.

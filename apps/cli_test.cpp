@@ -120,17 +120,18 @@ TEST_F(CommandTest, UnknownFilterListsTheValidOnes) {
     EXPECT_EQ(plane(options, &err), 1);
     EXPECT_TRUE(one_line(err)) << err;
     EXPECT_NE(err.find("anisotropic"), std::string::npos) << err;
-    EXPECT_NE(err.find("nearest, bilinear, trilinear, fa, ewa, sat"), std::string::npos) << err;
+    EXPECT_NE(err.find("nearest, bilinear, trilinear, brilinear, fa, ewa, sat"), std::string::npos)
+        << err;
     EXPECT_TRUE(only_texture_left());
 }
 
 TEST_F(CommandTest, UnknownFiltersAreAnsweredFromTheVocabulary) {
     const std::string accepted =
-        "footprint plane accepts nearest, bilinear, trilinear, fa, ewa, sat\n";
+        "footprint plane accepts nearest, bilinear, trilinear, brilinear, fa, ewa, sat\n";
     const std::pair<const char*, std::string> cases[] = {
         {"point",
          "footprint: --filter: footprint plane has no filter 'point' (did you mean 'bilinear'?); "
-         "it accepts nearest, bilinear, trilinear, fa, ewa, sat\n"},
+         "it accepts nearest, bilinear, trilinear, brilinear, fa, ewa, sat\n"},
         {"footprint_assembly",
          "footprint: --filter: unknown filter 'footprint_assembly' (did you mean 'fa'?); " +
              accepted},
@@ -138,10 +139,10 @@ TEST_F(CommandTest, UnknownFiltersAreAnsweredFromTheVocabulary) {
          "footprint: --filter: unknown filter 'trilnear' (did you mean 'trilinear'?); " + accepted},
         {"fa-rough",
          "footprint: --filter: footprint plane has no filter 'fa-rough'; it accepts "
-         "nearest, bilinear, trilinear, fa, ewa, sat\n"},
+         "nearest, bilinear, trilinear, brilinear, fa, ewa, sat\n"},
         {"reference",
          "footprint: --filter: footprint plane has no filter 'reference'; it accepts "
-         "nearest, bilinear, trilinear, fa, ewa, sat\n"},
+         "nearest, bilinear, trilinear, brilinear, fa, ewa, sat\n"},
     };
     for (const auto& [filter, message] : cases) {
         PlaneCommandOptions options;
@@ -162,7 +163,7 @@ TEST(FilterVocabulary, SharedNamesAreTheSameFilter) {
         render_filter_names(", "),
         "bilinear, trilinear, fa, fa-rough, ewa-rough, reference, lean, toksvig, specular-aa, "
         "stochastic");
-    EXPECT_EQ(plane_filter_names("|"), "nearest|bilinear|trilinear|fa|ewa|sat");
+    EXPECT_EQ(plane_filter_names("|"), "nearest|bilinear|trilinear|brilinear|fa|ewa|sat");
     for (TextureFilter filter : plane_filters()) {
         const Result<FilterMode> mode = parse_render_filter(to_string(filter));
         if (!mode) continue;

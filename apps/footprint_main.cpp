@@ -50,6 +50,8 @@ Filters (--filter; a name means the same filter in every command):
              footprint (the aliased baseline)                    demo, eval
   trilinear  isotropic MIP: two levels, bilinear in each         render, plane, texture-demo,
                                                                  demo, eval
+  brilinear  trilinear, but two levels only within a quarter    plane, texture-demo
+             level of a transition, one elsewhere
   fa         footprint assembly                                  render, plane, texture-demo,
                                                                  demo, eval
   fa-rough   fa plus the roughness pyramid: a bump map's         render, demo, eval
@@ -190,7 +192,7 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     scene_demo_cmd->add_option("--scene", scene_demo.scenes,
                                "Scenes to render (default: all): cylinder parabolic_mirror water "
-                               "bump_plate secret_writing brushed_sphere terrain");
+                               "bump_plate secret_writing brushed_sphere terrain procedural");
     scene_demo_cmd
         ->add_option("--size", scene_demo.width,
                      footprint::width_help("Image width in pixels", footprint::kDemoWidths))

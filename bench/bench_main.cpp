@@ -37,7 +37,8 @@ int main(int argc, char** argv) {
                     "lookups per regime compared against the reference");
     tex->add_option("--threads", texture.thread_counts, "thread counts to measure")
         ->check(CLI::Range(1, 256));
-    tex->add_option("--filters", texture.filters, "filters: nearest bilinear trilinear fa ewa sat");
+    tex->add_option("--filters", texture.filters,
+                    "filters: nearest bilinear trilinear brilinear fa ewa sat");
     tex->add_option("--regimes", texture.regimes, "regimes: tiny moderate aniso32");
     tex->add_option("--tile-log2", texture.tile_log2,
                     "pyramid tile size 2^k (default: the library's)")
@@ -48,6 +49,9 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"b", "gaussian", "ext", "texram"}));
     tex->add_option("--lod-blend", texture.lod_blend, "footprint assembly level blend")
         ->check(CLI::IsMember({"linear", "variance", "automatic"}));
+    tex->add_option("--brilinear-band", texture.brilinear_band,
+                    "brilinear's blend band around each level transition, in levels")
+        ->check(CLI::Range(0.0f, 1.0f));
     tex->add_option("--rounds", texture.rounds, "timed passes per rate (the best counts)")
         ->check(CLI::Range(1, 100));
     tex->add_flag("!--no-oiio", texture.with_oiio, "skip the OpenImageIO peer");

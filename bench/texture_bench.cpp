@@ -30,12 +30,11 @@ struct Filter {
     const char* name;
     TextureFilter filter;
 };
-constexpr Filter kFilters[] = {{"nearest", TextureFilter::nearest},
-                               {"bilinear", TextureFilter::bilinear},
-                               {"trilinear", TextureFilter::trilinear},
-                               {"fa", TextureFilter::footprint_assembly},
-                               {"ewa", TextureFilter::ewa},
-                               {"sat", TextureFilter::summed_area}};
+constexpr Filter kFilters[] = {
+    {"nearest", TextureFilter::nearest},       {"bilinear", TextureFilter::bilinear},
+    {"trilinear", TextureFilter::trilinear},   {"brilinear", TextureFilter::brilinear},
+    {"fa", TextureFilter::footprint_assembly}, {"ewa", TextureFilter::ewa},
+    {"sat", TextureFilter::summed_area}};
 
 bool selected(const std::vector<std::string>& list, const char* name) {
     return list.empty() || std::find(list.begin(), list.end(), name) != list.end();
@@ -100,7 +99,7 @@ static_assert(kBatch <= 64);
 // The filters texture_lookup_batch() requests ahead (the others it runs one lookup at a time).
 bool batched(TextureFilter filter) {
     return filter == TextureFilter::bilinear || filter == TextureFilter::trilinear ||
-           filter == TextureFilter::footprint_assembly;
+           filter == TextureFilter::brilinear || filter == TextureFilter::footprint_assembly;
 }
 
 }  // namespace
@@ -183,6 +182,7 @@ int run_texture_bench(const TextureBenchOptions& opt) {
             if (opt.lod_blend == "linear") lo.lod_blend = LodBlend::linear;
             if (opt.lod_blend == "variance") lo.lod_blend = LodBlend::variance_matched;
             if (opt.lod_blend == "automatic") lo.lod_blend = LodBlend::automatic;
+            lo.brilinear_band = opt.brilinear_band;
             std::vector<float> got(subset * 3);
             for (std::size_t i = 0; i < subset; ++i)
                 texture_lookup(pyramid, lookups[i], lo, &got[i * 3]);
@@ -246,6 +246,7 @@ int run_texture_bench(const TextureBenchOptions& opt) {
         j["pyramid_build_seconds"] = build_seconds;
         j["lookups_per_regime"] = opt.lookups_per_regime;
         j["error_subset"] = opt.error_subset;
+        j["brilinear_band"] = opt.brilinear_band;
         j["oiio_version"] = OIIO_VERSION_STRING;
         j["hardware_threads"] = std::thread::hardware_concurrency();
         for (const Case& c : cases) j["cases"].push_back(c.to_json());

@@ -29,6 +29,7 @@ struct TextureBenchOptions {
     int max_probes = -1;               // -1: the library default
     std::string probe_rule;            // "b" | "gaussian" | "ext" | "texram" | empty: default
     std::string lod_blend;             // "linear" | "variance" | empty: the library default
+    float brilinear_band = 0.25f;      // LookupOptions::brilinear_band (its default)
     int rounds = 2;  // each rate is the best of this many timed passes (noise only slows)
     bool with_oiio = true;
     std::string json_path;  // empty: no JSON

@@ -183,6 +183,15 @@ inline float lod_blend_weight(float w, LodBlend blend) {
     return (std::exp2(2.0f * w) - 1.0f) * (1.0f / 3.0f);
 }
 
+// Brilinear as a trilinear probe at another level: lod = L + w becomes L + w' with
+// w' = clamp((w − ½)/band + ½, 0, 1), which a linear blend then weighs as brilinear does — and at
+// w' = 0 or 1 the probe is a whole level, so it reads that level alone.
+inline float brilinear_lod(float lod, float band) {
+    const float level = std::floor(lod);
+    if (!(band > 0.0f)) return lod - level < 0.5f ? level : level + 1.0f;
+    return level + std::clamp((lod - level - 0.5f) / band + 0.5f, 0.0f, 1.0f);
+}
+
 // The levels a trilinear probe at a fractional lod ∈ [0, max_level] reads: l0 and, with blend
 // weight w > 0, l0 + 1.
 struct TrilinearLevels {

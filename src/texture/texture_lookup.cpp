@@ -53,7 +53,8 @@ WrapModes parse_oiio_wrap_modes(std::string_view modes) {
 std::optional<TextureFilter> parse_texture_filter(std::string_view name) {
     for (TextureFilter f :
          {TextureFilter::nearest, TextureFilter::bilinear, TextureFilter::trilinear,
-          TextureFilter::footprint_assembly, TextureFilter::ewa, TextureFilter::summed_area})
+          TextureFilter::brilinear, TextureFilter::footprint_assembly, TextureFilter::ewa,
+          TextureFilter::summed_area})
         if (name == to_string(f)) return f;
     return std::nullopt;
 }
@@ -66,6 +67,8 @@ const char* to_string(TextureFilter filter) {
             return "bilinear";
         case TextureFilter::trilinear:
             return "trilinear";
+        case TextureFilter::brilinear:
+            return "brilinear";
         case TextureFilter::footprint_assembly:
             return "fa";
         case TextureFilter::ewa:
@@ -124,11 +127,16 @@ void lookup_ellipse(const Texels& pyramid, float s, float t, const FootprintElli
         case TextureFilter::bilinear:
             lookup_trilinear(pyramid, s, t, 0.0f, LodBlend::linear, out);
             return;
-        case TextureFilter::trilinear: {
+        case TextureFilter::trilinear:
+        case TextureFilter::brilinear: {
             // Isotropic: ρ = λ1 for an ellipse (the coords overload uses GL's column lengths).
-            const float lod = fast_log2(std::max(e.major_radius, 1e-30f)) + options.lod_bias;
-            lookup_trilinear(pyramid, s, t, std::clamp(lod, 0.0f, max_level), LodBlend::linear,
-                             out);
+            const float lod = std::clamp(
+                fast_log2(std::max(e.major_radius, 1e-30f)) + options.lod_bias, 0.0f, max_level);
+            lookup_trilinear(pyramid, s, t,
+                             options.filter == TextureFilter::brilinear
+                                 ? detail::brilinear_lod(lod, options.brilinear_band)
+                                 : lod,
+                             LodBlend::linear, out);
             return;
         }
         case TextureFilter::footprint_assembly:

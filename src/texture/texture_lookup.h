@@ -18,6 +18,10 @@
 //   bilinear            bilinear at level 0 (no MIP)
 //   trilinear           isotropic MIP (GL rule: ρ = max(|∂X/∂x|, |∂X/∂y|), lod = log2 ρ, linear
 //                       blend between the two nearest levels) — the 1997 hardware baseline
+//   brilinear           trilinear's level, blended only within brilinear_band of a level
+//                       transition and one bilinear probe of the nearer level elsewhere: what
+//                       drivers' "trilinear optimisation" does, one level's texels instead of two
+//                       for most lookups, at the price of visible level transitions
 //   footprint_assembly  several trilinear probes along the major axis r1 of the footprint ellipse
 //                       [S97a §5, lecture notes]; probe count, spacing and level by spec §2.8:
 //                       Rule B (moment-matched, kernel covariance K/4) by default, Rule A (EXT) and
@@ -43,7 +47,15 @@
 
 namespace footprint {
 
-enum class TextureFilter { nearest, bilinear, trilinear, footprint_assembly, ewa, summed_area };
+enum class TextureFilter {
+    nearest,
+    bilinear,
+    trilinear,
+    brilinear,
+    footprint_assembly,
+    ewa,
+    summed_area
+};
 
 // How footprint assembly places its probes (spec §2.8).
 enum class ProbeRule {
@@ -83,6 +95,9 @@ struct LookupOptions {
     // max_probes probes can cover is filtered by EWA instead of raising the probes' level
     // (environment_map.h). Off: spec §2.8's rule. The renderer's fa modes turn it on.
     bool ewa_beyond_probes = false;
+    // brilinear: the width, in levels (0 … 1), of the band around each level transition where two
+    // levels are blended. 1 is trilinear, 0 the nearest level (GL's NEAREST_MIPMAP_LINEAR).
+    float brilinear_band = 0.25f;
 };
 
 // Where and how large a lookup is: position and derivatives in normalised units (see above).
@@ -116,6 +131,6 @@ FootprintEllipse footprint_of(const MipPyramid& pyramid, const TextureCoords& co
 
 std::optional<TextureFilter> parse_texture_filter(std::string_view name);
 const char* to_string(
-    TextureFilter filter);  // "nearest", "bilinear", "trilinear", "fa", "ewa", "sat"
+    TextureFilter filter);  // "nearest", "bilinear", "trilinear", "brilinear", "fa", "ewa", "sat"
 
 }  // namespace footprint

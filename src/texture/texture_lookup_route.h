@@ -98,8 +98,9 @@ detail::Requested route_lookup(const Texels& pyramid, const TextureCoords& c,
     const float len_x2 = dot(d_dx, d_dx), len_y2 = dot(d_dy, d_dy);
     // No footprint needed: the level-0 baselines, and magnification — a footprint inside one texel
     // (trace K = |D|²_F ≤ 1 ⇒ λ1 ≤ 1) is one bilinear probe at level 0 for every mipmapping filter.
-    const bool mipmapped = options.filter == TextureFilter::trilinear ||
-                           options.filter == TextureFilter::footprint_assembly ||
+    const bool isotropic =
+        options.filter == TextureFilter::trilinear || options.filter == TextureFilter::brilinear;
+    const bool mipmapped = isotropic || options.filter == TextureFilter::footprint_assembly ||
                            options.filter == TextureFilter::ewa;
     const bool magnified = mipmapped && len_x2 + len_y2 <= 1.0f && options.lod_bias <= 0.0f;
     if (options.filter == TextureFilter::nearest || options.filter == TextureFilter::bilinear ||
@@ -122,13 +123,17 @@ detail::Requested route_lookup(const Texels& pyramid, const TextureCoords& c,
         lookup_ellipse(pyramid, c.s, c.t, make_footprint_ellipse(kHuge, kHuge, 0.0f), options, out);
         return Requested::done;
     }
-    if (options.filter == TextureFilter::trilinear && std::isfinite(len_x2 + len_y2)) {
+    if (isotropic && std::isfinite(len_x2 + len_y2)) {
         // GL rule (OpenGL 4.6 §8.14.1): ρ = max(|∂(X,Y)/∂x|, |∂(X,Y)/∂y|), lod = log2 ρ.
         const float rho_sq = std::max(len_x2, len_y2);
-        const float lod = 0.5f * fast_log2(std::max(rho_sq, 1e-30f)) + options.lod_bias;
-        return trilinear(
-            reduce_coordinate(c.s, pyramid.wrap_s()), reduce_coordinate(c.t, pyramid.wrap_t()),
-            std::clamp(lod, 0.0f, static_cast<float>(pyramid.max_level())), LodBlend::linear);
+        const float lod = std::clamp(0.5f * fast_log2(std::max(rho_sq, 1e-30f)) + options.lod_bias,
+                                     0.0f, static_cast<float>(pyramid.max_level()));
+        return trilinear(reduce_coordinate(c.s, pyramid.wrap_s()),
+                         reduce_coordinate(c.t, pyramid.wrap_t()),
+                         options.filter == TextureFilter::brilinear
+                             ? detail::brilinear_lod(lod, options.brilinear_band)
+                             : lod,
+                         LodBlend::linear);
     }
     // Near-isotropic footprints are one trilinear probe: skip the ellipse's axes.
     const float lod = single_probe_lod(footprint_matrix(d_dx, d_dy), options, pyramid.max_level());

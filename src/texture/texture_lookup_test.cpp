@@ -16,9 +16,9 @@ namespace footprint {
 namespace {
 
 constexpr TextureFilter kAllFilters[] = {
-    TextureFilter::nearest,   TextureFilter::bilinear,
-    TextureFilter::trilinear, TextureFilter::footprint_assembly,
-    TextureFilter::ewa,       TextureFilter::summed_area};
+    TextureFilter::nearest,    TextureFilter::bilinear,           TextureFilter::trilinear,
+    TextureFilter::brilinear,  TextureFilter::footprint_assembly, TextureFilter::ewa,
+    TextureFilter::summed_area};
 
 // A linear ramp is reproduced exactly by every filter whose kernel is symmetric about the centre;
 // what remains is float rounding of values up to ~10 and of offsets up to ~100 texels.
@@ -138,6 +138,42 @@ TEST(TextureLookup, TrilinearUsesTheGlRuleOnDerivatives) {
     EXPECT_NEAR(e.matrix.xx, 64.0f, 1e-3f);
     EXPECT_NEAR(e.matrix.xy, 48.0f, 1e-3f);
     EXPECT_NEAR(e.matrix.yy, 36.0f + 16.0f, 1e-3f);
+}
+
+// Brilinear blends two levels only within brilinear_band of a transition (lod L + ½): at lod L + f
+// it reads level L + clamp((f − ½)/band + ½, 0, 1). Band 1 is trilinear, band 0 the nearer level.
+TEST(TextureLookup, BrilinearBlendsOnlyNearLevelTransitions) {
+    const MipPyramid p = level_index_pyramid(256);
+    auto at_lod = [&](float lod, float band, TextureFilter filter) {
+        LookupOptions options;
+        options.filter = filter;
+        options.brilinear_band = band;
+        const float d = std::exp2(lod) / 256;  // ρ = 2^lod level-0 texels per pixel
+        float v;
+        texture_lookup(p, TextureCoords{0.4f, 0.6f, d, 0, 0, d}, options, &v);
+        return v;
+    };
+    for (float f : {0.0f, 0.1f, 0.3f, 0.4f, 0.5f, 0.55f, 0.6f, 0.7f, 0.9f}) {
+        const float want = 3 + std::clamp((f - 0.5f) / 0.25f + 0.5f, 0.0f, 1.0f);
+        EXPECT_NEAR(at_lod(3 + f, 0.25f, TextureFilter::brilinear), want, 1e-4f) << f;
+        EXPECT_NEAR(at_lod(3 + f, 1.0f, TextureFilter::brilinear),
+                    at_lod(3 + f, 1.0f, TextureFilter::trilinear), 1e-6f)
+            << f;
+        EXPECT_NEAR(at_lod(3 + f, 0.0f, TextureFilter::brilinear), f < 0.5f ? 3.0f : 4.0f, 1e-4f);
+    }
+    // Away from a transition it is one level's bilinear probe, bit for bit: a lookup at lod 3.1
+    // equals trilinear's at exactly lod 3 on a random texture.
+    const MipPyramid noise = MipPyramid::build(random_image(256, 256, 3, 5u));
+    LookupOptions brilinear, trilinear;
+    brilinear.filter = TextureFilter::brilinear;
+    trilinear.filter = TextureFilter::trilinear;
+    for (float s : {0.13f, 0.5f, 0.77f}) {
+        float a[3], b[3];
+        const float d31 = std::exp2(3.1f) / 256, d3 = 8.0f / 256;
+        texture_lookup(noise, TextureCoords{s, 0.3f, d31, 0, 0, d31}, brilinear, a);
+        texture_lookup(noise, TextureCoords{s, 0.3f, d3, 0, 0, d3}, trilinear, b);
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(a[c], b[c]) << s;
+    }
 }
 
 // Bilinear lookups near and across the edges equal bilinear interpolation of an explicitly
