@@ -397,8 +397,8 @@ TEST(DemoScenes, WithAnEmptyDataFolderTheScenesUseTheRepositorysAssets) {
             used.push_back(fs::relative(file, assets).generic_string());
         }
     }
-    // The HDR sky in the five daylight scenes, the brick normal map on the bump plate.
-    EXPECT_EQ(std::count(used.begin(), used.end(), kDemoEnvironment), 5) << used.size();
+    // The HDR sky in the six daylight scenes, the brick normal map on the bump plate.
+    EXPECT_EQ(std::count(used.begin(), used.end(), kDemoEnvironment), 6) << used.size();
     EXPECT_EQ(std::count(used.begin(), used.end(), kDemoNormalMap), 1) << used.size();
 
     // The files load and pass the renderer's checks (no invalid normal map texels).

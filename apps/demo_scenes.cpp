@@ -241,6 +241,40 @@ DemoScene terrain(const DemoSceneOptions& options) {
     return demo;
 }
 
+DemoScene procedural(const DemoSceneOptions& options) {
+    DemoScene demo{"procedural",
+                   "solid procedural textures, band-limited by the footprint: a marble floor at a "
+                   "grazing angle, a checker and a turbulence sphere",
+                   "textures procedural, ",
+                   {}};
+    SceneDesc& scene = demo.scene = base_scene(options);
+    scene.camera = {{0, 0.6, 4}, {0, 0.35, -2}, {0, 1, 0}, 45};
+    scene.environment = daylight_environment(options, demo.assets);
+    scene.environment->rotation_deg = {0, 150, 0};  // the sun out of view
+    scene.lights.push_back({LightType::directional, {-0.4, -1, -0.3}, {}, {1.2f, 1.15f, 1.0f}});
+    PlaneShape floor;
+    floor.infinite = true;
+    MaterialDesc marble;
+    marble.base_color = {1, 1, 1};
+    marble.base_color_procedural = ProceduralTexture{
+        ProceduralPattern::marble, 6, 6, {Vec3{0.16f, 0.15f, 0.14f}, Vec3{0.85f, 0.83f, 0.78f}}};
+    marble.specular = 0.3f;
+    scene.objects.push_back({"marble floor", floor, marble});
+    SphereShape left{{-0.8, 0.5, -1.2}, 0.5}, right{{0.7, 0.5, -2.2}, 0.5};
+    MaterialDesc checker;
+    checker.base_color = {1, 1, 1};
+    checker.base_color_procedural = ProceduralTexture{
+        ProceduralPattern::checker, 8, 1, {Vec3{0.1f, 0.1f, 0.12f}, Vec3{0.9f, 0.85f, 0.6f}}};
+    scene.objects.push_back({"checker sphere", left, checker});
+    MaterialDesc turbulence;
+    turbulence.base_color = {1, 1, 1};
+    turbulence.base_color_procedural = ProceduralTexture{
+        ProceduralPattern::turbulence, 4, 6, {Vec3{0.05f, 0.15f, 0.4f}, Vec3{0.9f, 0.95f, 1.0f}}};
+    scene.objects.push_back({"turbulence sphere", right, turbulence});
+    add_camera_move(scene, {0, 0, -0.3}, {0, 0, -0.3});
+    return demo;
+}
+
 }  // namespace
 
 fs::path DemoSceneOptions::default_demo_data_dir() {
@@ -254,8 +288,8 @@ fs::path DemoSceneOptions::default_demo_assets_dir() {
 
 const std::vector<std::string>& demo_scene_names() {
     static const std::vector<std::string> names = {
-        "cylinder",       "parabolic_mirror", "water",  "bump_plate",
-        "secret_writing", "brushed_sphere",   "terrain"};
+        "cylinder",       "parabolic_mirror", "water",   "bump_plate",
+        "secret_writing", "brushed_sphere",   "terrain", "procedural"};
     return names;
 }
 
@@ -267,6 +301,7 @@ Result<DemoScene> make_demo_scene(const std::string& name, const DemoSceneOption
     if (name == "secret_writing") return secret_writing(options);
     if (name == "brushed_sphere") return brushed_sphere(options);
     if (name == "terrain") return terrain(options);
+    if (name == "procedural") return procedural(options);
     std::string valid;
     for (const std::string& n : demo_scene_names()) valid += (valid.empty() ? "" : ", ") + n;
     return Error{"unknown demo scene '" + name + "' (valid: " + valid + ")"};

@@ -17,6 +17,9 @@
 //   terrain           a fractal terrain (the lecture's "Fractal landscapes", scene/terrain.h)
 //                     wearing its own topographic map, contour lines crowding towards the
 //                     horizon, around a lake that mirrors the sky
+//   procedural        solid procedural textures (the lectures' "Texturing, part 2",
+//                     texture/procedural.h): a marble floor at a grazing angle, whose octaves
+//                     fade to their mean as the footprint outgrows them, and two spheres
 // Each scene also has a short camera_path (a dolly, truck or pan over a fraction of a unit) for
 // temporal-stability measurements. Assets come from apps/demo_assets.h (generated in code) and
 // from real files (an HDR environment, a normal map), looked up in the data folder and then in

@@ -138,6 +138,7 @@ void set_camera_uniforms(GLuint program, const CameraDesc& camera, int width, in
     glUniform1f(location("u_pixel_angle"), static_cast<float>(pinhole.pixel_angle()));
     glUniform2i(location("u_size"), width, height);
     set_vec3(location("u_mesh_offset"), gpu.meshes.anchor - camera.position);
+    set_vec3(location("u_camera_position"), camera.position);
 }
 
 }  // namespace
@@ -314,8 +315,8 @@ Result<GpuRenderer> GpuRenderer::create(const RenderScene& scene) {
     impl->gpu = std::move(*uploaded);
     using namespace gpu::shaders;
     Result<gpu::Program> program = gpu::compile_graphics_program(
-        {kFullscreenVert}, {kCommonGlsl, kGeometryGlsl, kFilteringGlsl, kBumpGlsl, kEnvironmentGlsl,
-                            kShadingGlsl, kRenderFrag});
+        {kFullscreenVert}, {kCommonGlsl, kGeometryGlsl, kFilteringGlsl, kProceduralGlsl, kBumpGlsl,
+                            kEnvironmentGlsl, kShadingGlsl, kRenderFrag});
     if (!program) return program.error();
     impl->program = std::move(*program);
     assign_units(impl->program.get());

@@ -299,6 +299,16 @@ Result<MaterialRecord> material_record(const RenderMaterial& m, TextureSystem& t
     std::copy_n(highlight, 4, r.highlight);
     std::copy_n(f0_info, 4, r.f0);
     std::copy_n(f0_map, 4, r.f0_map);
+    if (const std::optional<ProceduralTexture>& t = d.base_color_procedural) {
+        r.procedural[0] = static_cast<float>(t->pattern) + 1;
+        r.procedural[1] = static_cast<float>(t->scale);
+        r.procedural[2] = static_cast<float>(t->octaves);
+        for (int k = 0; k < 2; ++k) {
+            r.procedural_colors[k][0] = t->colors[k].x;
+            r.procedural_colors[k][1] = t->colors[k].y;
+            r.procedural_colors[k][2] = t->colors[k].z;
+        }
+    }
     return r;
 }
 

@@ -47,6 +47,8 @@ struct MaterialRecord {  // common.glsl's Material
     int maps[4];
     float highlight[4], f0[4];
     int f0_map[4];
+    float procedural[4];            // pattern + 1 (0: none), scale, octaves, unused
+    float procedural_colors[2][4];  // the pattern's two colours (rgb)
 };
 struct LightRecord {  // common.glsl's Light
     float direction[4], position[4], color[4];

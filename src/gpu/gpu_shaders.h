@@ -9,6 +9,7 @@ namespace footprint::gpu::shaders {
 extern const std::string_view kCommonGlsl;
 extern const std::string_view kGeometryGlsl;
 extern const std::string_view kFilteringGlsl;
+extern const std::string_view kProceduralGlsl;
 extern const std::string_view kBumpGlsl;
 extern const std::string_view kEnvironmentGlsl;
 extern const std::string_view kShadingGlsl;

@@ -197,8 +197,11 @@ std::optional<SurfacePoint> SampleShader::trace(const RayDifferential& ray, Vec2
     point.random_seed = stream_seed(random);
     RandomStream draws(point.random_seed);
     const Vec3 colour = desc.base_color;
-    point.base = this->colour(material.base_color_map, {colour.x, colour.y, colour.z},
-                              material.base_color_grey, coords, draws);
+    point.base = desc.base_color_procedural
+                     ? procedural_colour(*desc.base_color_procedural,
+                                         {colour.x, colour.y, colour.z}, s.p, diff, draws)
+                     : this->colour(material.base_color_map, {colour.x, colour.y, colour.z},
+                                    material.base_color_grey, coords, draws);
     read_f0(material, coords, draws, point);
     const Sym2 micro =
         material.micro_roughness + Sym2{point.micro_variance, 0, point.micro_variance};  // K_0 here
@@ -273,6 +276,24 @@ Rgb SampleShader::colour(TextureHandle* map, Rgb constant, bool grey, const Text
     if (grey) texel[1] = texel[2] = texel[0];
     for (int c = 0; c < 3; ++c) constant[c] *= texel[c];
     return constant;
+}
+
+// c: a material's colour × its procedural texture at p, band-limited by the footprint in the
+// filtered modes, a point value in the others; stochastic filtering's at a point drawn from the
+// pixel filter's Gaussian over the footprint, as its texture lookups are.
+Rgb SampleShader::procedural_colour(const ProceduralTexture& texture, Rgb constant, Vec3d p,
+                                    const SurfaceDifferentials& diff, RandomStream& random) {
+    Vec3 c;
+    if (policy_.stochastic && diff.valid) {
+        const Vec2 z = random.gaussian();
+        c = procedural_color(texture,
+                             p + 0.5 * double(z.x) * diff.dpdx + 0.5 * double(z.y) * diff.dpdy);
+    } else if (policy_.filtered && diff.valid) {
+        c = procedural_color(texture, p, diff.dpdx, diff.dpdy);
+    } else {
+        c = procedural_color(texture, p);
+    }
+    return {constant[0] * c.x, constant[1] * c.y, constant[2] * c.z};
 }
 
 // F0 and, from a textured metallic-roughness material's F0 map, the slope variance σ².

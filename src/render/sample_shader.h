@@ -129,6 +129,8 @@ class SampleShader {
                   std::span<float> out);
     Rgb colour(TextureHandle* map, Rgb constant, bool grey, const TextureCoords& coords,
                RandomStream& random);
+    Rgb procedural_colour(const ProceduralTexture& texture, Rgb constant, Vec3d p,
+                          const SurfaceDifferentials& diff, RandomStream& random);
     void read_f0(const RenderMaterial& material, const TextureCoords& coords, RandomStream& random,
                  SurfacePoint& point);
     void sample_micro_slopes(const RenderMaterial& material, const Sym2& micro, Vec2d random,

@@ -22,6 +22,7 @@
 #include <footprint/image/image_io.h>
 #include <footprint/math/vec.h>
 #include <footprint/math/vec3.h>
+#include <footprint/texture/procedural.h>
 
 namespace footprint {
 
@@ -100,7 +101,10 @@ struct MaterialDesc {
     Model model = Model::footprint;
     Vec3 base_color{0.8f, 0.8f, 0.8f};  // linear RGB; multiplied by base_color_map where given
     ImageSource base_color_map;         // sRGB-decoded on load (colour)
-    float metallic = 0;                 // metallic-roughness: 0 a dielectric, 1 a metal
+    // A solid procedural texture instead of a map (texture/procedural.h), evaluated at the hit
+    // point in world units and band-limited by the pixel's footprint; × base_color.
+    std::optional<ProceduralTexture> base_color_procedural;
+    float metallic = 0;  // metallic-roughness: 0 a dielectric, 1 a metal
     // metallic-roughness: glTF's metallicRoughnessTexture (G roughness, B metallic; data, not
     // decoded), × roughness and metallic. A glTF mesh's come from its file.
     ImageSource metallic_roughness_map;

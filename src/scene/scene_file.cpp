@@ -668,9 +668,17 @@ class SceneParser {
                 m.base_color = {1, 1, 1};  // the texture as is
             } else if (v->is_array()) {
                 m.base_color = color(*v, at("base_color"));
+            } else if (v->is_object()) {
+                if (pbr)
+                    fail(at("base_color"),
+                         "a procedural base colour is for the footprint model: its F0 and "
+                         "diffuse colour would need the pattern texel by texel");
+                m.base_color_procedural = parse_procedural(*v, at("base_color"));
+                m.base_color = {1, 1, 1};  // the pattern's colours as they are
             } else {
                 fail(at("base_color"),
-                     "expected [r, g, b] or a texture file name, got " + describe(*v));
+                     "expected [r, g, b], a texture file name or {\"procedural\": ...}, got " +
+                         describe(*v));
             }
         }
         if (const json* v = find(j, "diffuse")) m.diffuse = non_negative(*v, at("diffuse"));
@@ -725,6 +733,34 @@ class SceneParser {
                      "bump.height_map (for a normal map's NaN texels: invalid_normals)");
         }
         return m;
+    }
+
+    // {"procedural": "noise" | "turbulence" | "marble" | "checker", "scale": S, "octaves": N,
+    //  "colors": [[r, g, b], [r, g, b]]} (texture/procedural.h).
+    ProceduralTexture parse_procedural(const json& j, const std::string& path) const {
+        check_keys(j, path, {"procedural", "scale", "octaves", "colors"});
+        ProceduralTexture t;
+        const std::string pattern_path = member(path, "procedural");
+        const std::string pattern = string(require(j, path, "procedural"), pattern_path);
+        static const Keys patterns = {"noise", "turbulence", "marble", "checker"};
+        if (!contains(patterns, pattern))
+            fail(pattern_path, "unknown pattern " + quoted(pattern) + suggest(pattern, patterns));
+        t.pattern = pattern == "noise"        ? ProceduralPattern::noise
+                    : pattern == "turbulence" ? ProceduralPattern::turbulence
+                    : pattern == "marble"     ? ProceduralPattern::marble
+                                              : ProceduralPattern::checker;
+        if (const json* v = find(j, "scale")) t.scale = positive(*v, member(path, "scale"));
+        if (const json* v = find(j, "octaves"))
+            t.octaves = integer(*v, member(path, "octaves"), 1, kMaxProceduralOctaves);
+        if (const json* v = find(j, "colors")) {
+            const std::string colors_path = member(path, "colors");
+            if (!v->is_array() || v->size() != 2)
+                fail(colors_path,
+                     "expected two colours [[r, g, b], [r, g, b]], got " + describe(*v));
+            t.colors = {color((*v)[0], element(colors_path, 0)),
+                        color((*v)[1], element(colors_path, 1))};
+        }
+        return t;
     }
 
     // "footprint" or "metallic-roughness" (scene.h's MaterialDesc::Model).

@@ -301,6 +301,29 @@ TEST(SceneFile, TerrainParsesToTheExactValuesAndDefaults) {
     EXPECT_TRUE(renders_as_mesh(result->objects[0].shape));
 }
 
+TEST(SceneFile, ProceduralBaseColoursParseToTheExactValues) {
+    const Result<SceneDesc> result = parse_scene(R"({"camera": {}, "objects": [
+        {"shape": "sphere", "material": {"base_color": {"procedural": "marble", "scale": 6,
+            "octaves": 5, "colors": [[0.25, 0.5, 0.75], [1, 2, 3]]}}},
+        {"shape": "sphere", "material": {"base_color": {"procedural": "checker"}}}]})",
+                                                 "procedural.json");
+    ASSERT_TRUE(result.ok()) << result.error().message;
+    const auto& marble = result->objects[0].material.base_color_procedural;
+    ASSERT_TRUE(marble.has_value());
+    EXPECT_EQ(marble->pattern, ProceduralPattern::marble);
+    EXPECT_EQ(marble->scale, 6.0);
+    EXPECT_EQ(marble->octaves, 5);
+    EXPECT_VEC3_EQ(marble->colors[0], 0.25f, 0.5f, 0.75f);
+    EXPECT_VEC3_EQ(marble->colors[1], 1, 2, 3);
+    EXPECT_VEC3_EQ(result->objects[0].material.base_color, 1, 1, 1);
+    const auto& checker = result->objects[1].material.base_color_procedural;
+    ASSERT_TRUE(checker.has_value());
+    EXPECT_EQ(checker->pattern, ProceduralPattern::checker);
+    const ProceduralTexture defaults;
+    EXPECT_EQ(checker->scale, defaults.scale);
+    EXPECT_EQ(checker->octaves, defaults.octaves);
+}
+
 TEST(SceneFile, MinimalSceneTakesTheDefaultsOfSceneDesc) {
     const Result<SceneDesc> result = parse_scene(
         R"({"camera": {}, "objects": [{"shape": "sphere"}, {"shape": "torus"}]})", "minimal.json");
@@ -736,7 +759,29 @@ const ErrorCase kErrorCases[] = {
     {"MaterialNotAnObject", R"({"objects": [{"shape": "sphere", "material": "gold"}]})",
      "objects[0].material", "expected an object, got a string"},
     {"BaseColorNumber", R"({"objects": [{"shape": "sphere", "material": {"base_color": 1}}]})",
-     "objects[0].material.base_color", "expected [r, g, b] or a texture file name, got a number"},
+     "objects[0].material.base_color",
+     "expected [r, g, b], a texture file name or {\"procedural\": ...}, got a number"},
+    {"ProceduralUnknownPattern", R"({"objects": [{"shape": "sphere",
+        "material": {"base_color": {"procedural": "marbel"}}}]})",
+     "objects[0].material.base_color.procedural", "unknown pattern 'marbel' (did you mean 'marble'?)"},
+    {"ProceduralMissingPattern", R"({"objects": [{"shape": "sphere",
+        "material": {"base_color": {"scale": 2}}}]})",
+     "objects[0].material.base_color.procedural", "required key is missing"},
+    {"ProceduralScaleZero", R"({"objects": [{"shape": "sphere",
+        "material": {"base_color": {"procedural": "noise", "scale": 0}}}]})",
+     "objects[0].material.base_color.scale", "must be > 0"},
+    {"ProceduralOctavesTooMany", R"({"objects": [{"shape": "sphere",
+        "material": {"base_color": {"procedural": "noise", "octaves": 17}}}]})",
+     "objects[0].material.base_color.octaves", "must be in 1..16, got 17"},
+    {"ProceduralOneColour", R"({"objects": [{"shape": "sphere",
+        "material": {"base_color": {"procedural": "checker", "colors": [[1, 0, 0]]}}}]})",
+     "objects[0].material.base_color.colors", "expected two colours"},
+    {"ProceduralUnknownKey", R"({"objects": [{"shape": "sphere",
+        "material": {"base_color": {"procedural": "noise", "octave": 3}}}]})",
+     "objects[0].material.base_color.octave", "unknown key"},
+    {"ProceduralInMetallicRoughness", R"({"objects": [{"shape": "sphere",
+        "material": {"model": "metallic-roughness", "base_color": {"procedural": "noise"}}}]})",
+     "objects[0].material.base_color", "a procedural base colour is for the footprint model"},
     {"BaseColorNegative", R"({"objects": [{"shape": "sphere",
         "material": {"base_color": [-1, 0, 0]}}]})",
      "objects[0].material.base_color[0]", "must be >= 0"},

@@ -66,6 +66,11 @@ void add_camera(Fnv1a& h, const CameraDesc& c) {
 void add_material(Fnv1a& h, const MaterialDesc& m) {
     h.add(m.base_color);
     h.add(!m.base_color_map.empty());
+    if (const auto& t = m.base_color_procedural) {  // (nothing otherwise: older hashes stand)
+        h.add(std::string("procedural"));
+        h.add(static_cast<int>(t->pattern)), h.add(t->scale), h.add(t->octaves);
+        h.add(t->colors[0]), h.add(t->colors[1]);
+    }
     if (!m.base_color_map.empty()) h.image(m.base_color_map);
     h.add(m.diffuse), h.add(m.specular), h.add(m.shininess), h.add(m.mirror);
     h.add(m.fresnel_f0), h.add(m.micro_roughness);

@@ -49,6 +49,8 @@ struct Material {
     vec4 f0;         // Schlick's F0 per channel (× the F0 map); w: the environment's diffuse weight
     ivec4 f0_map;    // the F0 map's u_maps index (−1: none; its alpha: the slope variance σ²)
                      // and layer, unused, unused
+    vec4 procedural;               // PROCEDURAL_* (0: none), scale, octaves, unused
+    vec4 procedural_colors[2];     // the pattern's two colours
 };
 
 struct Light {
@@ -77,3 +79,4 @@ uniform int u_light_count;
 uniform int u_max_probes;  // N_max of footprint assembly
 uniform float u_kappa;     // κ of the environment footprint
 uniform vec3 u_background;
+uniform vec3 u_camera_position;  // world: a hit's p is relative to it

@@ -221,6 +221,8 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
     vec3 base = material.base_color.rgb;
     if (material.maps.x >= 0)
         base *= lookup_2d(material.maps.x, material.maps.y, 1, st, dst, mode).a.rgb;
+    if (material.procedural.x > 0.0)  // band-limited where the derivatives are (diff.valid)
+        base *= procedural_color(material, hit.p + u_camera_position, diff.dpdx, diff.dpdy);
     vec3 f0 = material.f0.rgb;
     float micro_variance = material.bump.w * material.bump.w;  // σ² of the micro-roughness
     if (material.f0_map.x >= 0) {

@@ -1,0 +1,112 @@
+// ---- Procedural textures (texture/procedural.h): gradient noise on the integer lattice, its
+// gradients picked by the same integer hash, and the patterns band-limited by fading each octave
+// to its mean by the share of it the footprint's Gaussian keeps.
+
+const float PROCEDURAL_NOISE = 1.0, PROCEDURAL_TURBULENCE = 2.0, PROCEDURAL_MARBLE = 3.0,
+            PROCEDURAL_CHECKER = 4.0;
+const float kMeanAbsNoise = 0.2200;  // procedural.h's E|n|
+
+uint lattice_hash(ivec3 c) {
+    uint h = uint(c.x) * 0x8da6b343u ^ uint(c.y) * 0xd8163841u ^ uint(c.z) * 0xcb1ab31fu;
+    h ^= h >> 16;
+    h *= 0x7feb352du;
+    h ^= h >> 15;
+    h *= 0x846ca68bu;
+    h ^= h >> 16;
+    return h & 15u;
+}
+
+float gradient_dot(uint h, vec3 d) {
+    float u = h < 8u ? d.x : d.y;
+    float v = h < 4u ? d.y : (h == 12u || h == 14u ? d.x : d.z);
+    return ((h & 1u) != 0u ? -u : u) + ((h & 2u) != 0u ? -v : v);
+}
+
+float gradient_noise(vec3 x) {
+    vec3 i = floor(x), d = x - i;
+    ivec3 c = ivec3(i);
+    vec3 q = d * d * d * (d * (d * 6.0 - 15.0) + 10.0);
+    float n000 = gradient_dot(lattice_hash(c), d);
+    float n100 = gradient_dot(lattice_hash(c + ivec3(1, 0, 0)), d - vec3(1, 0, 0));
+    float n010 = gradient_dot(lattice_hash(c + ivec3(0, 1, 0)), d - vec3(0, 1, 0));
+    float n110 = gradient_dot(lattice_hash(c + ivec3(1, 1, 0)), d - vec3(1, 1, 0));
+    float n001 = gradient_dot(lattice_hash(c + ivec3(0, 0, 1)), d - vec3(0, 0, 1));
+    float n101 = gradient_dot(lattice_hash(c + ivec3(1, 0, 1)), d - vec3(1, 0, 1));
+    float n011 = gradient_dot(lattice_hash(c + ivec3(0, 1, 1)), d - vec3(0, 1, 1));
+    float n111 = gradient_dot(lattice_hash(c + ivec3(1, 1, 1)), d - vec3(1, 1, 1));
+    return mix(mix(mix(n000, n100, q.x), mix(n010, n110, q.x), q.y),
+               mix(mix(n001, n101, q.x), mix(n011, n111, q.x), q.y), q.z);
+}
+
+// The pixel filter's Gaussian over the footprint in lattice units: its principal variances
+// (procedural.cpp's footprint_spread()).
+vec2 footprint_spread(vec3 a, vec3 b, float scale) {
+    float k = 0.25 * scale * scale;
+    float aa = k * dot(a, a), bb = k * dot(b, b), ab = k * dot(a, b);
+    float mean = 0.5 * (aa + bb), root = sqrt(0.25 * (aa - bb) * (aa - bb) + ab * ab);
+    if (isinf(mean + root) || isnan(mean + root)) return vec2(1e30);
+    return vec2(mean + root, max(0.0, mean - root));
+}
+
+// The share of an octave's amplitude the footprint keeps (procedural.cpp's octave_weight()).
+float octave_weight(float spacing, vec2 spread) {
+    float f2 = (0.7 / spacing) * (0.7 / spacing);
+    float k = 8.0 * 9.8696044 * f2;  // 8π² σ_f²
+    return sqrt(1.0 / sqrt((1.0 + k * spread.x) * (1.0 + k * spread.y)));
+}
+
+// Σ_i 2^−i (a_i f(n(2^i x)) + (1 − a_i) mean), f = identity or |·|; norm = Σ_i 2^−i.
+float fractal_sum(vec3 x, int octaves, vec2 w, bool absolute, out float norm) {
+    float mean = absolute ? kMeanAbsNoise : 0.0;
+    float sum = 0.0, amplitude = 1.0;
+    norm = 0.0;
+    for (int i = 0; i < octaves; ++i, amplitude *= 0.5) {
+        float a = octave_weight(amplitude, w);
+        float n = mean;
+        if (a > 0.0) {
+            n = gradient_noise(x / amplitude);
+            if (absolute) n = abs(n);
+        }
+        sum += amplitude * (a * n + (1.0 - a) * mean);
+        norm += amplitude;
+    }
+    return sum;
+}
+
+float square_wave_mean(float u, float h) {
+    if (isinf(h) || isnan(h)) return 0.0;
+    if (!(h > 1e-6)) return floor(u) == 2.0 * floor(0.5 * u) ? 1.0 : -1.0;
+    // The triangle wave S(u) = 1 − |(u mod 2) − 1| integrates the square wave.
+    float a = u + h, b = u - h;
+    float sa = 1.0 - abs(a - 2.0 * floor(0.5 * a) - 1.0);
+    float sb = 1.0 - abs(b - 2.0 * floor(0.5 * b) - 1.0);
+    return (sa - sb) / (2.0 * h);
+}
+
+// procedural_value() at world point p, over the footprint spanned by dpdx, dpdy (zero: a point).
+float procedural_value(vec4 info, vec3 p, vec3 dpdx, vec3 dpdy) {
+    float scale = info.y;
+    vec3 x = scale * p;
+    vec2 w = footprint_spread(dpdx, dpdy, scale);
+    int octaves = clamp(int(info.z), 1, 16);
+    float norm;
+    if (info.x == PROCEDURAL_NOISE)
+        return clamp(0.5 + 0.5 * fractal_sum(x, octaves, w, false, norm) / norm, 0.0, 1.0);
+    if (info.x == PROCEDURAL_TURBULENCE)
+        return clamp(fractal_sum(x, octaves, w, true, norm) / norm, 0.0, 1.0);
+    if (info.x == PROCEDURAL_MARBLE) {
+        float turbulence = fractal_sum(x, octaves, w, true, norm);
+        float along = 0.25 * scale * scale * (dpdx.x * dpdx.x + dpdy.x * dpdy.x);
+        float stripes = isinf(along) || isnan(along) ? 0.0 : exp(-0.5 * along);
+        return 0.5 + 0.5 * stripes * sin(x.x + turbulence);
+    }
+    vec3 half_width = 0.8660254 * scale * (abs(dpdx) + abs(dpdy));  // the checker
+    float product = square_wave_mean(x.x, half_width.x) * square_wave_mean(x.y, half_width.y) *
+                    square_wave_mean(x.z, half_width.z);
+    return 0.5 * (1.0 - product);
+}
+
+vec3 procedural_color(Material material, vec3 p, vec3 dpdx, vec3 dpdy) {
+    float v = procedural_value(material.procedural, p, dpdx, dpdy);
+    return mix(material.procedural_colors[0].rgb, material.procedural_colors[1].rgb, v);
+}

@@ -1,0 +1,60 @@
+// texture/procedural.h — solid (3D) procedural textures, band-limited by the pixel's footprint.
+//
+// The patterns (the lectures' "Texturing, part 2"), evaluated at a point p in world units, in the
+// lattice coordinates x = scale·p:
+//   noise       fBm of gradient noise:  Σ_{i<N} n(2^i x)/2^i, over Σ 2^−i, mapped to [0, 1]
+//   turbulence  Σ_{i<N} |n(2^i x)|/2^i, over Σ 2^−i
+//   marble      ½ + ½ sin(x₀ + T(x)), T = Σ_{i<N} |n(2^i x)|/2^i (unnormalised), x₀ = x's first
+//   axis checker     the parity of ⌊x₀⌋ + ⌊x₁⌋ + ⌊x₂⌋
+// n is gradient noise on the integer lattice (Perlin's improved noise: a quintic blend of the
+// eight corners' gradients, chosen from Perlin's twelve cube-edge directions by a hash of the
+// corner), in about [−1, 1] with mean 0. The value v ∈ [0, 1] blends the two colours:
+// colour = (1 − v)·colours[0] + v·colours[1].
+//
+// Antialiasing (clamping, Norton, Rome & Fiume 1982: the octaves a pixel cannot hold fade to their
+// mean). The pixel filter's Gaussian over the footprint (σ = ½ pixel along ∂p/∂x and ∂p/∂y) has,
+// in lattice units, the variances σ_1², σ_2² along its principal axes. Octave i, of lattice spacing
+// λ_i = 2^−i, is taken as isotropic with a Gaussian spectrum of σ_f = 0.7/λ_i per axis (fitted by
+// this module's test), of which the footprint keeps the variance Π_k (1 + 8π² σ_k² σ_f²)^(−1/2):
+// its weight a_i is the square root, and the octave becomes a_i·octave + (1 − a_i)·its mean (0 for
+// n, E|n| = kMeanAbsNoise for |n|). A footprint long in one direction only, as at a grazing angle,
+// thus keeps what its short axis resolves. The marble's stripes sin(x₀ + ·) are attenuated as a
+// sinusoid by the variance σ_x² along x₀: exp(−σ_x²/2). The checker is box-filtered exactly: over
+// an axis-aligned box of half-widths (√3/2)·scale·(|∂p/∂x| + |∂p/∂y|) per axis (a box of the
+// σ = ½-pixel Gaussian's variance along each derivative), the mean of the product of three square
+// waves is the product of their means, each a difference of the square wave's integral (a triangle
+// wave) over the box. Zero derivatives: the point value.
+#pragma once
+
+#include <array>
+
+#include <footprint/math/vec3.h>
+
+namespace footprint {
+
+enum class ProceduralPattern { noise, turbulence, marble, checker };
+
+struct ProceduralTexture {
+    ProceduralPattern pattern = ProceduralPattern::noise;
+    double scale = 1;  // lattice cells per world unit
+    int octaves = 4;   // 1 … kMaxProceduralOctaves (the checker has none)
+    std::array<Vec3, 2> colors{Vec3{0, 0, 0}, Vec3{1, 1, 1}};  // linear RGB at v = 0 and v = 1
+};
+
+inline constexpr int kMaxProceduralOctaves = 16;
+
+// E|n(x)| over the lattice, for uniformly distributed x (ProceduralTexture's test measures it).
+inline constexpr double kMeanAbsNoise = 0.2200;
+
+// Gradient noise n(x) on the integer lattice.
+double gradient_noise(Vec3d x);
+
+// The pattern's value v ∈ [0, 1] at p, band-limited to the footprint spanned by ∂p/∂x and ∂p/∂y
+// (world units per pixel; zero: the point value).
+double procedural_value(const ProceduralTexture& texture, Vec3d p, Vec3d dpdx = {},
+                        Vec3d dpdy = {});
+
+// The colour of the value at p: the two colours blended by procedural_value().
+Vec3 procedural_color(const ProceduralTexture& texture, Vec3d p, Vec3d dpdx = {}, Vec3d dpdy = {});
+
+}  // namespace footprint
