@@ -12,10 +12,8 @@ constexpr double kPi = 3.14159265358979323846;
 
 // A lattice point's gradient index, 0 … 15: an integer hash of its coordinates (no table, so that a
 // shader can draw the same noise with the same arithmetic).
-std::uint32_t lattice_hash(std::int32_t x, std::int32_t y, std::int32_t z) {
-    std::uint32_t h = static_cast<std::uint32_t>(x) * 0x8da6b343u ^
-                      static_cast<std::uint32_t>(y) * 0xd8163841u ^
-                      static_cast<std::uint32_t>(z) * 0xcb1ab31fu;
+std::uint32_t lattice_hash(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+    std::uint32_t h = x * 0x8da6b343u ^ y * 0xd8163841u ^ z * 0xcb1ab31fu;
     h ^= h >> 16;
     h *= 0x7feb352du;
     h ^= h >> 15;
@@ -30,6 +28,12 @@ double gradient_dot(std::uint32_t h, double x, double y, double z) {
     const double u = h < 8 ? x : y;
     const double v = h < 4 ? y : (h == 12 || h == 14 ? x : z);
     return ((h & 1) ? -u : u) + ((h & 2) ? -v : v);
+}
+
+// A lattice coordinate ⌊x⌋ as the shader's int holds it, modulo 2^32: defined for any finite x
+// (a cast of a double beyond the integer's range is not), the same integer where x is small.
+std::uint32_t lattice_index(double floor_x) {
+    return static_cast<std::uint32_t>(static_cast<std::int64_t>(std::fmod(floor_x, 4294967296.0)));
 }
 
 double quintic(double t) {
@@ -98,10 +102,9 @@ double checker_value(Vec3d x, Vec3d half_width) {
 
 double gradient_noise(Vec3d x) {
     const double fx = std::floor(x.x), fy = std::floor(x.y), fz = std::floor(x.z);
-    const auto ix = static_cast<std::int32_t>(fx), iy = static_cast<std::int32_t>(fy),
-               iz = static_cast<std::int32_t>(fz);
+    const std::uint32_t ix = lattice_index(fx), iy = lattice_index(fy), iz = lattice_index(fz);
     const double dx = x.x - fx, dy = x.y - fy, dz = x.z - fz;
-    auto corner = [&](int cx, int cy, int cz) {
+    auto corner = [&](std::uint32_t cx, std::uint32_t cy, std::uint32_t cz) {
         return gradient_dot(lattice_hash(ix + cx, iy + cy, iz + cz), dx - cx, dy - cy, dz - cz);
     };
     const double u = quintic(dx), v = quintic(dy), w = quintic(dz);
