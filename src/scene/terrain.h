@@ -4,10 +4,10 @@
 // The height field has n = 2^L + 1 samples per side over the rectangle `size` (x by z) centred on
 // `center`, y up. Diamond–square fills it coarse to fine: each square's centre, then each edge's
 // midpoint, is the mean of its 2 to 4 neighbours plus a Gaussian displacement whose standard
-// deviation is A·(d/w)^H for a neighbour distance d (w the larger side, A the `height`, H the
-// `roughness`): the increments of fractional Brownian motion with Hurst exponent H, so that a
-// profile's power spectrum falls as f^−(2H+1) (H near 0: jagged; near 1: smooth hills). The four
-// corners are displaced with d = w.
+// deviation is A·d^H, d the distance to those neighbours on the sample lattice taken as a unit
+// square (A the `height`, H the `roughness`): the increments of fractional Brownian motion with
+// Hurst exponent H, so that a profile's power spectrum falls as f^−(2H+1) (H near 0: jagged; near
+// 1: smooth hills). The four corners are displaced with d = 1.
 //
 // Each sample's displacement is a hash of (seed, its position on the finest lattice any L can
 // reach): a terrain of L + 1 subdivisions refines the one of L, keeping its hills.
