@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 
+#include "metrics/image_metrics.h"
 #include "render/camera.h"
 #include "render/render_scene.h"
 
@@ -240,20 +241,13 @@ double rmse(const Image& a, const Image& b) {
     return std::sqrt(sum / a.pixels.size());
 }
 
-// Over the pixels where `mask` (one channel) is nonzero.
+// Over the pixels where `mask` is set (metrics/image_metrics.h, as eval measures the interior).
 double rmse(const Image& a, const Image& b, const Image* mask) {
-    double sum = 0;
-    std::size_t count = 0;
-    for (int y = 0; y < a.height; ++y)
-        for (int x = 0; x < a.width; ++x) {
-            if (mask->at(x, y)[0] == 0) continue;
-            for (int c = 0; c < a.channels; ++c) {
-                const double d = double(a.at(x, y)[c]) - b.at(x, y)[c];
-                sum += d * d;
-                ++count;
-            }
-        }
-    return count ? std::sqrt(sum / count) : 0.0;
+    MetricsOptions options;
+    options.mask = mask;
+    const Result<ImageComparison> d = compare_images(a, b, options);
+    EXPECT_TRUE(d) << d.error().message;
+    return d ? d->rmse : INFINITY;
 }
 
 // The point of the project: one filtered sample per pixel lands much closer to the ground truth
