@@ -397,9 +397,10 @@ TEST(DemoScenes, WithAnEmptyDataFolderTheScenesUseTheRepositorysAssets) {
             used.push_back(fs::relative(file, assets).generic_string());
         }
     }
-    // The HDR sky in the six daylight scenes, the brick normal map on the bump plate.
-    EXPECT_EQ(std::count(used.begin(), used.end(), kDemoEnvironment), 6) << used.size();
-    EXPECT_EQ(std::count(used.begin(), used.end(), kDemoNormalMap), 1) << used.size();
+    // The HDR sky in the seven daylight scenes, the brick normal map on the bump plate and the
+    // irradiance demo's floor.
+    EXPECT_EQ(std::count(used.begin(), used.end(), kDemoEnvironment), 7) << used.size();
+    EXPECT_EQ(std::count(used.begin(), used.end(), kDemoNormalMap), 2) << used.size();
 
     // The files load and pass the renderer's checks (no invalid normal map texels).
     for (const char* name : {"cylinder", "bump_plate"}) {

@@ -275,6 +275,42 @@ DemoScene procedural(const DemoSceneOptions& options) {
     return demo;
 }
 
+DemoScene irradiance(const DemoSceneOptions& options) {
+    DemoScene demo{"irradiance",
+                   "matte surfaces lit by the environment alone: its irradiance by the normal, "
+                   "averaged over a bump map's slopes where the footprint filters them away",
+                   "",
+                   {}};
+    SceneDesc& scene = demo.scene = base_scene(options);
+    scene.camera = {{0, 1.2, 4.5}, {0, 0.3, -3}, {0, 1, 0}, 45};
+    scene.environment = daylight_environment(options, demo.assets);
+    scene.environment->rotation_deg = {0, 100, 0};  // the low sun from the right
+    MaterialDesc matte;
+    matte.base_color = {0.5f, 0.5f, 0.5f};
+    matte.specular = 0;
+    scene.objects.push_back({"matte sphere", SphereShape{{-0.9, 0.6, -1.5}, 0.6}, matte});
+    PlaneShape floor;
+    floor.size = {12, 40};
+    floor.center = {0, 0, -12};
+    floor.uv_scale = 0.5;
+    MaterialDesc bricks = matte;
+    bricks.base_color = {0.45f, 0.3f, 0.22f};
+    if (auto file = data_file(options, "normals/ambientCG_Bricks102_1K_NormalGL.jpg")) {
+        bricks.bump.source = BumpDesc::Source::normal_map;
+        bricks.bump.map = ImageSource{*file, nullptr, ""};
+        bricks.bump.strength = 1;
+        demo.assets += ", normal map " + file->filename().string();
+    } else {
+        bricks.bump.source = BumpDesc::Source::height_map;
+        bricks.bump.map = generated(make_water_height_map(512), "generated waves");
+        bricks.bump.strength = 0.03f;
+        demo.assets += ", bumps generated (waves)";
+    }
+    scene.objects.push_back({"bumpy floor", floor, bricks});
+    add_camera_move(scene, {0.3, 0, 0}, {0.3, 0, 0});
+    return demo;
+}
+
 }  // namespace
 
 fs::path DemoSceneOptions::default_demo_data_dir() {
@@ -288,8 +324,8 @@ fs::path DemoSceneOptions::default_demo_assets_dir() {
 
 const std::vector<std::string>& demo_scene_names() {
     static const std::vector<std::string> names = {
-        "cylinder",       "parabolic_mirror", "water",   "bump_plate",
-        "secret_writing", "brushed_sphere",   "terrain", "procedural"};
+        "cylinder",       "parabolic_mirror", "water",      "bump_plate", "secret_writing",
+        "brushed_sphere", "terrain",          "procedural", "irradiance"};
     return names;
 }
 
@@ -302,6 +338,7 @@ Result<DemoScene> make_demo_scene(const std::string& name, const DemoSceneOption
     if (name == "brushed_sphere") return brushed_sphere(options);
     if (name == "terrain") return terrain(options);
     if (name == "procedural") return procedural(options);
+    if (name == "irradiance") return irradiance(options);
     std::string valid;
     for (const std::string& n : demo_scene_names()) valid += (valid.empty() ? "" : ", ") + n;
     return Error{"unknown demo scene '" + name + "' (valid: " + valid + ")"};

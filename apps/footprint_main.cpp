@@ -192,7 +192,7 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     scene_demo_cmd->add_option("--scene", scene_demo.scenes,
                                "Scenes to render (default: all): cylinder parabolic_mirror water "
-                               "bump_plate secret_writing brushed_sphere terrain procedural");
+                               "bump_plate secret_writing brushed_sphere terrain procedural irradiance");
     scene_demo_cmd
         ->add_option("--size", scene_demo.width,
                      footprint::width_help("Image width in pixels", footprint::kDemoWidths))

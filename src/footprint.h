@@ -38,6 +38,7 @@
 #include <footprint/envmap/env_pyramid_file.h>
 #include <footprint/envmap/env_reference.h>
 #include <footprint/envmap/environment_map.h>
+#include <footprint/envmap/irradiance.h>
 #include <footprint/texture_system.h>
 
 #include <footprint/scene/mesh.h>

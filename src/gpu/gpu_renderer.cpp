@@ -172,7 +172,7 @@ void GpuRenderer::Impl::set_frame_uniforms(const CameraDesc& camera, int width, 
         const Vec2 s = env->texel_scale;
         glUniform2f(uniform("u_env_texel_scale"), s.x, s.y);
         glUniform1i(uniform("u_env_caps"), gpu.has_caps ? 1 : 0);
-        glUniform3f(uniform("u_env_mean"), env->mean[0], env->mean[1], env->mean[2]);
+        glUniform3fv(uniform("u_env_sh"), 9, &env->irradiance.coefficients[0].x);
         constexpr int kMaxEnvLevels = 16;  // environment.glsl's
         std::array<float, kMaxEnvLevels> prefilter{};
         for (std::size_t l = 0; l < gpu.env_prefilter.size(); ++l)

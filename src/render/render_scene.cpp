@@ -423,8 +423,9 @@ Result<EnvImages> environment_images(const EnvironmentDesc& desc) {
     return images;
 }
 
-// What the renderer keeps of the map `handle` besides the handle: layout, texel scale, mean colour
-// (environment_shape(), the ambient term's level).
+// What the renderer keeps of the map `handle` besides the handle: layout and texel scale
+// (environment_shape()), and the irradiance's nine coefficients in world space, projected through
+// the map's filtered lookups.
 Status describe(TextureSystem& textures, EnvironmentHandle* handle,
                 RenderEnvironment& environment) {
     Result<TextureSystem::EnvironmentShape> shape = textures.environment_shape(handle);
@@ -432,8 +433,14 @@ Status describe(TextureSystem& textures, EnvironmentHandle* handle,
     environment.map = handle;
     environment.layout = shape->layout;
     environment.texel_scale = shape->texel_scale;
-    std::copy_n(shape->mean.begin(), 3, environment.mean.begin());
-    return {};
+    const EnvLookupOptions options(LookupOptions{}, environment.rotation);
+    Status status;
+    environment.irradiance = project_radiance([&](Vec3 w, Vec3 d1, Vec3 d2) {
+        float rgb[3] = {0, 0, 0};
+        if (Status s = textures.environment(handle, w, d1, d2, options, rgb); !s) status = s;
+        return Vec3{rgb[0], rgb[1], rgb[2]};
+    });
+    return status;
 }
 
 // The environment in the texture system: an environment pyramid file by its name, read tile by

@@ -38,6 +38,7 @@
 #include <vector>
 
 #include <footprint/core/result.h>
+#include <footprint/envmap/irradiance.h>
 #include <footprint/math/mat3.h>
 #include <footprint/scene/scene.h>
 #include <footprint/scene/surface.h>
@@ -86,7 +87,7 @@ struct RenderEnvironment {
     Vec2 texel_scale;  // the map's, for compute_env_footprint()
     Mat3 rotation;     // A: world → map
     float intensity = 1;
-    std::array<float, 3> mean{0, 0, 0};  // the map's average colour × intensity (ambient light)
+    IrradianceSH irradiance;  // the map's radiance × intensity, nine coefficients (diffuse light)
 };
 
 // One hit with the material it shows.

@@ -46,14 +46,15 @@
 //
 // Shading (linear RGB). At a hit with base colour c, mean normal n̂_m, view direction v̂:
 //   L = Σ_lights E_i [ diffuse·c·max(0, n̂_m·l̂) + specular·S(n̂_m, ĥ, K_b, m)·[n̂_m·l̂ > 0] ]
-//     + diffuse·c·Ē  (ambient: the environment's mean colour Ē)
+//     + diffuse·c·E(n̂_m, K_b)/π  (the environment's irradiance, envmap/irradiance.h: nine
+//                                 spherical harmonics, averaged over K_b in the rough modes)
 //     + mirror·F(n̂_m·v̂)·env(v_r)
 // E_i = colour (directional) or colour/d² (point), no shadows; S = shading/blinn_phong.h's
 // specular() (plain for bilinear/trilinear/fa, gaussian with the filtered K_b for the rough modes),
 // or for a material whose highlight is beckmann or ggx shading/microfacet.h's
 // microfacet_highlight() with α = roughness² and K_b likewise;
 // F = Schlick's Fresnel with fresnel_f0. A metallic-roughness material (glTF's) is the same sum
-// with its diffuse colour c(1 − m), diffuse 1/π for the lights and 1 for Ē, F0 per channel, and
+// with its diffuse colour c(1 − m), diffuse 1/π for the lights and 1 for E/π, F0 per channel, and
 // its roughness in K_b (render/material_model.h). Reflections show the environment only (no
 // inter-reflections), as in the papers. Rays that miss show the environment (filtered over the
 // camera ray's own differentials) or the background colour.

@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 
+#include "envmap/env_layout.h"
 #include "metrics/image_metrics.h"
 #include "render/camera.h"
 #include "render/render_scene.h"
@@ -106,6 +107,59 @@ TEST(Renderer, MirrorPlaneInConstantEnvironmentIsEnvironmentTimesFresnel) {
             }
         }
         EXPECT_GT(checked, desc.width * desc.height / 4);
+    }
+}
+
+// A matte white sphere in a rotated environment whose radiance is linear in the map's direction d,
+// L = a + B d: its irradiance is E(n) = π a + (2π/3) B A n (A: world → map), exact in nine
+// coefficients, so every pixel on the sphere is a + (2/3) B A n. The environment read in world
+// space rotated by Aᵀ instead would be off by up to 1.0.
+TEST(Renderer, AMatteSphereIsLitByTheEnvironmentsIrradianceAtItsNormal) {
+    const float a[3] = {1.0f, 0.9f, 0.8f};
+    const Vec3 b[3] = {{0.8f, 0, 0}, {0, 0.7f, 0.2f}, {0, 0, 0.6f}};
+    auto image = std::make_shared<Image>(256, 128, 3);
+    for (int y = 0; y < 128; ++y)
+        for (int x = 0; x < 256; ++x) {
+            const Vec3 d =
+                normalize(env_direction(EnvLayout::latlong, 0, (x + 0.5f) / 256, (y + 0.5f) / 128));
+            for (int c = 0; c < 3; ++c) image->at(x, y, c) = a[c] + dot(b[c], d);
+        }
+    SceneDesc desc;
+    desc.width = desc.height = 32;
+    desc.camera.position = {0, 0, 4};
+    desc.camera.look_at = {0, 0, 0};
+    desc.camera.fov_y_deg = 35;
+    desc.environment = latlong_environment(image);
+    desc.environment->rotation_deg = {0, 90, 30};
+    MaterialDesc matte;
+    matte.base_color = {1, 1, 1};
+    desc.objects.push_back({"sphere", SphereShape{{0, 0, 0}, 1}, matte});
+    Result<RenderScene> scene = prepare_render_scene(desc);
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    const Mat3 rotation = rotation_xyz_degrees(0, 90, 30);
+    const PinholeCamera camera(desc.camera, desc.width, desc.height);
+    constexpr float kTolerance = 2e-3f;  // the map's texels and the projection's quadrature
+    for (FilterMode mode : {FilterMode::trilinear, FilterMode::fa_rough}) {
+        RenderOptions options;
+        options.filter = mode;
+        const Image rendered = render(*scene, options);
+        int checked = 0;
+        for (int y = 0; y < desc.height; ++y)
+            for (int x = 0; x < desc.width; ++x) {
+                const Ray ray = camera.ray(x + 0.5, y + 0.5).ray;
+                const std::optional<SceneHit> hit = scene->intersect(ray, 0, INFINITY);
+                if (!hit) continue;
+                const Vec3d p = hit->surface.p;
+                const Vec3 n = normalize(Vec3{float(p.x), float(p.y), float(p.z)});
+                const Vec3 n_map = rotation * n;
+                for (int c = 0; c < 3; ++c) {
+                    EXPECT_NEAR(rendered.at(x, y, c), a[c] + 2.0f / 3 * dot(b[c], n_map),
+                                kTolerance)
+                        << filter_mode_name(mode) << " pixel " << x << "," << y << " channel " << c;
+                }
+                ++checked;
+            }
+        EXPECT_GT(checked, 200);
     }
 }
 

@@ -410,10 +410,23 @@ ShadingFactors SampleShader::shade(const SurfacePoint& point) {
     const RenderEnvironment* env = scene_.environment();
     const float ambient = point.material->ambient_weight;
     if (env && ambient > 0) {
-        for (int c = 0; c < 3; ++c) out.diffuse[c] += ambient * env->mean[c];
+        const Vec3 e = irradiance(env->irradiance, n_hat, diffuse_slope_variance(point));
+        const float scale = ambient / std::numbers::pi_v<float>;
+        out.diffuse[0] += scale * e.x, out.diffuse[1] += scale * e.y, out.diffuse[2] += scale * e.z;
     }
     if (env && desc.mirror > 0) add_reflection(point, n_hat, v_hat, out);
     return out;
+}
+
+// The slopes' mean variance about n̂ that averages the environment's diffuse light (irradiance.h):
+// K_b's in the rough modes, less a metallic-roughness material's own σ² (its microfacets', which
+// only the highlight and the mirror see, as sample_micro_slopes() draws them).
+float SampleShader::diffuse_slope_variance(const SurfacePoint& point) const {
+    if (!policy_.roughness) return 0;
+    float variance = 0.5f * (point.roughness.xx + point.roughness.yy);
+    if (point.material->metallic_roughness())
+        variance -= point.material->micro_roughness.xx + point.micro_variance;
+    return std::max(0.0f, variance);
 }
 
 // Lambert + the material's highlight (Blinn-Phong or a microfacet BRDF, widened by K_b in the

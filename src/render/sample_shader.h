@@ -78,7 +78,7 @@ struct SurfacePoint {
 // The factors of one sample's colour: combine() = c ⊙ D + S + F·R.
 struct ShadingFactors {
     Rgb base{};        // c
-    Rgb diffuse{};     // D = diffuse·(Σ_i E_i max(0, n̂·l̂_i) + Ē)
+    Rgb diffuse{};     // D = diffuse·(Σ_i E_i max(0, n̂·l̂_i) + E_env(n̂)/π)
     Rgb highlight{};   // S = specular·Σ_i E_i S(n̂, ĥ_i, K_b)
     Rgb fresnel{};     // F = mirror·Schlick(F0, n̂·v̂), per channel of F0
     Rgb reflection{};  // R = the environment in the reflected direction (filtered or not)
@@ -123,6 +123,7 @@ class SampleShader {
     std::uint64_t lookups = 0;
 
   private:
+    float diffuse_slope_variance(const SurfacePoint& point) const;
     void add_lights(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat, ShadingFactors& out) const;
     void add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat, ShadingFactors& out);
     void read_map(TextureHandle* map, const TextureCoords& coords, RandomStream& random,

@@ -18,7 +18,7 @@ uniform int u_env_layout;
 uniform mat3 u_env_rotation;   // A: world → map
 uniform vec2 u_env_texel_scale;  // S = (W0, H0) of level 0 (a cube face's size for both)
 uniform int u_env_caps;        // 1: the lat-long map has polar caps
-uniform vec3 u_env_mean;       // the map's mean colour (ambient light)
+uniform vec3 u_env_sh[9];      // the radiance's nine SH coefficients, world space (irradiance)
 const int kMaxEnvLevels = 16;
 uniform float u_env_prefilter[kMaxEnvLevels];  // each level's prefilter variance (level-0 texels²)
 uniform ivec2 u_env_wrap;  // the map's wrap in s and t: 1 repeat, 0 clamp
@@ -612,4 +612,48 @@ vec3 env_lookup(EnvFootprint f, int mode, float latlong_trace) {
         return u_env_layout == ENV_CUBE ? env_probe_direction(f.map_direction, plan.lod).rgb
                                         : env_probe_2d(f.point.face, f.point.st, plan.lod).rgb;
     return env_line(f, plan);
+}
+
+// ---- Irradiance (envmap/irradiance.h): E(n) from the radiance's nine SH coefficients, its bands
+// scaled by the clamped cosine's Â_l and by g_1, g_2 of slopes of mean variance σ² about n.
+
+// √π z e^{z²} erfc(z): Abramowitz & Stegun 7.1.26 up to z = 2, Laplace's continued fraction beyond.
+float root_pi_z_erfcx(float z) {
+    if (z <= 2.0) {
+        float t = 1.0 / (1.0 + 0.3275911 * z);
+        float p = t * (0.254829592 + t * (-0.284496736 + t * (1.421413741 +
+                                                               t * (-1.453152027 + t * 1.061405429))));
+        return sqrt(PI) * z * p;
+    }
+    float d = z;
+    for (int k = 8; k >= 1; --k) d = z + 0.5 * float(k) / d;
+    return z / d;
+}
+
+// x e^x E₁(x): Abramowitz & Stegun 5.1.53 (x ≤ 1) and 5.1.56.
+float x_ex_e1(float x) {
+    if (x <= 1.0) {
+        float e1 = -log(x) - 0.57721566 +
+                   x * (0.99999193 + x * (-0.24991055 + x * (0.05519968 +
+                                                             x * (-0.00976004 + x * 0.00107857))));
+        return x * exp(x) * e1;
+    }
+    return (x * x + 2.334733 * x + 0.250621) / (x * x + 3.330657 * x + 1.681534);
+}
+
+vec3 env_irradiance(vec3 n, float slope_variance) {
+    float g1 = 1.0, g2 = 1.0;
+    if (slope_variance > 0.0) {
+        float x = 1.0 / (2.0 * slope_variance);
+        g1 = root_pi_z_erfcx(sqrt(x));
+        g2 = (3.0 * x_ex_e1(x) - 1.0) / 2.0;
+    }
+    float a0 = PI, a1 = 2.0 * PI / 3.0 * g1, a2 = PI / 4.0 * g2;
+    vec3 e = a0 * 0.282095 * u_env_sh[0] +
+             a1 * 0.488603 * (n.y * u_env_sh[1] + n.z * u_env_sh[2] + n.x * u_env_sh[3]) +
+             a2 * (1.092548 * (n.x * n.y * u_env_sh[4] + n.y * n.z * u_env_sh[5] +
+                               n.x * n.z * u_env_sh[7]) +
+                   0.315392 * (3.0 * n.z * n.z - 1.0) * u_env_sh[6] +
+                   0.546274 * (n.x * n.x - n.y * n.y) * u_env_sh[8]);
+    return max(e, vec3(0));
 }

@@ -299,8 +299,11 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
         color += scale * light.color.rgb * (material.weights.x * cos_l * base + spec);
     }
 
-    if (u_env_layout != ENV_NONE && material.f0.w > 0.0)
-        color += material.f0.w * base * u_env_mean;
+    if (u_env_layout != ENV_NONE && material.f0.w > 0.0) {
+        // K_b's mean variance widens the diffuse light, less a metallic-roughness material's own.
+        float variance = 0.5 * (k_b.x + k_b.z) - (material.highlight.z > 0.0 ? micro_variance : 0.0);
+        color += material.f0.w * base * env_irradiance(n_hat, rough_mode ? max(0.0, variance) : 0.0) / PI;
+    }
     if (u_env_layout != ENV_NONE && material.weights.w > 0.0) {
         vec3 texel;
         vec3 fresnel = schlick_fresnel3(f0, dot(n_hat, v_hat));
