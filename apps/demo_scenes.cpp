@@ -275,6 +275,36 @@ DemoScene procedural(const DemoSceneOptions& options) {
     return demo;
 }
 
+DemoScene procedural_bump(const DemoSceneOptions& options) {
+    DemoScene demo{
+        "procedural_bump",
+        "procedural bumps: a sea of noise waves to the horizon reflecting the sky, and a "
+        "chrome sphere hammered with turbulence",
+        "bumps procedural, ",
+        {}};
+    SceneDesc& scene = demo.scene = base_scene(options);
+    scene.camera = {{0, 0.8, 4}, {0, 0.4, -4}, {0, 1, 0}, 45};
+    scene.environment = daylight_environment(options, demo.assets);
+    scene.environment->rotation_deg = {0, 200, 0};  // the sun ahead, low: a glitter path
+    PlaneShape sea;
+    sea.infinite = true;
+    MaterialDesc waves = mirror(0.02f);
+    waves.diffuse = 0.05f;
+    waves.base_color = {0.05f, 0.1f, 0.12f};
+    waves.bump.source = BumpDesc::Source::procedural;
+    waves.bump.procedural = ProceduralTexture{ProceduralPattern::noise, 1.5, 8};
+    waves.bump.strength = 0.4f;
+    scene.objects.push_back({"sea", sea, waves});
+    MaterialDesc hammered = mirror(0.9f);
+    hammered.diffuse = 0;
+    hammered.bump.source = BumpDesc::Source::procedural;
+    hammered.bump.procedural = ProceduralTexture{ProceduralPattern::turbulence, 6, 5};
+    hammered.bump.strength = 0.03f;
+    scene.objects.push_back({"hammered sphere", SphereShape{{0.6, 0.7, -1.2}, 0.5}, hammered});
+    add_camera_move(scene, {0, 0, -0.3}, {0, 0, -0.3});
+    return demo;
+}
+
 DemoScene irradiance(const DemoSceneOptions& options) {
     DemoScene demo{"irradiance",
                    "matte surfaces lit by the environment alone: its irradiance by the normal, "
@@ -324,8 +354,8 @@ fs::path DemoSceneOptions::default_demo_assets_dir() {
 
 const std::vector<std::string>& demo_scene_names() {
     static const std::vector<std::string> names = {
-        "cylinder",       "parabolic_mirror", "water",      "bump_plate", "secret_writing",
-        "brushed_sphere", "terrain",          "procedural", "irradiance"};
+        "cylinder",       "parabolic_mirror", "water",      "bump_plate",      "secret_writing",
+        "brushed_sphere", "terrain",          "procedural", "procedural_bump", "irradiance"};
     return names;
 }
 
@@ -338,6 +368,7 @@ Result<DemoScene> make_demo_scene(const std::string& name, const DemoSceneOption
     if (name == "brushed_sphere") return brushed_sphere(options);
     if (name == "terrain") return terrain(options);
     if (name == "procedural") return procedural(options);
+    if (name == "procedural_bump") return procedural_bump(options);
     if (name == "irradiance") return irradiance(options);
     std::string valid;
     for (const std::string& n : demo_scene_names()) valid += (valid.empty() ? "" : ", ") + n;

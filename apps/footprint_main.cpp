@@ -190,9 +190,11 @@ int run(int argc, char** argv) {
         "Render the papers' figures (built-in scenes) with every filter mode and a reference");
     scene_demo_cmd->add_option("--out", scene_demo_out, "Output directory (created if missing)")
         ->capture_default_str();
-    scene_demo_cmd->add_option("--scene", scene_demo.scenes,
-                               "Scenes to render (default: all): cylinder parabolic_mirror water "
-                               "bump_plate secret_writing brushed_sphere terrain procedural irradiance");
+    scene_demo_cmd->add_option(
+        "--scene", scene_demo.scenes,
+        "Scenes to render (default: all): cylinder parabolic_mirror water "
+        "bump_plate secret_writing brushed_sphere terrain procedural procedural_bump "
+        "irradiance");
     scene_demo_cmd
         ->add_option("--size", scene_demo.width,
                      footprint::width_help("Image width in pixels", footprint::kDemoWidths))

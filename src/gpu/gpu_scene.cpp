@@ -309,6 +309,13 @@ Result<MaterialRecord> material_record(const RenderMaterial& m, TextureSystem& t
             r.procedural_colors[k][2] = t->colors[k].z;
         }
     }
+    if (d.bump.source == BumpDesc::Source::procedural) {
+        const ProceduralTexture& t = d.bump.procedural;
+        r.procedural_bump[0] = static_cast<float>(t.pattern) + 1;
+        r.procedural_bump[1] = static_cast<float>(t.scale);
+        r.procedural_bump[2] = static_cast<float>(t.octaves);
+        r.procedural_bump[3] = d.bump.strength;
+    }
     return r;
 }
 

@@ -49,6 +49,7 @@ struct MaterialRecord {  // common.glsl's Material
     int f0_map[4];
     float procedural[4];            // pattern + 1 (0: none), scale, octaves, unused
     float procedural_colors[2][4];  // the pattern's two colours (rgb)
+    float procedural_bump[4];       // pattern + 1 (0: none), scale, octaves, strength
 };
 struct LightRecord {  // common.glsl's Light
     float direction[4], position[4], color[4];

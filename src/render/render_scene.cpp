@@ -249,7 +249,9 @@ Result<RenderMaterial> prepare_material(const MaterialDesc& desc, SceneMaps& map
         material.base_color_map = *texture;
         material.base_color_grey = maps.textures.info(*texture)->channels < 3;
     }
-    if (desc.bump.source != BumpDesc::Source::none) {
+    const bool has_bump_map = desc.bump.source == BumpDesc::Source::height_map ||
+                              desc.bump.source == BumpDesc::Source::normal_map;
+    if (has_bump_map) {
         const char* key = desc.bump.source == BumpDesc::Source::height_map ? "bump.height_map"
                                                                            : "bump.normal_map";
         const bool stored = !desc.bump.map.image && bump_pyramid_file_offset(desc.bump.map.file);

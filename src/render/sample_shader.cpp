@@ -206,10 +206,19 @@ std::optional<SurfacePoint> SampleShader::trace(const RayDifferential& ray, Vec2
     const Sym2 micro =
         material.micro_roughness + Sym2{point.micro_variance, 0, point.micro_variance};  // K_0 here
 
+    // A frame is needed wherever there are slopes: a bump map, a procedural bump or
+    // micro-roughness.
+    const bool procedural_bump = desc.bump.source == BumpDesc::Source::procedural;
+    point.bumped = material.bump != nullptr || procedural_bump || material.has_micro_slopes();
+    if (point.bumped) point.frame = bump_frame(desc.bump, *hit);
+
     // Bump: mean slope b and roughness K_b of the filtered region (spec §5.4).
     point.roughness = material.micro_roughness;
-    if (material.bump) {
-        const SlopeStatistics stats = slopes(material, coords, micro, draws);
+    if (material.bump || procedural_bump) {
+        const SlopeStatistics stats =
+            procedural_bump
+                ? procedural_slopes_at(desc.bump, s.p, diff, point.frame.frame, micro, draws)
+                : slopes(material, coords, micro, draws);
         point.slope = stats.mean;
         point.roughness = stats.covariance;
     }
@@ -220,10 +229,6 @@ std::optional<SurfacePoint> SampleShader::trace(const RayDifferential& ray, Vec2
     }
     if (policy_.sample_micro_roughness) sample_micro_slopes(material, micro, random, point);
     if (!policy_.roughness) point.roughness = Sym2{};
-
-    // A frame is needed wherever there are slopes: a bump map or micro-roughness.
-    point.bumped = material.bump != nullptr || material.has_micro_slopes();
-    if (point.bumped) point.frame = bump_frame(desc.bump, *hit);
 
     // Face the viewer: a surface seen from behind is shaded as its mirror image (n, ∂n and the
     // tangent frame negated, so n_m = −(n + T b)).
@@ -294,6 +299,45 @@ Rgb SampleShader::procedural_colour(const ProceduralTexture& texture, Rgb consta
         c = procedural_color(texture, p);
     }
     return {constant[0] * c.x, constant[1] * c.y, constant[2] * c.z};
+}
+
+// A procedural bump's b and K_b at p (BumpDesc::Source::procedural): the height h = strength·v,
+// b = −∇h in the orthonormal frame (t1, t2), K_b the gradient covariance the band limit removed,
+// projected onto it, plus the micro-roughness — in the filtered modes, over the footprint; a
+// point's gradient in the others (stochastic filtering's at a point drawn from the pixel filter's
+// Gaussian, as its colour's), whose micro-roughness is sampled apart.
+SlopeStatistics SampleShader::procedural_slopes_at(const BumpDesc& bump, Vec3d p,
+                                                   const SurfaceDifferentials& diff,
+                                                   const TangentFrame& frame, const Sym2& micro,
+                                                   RandomStream& random) {
+    ProceduralSlopes slopes;
+    const bool band_limited = policy_.filtered && !policy_.stochastic && diff.valid;
+    if (band_limited) {
+        slopes = procedural_slopes(bump.procedural, p, diff.dpdx, diff.dpdy);
+    } else if (policy_.stochastic && diff.valid) {
+        const Vec2 z = random.gaussian();
+        slopes = procedural_slopes(
+            bump.procedural, p + 0.5 * double(z.x) * diff.dpdx + 0.5 * double(z.y) * diff.dpdy);
+    } else {
+        slopes = procedural_slopes(bump.procedural, p);
+    }
+    const double a = bump.strength;
+    const Vec3d t1{frame.t1.x, frame.t1.y, frame.t1.z}, t2{frame.t2.x, frame.t2.y, frame.t2.z};
+    SlopeStatistics stats;
+    stats.mean = {static_cast<float>(-a * dot(slopes.gradient, t1)),
+                  static_cast<float>(-a * dot(slopes.gradient, t2))};
+    if (!band_limited) return stats;
+    const auto& c = slopes.covariance;   // xx, yy, zz, xy, xz, yz
+    auto form = [&](Vec3d u, Vec3d v) {  // uᵀ C v
+        return u.x * (c[0] * v.x + c[3] * v.y + c[4] * v.z) +
+               u.y * (c[3] * v.x + c[1] * v.y + c[5] * v.z) +
+               u.z * (c[4] * v.x + c[5] * v.y + c[2] * v.z);
+    };
+    stats.covariance =
+        Sym2{static_cast<float>(a * a * form(t1, t1)), static_cast<float>(a * a * form(t1, t2)),
+             static_cast<float>(a * a * form(t2, t2))} +
+        micro;
+    return stats;
 }
 
 // F0 and, from a textured metallic-roughness material's F0 map, the slope variance σ².

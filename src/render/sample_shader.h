@@ -146,6 +146,10 @@ class SampleShader {
                                       const Sym2& micro);
     std::pair<Vec2, Vec2> slope_steps(const RenderMaterial& material, const TextureCoords& coords,
                                       Vec2 slope);
+    SlopeStatistics procedural_slopes_at(const BumpDesc& bump, Vec3d p,
+                                         const SurfaceDifferentials& diff,
+                                         const TangentFrame& frame, const Sym2& micro,
+                                         RandomStream& random);
     SlopeStatistics read_sampled(const RenderMaterial& material, const TextureCoords& coords,
                                  const Sym2& micro, RandomStream& random);
     // Level 0's size of a map (cached: the texture system's info() takes a lock).

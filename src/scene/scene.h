@@ -82,10 +82,15 @@ enum class BumpFrame {
 };
 
 struct BumpDesc {
-    enum class Source { none, height_map, normal_map };
+    enum class Source { none, height_map, normal_map, procedural };
     Source source = Source::none;
-    ImageSource map;     // a height map (channel 0) or a tangent-space normal map (OpenGL)
-    float strength = 1;  // height scale (height map: world height per map unit) or slope factor
+    ImageSource map;  // a height map (channel 0) or a tangent-space normal map (OpenGL)
+    // Source::procedural: the height field h = strength·v(p) of a solid pattern's value v
+    // (texture/procedural.h: procedural_slopes()), in world units, band-limited by the footprint;
+    // its slopes are in main_direction's orthonormal frame. Its colours are unused.
+    ProceduralTexture procedural;
+    float strength =
+        1;  // height scale (height map, procedural: world height per unit) or slope factor
     BumpFrame frame = BumpFrame::main_direction;
     // m for frame = main_direction (world space); zero: the surface's own ∂p/∂v at each point
     Vec3d main_direction{0, 0, 0};

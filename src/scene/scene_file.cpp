@@ -721,7 +721,13 @@ class SceneParser {
         }
         if (const json* v = find(j, "micro_roughness"))
             m.micro_roughness = non_negative(*v, at("micro_roughness"));
-        if (const json* v = find(j, "bump")) m.bump = parse_bump(*v, at("bump"));
+        if (const json* v = find(j, "bump")) {
+            m.bump = parse_bump(*v, at("bump"));
+            if (pbr && m.bump.source == BumpDesc::Source::procedural)
+                fail(at("bump"),
+                     "a procedural bump is for the footprint model: the metallic-roughness "
+                     "model's roughness lives in a map of slope moments");
+        }
         if (const json* v = find(j, "invalid_normals"))
             m.invalid_normals = parse_invalid_normals(*v, at("invalid_normals"), m.bump,
                                                       mesh != MeshFileKind::none);
@@ -852,12 +858,13 @@ class SceneParser {
     }
 
     BumpDesc parse_bump(const json& j, const std::string& path) const {
+        if (find(j, "procedural")) return parse_procedural_bump(j, path);
         check_keys(j, path, {"height_map", "normal_map", "strength", "frame", "main_direction"});
         BumpDesc bump;
         const json* height = find(j, "height_map");
         const json* normal = find(j, "normal_map");
         if (height && normal) fail(path, "has both height_map and normal_map (give exactly one)");
-        if (!height && !normal) fail(path, "needs a height_map or a normal_map");
+        if (!height && !normal) fail(path, "needs a height_map, a normal_map or a procedural");
         if (height) {
             bump.source = BumpDesc::Source::height_map;
             bump.map = image_file(*height, member(path, "height_map"));
@@ -887,6 +894,24 @@ class SceneParser {
                 fail(direction_path, "is used only with frame \"main_direction\"");
             bump.main_direction = vec3(*v, direction_path);  // zero: the surface's ∂p/∂v
         }
+        return bump;
+    }
+
+    // {"procedural": "noise" | "turbulence" | "marble", "scale": S, "octaves": N, "strength": A}:
+    // the pattern's value as a height field of A world units; its slopes are the height's gradient.
+    BumpDesc parse_procedural_bump(const json& j, const std::string& path) const {
+        check_keys(j, path, {"procedural", "scale", "octaves", "strength"});
+        json pattern = j;
+        pattern.erase("strength");
+        BumpDesc bump;
+        bump.source = BumpDesc::Source::procedural;
+        bump.procedural = parse_procedural(pattern, path);
+        if (bump.procedural.pattern == ProceduralPattern::checker)
+            fail(member(path, "procedural"),
+                 "a checker is a sum of steps and has no slopes: give noise, turbulence or marble");
+        if (const json* v = find(j, "strength"))
+            bump.strength = single(*v, member(path, "strength"));
+        bump.frame = BumpFrame::main_direction;  // any orthonormal frame: the gradient is 3-D
         return bump;
     }
 

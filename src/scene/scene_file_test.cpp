@@ -324,6 +324,21 @@ TEST(SceneFile, ProceduralBaseColoursParseToTheExactValues) {
     EXPECT_EQ(checker->octaves, defaults.octaves);
 }
 
+TEST(SceneFile, ProceduralBumpsParseToTheExactValues) {
+    const Result<SceneDesc> result = parse_scene(R"({"camera": {}, "objects": [
+        {"shape": "sphere", "material": {"bump": {"procedural": "turbulence", "scale": 3,
+            "octaves": 7, "strength": 0.02}}}]})",
+                                                 "procedural_bump.json");
+    ASSERT_TRUE(result.ok()) << result.error().message;
+    const BumpDesc& bump = result->objects[0].material.bump;
+    EXPECT_EQ(bump.source, BumpDesc::Source::procedural);
+    EXPECT_EQ(bump.procedural.pattern, ProceduralPattern::turbulence);
+    EXPECT_EQ(bump.procedural.scale, 3.0);
+    EXPECT_EQ(bump.procedural.octaves, 7);
+    EXPECT_EQ(bump.strength, 0.02f);
+    EXPECT_EQ(bump.frame, BumpFrame::main_direction);
+}
+
 TEST(SceneFile, MinimalSceneTakesTheDefaultsOfSceneDesc) {
     const Result<SceneDesc> result = parse_scene(
         R"({"camera": {}, "objects": [{"shape": "sphere"}, {"shape": "torus"}]})", "minimal.json");
@@ -763,7 +778,8 @@ const ErrorCase kErrorCases[] = {
      "expected [r, g, b], a texture file name or {\"procedural\": ...}, got a number"},
     {"ProceduralUnknownPattern", R"({"objects": [{"shape": "sphere",
         "material": {"base_color": {"procedural": "marbel"}}}]})",
-     "objects[0].material.base_color.procedural", "unknown pattern 'marbel' (did you mean 'marble'?)"},
+     "objects[0].material.base_color.procedural",
+     "unknown pattern 'marbel' (did you mean 'marble'?)"},
     {"ProceduralMissingPattern", R"({"objects": [{"shape": "sphere",
         "material": {"base_color": {"scale": 2}}}]})",
      "objects[0].material.base_color.procedural", "required key is missing"},
@@ -782,6 +798,18 @@ const ErrorCase kErrorCases[] = {
     {"ProceduralInMetallicRoughness", R"({"objects": [{"shape": "sphere",
         "material": {"model": "metallic-roughness", "base_color": {"procedural": "noise"}}}]})",
      "objects[0].material.base_color", "a procedural base colour is for the footprint model"},
+    {"ProceduralBumpChecker", R"({"objects": [{"shape": "sphere",
+        "material": {"bump": {"procedural": "checker"}}}]})",
+     "objects[0].material.bump.procedural", "a checker is a sum of steps and has no slopes"},
+    {"ProceduralBumpColors", R"({"objects": [{"shape": "sphere",
+        "material": {"bump": {"procedural": "noise", "colors": [[0, 0, 0], [1, 1, 1]]}}}]})",
+     "objects[0].material.bump.colors", "unknown key"},
+    {"ProceduralBumpFrame", R"({"objects": [{"shape": "sphere",
+        "material": {"bump": {"procedural": "noise", "frame": "natural"}}}]})",
+     "objects[0].material.bump.frame", "unknown key"},
+    {"ProceduralBumpInMetallicRoughness", R"({"objects": [{"shape": "sphere",
+        "material": {"model": "metallic-roughness", "bump": {"procedural": "noise"}}}]})",
+     "objects[0].material.bump", "a procedural bump is for the footprint model"},
     {"BaseColorNegative", R"({"objects": [{"shape": "sphere",
         "material": {"base_color": [-1, 0, 0]}}]})",
      "objects[0].material.base_color[0]", "must be >= 0"},
@@ -866,7 +894,7 @@ const ErrorCase kErrorCases[] = {
         "height_map": "height.png", "normal_map": "normal.png"}}}]})",
      "objects[0].material.bump", "has both height_map and normal_map"},
     {"BumpNoMap", R"({"objects": [{"shape": "sphere", "material": {"bump": {"strength": 1}}}]})",
-     "objects[0].material.bump", "needs a height_map or a normal_map"},
+     "objects[0].material.bump", "needs a height_map, a normal_map or a procedural"},
     {"BumpNormalMapNotFound", R"({"objects": [)" SPHERE R"(, {"shape": "sphere",
         "material": {"bump": {"normal_map": "x.png"}}}]})",
      "objects[1].material.bump.normal_map", "file 'x.png' not found (resolved to '"},

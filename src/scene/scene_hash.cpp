@@ -82,7 +82,12 @@ void add_material(Fnv1a& h, const MaterialDesc& m) {
         if (!m.metallic_roughness_map.empty()) h.image(m.metallic_roughness_map);
     }
     h.add(static_cast<int>(m.bump.source));
-    if (m.bump.source != BumpDesc::Source::none) h.image(m.bump.map);
+    if (m.bump.source == BumpDesc::Source::procedural) {
+        const ProceduralTexture& t = m.bump.procedural;
+        h.add(static_cast<int>(t.pattern)), h.add(t.scale), h.add(t.octaves);
+    } else if (m.bump.source != BumpDesc::Source::none) {
+        h.image(m.bump.map);
+    }
     h.add(m.bump.strength), h.add(static_cast<int>(m.bump.frame)), h.add(m.bump.main_direction);
 }
 

@@ -40,6 +40,10 @@ double quintic(double t) {
     return t * t * t * (t * (t * 6 - 15) + 10);
 }
 
+double quintic_slope(double t) {
+    return 30 * t * t * (t - 1) * (t - 1);
+}
+
 // The pixel filter's Gaussian over the footprint (σ = ½ pixel along ∂p/∂x and ∂p/∂y) in lattice
 // units: the variances along its two principal axes, the eigenvalues of ¼ scale² [a b]ᵀ[a b].
 struct Spread {
@@ -79,6 +83,23 @@ double fractal_sum(Vec3d x, int octaves, Spread w, double mean, F&& f, double& n
     return sum;
 }
 
+// Σ_{i<N} a_i f'(n_i) ∇n(2^i x) (in lattice units: each octave's 1/2^i cancels its 2^i), f the
+// identity or |·|, and Σ (1 − a_i²): the octaves' gradient variance that the band limit removed, in
+// units of one octave's (kNoiseGradientVariance).
+Vec3d fractal_gradient(Vec3d x, int octaves, Spread w, bool absolute, double& removed) {
+    Vec3d sum{0, 0, 0};
+    removed = 0;
+    double amplitude = 1;
+    for (int i = 0; i < octaves; ++i, amplitude *= 0.5) {
+        const double a = octave_weight(amplitude, w);
+        removed += 1 - a * a;
+        if (!(a > 0)) continue;
+        const NoiseSample n = gradient_noise_sample(x / amplitude);
+        sum = sum + (absolute && n.value < 0 ? -a : a) * n.gradient;
+    }
+    return sum;
+}
+
 // The mean of the square wave s(u) = (−1)^⌊u⌋ over [u − h, u + h]: its integral, a triangle wave
 // S(u) = 1 − |(u mod 2) − 1|, differenced.
 double square_wave_mean(double u, double h) {
@@ -100,20 +121,33 @@ double checker_value(Vec3d x, Vec3d half_width) {
 
 }  // namespace
 
-double gradient_noise(Vec3d x) {
+NoiseSample gradient_noise_sample(Vec3d x) {
     const double fx = std::floor(x.x), fy = std::floor(x.y), fz = std::floor(x.z);
     const std::uint32_t ix = lattice_index(fx), iy = lattice_index(fy), iz = lattice_index(fz);
-    const double dx = x.x - fx, dy = x.y - fy, dz = x.z - fz;
-    auto corner = [&](std::uint32_t cx, std::uint32_t cy, std::uint32_t cz) {
-        return gradient_dot(lattice_hash(ix + cx, iy + cy, iz + cz), dx - cx, dy - cy, dz - cz);
-    };
-    const double u = quintic(dx), v = quintic(dy), w = quintic(dz);
-    auto lerp = [](double a, double b, double t) { return a + t * (b - a); };
-    return lerp(lerp(lerp(corner(0, 0, 0), corner(1, 0, 0), u),
-                     lerp(corner(0, 1, 0), corner(1, 1, 0), u), v),
-                lerp(lerp(corner(0, 0, 1), corner(1, 0, 1), u),
-                     lerp(corner(0, 1, 1), corner(1, 1, 1), u), v),
-                w);
+    const Vec3d d{x.x - fx, x.y - fy, x.z - fz};
+    const Vec3d fade{quintic(d.x), quintic(d.y), quintic(d.z)};
+    const Vec3d fade_slope{quintic_slope(d.x), quintic_slope(d.y), quintic_slope(d.z)};
+    // n = Σ_corners w_c (g_c · (d − c)), w_c the product of the three fades (or 1 − fade) of c;
+    // ∂n/∂x_k = Σ_c ∂w_c/∂x_k (g_c · (d − c)) + w_c g_c,k.
+    NoiseSample n{0, {0, 0, 0}};
+    for (std::uint32_t c = 0; c < 8; ++c) {
+        const std::uint32_t cx = c & 1, cy = (c >> 1) & 1, cz = c >> 2;
+        const std::uint32_t h = lattice_hash(ix + cx, iy + cy, iz + cz);
+        const Vec3d g{gradient_dot(h, 1, 0, 0), gradient_dot(h, 0, 1, 0), gradient_dot(h, 0, 0, 1)};
+        const double value = dot(g, Vec3d{d.x - cx, d.y - cy, d.z - cz});
+        const double wx = cx ? fade.x : 1 - fade.x, wy = cy ? fade.y : 1 - fade.y,
+                     wz = cz ? fade.z : 1 - fade.z;
+        const double sx = cx ? fade_slope.x : -fade_slope.x, sy = cy ? fade_slope.y : -fade_slope.y,
+                     sz = cz ? fade_slope.z : -fade_slope.z;
+        n.value += wx * wy * wz * value;
+        n.gradient =
+            n.gradient + wx * wy * wz * g + value * Vec3d{sx * wy * wz, wx * sy * wz, wx * wy * sz};
+    }
+    return n;
+}
+
+double gradient_noise(Vec3d x) {
+    return gradient_noise_sample(x).value;
 }
 
 double procedural_value(const ProceduralTexture& texture, Vec3d p, Vec3d dpdx, Vec3d dpdy) {
@@ -151,6 +185,58 @@ double procedural_value(const ProceduralTexture& texture, Vec3d p, Vec3d dpdx, V
         }
     }
     return 0.5;
+}
+
+ProceduralSlopes procedural_slopes(const ProceduralTexture& texture, Vec3d p, Vec3d dpdx,
+                                   Vec3d dpdy) {
+    const double scale = texture.scale;
+    const Vec3d x = scale * p;
+    ProceduralSlopes out;
+    if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z)) return out;
+    const Spread w = footprint_spread(dpdx, dpdy, scale);
+    const int octaves = std::clamp(texture.octaves, 1, kMaxProceduralOctaves);
+    double norm = 0;
+    for (int i = 0; i < octaves; ++i) norm += std::ldexp(1.0, -i);
+    double removed = 0;
+    auto isotropic = [&](double k) {  // k·removed·κ I
+        const double v = k * removed * kNoiseGradientVariance;
+        out.covariance = {v, v, v, 0, 0, 0};
+    };
+    switch (texture.pattern) {
+        case ProceduralPattern::noise: {  // v = ½ + ½ Σ/norm
+            const double k = 0.5 * scale / norm;
+            out.gradient = k * fractal_gradient(x, octaves, w, false, removed);
+            isotropic(k * k);
+            break;
+        }
+        case ProceduralPattern::turbulence: {  // v = Σ|n|/norm
+            const double k = scale / norm;
+            out.gradient = k * fractal_gradient(x, octaves, w, true, removed);
+            isotropic(k * k);
+            break;
+        }
+        case ProceduralPattern::marble: {  // v = ½ + ½ e^{−σ²/2} sin(x₀ + T)
+            double unused = 0;
+            const double turbulence = fractal_sum(
+                x, octaves, w, kMeanAbsNoise, [](double n) { return std::abs(n); }, unused);
+            const Vec3d turbulence_gradient =
+                scale * fractal_gradient(x, octaves, w, true, removed);
+            const double along = 0.25 * scale * scale * (dpdx.x * dpdx.x + dpdy.x * dpdy.x);
+            const double stripes = std::isfinite(along) ? std::exp(-0.5 * along) : 0.0;
+            const double c = std::cos(x.x + turbulence);
+            out.gradient = 0.5 * stripes * c * (Vec3d{scale, 0, 0} + turbulence_gradient);
+            // The turbulence's removed octaves under (½ cos)²: the local cos² where the footprint
+            // resolves the stripes, its mean ½ where it does not. The stripes' own removed share
+            // lies along x₀.
+            const double c2 = 0.5 + stripes * stripes * (c * c - 0.5);
+            isotropic(0.25 * c2 * scale * scale);
+            out.covariance[0] += 0.125 * scale * scale * (1 - stripes * stripes);
+            break;
+        }
+        case ProceduralPattern::checker:  // steps: no slopes to take
+            break;
+    }
+    return out;
 }
 
 Vec3 procedural_color(const ProceduralTexture& texture, Vec3d p, Vec3d dpdx, Vec3d dpdy) {

@@ -46,13 +46,36 @@ inline constexpr int kMaxProceduralOctaves = 16;
 // E|n(x)| over the lattice, for uniformly distributed x (ProceduralTexture's test measures it).
 inline constexpr double kMeanAbsNoise = 0.2200;
 
-// Gradient noise n(x) on the integer lattice.
+// Var(∂n/∂x_k) over the lattice, the mean of the three axes, for uniformly distributed x
+// (ProceduralTexture's test measures it: 0.48 along x and z, 0.52 along y, whose gradients
+// Perlin's table repeats).
+inline constexpr double kNoiseGradientVariance = 0.496;
+
+// Gradient noise n(x) on the integer lattice, and with its gradient ∇n(x).
 double gradient_noise(Vec3d x);
+struct NoiseSample {
+    double value = 0;
+    Vec3d gradient;
+};
+NoiseSample gradient_noise_sample(Vec3d x);
 
 // The pattern's value v ∈ [0, 1] at p, band-limited to the footprint spanned by ∂p/∂x and ∂p/∂y
 // (world units per pixel; zero: the point value).
 double procedural_value(const ProceduralTexture& texture, Vec3d p, Vec3d dpdx = {},
                         Vec3d dpdy = {});
+
+// The pattern as a height field (bump: {"procedural": …}): the gradient ∇v of its value per world
+// unit, band-limited as procedural_value() (each octave's a_i), and the covariance of ∇v that the
+// band limit removed (the roughness the footprint filtered away: (1 − a_i²) of each octave's
+// gradient variance kNoiseGradientVariance, isotropic; in the marble, the turbulence's under the
+// stripes' (½ cos)², and the stripes' own (1 − e^{−σ_x²}) along x₀). The checker, a sum of steps,
+// has none.
+struct ProceduralSlopes {
+    Vec3d gradient;
+    std::array<double, 6> covariance{};  // xx, yy, zz, xy, xz, yz
+};
+ProceduralSlopes procedural_slopes(const ProceduralTexture& texture, Vec3d p, Vec3d dpdx = {},
+                                   Vec3d dpdy = {});
 
 // The colour of the value at p: the two colours blended by procedural_value().
 Vec3 procedural_color(const ProceduralTexture& texture, Vec3d p, Vec3d dpdx = {}, Vec3d dpdy = {});

@@ -51,6 +51,8 @@ struct Material {
                      // and layer, unused, unused
     vec4 procedural;               // PROCEDURAL_* (0: none), scale, octaves, unused
     vec4 procedural_colors[2];     // the pattern's two colours
+    vec4 procedural_bump;          // a procedural bump: PROCEDURAL_* (0: none), scale, octaves,
+                                   // strength
 };
 
 struct Light {

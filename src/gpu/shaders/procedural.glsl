@@ -4,7 +4,8 @@
 
 const float PROCEDURAL_NOISE = 1.0, PROCEDURAL_TURBULENCE = 2.0, PROCEDURAL_MARBLE = 3.0,
             PROCEDURAL_CHECKER = 4.0;
-const float kMeanAbsNoise = 0.2200;  // procedural.h's E|n|
+const float kMeanAbsNoise = 0.2200;            // procedural.h's E|n|
+const float kNoiseGradientVariance = 0.496;    // procedural.h's Var(∂n/∂x_k)
 
 uint lattice_hash(ivec3 c) {
     uint h = uint(c.x) * 0x8da6b343u ^ uint(c.y) * 0xd8163841u ^ uint(c.z) * 0xcb1ab31fu;
@@ -36,6 +37,29 @@ float gradient_noise(vec3 x) {
     float n111 = gradient_dot(lattice_hash(c + ivec3(1, 1, 1)), d - vec3(1, 1, 1));
     return mix(mix(mix(n000, n100, q.x), mix(n010, n110, q.x), q.y),
                mix(mix(n001, n101, q.x), mix(n011, n111, q.x), q.y), q.z);
+}
+
+// The noise and its gradient ∇n (procedural.cpp's gradient_noise_sample()): xyz the gradient,
+// w the value.
+vec4 gradient_noise_sample(vec3 x) {
+    vec3 i = floor(x), d = x - i;
+    ivec3 c = ivec3(i);
+    vec3 fade = d * d * d * (d * (d * 6.0 - 15.0) + 10.0);
+    vec3 fade_slope = 30.0 * d * d * (d - 1.0) * (d - 1.0);
+    vec4 n = vec4(0);
+    for (int k = 0; k < 8; ++k) {
+        ivec3 corner = ivec3(k & 1, (k >> 1) & 1, k >> 2);
+        uint h = lattice_hash(c + corner);
+        vec3 g = vec3(gradient_dot(h, vec3(1, 0, 0)), gradient_dot(h, vec3(0, 1, 0)),
+                      gradient_dot(h, vec3(0, 0, 1)));
+        vec3 e = d - vec3(corner);
+        float value = dot(g, e);
+        vec3 w = mix(1.0 - fade, fade, vec3(corner));
+        vec3 s = mix(-fade_slope, fade_slope, vec3(corner));
+        n.w += w.x * w.y * w.z * value;
+        n.xyz += w.x * w.y * w.z * g + value * vec3(s.x * w.y * w.z, w.x * s.y * w.z, w.x * w.y * s.z);
+    }
+    return n;
 }
 
 // The pixel filter's Gaussian over the footprint in lattice units: its principal variances
@@ -104,6 +128,55 @@ float procedural_value(vec4 info, vec3 p, vec3 dpdx, vec3 dpdy) {
     float product = square_wave_mean(x.x, half_width.x) * square_wave_mean(x.y, half_width.y) *
                     square_wave_mean(x.z, half_width.z);
     return 0.5 * (1.0 - product);
+}
+
+// Σ_i a_i f'(n_i) ∇n(2^i x) and Σ_i (1 − a_i²) (procedural.cpp's fractal_gradient()).
+vec3 fractal_gradient(vec3 x, int octaves, vec2 w, bool absolute, out float removed) {
+    vec3 sum = vec3(0);
+    float amplitude = 1.0;
+    removed = 0.0;
+    for (int i = 0; i < octaves; ++i, amplitude *= 0.5) {
+        float a = octave_weight(amplitude, w);
+        removed += 1.0 - a * a;
+        if (!(a > 0.0)) continue;
+        vec4 n = gradient_noise_sample(x / amplitude);
+        sum += (absolute && n.w < 0.0 ? -a : a) * n.xyz;
+    }
+    return sum;
+}
+
+// procedural_slopes(): ∇v band-limited, and the removed covariance, as mat3.
+struct ProceduralSlopes {
+    vec3 gradient;
+    mat3 covariance;
+};
+
+ProceduralSlopes procedural_slopes(vec4 info, vec3 p, vec3 dpdx, vec3 dpdy) {
+    ProceduralSlopes out_slopes = ProceduralSlopes(vec3(0), mat3(0));
+    float scale = info.y;
+    vec3 x = scale * p;
+    vec2 w = footprint_spread(dpdx, dpdy, scale);
+    int octaves = clamp(int(info.z), 1, 16);
+    float norm = 2.0 - exp2(1.0 - float(octaves));  // Σ_{i<N} 2^−i
+    float removed;
+    if (info.x == PROCEDURAL_NOISE || info.x == PROCEDURAL_TURBULENCE) {
+        bool absolute = info.x == PROCEDURAL_TURBULENCE;
+        float k = (absolute ? 1.0 : 0.5) * scale / norm;
+        out_slopes.gradient = k * fractal_gradient(x, octaves, w, absolute, removed);
+        out_slopes.covariance = mat3(k * k * removed * kNoiseGradientVariance);
+    } else if (info.x == PROCEDURAL_MARBLE) {
+        float unused;
+        float turbulence = fractal_sum(x, octaves, w, true, unused);
+        vec3 turbulence_gradient = scale * fractal_gradient(x, octaves, w, true, removed);
+        float along = 0.25 * scale * scale * (dpdx.x * dpdx.x + dpdy.x * dpdy.x);
+        float stripes = isinf(along) || isnan(along) ? 0.0 : exp(-0.5 * along);
+        float c = cos(x.x + turbulence);
+        out_slopes.gradient = 0.5 * stripes * c * (vec3(scale, 0, 0) + turbulence_gradient);
+        float c2 = 0.5 + stripes * stripes * (c * c - 0.5);
+        out_slopes.covariance = mat3(0.25 * c2 * scale * scale * removed * kNoiseGradientVariance);
+        out_slopes.covariance[0][0] += 0.125 * scale * scale * (1.0 - stripes * stripes);
+    }
+    return out_slopes;
 }
 
 vec3 procedural_color(Material material, vec3 p, vec3 dpdx, vec3 dpdy) {

@@ -231,20 +231,30 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
         micro_variance = max(0.0, texel.a);
     }
 
+    bool bump_map = material.maps.z >= 0;
+    bool procedural_bump = material.procedural_bump.x > 0.0;
+    bool bumped = bump_map || procedural_bump || material.bump.w > 0.0;
+    Frame frame = Frame(vec3(1, 0, 0), vec3(0, 1, 0), 1.0);
+    if (bumped) frame = bump_frame(material, hit);
+
     // Bump: the mean slope b and roughness K_b of the filtered region (spec §5.4).
     vec2 slope = vec2(0);
     vec3 k_b = material.roughness.xyz;
-    bool bump_map = material.maps.z >= 0;
     if (bump_map) {
         SlopeStats stats = from_moments(lookup_2d(material.maps.z, material.maps.w, 2, st, dst, mode),
                                         vec2(material.main_direction.w, material.roughness.w));
         slope = stats.mean;
         k_b = stats.k;
+    } else if (procedural_bump) {  // h = strength·v: b = −∇h and K_b in the orthonormal frame
+        ProceduralSlopes ps = procedural_slopes(material.procedural_bump, hit.p + u_camera_position,
+                                                diff.dpdx, diff.dpdy);
+        float a = material.procedural_bump.w;
+        slope = -a * vec2(dot(ps.gradient, frame.t1), dot(ps.gradient, frame.t2));
+        k_b += a * a * vec3(dot(frame.t1, ps.covariance * frame.t1),
+                            dot(frame.t1, ps.covariance * frame.t2),
+                            dot(frame.t2, ps.covariance * frame.t2));
     }
     if (!rough_mode) k_b = vec3(0);
-    bool bumped = bump_map || material.bump.w > 0.0;
-    Frame frame = Frame(vec3(1, 0, 0), vec3(0, 1, 0), 1.0);
-    if (bumped) frame = bump_frame(material, hit);
     vec2 b_t = frame.slope_sign * slope;
 
     // Face the viewer (a surface seen from behind is shaded as its mirror image).
