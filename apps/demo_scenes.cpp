@@ -1,5 +1,6 @@
 #include "demo_scenes.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <memory>
 #include <system_error>
@@ -305,6 +306,69 @@ DemoScene procedural_bump(const DemoSceneOptions& options) {
     return demo;
 }
 
+// A box room seen from `room.capture`: tiled floor, coloured walls, a bright window and a ceiling
+// light (HDR), each texel the mean of 2 × 2 directions.
+Image room_latlong(const EnvProxy& room, int width) {
+    const int height = width / 2;
+    Image image(width, height, 3);
+    auto radiance = [&](Vec3 q) -> Vec3 {
+        const float eps = 1e-3f;
+        if (q.y < room.min.y + eps) {  // floor: 0.5 m tiles
+            const bool dark = (int(std::floor(2 * q.x)) + int(std::floor(2 * q.z))) & 1;
+            return dark ? Vec3{0.15f, 0.12f, 0.1f} : Vec3{0.7f, 0.65f, 0.55f};
+        }
+        if (q.y > room.max.y - eps)  // ceiling, with a light panel
+            return std::abs(q.x) < 1 && std::abs(q.z) < 0.6f ? Vec3{8, 8, 7}
+                                                             : Vec3{0.8f, 0.8f, 0.8f};
+        if (q.z < room.min.z + eps)  // the far wall, with a window onto the sky
+            return std::abs(q.x - 0.5f) < 1.2f && q.y > 0.9f && q.y < 2.3f
+                       ? Vec3{3, 4, 6}
+                       : Vec3{0.6f, 0.55f, 0.3f};
+        if (q.x < room.min.x + eps) return {0.6f, 0.15f, 0.1f};
+        if (q.x > room.max.x + -eps) return {0.1f, 0.25f, 0.6f};
+        return {0.85f, 0.85f, 0.8f};
+    };
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            Vec3 sum{0, 0, 0};
+            for (int k = 0; k < 4; ++k) {
+                const float s = (x + 0.25f + 0.5f * (k & 1)) / width;
+                const float t = (y + 0.25f + 0.5f * (k >> 1)) / height;
+                const Vec3 w = env_direction(EnvLayout::latlong, 0, s, t);
+                const std::optional<ProxyStep> step = proxy_step(room, room.capture, w);
+                if (step) sum = sum + 0.25f * radiance(step->direction + room.capture);
+            }
+            image.at(x, y, 0) = sum.x, image.at(x, y, 1) = sum.y, image.at(x, y, 2) = sum.z;
+        }
+    return image;
+}
+
+DemoScene local_environment(const DemoSceneOptions& options) {
+    DemoScene demo{"local_environment",
+                   "a room's local environment map with a box proxy: a chrome sphere and a "
+                   "polished floor reflect the walls where their reflected rays meet them",
+                   "environment generated (a room), ",
+                   {}};
+    SceneDesc& scene = demo.scene = base_scene(options);
+    EnvProxy room;
+    room.min = {-4, 0, -5}, room.max = {4, 3, 3};
+    room.capture = {0, 1.5f, -1};
+    scene.camera = {{-1.5, 1.6, 2.2}, {0.5, 0.7, -2}, {0, 1, 0}, 60};
+    scene.environment = generated_environment(room_latlong(room, 1024), "generated room");
+    scene.environment->proxy = room;
+    MaterialDesc chrome = mirror(0.9f);
+    scene.objects.push_back({"chrome sphere", SphereShape{{1, 0.7, -2}, 0.7}, chrome});
+    PlaneShape floor;
+    floor.center = {-0.5, 0.005, -1.2};  // a polished slab on the tiled floor
+    floor.size = {3, 2.5};
+    MaterialDesc polished = mirror(0.08f);
+    polished.diffuse = 0.5f;
+    polished.base_color = {0.35f, 0.3f, 0.25f};
+    scene.objects.push_back({"polished floor", floor, polished});
+    add_camera_move(scene, {0.3, 0, 0}, {0.3, 0, 0});
+    return demo;
+}
+
 DemoScene irradiance(const DemoSceneOptions& options) {
     DemoScene demo{"irradiance",
                    "matte surfaces lit by the environment alone: its irradiance by the normal, "
@@ -354,8 +418,9 @@ fs::path DemoSceneOptions::default_demo_assets_dir() {
 
 const std::vector<std::string>& demo_scene_names() {
     static const std::vector<std::string> names = {
-        "cylinder",       "parabolic_mirror", "water",      "bump_plate",      "secret_writing",
-        "brushed_sphere", "terrain",          "procedural", "procedural_bump", "irradiance"};
+        "cylinder",         "parabolic_mirror", "water",      "bump_plate",      "secret_writing",
+        "brushed_sphere",   "terrain",          "procedural", "procedural_bump", "irradiance",
+        "local_environment"};
     return names;
 }
 
@@ -370,6 +435,7 @@ Result<DemoScene> make_demo_scene(const std::string& name, const DemoSceneOption
     if (name == "procedural") return procedural(options);
     if (name == "procedural_bump") return procedural_bump(options);
     if (name == "irradiance") return irradiance(options);
+    if (name == "local_environment") return local_environment(options);
     std::string valid;
     for (const std::string& n : demo_scene_names()) valid += (valid.empty() ? "" : ", ") + n;
     return Error{"unknown demo scene '" + name + "' (valid: " + valid + ")"};

@@ -35,6 +35,7 @@
 #include <footprint/envmap/env_footprint.h>
 #include <footprint/envmap/env_image_io.h>
 #include <footprint/envmap/env_layout.h>
+#include <footprint/envmap/env_proxy.h>
 #include <footprint/envmap/env_pyramid_file.h>
 #include <footprint/envmap/env_reference.h>
 #include <footprint/envmap/environment_map.h>

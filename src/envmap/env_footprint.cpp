@@ -227,6 +227,65 @@ void plain_env_footprints4(EnvLayout layout, Vec2 texel_scale, const EnvRayDiffe
     f.map_direction.z.store(out.map_z);
 }
 
+namespace {
+
+// K for a direction r (unnormalised) with spread ∂r/∂x, ∂r/∂y and the roughness columns rough1,
+// rough2 (A_n E B's, before κ): D = G A [∂r/∂x, ∂r/∂y], K12 = D Dᵀ, K3 = (G A rough)(…)ᵀ, K = K12
+// + κ² K3 (eq. 13, §2.6); towards a lat-long pole or at the sphere map's rim, the isotropic
+// footprint of §3.4 from θ_fp. A non-finite K is left for the caller.
+EnvFootprint footprint_of_spread(EnvLayout layout, Vec2 texel_scale, Vec3 r, Vec3 dr_dx, Vec3 dr_dy,
+                                 Vec3 rough1, Vec3 rough2, const EnvFootprintOptions& options) {
+    EnvFootprint f;
+    f.reflected = r;
+    const IdentitySkippingRotation to_map(options.rotation);  // A
+    f.map_direction = to_map(r);
+    const EnvCoordsJacobian position = env_coords_and_jacobian(layout, f.map_direction);
+    f.coords = position.coords;
+    const Jacobian23& j = position.jacobian;
+    const MapJacobian G{texel_scale, j};
+    f.map_dr_dx = to_map(dr_dx);
+    f.map_dr_dy = to_map(dr_dy);
+    f.d_dx = G(f.map_dr_dx);
+    f.d_dy = G(f.map_dr_dy);
+    f.curvature = footprint_matrix(f.d_dx, f.d_dy);
+    const Vec3 map_rough1 = to_map(rough1), map_rough2 = to_map(rough2);
+    f.roughness = footprint_matrix(G(map_rough1), G(map_rough2));
+    f.map_roughness1 = options.kappa * map_rough1;
+    f.map_roughness2 = options.kappa * map_rough2;
+    f.matrix = f.curvature + options.kappa * options.kappa * f.roughness;
+    // §3.4: θ_fp from the spread of r per pixel, enlarged by κ·(angular roughness).
+    const float theta = isotropic_footprint_radius(
+        layout, j, f.map_direction,
+        std::sqrt(dot(dr_dx, dr_dx) + dot(dr_dy, dr_dy)) +
+            std::fabs(options.kappa) * std::sqrt(dot(rough1, rough1) + dot(rough2, rough2)),
+        [&] {
+            return (largest_tangent_singular_value(r, dr_dx, dr_dy) +
+                    options.kappa * largest_tangent_singular_value(r, rough1, rough2)) /
+                   norm(r);
+        });
+    if (theta >= 0) set_isotropic_pole_footprint(f, layout, texel_scale, theta);
+    return f;
+}
+
+}  // namespace
+
+EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, Vec3 dr_dx,
+                                   Vec3 dr_dy, Vec3 rough1, Vec3 rough2,
+                                   const EnvFootprintOptions& options) {
+    if (!is_finite(r) || !(dot(r, r) > 0))
+        return compute_env_footprint(layout, texel_scale, r, {}, {}, options.rotation);
+    EnvFootprint f =
+        footprint_of_spread(layout, texel_scale, r, dr_dx, dr_dy, rough1, rough2, options);
+    if (!f.isotropic_fallback &&
+        (!is_finite(f.d_dx) || !is_finite(f.d_dy) || !f.matrix.is_finite())) {
+        // Non-finite spreads: a point lookup, as form (a) gives.
+        f.d_dx = f.d_dy = {};
+        f.curvature = f.roughness = f.matrix = {};
+        f.map_dr_dx = f.map_dr_dy = f.map_roughness1 = f.map_roughness2 = {};
+    }
+    return f;
+}
+
 EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, const ReflectionGeometry& g,
                                    const EnvFootprintOptions& options) {
     EnvFootprint f;
@@ -257,52 +316,22 @@ EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, const Ref
 
     // Eq. 4 and the Jacobians of eqs. 8, 9 (applied to vectors, never formed).
     const float nm_v = dot(nm, v), nm_nm = dot(nm, nm);
-    f.reflected = 2 * nm_v * nm - nm_nm * v;
     auto a_v = [&](Vec3 x) { return 2 * dot(nm, x) * nm - nm_nm * x; };
     auto a_n = [&](Vec3 x) { return 2 * nm_v * x + 2 * dot(v, x) * nm - 2 * dot(nm, x) * v; };
-    const IdentitySkippingRotation to_map(options.rotation);  // A
-    f.map_direction = to_map(f.reflected);
-    const EnvCoordsJacobian position = env_coords_and_jacobian(layout, f.map_direction);
-    f.coords = position.coords;
-    const Jacobian23& j = position.jacobian;
-    const MapJacobian G{texel_scale, j};
-
-    // Eq. 5 / §2.4: D's columns, K12 = D Dᵀ.
-    const Vec3 dvr_dx = a_v(g.dv_dx) + a_n(g.dn_dx), dvr_dy = a_v(g.dv_dy) + a_n(g.dn_dy);
-    f.map_dr_dx = to_map(dvr_dx);
-    f.map_dr_dy = to_map(dvr_dy);
-    f.d_dx = G(f.map_dr_dx);
-    f.d_dy = G(f.map_dr_dy);
-    f.curvature = footprint_matrix(f.d_dx, f.d_dy);
-
-    // Eqs. 10–12 / §2.5: B' = G A_n E B with E = |n| T, B = [[d1, d2], [0, d3]]: its columns are
-    // G A_n (|n| d1 t1) and G A_n (|n| (d2 t1 + d3 t2)); K3 = B'B'ᵀ.
+    // Eq. 5 / §2.4: ∂v_r; eqs. 10–12 / §2.5: B' = G A_n E B with E = |n| T, B = [[d1, d2], [0,
+    // d3]]: its columns are G A_n (|n| d1 t1) and G A_n (|n| (d2 t1 + d3 t2)).
     const RoughnessFactor& b = g.roughness;
-    const Vec3 rough1 = a_n(n_len * b.d1 * g.t1);
-    const Vec3 rough2 = a_n(n_len * (b.d2 * g.t1 + b.d3 * g.t2));
-    const Vec3 map_rough1 = to_map(rough1), map_rough2 = to_map(rough2);
-    f.roughness = footprint_matrix(G(map_rough1), G(map_rough2));
-    f.map_roughness1 = options.kappa * map_rough1;
-    f.map_roughness2 = options.kappa * map_rough2;
-
-    const float kappa2 = options.kappa * options.kappa;
-    f.matrix = f.curvature + kappa2 * f.roughness;  // eq. 13, K = D Dᵀ + κ² K3 (§2.6)
-    // §3.4: θ_fp from the spread of v_r per pixel, enlarged by κ·(angular roughness).
-    const float theta = isotropic_footprint_radius(
-        layout, j, f.map_direction,
-        std::sqrt(dot(dvr_dx, dvr_dx) + dot(dvr_dy, dvr_dy)) +
-            std::fabs(options.kappa) * std::sqrt(dot(rough1, rough1) + dot(rough2, rough2)),
-        [&] {
-            return (largest_tangent_singular_value(f.reflected, dvr_dx, dvr_dy) +
-                    options.kappa * largest_tangent_singular_value(f.reflected, rough1, rough2)) /
-                   norm(f.reflected);
-        });
-    if (theta >= 0) {
-        set_isotropic_pole_footprint(f, layout, texel_scale, theta);
-        return f;
-    }
+    const bool bump_dropped = f.bump_dropped, normal_clamped = f.normal_clamped;
+    f = footprint_of_spread(layout, texel_scale, 2 * nm_v * nm - nm_nm * v,
+                            a_v(g.dv_dx) + a_n(g.dn_dx), a_v(g.dv_dy) + a_n(g.dn_dy),
+                            a_n(n_len * b.d1 * g.t1), a_n(n_len * (b.d2 * g.t1 + b.d3 * g.t2)),
+                            options);
+    f.bump_dropped = bump_dropped, f.normal_clamped = normal_clamped;
+    if (f.isotropic_fallback) return f;  // a pole's
     if (!is_finite(f.d_dx) || !is_finite(f.d_dy) || !f.matrix.is_finite()) {
         // §4: isotropic fallback from roughness only, T_p = max(1, κ·‖G A_n E‖·l1).
+        const IdentitySkippingRotation to_map(options.rotation);  // A
+        const MapJacobian G{texel_scale, env_coords_and_jacobian(layout, f.map_direction).jacobian};
         const FootprintEllipse gae =
             make_footprint_ellipse(G(to_map(a_n(n_len * g.t1))), G(to_map(a_n(n_len * g.t2))));
         float tp = options.kappa * gae.major_radius * isotropic_roughness(b.covariance());

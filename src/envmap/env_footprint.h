@@ -98,6 +98,15 @@ struct EnvRayDifferential {
     Vec3 direction, d_dx, d_dy;
 };
 
+// Form (a) with roughness: the footprint of a lookup direction r, its ray differentials and two
+// roughness columns (A_n E B's of form (b), world space, before κ) — K = D Dᵀ + κ² K3 with
+// D = S J_P(A r) A [∂r/∂x, ∂r/∂y] and K3 from the columns likewise. A form-(b) footprint whose
+// spreads were moved onto another lookup direction (a local map's proxy, env_proxy.h) is this
+// footprint there. Non-finite spreads give a point lookup in the direction r.
+EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale, Vec3 r, Vec3 dr_dx,
+                                   Vec3 dr_dy, Vec3 rough1, Vec3 rough2,
+                                   const EnvFootprintOptions& options);
+
 // Form (b), Schilling's. `texel_scale` = S = (W0, H0) of level 0 (a cube map's face size for both).
 EnvFootprint compute_env_footprint(EnvLayout layout, Vec2 texel_scale,
                                    const ReflectionGeometry& geometry,

@@ -173,6 +173,19 @@ void GpuRenderer::Impl::set_frame_uniforms(const CameraDesc& camera, int width, 
         glUniform2f(uniform("u_env_texel_scale"), s.x, s.y);
         glUniform1i(uniform("u_env_caps"), gpu.has_caps ? 1 : 0);
         glUniform3fv(uniform("u_env_sh"), 9, &env->irradiance.coefficients[0].x);
+        const std::optional<EnvProxy>& proxy = env->proxy;
+        glUniform1i(uniform("u_env_proxy"), !proxy                                 ? 0
+                                            : proxy->shape == EnvProxy::Shape::box ? 1
+                                                                                   : 2);
+        if (proxy) {
+            const bool box = proxy->shape == EnvProxy::Shape::box;
+            const Vec3 lo = box ? proxy->min : proxy->center;
+            const Vec3 hi = box ? proxy->max : Vec3{proxy->radius, 0, 0};
+            glUniform3f(uniform("u_env_proxy_min"), lo.x, lo.y, lo.z);
+            glUniform3f(uniform("u_env_proxy_max"), hi.x, hi.y, hi.z);
+            glUniform3f(uniform("u_env_proxy_capture"), proxy->capture.x, proxy->capture.y,
+                        proxy->capture.z);
+        }
         constexpr int kMaxEnvLevels = 16;  // environment.glsl's
         std::array<float, kMaxEnvLevels> prefilter{};
         for (std::size_t l = 0; l < gpu.env_prefilter.size(); ++l)

@@ -455,6 +455,7 @@ Result<std::unique_ptr<RenderEnvironment>> prepare_environment(const Environment
                                                  static_cast<float>(desc.rotation_deg.y),
                                                  static_cast<float>(desc.rotation_deg.z));
     environment->intensity = desc.intensity;
+    environment->proxy = desc.proxy;
     Result<EnvironmentMap> map = Error{""};
     const bool stored = desc.images.size() == 1 && !desc.images[0].image &&
                         is_environment_pyramid_file(desc.images[0].file);

@@ -88,6 +88,7 @@ struct RenderEnvironment {
     Mat3 rotation;     // A: world → map
     float intensity = 1;
     IrradianceSH irradiance;  // the map's radiance × intensity, nine coefficients (diffuse light)
+    std::optional<EnvProxy> proxy;  // a local map's (scene.h's EnvironmentDesc::proxy)
 };
 
 // One hit with the material it shows.

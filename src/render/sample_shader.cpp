@@ -158,15 +158,51 @@ Rgb SampleShader::background(const RayDifferential& ray) {
     }
     ++lookups;
     Rgb out{};
+    const Vec3 origin = to_float(ray.ray.origin), direction = to_float(ray.ray.direction);
     if (policy_.filtered) {
+        // A local map's direction from its capture point, the ray differentials moved with it.
+        const std::optional<ProxyStep> step =
+            env->proxy ? proxy_step(*env->proxy, origin, direction) : std::nullopt;
+        const Vec3 d = step ? step->direction : direction;
+        const Vec3 dd_dx =
+            step ? step->move(to_float(ray.dodx), to_float(ray.dddx)) : to_float(ray.dddx);
+        const Vec3 dd_dy =
+            step ? step->move(to_float(ray.dody), to_float(ray.dddy)) : to_float(ray.dddy);
         static_cast<void>(textures_.environment(
-            env->map, to_float(ray.ray.direction), to_float(ray.dddx), to_float(ray.dddy),
-            EnvLookupOptions{policy_.lookup, env->rotation}, out));
+            env->map, d, dd_dx, dd_dy, EnvLookupOptions{policy_.lookup, env->rotation}, out));
     } else {
         static_cast<void>(textures_.environment_sample(
-            env->map, env->rotation * to_float(ray.ray.direction), out));
+            env->map, env->rotation * local_direction(origin, direction), out));
     }
     return out;
+}
+
+// The direction in which the environment shows what a ray from p along r meets: r itself for a
+// map at infinity, else from the local map's capture point to where the ray leaves its proxy.
+Vec3 SampleShader::local_direction(Vec3 p, Vec3 r) const {
+    const RenderEnvironment& env = *scene_.environment();
+    if (!env.proxy) return r;
+    const std::optional<ProxyStep> step = proxy_step(*env.proxy, p, r);
+    return step ? step->direction : r;
+}
+
+// A form-(b) footprint of the reflection at `point` moved onto a local map's direction (envmap/
+// env_proxy.h): its spreads ∂v_r/∂x, ∂v_r/∂y and roughness columns through ∂d = P ∂p + (t/|r|) P
+// ∂r, the pixel's own ∂p added; unchanged for a map at infinity or a ray that does not leave the
+// proxy.
+EnvFootprint SampleShader::through_proxy(const EnvFootprint& f, const SurfacePoint& point,
+                                         const EnvFootprintOptions& options) const {
+    const RenderEnvironment& env = *scene_.environment();
+    const std::optional<ProxyStep> step =
+        env.proxy ? proxy_step(*env.proxy, point.p, f.reflected) : std::nullopt;
+    if (!step) return f;
+    const Mat3 to_world = env.rotation.transposed();
+    const float unkappa = options.kappa != 0 ? 1 / options.kappa : 0;  // the columns hold κ
+    return compute_env_footprint(env.layout, env.texel_scale, step->direction,
+                                 step->move(to_float(point.diff.dpdx), to_world * f.map_dr_dx),
+                                 step->move(to_float(point.diff.dpdy), to_world * f.map_dr_dy),
+                                 step->move({}, unkappa * (to_world * f.map_roughness1)),
+                                 step->move({}, unkappa * (to_world * f.map_roughness2)), options);
 }
 
 std::optional<SurfacePoint> SampleShader::trace(const RayDifferential& ray, Vec2d random) {
@@ -545,7 +581,7 @@ void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_
             if (dot(n_m, v_hat) > 0) n_hat = n_m;  // else the bump is dropped (§4)
         }
         const Vec3 r = 2.0f * dot(n_hat, v_hat) * n_hat - v_hat;
-        out.map_reflection = env.rotation * r;
+        out.map_reflection = env.rotation * local_direction(point.p, r);
         static_cast<void>(
             textures_.environment_sample(env.map, out.map_reflection, out.reflection));
         ++lookups;
@@ -584,7 +620,9 @@ void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_
     EnvFootprintOptions env_options;
     env_options.kappa = options_.kappa;
     env_options.rotation = env.rotation;
-    out.env_footprint = compute_env_footprint(env.layout, env.texel_scale, geometry, env_options);
+    out.env_footprint =
+        through_proxy(compute_env_footprint(env.layout, env.texel_scale, geometry, env_options),
+                      point, env_options);
     out.map_reflection = normalize(out.env_footprint->map_direction);
     if (policy_.stochastic) {
         // One direction the footprint's Gaussian picks (the pixel filter's σ = ½ pixel), read at
@@ -605,7 +643,9 @@ void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_
     if (facing_away > kFacingAwayThreshold && f_mean + f_away > 0) {
         // Slopes facing away from the eye are shaded with the surface's own normal (spec §4), as
         // the reference shades them: their share of the mirror term is a second lookup.
-        out.away_footprint = compute_env_footprint(env.layout, env.texel_scale, flat, env_options);
+        out.away_footprint =
+            through_proxy(compute_env_footprint(env.layout, env.texel_scale, flat, env_options),
+                          point, env_options);
         Rgb texel;
         static_cast<void>(
             textures_.environment(env.map, *out.away_footprint, policy_.lookup, texel));

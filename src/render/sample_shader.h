@@ -124,6 +124,9 @@ class SampleShader {
 
   private:
     float diffuse_slope_variance(const SurfacePoint& point) const;
+    Vec3 local_direction(Vec3 p, Vec3 r) const;
+    EnvFootprint through_proxy(const EnvFootprint& f, const SurfacePoint& point,
+                               const EnvFootprintOptions& options) const;
     void add_lights(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat, ShadingFactors& out) const;
     void add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat, ShadingFactors& out);
     void read_map(TextureHandle* map, const TextureCoords& coords, RandomStream& random,

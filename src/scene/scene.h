@@ -18,6 +18,7 @@
 
 #include <footprint/bump/slope_map.h>
 #include <footprint/envmap/env_layout.h>
+#include <footprint/envmap/env_proxy.h>
 #include <footprint/image/image.h>
 #include <footprint/image/image_io.h>
 #include <footprint/math/vec.h>
@@ -64,6 +65,9 @@ struct EnvironmentDesc {
     // A NaN or ±Inf texel in the files: refuse (the error names the file and the texel) or repair
     // (image/image_io.h: the mean of its finite neighbours), for maps known to hold a few.
     NonFinitePolicy non_finite = NonFinitePolicy::refuse;
+    // A local map (envmap/env_proxy.h): reflections read it in the direction from its capture
+    // point to where the reflected ray leaves this box or sphere; none: the map is at infinity.
+    std::optional<EnvProxy> proxy;
 };
 
 enum class LightType { directional, point };

@@ -387,7 +387,7 @@ class SceneParser {
     }
 
     EnvironmentDesc parse_environment(const json& j, const std::string& path) const {
-        check_keys(j, path, {"file", "layout", "rotation_deg", "intensity", "non_finite"});
+        check_keys(j, path, {"file", "layout", "rotation_deg", "intensity", "non_finite", "proxy"});
         EnvironmentDesc env;
         const std::string file_path = member(path, "file");
         const json& files = require(j, path, "file");
@@ -426,7 +426,45 @@ class SceneParser {
             env.intensity = non_negative(*v, member(path, "intensity"));
         if (const json* v = find(j, "non_finite"))
             env.non_finite = parse_non_finite(*v, member(path, "non_finite"));
+        if (const json* v = find(j, "proxy")) env.proxy = parse_proxy(*v, member(path, "proxy"));
         return env;
+    }
+
+    // {"box": {"min": [x, y, z], "max": [x, y, z]}} or {"sphere": {"center": [x, y, z], "radius":
+    // R}}, and "capture": [x, y, z] (default: the box's or the sphere's centre).
+    EnvProxy parse_proxy(const json& j, const std::string& path) const {
+        check_keys(j, path, {"box", "sphere", "capture"});
+        const json* box = find(j, "box");
+        const json* sphere = find(j, "sphere");
+        if ((box != nullptr) == (sphere != nullptr))
+            fail(path, "needs exactly one of box and sphere");
+        auto point = [&](const json& v, const std::string& at) {
+            const Vec3d d = vec3(v, at);
+            return Vec3{static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z)};
+        };
+        EnvProxy proxy;
+        if (box) {
+            const std::string box_path = member(path, "box");
+            check_keys(*box, box_path, {"min", "max"});
+            proxy.shape = EnvProxy::Shape::box;
+            proxy.min = point(require(*box, box_path, "min"), member(box_path, "min"));
+            proxy.max = point(require(*box, box_path, "max"), member(box_path, "max"));
+            if (!(proxy.min.x < proxy.max.x && proxy.min.y < proxy.max.y &&
+                  proxy.min.z < proxy.max.z))
+                fail(member(box_path, "max"), "must exceed min in x, y and z");
+            proxy.capture = 0.5f * (proxy.min + proxy.max);
+        } else {
+            const std::string sphere_path = member(path, "sphere");
+            check_keys(*sphere, sphere_path, {"center", "radius"});
+            proxy.shape = EnvProxy::Shape::sphere;
+            proxy.center =
+                point(require(*sphere, sphere_path, "center"), member(sphere_path, "center"));
+            proxy.radius = static_cast<float>(
+                positive(require(*sphere, sphere_path, "radius"), member(sphere_path, "radius")));
+            proxy.capture = proxy.center;
+        }
+        if (const json* v = find(j, "capture")) proxy.capture = point(*v, member(path, "capture"));
+        return proxy;
     }
 
     LightDesc parse_light(const json& j, const std::string& path) const {

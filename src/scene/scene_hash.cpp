@@ -148,6 +148,10 @@ std::uint64_t scene_content_hash(const SceneDesc& scene) {
         h.add(e.images.size());
         for (const ImageSource& image : e.images) h.image(image);
         h.add(static_cast<int>(e.layout)), h.add(e.rotation_deg), h.add(e.intensity);
+        if (const std::optional<EnvProxy>& p = e.proxy) {  // (nothing otherwise: hashes stand)
+            h.add(std::string("proxy")), h.add(static_cast<int>(p->shape));
+            h.add(p->min), h.add(p->max), h.add(p->center), h.add(p->radius), h.add(p->capture);
+        }
     }
     h.add(scene.background);
     h.add(scene.lights.size());

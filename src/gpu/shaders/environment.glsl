@@ -159,6 +159,68 @@ vec2 map_motion(EnvPoint p, vec3 x) {
     return u_env_texel_scale * vec2(dot(p.ds, x), dot(p.dt, x));
 }
 
+// ---- A local map's proxy (envmap/env_proxy.h): the direction from the capture point to where
+// a ray leaves the box or sphere, and the footprint's spreads moved with it.
+uniform int u_env_proxy;  // 0: the map at infinity, 1: a box, 2: a sphere
+uniform vec3 u_env_proxy_min, u_env_proxy_max;  // the box; a sphere: its centre, (radius, 0, 0)
+uniform vec3 u_env_proxy_capture;               // c (world space)
+
+struct ProxyStep {
+    vec3 direction;  // d = q − c
+    vec3 r_hat, m;   // the ray's unit direction, the proxy's normal at q
+    float along;     // t/|r|
+};
+
+bool proxy_step(vec3 p, vec3 r, out ProxyStep s) {
+    float length_r = length(r);
+    if (u_env_proxy == 0 || !(length_r > 0.0) || !is_finite(length_r)) return false;
+    vec3 r_hat = r / length_r;
+    float t;
+    vec3 m = vec3(0);
+    if (u_env_proxy == 1) {  // the slabs' far crossing
+        float t_near = -1e30, t_far = 1e30;
+        int axis = -1;
+        for (int k = 0; k < 3; ++k) {
+            if (r_hat[k] == 0.0) {
+                if (p[k] < u_env_proxy_min[k] || p[k] > u_env_proxy_max[k]) return false;
+                continue;
+            }
+            float t0 = (u_env_proxy_min[k] - p[k]) / r_hat[k];
+            float t1 = (u_env_proxy_max[k] - p[k]) / r_hat[k];
+            t_near = max(t_near, min(t0, t1));
+            if (max(t0, t1) < t_far) {
+                t_far = max(t0, t1);
+                axis = k;
+            }
+        }
+        if (axis < 0 || !(t_far > 0.0) || t_near > t_far) return false;
+        t = t_far;
+        m[axis] = 1.0;
+    } else {
+        vec3 o = p - u_env_proxy_min;
+        float radius = u_env_proxy_max.x;
+        float b = dot(o, r_hat), disc = b * b - (dot(o, o) - radius * radius);
+        if (!(disc >= 0.0)) return false;
+        t = -b + sqrt(disc);
+        if (!(t > 0.0)) return false;
+        m = (o + t * r_hat) / radius;
+    }
+    if (!(abs(dot(m, r_hat)) > 1e-4)) return false;
+    s = ProxyStep(p + t * r_hat - u_env_proxy_capture, r_hat, m, t / length_r);
+    return dot(s.direction, s.direction) > 0.0;
+}
+
+// ∂d = P ∂p + (t/|r|) P ∂r, P = I − r̂ mᵀ/(m·r̂).
+vec3 proxy_move(ProxyStep s, vec3 dp, vec3 dr) {
+    vec3 x = dp + s.along * dr;
+    return x - (dot(s.m, x) / dot(s.m, s.r_hat)) * s.r_hat;
+}
+
+vec3 local_direction(vec3 p, vec3 r) {
+    ProxyStep s;
+    return proxy_step(p, r, s) ? s.direction : r;
+}
+
 // ---- The footprint (envmap/env_footprint.h).
 struct EnvFootprint {
     vec3 map_direction;  // A v_r
@@ -227,8 +289,15 @@ EnvFootprint footprint_of_spread(vec3 r, vec3 dr_dx, vec3 dr_dy, vec3 rough1, ve
     return f;
 }
 
-// Form (a), for rays that escape: the direction r and its ray differentials.
-EnvFootprint ray_footprint(vec3 r, vec3 dr_dx, vec3 dr_dy) {
+// Form (a), for rays that escape from p: the direction r and its ray differentials (a local
+// map's moved onto its direction; the pinhole's origin does not move).
+EnvFootprint ray_footprint(vec3 p, vec3 r, vec3 dr_dx, vec3 dr_dy) {
+    ProxyStep s;
+    if (proxy_step(p, r, s)) {
+        r = s.direction;
+        dr_dx = proxy_move(s, vec3(0), dr_dx);
+        dr_dy = proxy_move(s, vec3(0), dr_dy);
+    }
     EnvFootprint f = footprint_of_spread(r, dr_dx, dr_dy, vec3(0), vec3(0));
     if (!is_finite(f.k.x + f.k.y + f.k.z)) {
         f.d_dx = f.d_dy = vec2(0);
@@ -240,9 +309,9 @@ EnvFootprint ray_footprint(vec3 r, vec3 dr_dx, vec3 dr_dy) {
 
 // Form (b), Schilling's (spec §2.2–2.6): v surface → eye, n the facing normal and its
 // derivatives, b the mean slope in the frame T = (t1, t2), B = (d1, d2, d3) the roughness factor,
-// K_b its covariance.
-EnvFootprint reflection_footprint(vec3 v, vec3 dv_dx, vec3 dv_dy, vec3 n, vec3 dn_dx, vec3 dn_dy,
-                                  vec2 b, Frame t, vec3 rough, vec3 k_b) {
+// K_b its covariance; p the surface point (world space), for a local map's proxy.
+EnvFootprint reflection_footprint(vec3 p, vec3 v, vec3 dv_dx, vec3 dv_dy, vec3 n, vec3 dn_dx,
+                                  vec3 dn_dy, vec2 b, Frame t, vec3 rough, vec3 k_b) {
     float n_len = length(n);
     vec3 nm = n + n_len * (b.x * t.t1 + b.y * t.t2);
     if (!is_finite(nm.x + nm.y + nm.z) || !(dot(nm, v) > 0.0)) nm = n;  // the bump faces away
@@ -258,6 +327,14 @@ EnvFootprint reflection_footprint(vec3 v, vec3 dv_dx, vec3 dv_dy, vec3 n, vec3 d
     vec3 dvr_dx = A_V(dv_dx) + A_N(dn_dx), dvr_dy = A_V(dv_dy) + A_N(dn_dy);  // eq. 5
     vec3 rough1 = A_N(n_len * rough.x * t.t1);                                 // eqs. 10–12
     vec3 rough2 = A_N(n_len * (rough.y * t.t1 + rough.z * t.t2));
+    ProxyStep s;
+    if (proxy_step(p, reflected, s)) {  // a local map: ∂d = P ∂p + (t/|r|) P ∂r, ∂p = −∂v
+        reflected = s.direction;
+        dvr_dx = proxy_move(s, -dv_dx, dvr_dx);
+        dvr_dy = proxy_move(s, -dv_dy, dvr_dy);
+        rough1 = proxy_move(s, vec3(0), rough1);
+        rough2 = proxy_move(s, vec3(0), rough2);
+    }
     EnvFootprint f = footprint_of_spread(reflected, dvr_dx, dvr_dy, rough1, rough2);
     if (!f.fallback && !is_finite(f.k.x + f.k.y + f.k.z + f.d_dx.x + f.d_dx.y + f.d_dy.x + f.d_dy.y)) {
         // §4: isotropic from the roughness alone, T_p = max(1, κ·‖G A_n E‖·l1).

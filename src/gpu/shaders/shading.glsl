@@ -336,7 +336,8 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
                 k_env = w.k;
             }
             Frame t = bumped ? frame : Frame(vec3(1, 0, 0), vec3(0, 1, 0), 1.0);
-            EnvFootprint f = reflection_footprint(v, -diff.dpdx, -diff.dpdy, n, dndx, dndy,
+            vec3 p_world = hit.p + u_camera_position;
+            EnvFootprint f = reflection_footprint(p_world, v, -diff.dpdx, -diff.dpdy, n, dndx, dndy,
                                                   bumped ? b_env : vec2(0), t,
                                                   bumped ? roughness_factor(k_env) : vec3(0), k_env);
             texel = env_lookup(f, mode, f.k.x + f.k.z);
@@ -345,14 +346,15 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
             float f_away = facing_away * schlick_fresnel(f0_mean, cos_surface);
             float f_mean = channel_mean(fresnel);
             if (facing_away > 1e-3 && f_mean + f_away > 0.0) {
-                EnvFootprint unbumped = reflection_footprint(v, -diff.dpdx, -diff.dpdy, n, dndx, dndy,
-                                                         vec2(0), t, vec3(0), vec3(0));
+                EnvFootprint unbumped = reflection_footprint(p_world, v, -diff.dpdx, -diff.dpdy, n, dndx,
+                                                             dndy, vec2(0), t, vec3(0), vec3(0));
                 vec3 away = env_lookup(unbumped, mode, unbumped.k.x + unbumped.k.z);
                 texel = (f_mean * texel + f_away * away) / (f_mean + f_away);
                 fresnel += facing_away * schlick_fresnel3(f0, cos_surface);
             }
         } else {
-            texel = env_point_sample(2.0 * dot(n_hat, v_hat) * n_hat - v_hat);
+            texel = env_point_sample(local_direction(hit.p + u_camera_position,
+                                                     2.0 * dot(n_hat, v_hat) * n_hat - v_hat));
         }
         color += material.weights.w * fresnel * texel;
     }
@@ -363,6 +365,7 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
 // or the background colour.
 vec3 background(Ray ray, vec3 dddx, vec3 dddy) {
     if (u_env_layout == ENV_NONE) return u_background;
-    if (u_mode == MODE_POINT) return env_point_sample(ray.direction);
-    return env_lookup(ray_footprint(ray.direction, dddx, dddy), u_mode, 0.0);
+    vec3 origin = ray.origin + u_camera_position;
+    if (u_mode == MODE_POINT) return env_point_sample(local_direction(origin, ray.direction));
+    return env_lookup(ray_footprint(origin, ray.direction, dddx, dddy), u_mode, 0.0);
 }
