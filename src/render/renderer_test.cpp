@@ -224,8 +224,8 @@ TEST(Renderer, ALocalMapsProxyShowsTheWallTheReflectedRayMeets) {
                         const Vec3 r{float(d.x), -float(d.y), float(d.z)};  // the floor's n = +y
                         const Vec3 p{float(hit->surface.p.x), float(hit->surface.p.y),
                                      float(hit->surface.p.z)};
-                        want = want + (1.0f / 64) * wall(proxy_step(room, p, r)->direction +
-                                                         room.capture);
+                        want = want +
+                               (1.0f / 64) * wall(proxy_step(room, p, r)->direction + room.capture);
                     }
                 for (int c = 0; c < 3; ++c) {
                     const double e = std::abs(rendered.at(x, y, c) - (&want.x)[c]);

@@ -339,6 +339,28 @@ TEST(SceneFile, ProceduralBumpsParseToTheExactValues) {
     EXPECT_EQ(bump.frame, BumpFrame::main_direction);
 }
 
+TEST(SceneFile, EnvironmentProxiesParseToTheExactValues) {
+    const Result<SceneDesc> box = parse_scene(R"({"camera": {}, "environment": {"file": "sky.hdr",
+        "proxy": {"box": {"min": [-4, 0, -5], "max": [4, 3, 3]}}}, "objects": []})",
+                                              "box.json", {.check_files = false});
+    ASSERT_TRUE(box.ok()) << box.error().message;
+    const EnvProxy& b = *box->environment->proxy;
+    EXPECT_EQ(b.shape, EnvProxy::Shape::box);
+    EXPECT_VEC3_EQ(b.min, -4, 0, -5);
+    EXPECT_VEC3_EQ(b.max, 4, 3, 3);
+    EXPECT_VEC3_EQ(b.capture, 0, 1.5f, -1);  // the box's centre
+    const Result<SceneDesc> sphere = parse_scene(R"({"camera": {}, "environment": {"file":
+        "sky.hdr", "proxy": {"sphere": {"center": [1, 2, 3], "radius": 5}, "capture": [0, 1, 0]}},
+        "objects": []})",
+                                                 "sphere.json", {.check_files = false});
+    ASSERT_TRUE(sphere.ok()) << sphere.error().message;
+    const EnvProxy& s = *sphere->environment->proxy;
+    EXPECT_EQ(s.shape, EnvProxy::Shape::sphere);
+    EXPECT_VEC3_EQ(s.center, 1, 2, 3);
+    EXPECT_EQ(s.radius, 5.0f);
+    EXPECT_VEC3_EQ(s.capture, 0, 1, 0);
+}
+
 TEST(SceneFile, MinimalSceneTakesTheDefaultsOfSceneDesc) {
     const Result<SceneDesc> result = parse_scene(
         R"({"camera": {}, "objects": [{"shape": "sphere"}, {"shape": "torus"}]})", "minimal.json");
@@ -658,6 +680,21 @@ const ErrorCase kErrorCases[] = {
      "environment.file[4]", "file 'missing.hdr' not found"},
     {"EnvironmentFaceNotAString", R"({"environment": {"file": ["front.hdr", 2]}})",
      "environment.file[1]", "expected a string, got a number"},
+    {"ProxyBoxAndSphere", R"({"environment": {"proxy": {"box": {"min": [0, 0, 0],
+        "max": [1, 1, 1]}, "sphere": {"center": [0, 0, 0], "radius": 1}}}})",
+     "environment.proxy", "needs exactly one of box and sphere"},
+    {"ProxyNeither", R"({"environment": {"proxy": {"capture": [0, 0, 0]}}})", "environment.proxy",
+     "needs exactly one of box and sphere"},
+    {"ProxyBoxInsideOut", R"({"environment": {"proxy": {"box": {"min": [0, 0, 0],
+        "max": [1, -1, 1]}}}})",
+     "environment.proxy.box.max", "must exceed min in x, y and z"},
+    {"ProxyBoxNoMin", R"({"environment": {"proxy": {"box": {"max": [1, 1, 1]}}}})",
+     "environment.proxy.box.min", "required key is missing"},
+    {"ProxySphereRadiusZero", R"({"environment": {"proxy": {"sphere": {"center": [0, 0, 0],
+        "radius": 0}}}})",
+     "environment.proxy.sphere.radius", "must be > 0"},
+    {"ProxyUnknownKey", R"({"environment": {"proxy": {"cylinder": {}}}})",
+     "environment.proxy.cylinder", "unknown key"},
     {"LayoutUnknown", R"({"environment": {"layout": "cubemap"}})", "environment.layout",
      "unknown layout 'cubemap' (did you mean 'cube'?)"},
     {"LayoutNotForTwoFiles", R"({"environment": {"file": ["front.hdr", "back.hdr"],
