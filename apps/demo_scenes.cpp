@@ -1,5 +1,6 @@
 #include "demo_scenes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <memory>
@@ -369,6 +370,64 @@ DemoScene local_environment(const DemoSceneOptions& options) {
     return demo;
 }
 
+// Bricks (4 × 8 per tile, offset rows): a height map — 1 on the bricks, bevelled down to 0 in the
+// mortar — and the matching colours, `size` texels square.
+std::pair<Image, Image> brick_maps(int size) {
+    Image heights(size, size, 1), colours(size, size, 3);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const float v = 8.0f * (y + 0.5f) / size;  // rows
+            const int row = static_cast<int>(v);
+            const float u = 4.0f * (x + 0.5f) / size + (row % 2 ? 0.5f : 0.0f);
+            const float fu = u - std::floor(u), fv = v - std::floor(v);
+            // Distance to the brick's edge in brick heights (a brick is 2 rows' worth wide).
+            const float edge = std::min({2 * fu, 2 * (1 - fu), fv, 1 - fv});
+            const float h = std::clamp((edge - 0.06f) / 0.1f, 0.0f, 1.0f);
+            heights.at(x, y, 0) = h;
+            const float shade = 0.85f + 0.15f * std::sin(37.0f * row + 11.0f * std::floor(u));
+            const Vec3 brick{0.55f * shade, 0.22f * shade, 0.12f * shade},
+                mortar{0.5f, 0.48f, 0.45f};
+            const Vec3 c = h > 0 ? brick : mortar;
+            colours.at(x, y, 0) = c.x, colours.at(x, y, 1) = c.y, colours.at(x, y, 2) = c.z;
+        }
+    return {std::move(heights), std::move(colours)};
+}
+
+DemoScene parallax(const DemoSceneOptions& options) {
+    DemoScene demo{"parallax",
+                   "parallax-occlusion mapping: a brick wall and pavement whose bricks stand out "
+                   "of the flat geometry, the view ray marched through their height map",
+                   "bricks generated, ",
+                   {}};
+    SceneDesc& scene = demo.scene = base_scene(options);
+    scene.camera = {{-1.2, 1.1, 2.6}, {0.6, 0.6, -1}, {0, 1, 0}, 50};
+    scene.environment = daylight_environment(options, demo.assets);
+    scene.environment->rotation_deg = {0, 120, 0};
+    scene.lights.push_back({LightType::directional, {0.6, -0.5, -0.6}, {}, {1.5f, 1.4f, 1.2f}});
+    auto [heights, colours] = brick_maps(512);
+    MaterialDesc bricks;
+    bricks.base_color = {1, 1, 1};
+    bricks.base_color_map = generated(std::move(colours), "generated bricks");
+    bricks.specular = 0.1f;
+    bricks.bump.source = BumpDesc::Source::height_map;
+    bricks.bump.map = generated(std::move(heights), "generated brick heights");
+    bricks.bump.strength = 0.04f;  // the relief's depth over one map period (one unit of (u, v))
+    bricks.bump.frame = BumpFrame::natural;
+    bricks.bump.parallax = ParallaxOptions{0.04f, 24};
+    PlaneShape pavement;
+    pavement.size = {4, 4};
+    pavement.uv_scale = 0.5;
+    scene.objects.push_back({"brick pavement", pavement, bricks});
+    PlaneShape wall;
+    wall.center = {0, 1, -2};
+    wall.normal = {0, 0, 1};
+    wall.size = {4, 2};
+    wall.uv_scale = 0.5;
+    scene.objects.push_back({"brick wall", wall, bricks});
+    add_camera_move(scene, {0.3, 0, 0}, {0.3, 0, 0});
+    return demo;
+}
+
 DemoScene irradiance(const DemoSceneOptions& options) {
     DemoScene demo{"irradiance",
                    "matte surfaces lit by the environment alone: its irradiance by the normal, "
@@ -418,9 +477,9 @@ fs::path DemoSceneOptions::default_demo_assets_dir() {
 
 const std::vector<std::string>& demo_scene_names() {
     static const std::vector<std::string> names = {
-        "cylinder",         "parabolic_mirror", "water",      "bump_plate",      "secret_writing",
-        "brushed_sphere",   "terrain",          "procedural", "procedural_bump", "irradiance",
-        "local_environment"};
+        "cylinder",          "parabolic_mirror", "water",      "bump_plate",      "secret_writing",
+        "brushed_sphere",    "terrain",          "procedural", "procedural_bump", "irradiance",
+        "local_environment", "parallax"};
     return names;
 }
 
@@ -436,6 +495,7 @@ Result<DemoScene> make_demo_scene(const std::string& name, const DemoSceneOption
     if (name == "procedural_bump") return procedural_bump(options);
     if (name == "irradiance") return irradiance(options);
     if (name == "local_environment") return local_environment(options);
+    if (name == "parallax") return parallax(options);
     std::string valid;
     for (const std::string& n : demo_scene_names()) valid += (valid.empty() ? "" : ", ") + n;
     return Error{"unknown demo scene '" + name + "' (valid: " + valid + ")"};

@@ -18,6 +18,8 @@
 #include <footprint/texture/ewa.h>
 #include <footprint/texture/footprint_assembly.h>
 #include <footprint/texture/mip_pyramid.h>
+#include <footprint/texture/parallax.h>
+#include <footprint/texture/procedural.h>
 #include <footprint/texture/reference_filter.h>
 #include <footprint/texture/summed_area_table.h>
 #include <footprint/texture/texture_lookup.h>

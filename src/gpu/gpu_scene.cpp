@@ -260,6 +260,14 @@ Result<MaterialRecord> material_record(const RenderMaterial& m, TextureSystem& t
         if (!ref) return ref.error();
         f0 = *ref;
     }
+    MapRef heights;
+    if (m.height_map) {
+        Result<std::shared_ptr<const MipPyramid>> pyramid = textures.pyramid(m.height_map);
+        if (!pyramid) return Error{name + ": " + pyramid.error().message};
+        Result<MapRef> ref = place(std::move(*pyramid), 1);
+        if (!ref) return ref.error();
+        heights = *ref;
+    }
     Vec2 offset;
     if (m.bump) {
         Result<std::shared_ptr<const BumpPyramid>> pyramid = textures.bump_pyramid(m.bump);
@@ -308,6 +316,15 @@ Result<MaterialRecord> material_record(const RenderMaterial& m, TextureSystem& t
             r.procedural_colors[k][1] = t->colors[k].y;
             r.procedural_colors[k][2] = t->colors[k].z;
         }
+    }
+    if (const std::optional<ParallaxOptions>& p = d.bump.parallax; p && m.height_map) {
+        r.parallax[0] = p->depth;
+        r.parallax[1] = static_cast<float>(p->steps);
+        r.parallax[2] = p->max_shift;
+        r.height_map[0] = heights.unit;
+        r.height_map[1] = heights.layer;
+    } else {
+        r.height_map[0] = -1;
     }
     if (d.bump.source == BumpDesc::Source::procedural) {
         const ProceduralTexture& t = d.bump.procedural;

@@ -50,6 +50,8 @@ struct MaterialRecord {  // common.glsl's Material
     float procedural[4];            // pattern + 1 (0: none), scale, octaves, unused
     float procedural_colors[2][4];  // the pattern's two colours (rgb)
     float procedural_bump[4];       // pattern + 1 (0: none), scale, octaves, strength
+    float parallax[4];              // depth (0: none), steps, max_shift, unused
+    int height_map[4];              // the parallax height map's unit and layer, unused
 };
 struct LightRecord {  // common.glsl's Light
     float direction[4], position[4], color[4];

@@ -137,6 +137,23 @@ Result<TextureHandle*> color_texture(const ImageSource& source, NonFinitePolicy 
     });
 }
 
+// A parallax-mapped material's height map as a one-channel texture (data, not decoded), for the
+// march; registered once per map.
+Result<TextureHandle*> height_texture(const MaterialDesc& desc, SceneMaps& maps) {
+    const ImageSource& source = desc.bump.map;
+    return maps.find_or_add<TextureHandle>(
+        source_key(source) + " as parallax heights", [&](const std::string& name) {
+            using R = Result<TextureHandle*>;
+            Result<Image> image = load_source(source, ColorEncoding::linear, desc.non_finite);
+            if (!image) return R(image.error());
+            if (image->empty()) return R(Error{"'" + source.label() + "': the image is empty"});
+            Image heights(image->width, image->height, 1);
+            for (std::size_t i = 0; i < heights.pixel_count(); ++i)
+                heights.pixels[i] = image->pixels[i * static_cast<std::size_t>(image->channels)];
+            return maps.textures.add_image(name, heights);
+        });
+}
+
 // The slope map b of a bump description (see render_scene.h); `invalid` is the material's
 // policy for invalid normal map texels.
 Result<Image> bump_slopes(const BumpDesc& bump, const Image& map, InvalidNormalPolicy invalid) {
@@ -255,6 +272,10 @@ Result<RenderMaterial> prepare_material(const MaterialDesc& desc, SceneMaps& map
         const char* key = desc.bump.source == BumpDesc::Source::height_map ? "bump.height_map"
                                                                            : "bump.normal_map";
         const bool stored = !desc.bump.map.image && bump_pyramid_file_offset(desc.bump.map.file);
+        if (stored && desc.bump.parallax)
+            return Error{std::string(key) +
+                         ": a bump pyramid file holds slopes, not the heights parallax marches "
+                         "through (give the height map itself)"};
         if (stored && !variance.empty())
             return Error{std::string(key) +
                          ": a bump pyramid file cannot take a roughness texture's variance (give "
@@ -264,6 +285,11 @@ Result<RenderMaterial> prepare_material(const MaterialDesc& desc, SceneMaps& map
                    : bump_map(desc, material.micro_roughness, maps, variance, variance_key);
         if (!bump) return Error{std::string(key) + ": " + bump.error().message};
         material.bump = *bump;
+        if (desc.bump.parallax) {
+            Result<TextureHandle*> heights = height_texture(desc, maps);
+            if (!heights) return Error{std::string(key) + ": " + heights.error().message};
+            material.height_map = *heights;
+        }
     } else if (!variance.empty()) {
         Result<BumpHandle*> bump = flat_bump_map(variance, variance_key, maps);
         if (!bump) return Error{"roughness: " + bump.error().message};

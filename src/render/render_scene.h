@@ -70,6 +70,9 @@ struct RenderMaterial {
     // specular-aa. Without a map the variance is micro_roughness.
     std::array<float, 3> f0{1, 1, 1};
     TextureHandle* f0_map = nullptr;
+    // A parallax-mapped material's height map (channel 0, data), for the march
+    // (texture/parallax.h).
+    TextureHandle* height_map = nullptr;
     // The environment's diffuse weight (its mean radiance × c): the footprint model's `diffuse`;
     // 1 in the metallic-roughness model, whose lights' Lambert weight (desc.diffuse) is 1/π.
     float ambient_weight = 1;

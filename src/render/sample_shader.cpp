@@ -230,6 +230,8 @@ std::optional<SurfacePoint> SampleShader::trace(const RayDifferential& ray, Vec2
         coords.dtdy = static_cast<float>(-diff.duvdy.y);
     }
 
+    if (material.height_map) parallax_coords(material, s, ray, coords);
+
     point.random_seed = stream_seed(random);
     RandomStream draws(point.random_seed);
     const Vec3 colour = desc.base_color;
@@ -276,6 +278,41 @@ std::optional<SurfacePoint> SampleShader::trace(const RayDifferential& ray, Vec2
         point.frame.frame.t1 = -point.frame.frame.t1, point.frame.frame.t2 = -point.frame.frame.t2;
     }
     return point;
+}
+
+// Parallax-occlusion mapping (texture/parallax.h): (s, t) and their derivatives moved to where
+// the view ray meets the height map's relief, the heights read as the mode filters (at the level
+// the pixel's footprint selects; level 0 where the mode has no footprint), their gradient by
+// central differences half a footprint (at least half a texel) apart.
+void SampleShader::parallax_coords(const RenderMaterial& material, const SurfaceHit& s,
+                                   const RayDifferential& ray, TextureCoords& coords) {
+    // (s, t) = (u, 1 − v): ∂p/∂s = ∂p/∂u, ∂p/∂t = −∂p/∂v.
+    const Vec2 w = parallax_direction(to_float(ray.ray.origin - s.p), to_float(s.dpdu),
+                                      -to_float(s.dpdv), to_float(s.n));
+    const auto [width, height] =
+        level0_size(material.height_map, [&] { return info_of(textures_, material.height_map); });
+    TextureCoords at = coords;
+    auto read = [&](Vec2 st) {
+        at.s = st.x, at.t = st.y;
+        float h = 0;
+        static_cast<void>(
+            textures_.texture(material.height_map, at, policy_.lookup, {&h, 1}, kMissing));
+        ++lookups;
+        return h;
+    };
+    const Vec2 step{0.5f * std::max(std::abs(coords.dsdx) + std::abs(coords.dsdy), 1.0f / width),
+                    0.5f * std::max(std::abs(coords.dtdx) + std::abs(coords.dtdy), 1.0f / height)};
+    auto gradient = [&](Vec2 st) {
+        return Vec2{(read(st + Vec2{step.x, 0}) - read(st - Vec2{step.x, 0})) / (2 * step.x),
+                    (read(st + Vec2{0, step.y}) - read(st - Vec2{0, step.y})) / (2 * step.y)};
+    };
+    const ParallaxResult r =
+        parallax_march(read, gradient, {coords.s, coords.t}, {coords.dsdx, coords.dtdx},
+                       {coords.dsdy, coords.dtdy}, w, *material.desc.bump.parallax);
+    coords.s = r.st.x - std::floor(r.st.x);
+    coords.t = r.st.y - std::floor(r.st.y);
+    coords.dsdx = r.dst_dx.x, coords.dtdx = r.dst_dx.y;
+    coords.dsdy = r.dst_dy.x, coords.dtdy = r.dst_dy.y;
 }
 
 // The micro-roughness `micro` (σ² I) as a random slope, in the modes that sample slopes, where

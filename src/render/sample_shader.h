@@ -125,6 +125,8 @@ class SampleShader {
   private:
     float diffuse_slope_variance(const SurfacePoint& point) const;
     Vec3 local_direction(Vec3 p, Vec3 r) const;
+    void parallax_coords(const RenderMaterial& material, const SurfaceHit& s,
+                         const RayDifferential& ray, TextureCoords& coords);
     EnvFootprint through_proxy(const EnvFootprint& f, const SurfacePoint& point,
                                const EnvFootprintOptions& options) const;
     void add_lights(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat, ShadingFactors& out) const;

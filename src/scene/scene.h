@@ -23,6 +23,7 @@
 #include <footprint/image/image_io.h>
 #include <footprint/math/vec.h>
 #include <footprint/math/vec3.h>
+#include <footprint/texture/parallax.h>
 #include <footprint/texture/procedural.h>
 
 namespace footprint {
@@ -98,6 +99,9 @@ struct BumpDesc {
     BumpFrame frame = BumpFrame::main_direction;
     // m for frame = main_direction (world space); zero: the surface's own ∂p/∂v at each point
     Vec3d main_direction{0, 0, 0};
+    // A height map's parallax-occlusion mapping (texture/parallax.h): the texture, bump and
+    // roughness lookups at the (s, t) where the view ray meets the relief `depth` deep.
+    std::optional<ParallaxOptions> parallax;
 };
 
 struct MaterialDesc {

@@ -897,7 +897,8 @@ class SceneParser {
 
     BumpDesc parse_bump(const json& j, const std::string& path) const {
         if (find(j, "procedural")) return parse_procedural_bump(j, path);
-        check_keys(j, path, {"height_map", "normal_map", "strength", "frame", "main_direction"});
+        check_keys(j, path,
+                   {"height_map", "normal_map", "strength", "frame", "main_direction", "parallax"});
         BumpDesc bump;
         const json* height = find(j, "height_map");
         const json* normal = find(j, "normal_map");
@@ -932,7 +933,24 @@ class SceneParser {
                 fail(direction_path, "is used only with frame \"main_direction\"");
             bump.main_direction = vec3(*v, direction_path);  // zero: the surface's ∂p/∂v
         }
+        if (const json* v = find(j, "parallax")) {
+            const std::string parallax_path = member(path, "parallax");
+            if (bump.source != BumpDesc::Source::height_map)
+                fail(parallax_path, "needs a height_map (a normal map has no heights to march)");
+            bump.parallax = parse_parallax(*v, parallax_path);
+        }
         return bump;
+    }
+
+    // {"depth": D, "steps": N} (texture/parallax.h).
+    ParallaxOptions parse_parallax(const json& j, const std::string& path) const {
+        check_keys(j, path, {"depth", "steps"});
+        ParallaxOptions parallax;
+        parallax.depth =
+            static_cast<float>(positive(require(j, path, "depth"), member(path, "depth")));
+        if (const json* v = find(j, "steps"))
+            parallax.steps = integer(*v, member(path, "steps"), 1, kMaxParallaxSteps);
+        return parallax;
     }
 
     // {"procedural": "noise" | "turbulence" | "marble", "scale": S, "octaves": N, "strength": A}:

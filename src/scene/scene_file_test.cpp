@@ -835,6 +835,15 @@ const ErrorCase kErrorCases[] = {
     {"ProceduralInMetallicRoughness", R"({"objects": [{"shape": "sphere",
         "material": {"model": "metallic-roughness", "base_color": {"procedural": "noise"}}}]})",
      "objects[0].material.base_color", "a procedural base colour is for the footprint model"},
+    {"ParallaxWithNormalMap", R"({"objects": [{"shape": "sphere", "material": {"bump":
+        {"normal_map": "normal.png", "parallax": {"depth": 0.1}}}}]})",
+     "objects[0].material.bump.parallax", "needs a height_map"},
+    {"ParallaxNoDepth", R"({"objects": [{"shape": "sphere", "material": {"bump":
+        {"height_map": "height.png", "parallax": {"steps": 8}}}}]})",
+     "objects[0].material.bump.parallax.depth", "required key is missing"},
+    {"ParallaxStepsZero", R"({"objects": [{"shape": "sphere", "material": {"bump":
+        {"height_map": "height.png", "parallax": {"depth": 0.1, "steps": 0}}}}]})",
+     "objects[0].material.bump.parallax.steps", "must be in 1..256, got 0"},
     {"ProceduralBumpChecker", R"({"objects": [{"shape": "sphere",
         "material": {"bump": {"procedural": "checker"}}}]})",
      "objects[0].material.bump.procedural", "a checker is a sum of steps and has no slopes"},

@@ -89,6 +89,9 @@ void add_material(Fnv1a& h, const MaterialDesc& m) {
         h.image(m.bump.map);
     }
     h.add(m.bump.strength), h.add(static_cast<int>(m.bump.frame)), h.add(m.bump.main_direction);
+    if (const std::optional<ParallaxOptions>& p = m.bump.parallax) {  // (older hashes stand)
+        h.add(std::string("parallax")), h.add(p->depth), h.add(p->steps), h.add(p->max_shift);
+    }
 }
 
 void add_mesh_files(Fnv1a& h, const fs::path& file) {

@@ -116,3 +116,58 @@ vec3 covariance_in_frame(vec3 k, Frame t, vec3 e1, vec3 e2) {
     vec2 a = vec2(a1, a2), b = vec2(b1, b2);
     return vec3(dot(a, kk * a), dot(a, kk * b), dot(b, kk * b));
 }
+
+// ---- Parallax-occlusion mapping (texture/parallax.h): (s, t) and their derivatives moved to where
+// the view ray meets the height map's relief.
+
+// w = −(a, b)/(v̂·n̂) per world unit of depth, a ∂p/∂s + b ∂p/∂t the tangential part of v̂.
+vec2 parallax_direction(vec3 v, vec3 dp_ds, vec3 dp_dt, vec3 n) {
+    vec3 n_hat = normalize(n), v_hat = normalize(v);
+    float cos_v = dot(v_hat, n_hat);
+    if (!(cos_v > 1e-4)) return vec2(0);
+    vec3 tangential = v_hat - cos_v * n_hat;
+    float ss = dot(dp_ds, dp_ds), st = dot(dp_ds, dp_dt), tt = dot(dp_dt, dp_dt);
+    float det = ss * tt - st * st;
+    if (!(abs(det) > 1e-20) || !is_finite(det)) return vec2(0);
+    float rs = dot(tangential, dp_ds), rt = dot(tangential, dp_dt);
+    vec2 w = -vec2(tt * rs - st * rt, ss * rt - st * rs) / (det * cos_v);
+    return is_finite(w.x + w.y) ? w : vec2(0);
+}
+
+float parallax_height(Material m, vec2 st, vec4 dst, int mode) {
+    return lookup_2d(m.height_map.x, m.height_map.y, 1, st, dst, mode).a.r;
+}
+
+// The march (parallax_march()): material.parallax = (depth, steps, max_shift); st and dst updated.
+void parallax_march(Material m, vec2 w, inout vec2 st, inout vec4 dst, int mode) {
+    int steps = clamp(int(m.parallax.y), 1, 256);
+    vec2 shift = m.parallax.x * w;
+    float len = length(shift);
+    if (!(len > 0.0) || !is_finite(len)) return;
+    if (len > m.parallax.z) shift *= m.parallax.z / len;
+    float z_before = 0.0, f_before = -(1.0 - parallax_height(m, st, dst, mode));
+    if (f_before >= 0.0) return;
+    float z = 0.0, f = f_before;
+    for (int i = 1; i <= steps; ++i) {
+        z = float(i) / float(steps);
+        f = z - (1.0 - parallax_height(m, st + z * shift, dst, mode));
+        if (f >= 0.0) break;
+        z_before = z;
+        f_before = f;
+    }
+    float crossing = f > f_before ? z_before + (z - z_before) * (-f_before) / (f - f_before) : z;
+    vec2 at = st + clamp(crossing, 0.0, 1.0) * shift;
+    // ∂s' = ∂s − shift (∇h·∂s)/(1 + ∇h·shift), ∇h by central differences.
+    vec2 size = map_size(m.height_map.x);
+    vec2 h = 0.5 * max(abs(dst.xy) + abs(dst.zw), 1.0 / size);
+    vec2 g = vec2(parallax_height(m, at + vec2(h.x, 0), dst, mode) -
+                      parallax_height(m, at - vec2(h.x, 0), dst, mode),
+                  parallax_height(m, at + vec2(0, h.y), dst, mode) -
+                      parallax_height(m, at - vec2(0, h.y), dst, mode)) / (2.0 * h);
+    float denominator = 1.0 + dot(g, shift);
+    if (denominator > 0.25 && is_finite(denominator)) {
+        dst.xy -= (dot(g, dst.xy) / denominator) * shift;
+        dst.zw -= (dot(g, dst.zw) / denominator) * shift;
+    }
+    st = at;
+}

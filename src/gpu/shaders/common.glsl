@@ -53,6 +53,8 @@ struct Material {
     vec4 procedural_colors[2];     // the pattern's two colours
     vec4 procedural_bump;          // a procedural bump: PROCEDURAL_* (0: none), scale, octaves,
                                    // strength
+    vec4 parallax;                 // depth (0: none), steps, max_shift, unused
+    ivec4 height_map;              // the parallax height map's u_maps index and layer, unused
 };
 
 struct Light {

@@ -217,6 +217,11 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
     }
     vec2 st = fract(vec2(hit.uv.x, 1.0 - hit.uv.y));
     vec4 dst = vec4(diff.duvdx.x, -diff.duvdx.y, diff.duvdy.x, -diff.duvdy.y);
+    if (material.parallax.x > 0.0) {  // (s, t) = (u, 1 − v): ∂p/∂t = −∂p/∂v
+        parallax_march(material, parallax_direction(ray.origin - hit.p, hit.dpdu, -hit.dpdv, hit.n),
+                       st, dst, mode);
+        st = fract(st);
+    }
 
     vec3 base = material.base_color.rgb;
     if (material.maps.x >= 0)
