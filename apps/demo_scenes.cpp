@@ -55,6 +55,25 @@ EnvironmentDesc generated_environment(Image image, const std::string& name) {
     return env;
 }
 
+// The brick normal map from the data folder at `normal_strength`, or generated waves as a height
+// map at `height_strength`; `assets` says which.
+BumpDesc brick_bump(const DemoSceneOptions& options, float normal_strength, float height_strength,
+                    std::string& assets) {
+    BumpDesc bump;
+    if (auto file = data_file(options, "normals/ambientCG_Bricks102_1K_NormalGL.jpg")) {
+        bump.source = BumpDesc::Source::normal_map;
+        bump.map = ImageSource{*file, nullptr, ""};
+        bump.strength = normal_strength;
+        assets += ", normal map " + file->filename().string();
+    } else {
+        bump.source = BumpDesc::Source::height_map;
+        bump.map = generated(make_water_height_map(512), "generated waves");
+        bump.strength = height_strength;
+        assets += ", bumps generated (waves)";
+    }
+    return bump;
+}
+
 SceneDesc base_scene(const DemoSceneOptions& options) {
     SceneDesc scene;
     scene.width = options.width;
@@ -150,17 +169,7 @@ DemoScene bump_plate(const DemoSceneOptions& options) {
     plate.uv_scale = 1.0 / 3.0;  // the map once across the plate
     MaterialDesc m = mirror(0.9f);
     m.diffuse = 0.02f;
-    if (auto file = data_file(options, "normals/ambientCG_Bricks102_1K_NormalGL.jpg")) {
-        m.bump.source = BumpDesc::Source::normal_map;
-        m.bump.map = ImageSource{*file, nullptr, ""};
-        m.bump.strength = 0.3f;
-        demo.assets += ", normal map " + file->filename().string();
-    } else {
-        m.bump.source = BumpDesc::Source::height_map;
-        m.bump.map = generated(make_water_height_map(512), "generated waves");
-        m.bump.strength = 0.01f;
-        demo.assets += ", bumps generated (waves)";
-    }
+    m.bump = brick_bump(options, 0.3f, 0.01f, demo.assets);
     scene.objects.push_back({"plate", plate, m});
     add_camera_move(scene, {0.2, 0, 0}, {0.2, 0, 0});
     return demo;
@@ -448,17 +457,7 @@ DemoScene irradiance(const DemoSceneOptions& options) {
     floor.uv_scale = 0.5;
     MaterialDesc bricks = matte;
     bricks.base_color = {0.45f, 0.3f, 0.22f};
-    if (auto file = data_file(options, "normals/ambientCG_Bricks102_1K_NormalGL.jpg")) {
-        bricks.bump.source = BumpDesc::Source::normal_map;
-        bricks.bump.map = ImageSource{*file, nullptr, ""};
-        bricks.bump.strength = 1;
-        demo.assets += ", normal map " + file->filename().string();
-    } else {
-        bricks.bump.source = BumpDesc::Source::height_map;
-        bricks.bump.map = generated(make_water_height_map(512), "generated waves");
-        bricks.bump.strength = 0.03f;
-        demo.assets += ", bumps generated (waves)";
-    }
+    bricks.bump = brick_bump(options, 1, 0.03f, demo.assets);
     scene.objects.push_back({"bumpy floor", floor, bricks});
     add_camera_move(scene, {0.3, 0, 0}, {0.3, 0, 0});
     return demo;

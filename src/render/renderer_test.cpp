@@ -9,6 +9,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "envmap/env_layout.h"
@@ -462,22 +463,30 @@ TEST(Renderer, ATerrainRendersInEveryModeAndItsFilteredModesApproachTheReference
             << filter_mode_name(mode) << " vs bilinear " << bilinear;
 }
 
+// An infinite floor of `material` seen at a grazing angle (the eye half a unit above it, looking
+// at the horizon), 64 × 40, in `environment`.
+SceneDesc grazing_floor_scene(EnvironmentDesc environment, const MaterialDesc& material) {
+    SceneDesc desc;
+    desc.width = 64, desc.height = 40;
+    desc.camera = {{0, 0.5, 0}, {0, 0.1, -5}, {0, 1, 0}, 40};
+    desc.environment = std::move(environment);
+    PlaneShape floor;
+    floor.infinite = true;
+    desc.objects.push_back({"floor", floor, material});
+    return desc;
+}
+
 // A solid marble texture (texture/procedural.h) on a plane at a grazing angle: band-limited by the
 // footprint at one sample per pixel it is closer to the 1024-spp truth than 16-spp supersampling,
 // whose samples of the unresolved octaves are noise (interior pixels: the horizon is left out).
 TEST(Renderer, AGrazingMarblePlaneFilteredAtOneSampleBeatsSixteenSamples) {
-    SceneDesc desc;
-    desc.width = 64, desc.height = 40;
-    desc.camera = {{0, 0.5, 0}, {0, 0.1, -5}, {0, 1, 0}, 40};
-    desc.environment = latlong_environment(constant_image(16, 8, 0.3f, 0.3f, 0.3f));
-    desc.lights.push_back({LightType::directional, {-0.3, -1, -0.2}, {}, {1, 1, 1}});
-    PlaneShape floor;
-    floor.infinite = true;
     MaterialDesc marble;
     marble.base_color = {1, 1, 1};
     marble.base_color_procedural = ProceduralTexture{
         ProceduralPattern::marble, 6, 6, {Vec3{0.1f, 0.1f, 0.1f}, Vec3{0.9f, 0.9f, 0.9f}}};
-    desc.objects.push_back({"floor", floor, marble});
+    SceneDesc desc =
+        grazing_floor_scene(latlong_environment(constant_image(16, 8, 0.3f, 0.3f, 0.3f)), marble);
+    desc.lights.push_back({LightType::directional, {-0.3, -1, -0.2}, {}, {1, 1, 1}});
     Result<RenderScene> scene = prepare_render_scene(desc);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     const Image mask = interior_mask(*scene);
@@ -505,17 +514,11 @@ TEST(Renderer, AGrazingMarblePlaneFilteredAtOneSampleBeatsSixteenSamples) {
 // removed (fa-rough) are closer to the 1024-spp truth than the band-limited mean slope alone (fa,
 // a sharp mirror where the waves blur the sky) and than point slopes (bilinear).
 TEST(Renderer, AGrazingProceduralBumpKeepsTheRoughnessItsBandLimitRemoves) {
-    SceneDesc desc;
-    desc.width = 64, desc.height = 40;
-    desc.camera = {{0, 0.5, 0}, {0, 0.1, -5}, {0, 1, 0}, 40};
-    desc.environment = latlong_environment(striped_latlong());
-    PlaneShape floor;
-    floor.infinite = true;
     MaterialDesc waves = mirror_material(1);
     waves.bump.source = BumpDesc::Source::procedural;
     waves.bump.procedural = ProceduralTexture{ProceduralPattern::noise, 8, 6};
     waves.bump.strength = 0.05f;
-    desc.objects.push_back({"floor", floor, waves});
+    const SceneDesc desc = grazing_floor_scene(latlong_environment(striped_latlong()), waves);
     Result<RenderScene> scene = prepare_render_scene(desc);
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     const Image mask = interior_mask(*scene);
