@@ -397,9 +397,9 @@ TEST(DemoScenes, WithAnEmptyDataFolderTheScenesUseTheRepositorysAssets) {
             used.push_back(fs::relative(file, assets).generic_string());
         }
     }
-    // The HDR sky in the nine daylight scenes, the brick normal map on the bump plate and the
+    // The HDR sky in the eleven daylight scenes, the brick normal map on the bump plate and the
     // irradiance demo's floor.
-    EXPECT_EQ(std::count(used.begin(), used.end(), kDemoEnvironment), 9) << used.size();
+    EXPECT_EQ(std::count(used.begin(), used.end(), kDemoEnvironment), 11) << used.size();
     EXPECT_EQ(std::count(used.begin(), used.end(), kDemoNormalMap), 2) << used.size();
 
     // The files load and pass the renderer's checks (no invalid normal map texels).

@@ -437,6 +437,96 @@ DemoScene parallax(const DemoSceneOptions& options) {
     return demo;
 }
 
+DemoScene shadows(const DemoSceneOptions& options) {
+    DemoScene demo{"shadows",
+                   "shadow rays: a low sun casts the shadows of a sphere, a torus and fractal "
+                   "mounds (a mesh) across a brick pavement; a lamp without shadows fills them",
+                   "bricks and mounds generated, ",
+                   {}};
+    SceneDesc& scene = demo.scene = base_scene(options);
+    scene.camera = {{0.4, 1.5, 4.2}, {-0.2, 0.3, -1}, {0, 1, 0}, 45};
+    scene.environment = daylight_environment(options, demo.assets);
+    scene.environment->rotation_deg = {0, 60, 0};
+    scene.lights.push_back({LightType::directional, {-0.6, -0.4, 0.7}, {}, {3.2f, 3.0f, 2.6f}});
+    LightDesc lamp{LightType::point, {}, {-1.5, 1.4, 1.8}, {0.5f, 0.55f, 0.7f}};
+    lamp.shadows = false;
+    scene.lights.push_back(lamp);
+    auto [heights, colours] = brick_maps(512);
+    MaterialDesc pavement;
+    pavement.base_color_map = generated(std::move(colours), "generated bricks");
+    pavement.specular = 0.15f;
+    pavement.bump.source = BumpDesc::Source::height_map;
+    pavement.bump.map = generated(std::move(heights), "generated brick heights");
+    pavement.bump.strength = 0.02f;
+    pavement.bump.frame = BumpFrame::natural;
+    PlaneShape ground;
+    ground.size = {10, 10};
+    ground.center = {0, 0, -2};
+    ground.uv_scale = 0.5;
+    scene.objects.push_back({"pavement", ground, pavement});
+    MaterialDesc glossy = mirror(0.04f);
+    glossy.base_color = {0.7f, 0.15f, 0.1f};
+    glossy.diffuse = 0.8f;
+    glossy.specular = 0.5f;
+    glossy.shininess = 80;
+    scene.objects.push_back({"sphere", SphereShape{{0.9, 0.55, -1.2}, 0.55}, glossy});
+    MaterialDesc gold = mirror(0.8f);
+    gold.base_color = {0.9f, 0.7f, 0.35f};
+    gold.diffuse = 0.1f;
+    scene.objects.push_back(
+        {"torus", TorusShape{{-0.3, 0.55, -2.2}, {0.3, 0.2, 1}, 0.5, 0.15}, gold});
+    TerrainShape mounds;  // the ground cuts its lower half away: hills breaking the pavement
+    mounds.center = {-1.6, -0.1, -1.0};
+    mounds.size = {2.4, 2.4};
+    mounds.subdivisions = 6;
+    mounds.roughness = 0.8;
+    mounds.height = 0.5;
+    mounds.seed = 5;
+    MaterialDesc stone;
+    stone.base_color = {0.22f, 0.21f, 0.19f};
+    stone.specular = 0.05f;
+    scene.objects.push_back({"mounds", mounds, stone});
+    add_camera_move(scene, {0.3, 0, 0}, {0.2, 0, 0});
+    return demo;
+}
+
+DemoScene environment_probe(const DemoSceneOptions& options) {
+    DemoScene demo{"environment_probe",
+                   "a dynamic environment map: a chrome sphere reflects its neighbours and the "
+                   "pavement from a cube map rendered at its centre, filtered by its footprint",
+                   "bricks generated, ",
+                   {}};
+    SceneDesc& scene = demo.scene = base_scene(options);
+    scene.camera = {{0, 1.3, 4.2}, {0, 0.7, 0}, {0, 1, 0}, 45};
+    scene.environment = daylight_environment(options, demo.assets);
+    scene.environment->rotation_deg = {0, 60, 0};
+    scene.lights.push_back({LightType::directional, {-0.6, -0.7, -0.4}, {}, {2, 1.9f, 1.7f}});
+    auto [heights, colours] = brick_maps(512);
+    MaterialDesc pavement;
+    pavement.base_color_map = generated(std::move(colours), "generated bricks");
+    pavement.specular = 0.1f;
+    PlaneShape ground;
+    ground.size = {10, 10};
+    ground.uv_scale = 0.5;
+    scene.objects.push_back({"pavement", ground, pavement});
+    MaterialDesc chrome = mirror(0.9f);
+    chrome.environment_probe = EnvironmentProbeDesc{{0, 0.8, 0}, 256};
+    scene.objects.push_back({"chrome sphere", SphereShape{{0, 0.8, 0}, 0.8}, chrome});
+    MaterialDesc red;
+    red.base_color = {0.75f, 0.1f, 0.06f};
+    red.specular = 0.4f;
+    scene.objects.push_back({"red sphere", SphereShape{{1.6, 0.45, 0.6}, 0.45}, red});
+    MaterialDesc green = red;
+    green.base_color = {0.1f, 0.55f, 0.15f};
+    scene.objects.push_back(
+        {"green torus", TorusShape{{-1.5, 0.5, 0.4}, {0.5, 0.3, 1}, 0.4, 0.14}, green});
+    MaterialDesc blue = red;
+    blue.base_color = {0.1f, 0.2f, 0.7f};
+    scene.objects.push_back({"blue sphere", SphereShape{{-0.4, 0.3, 1.5}, 0.3}, blue});
+    add_camera_move(scene, {0.3, 0, 0}, {0, 0, 0});
+    return demo;
+}
+
 DemoScene irradiance(const DemoSceneOptions& options) {
     DemoScene demo{"irradiance",
                    "matte surfaces lit by the environment alone: its irradiance by the normal, "
@@ -476,9 +566,15 @@ fs::path DemoSceneOptions::default_demo_assets_dir() {
 
 const std::vector<std::string>& demo_scene_names() {
     static const std::vector<std::string> names = {
-        "cylinder",          "parabolic_mirror", "water",      "bump_plate",      "secret_writing",
-        "brushed_sphere",    "terrain",          "procedural", "procedural_bump", "irradiance",
-        "local_environment", "parallax"};
+        "cylinder",          "parabolic_mirror", "water",      "bump_plate",       "secret_writing",
+        "brushed_sphere",    "terrain",          "procedural", "procedural_bump",  "irradiance",
+        "local_environment", "parallax",         "shadows",    "environment_probe"};
+    return names;
+}
+
+std::vector<std::string> gpu_demo_scene_names() {
+    std::vector<std::string> names = demo_scene_names();
+    std::erase(names, "environment_probe");
     return names;
 }
 
@@ -495,6 +591,8 @@ Result<DemoScene> make_demo_scene(const std::string& name, const DemoSceneOption
     if (name == "irradiance") return irradiance(options);
     if (name == "local_environment") return local_environment(options);
     if (name == "parallax") return parallax(options);
+    if (name == "shadows") return shadows(options);
+    if (name == "environment_probe") return environment_probe(options);
     std::string valid;
     for (const std::string& n : demo_scene_names()) valid += (valid.empty() ? "" : ", ") + n;
     return Error{"unknown demo scene '" + name + "' (valid: " + valid + ")"};

@@ -40,7 +40,7 @@ constexpr FilterMode kFilterModes[] = {FilterMode::bilinear, FilterMode::triline
                                        FilterMode::fa_rough, FilterMode::ewa_rough};
 // Bumped whenever the reference's rendering changes, so that no cached reference of an older
 // renderer is reused.
-constexpr int kReferenceVersion = 3;
+constexpr int kReferenceVersion = 4;
 // Every render of an evaluation has its own seed, so that no two share a sample: the reference,
 // the reference sequence, then each method (kFirstMethodSeed + its index; a sequence uses its
 // method's seed for every frame). Supersampling with the reference's seed would take a prefix of

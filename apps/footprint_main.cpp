@@ -194,7 +194,7 @@ int run(int argc, char** argv) {
         "--scene", scene_demo.scenes,
         "Scenes to render (default: all): cylinder parabolic_mirror water "
         "bump_plate secret_writing brushed_sphere terrain procedural procedural_bump "
-        "irradiance local_environment parallax");
+        "irradiance local_environment parallax shadows environment_probe");
     scene_demo_cmd
         ->add_option("--size", scene_demo.width,
                      footprint::width_help("Image width in pixels", footprint::kDemoWidths))

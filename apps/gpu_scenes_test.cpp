@@ -85,7 +85,7 @@ bool compare_interiors(const RenderScene& scene) {
 
 TEST(GpuScenes, EveryModeMatchesTheCpuRendererOnEveryDemoScene) {
     FOOTPRINT_GPU_DEVICE_OR_SKIP();
-    for (const std::string& name : demo_scene_names()) {
+    for (const std::string& name : gpu_demo_scene_names()) {
         DemoRender demo = prepare_demo(name, 160, 90);
         Result<GpuRenderer> gpu = GpuRenderer::create(demo.scene);
         ASSERT_TRUE(gpu) << gpu.error().message;
@@ -194,10 +194,21 @@ TEST(GpuScenes, TheParabolicMirrorSeenFromItsFocusHasAVanishingFootprint) {
         EXPECT_LT(rmse(gpu_render(*gpu, f), point, &demo.mask), 1e-4) << gpu_filter_name(f);
 }
 
+// Dynamic environment maps are on the CPU only: the GPU path refuses a probed material, naming the
+// object and the key, rather than render it with the scene's environment.
+TEST(GpuScenes, AProbedMaterialIsRefusedNamingTheKey) {
+    FOOTPRINT_GPU_DEVICE_OR_SKIP();
+    DemoRender demo = prepare_demo("environment_probe", 32, 18);
+    Result<GpuRenderer> gpu = GpuRenderer::create(demo.scene);
+    ASSERT_FALSE(gpu);
+    EXPECT_NE(gpu.error().message.find("(chrome sphere): environment_probe"), std::string::npos)
+        << gpu.error().message;
+}
+
 // Against the ground truth (the CPU's reference mode, 1024 samples per pixel), interior RMSE:
-// GPU fa-rough within 10 % of CPU fa-rough, and better than the GPU's own anisotropic filtering
-// on every scene with a reflection or a bump map (all six). Small images keep the reference
-// affordable; under the sanitizers it is left to the Release suite.
+// GPU fa-rough within 10 % of CPU fa-rough, and better than GPU trilinear and (on a hardware
+// device) the GPU's own anisotropic filtering on every scene with a map to filter. Small images
+// keep the reference affordable; under the sanitizers it is left to the Release suite.
 // Below this an interior RMSE is rounding (the parabolic mirror's, where fa-rough is exact).
 constexpr double kNegligibleRmse = 1e-5;
 
@@ -206,7 +217,13 @@ TEST(GpuScenes, FaRoughIsAsCloseToTheTruthAsOnTheCpuAndBeatsHardwareAnisotropy) 
     GTEST_SKIP() << "the 1024-spp references are too slow under the sanitizers (Release runs it)";
 #endif
     FOOTPRINT_GPU_DEVICE_OR_SKIP();
-    for (const std::string& name : demo_scene_names()) {
+    // llvmpipe's anisotropic sampler is defective (docs/gpu.md) and slow at grazing angles (minutes
+    // on the sea): there the comparison with hw-aniso would be too easy and cost most of the test.
+    // It runs on hardware devices; `footprint-bench gpu --quality` reports it everywhere.
+    std::string why;
+    const bool compare_hw_aniso =
+        test::gpu_device_or_null(&why)->description().find("llvmpipe") == std::string::npos;
+    for (const std::string& name : gpu_demo_scene_names()) {
         DemoRender demo = prepare_demo(name, 64, 36);
         RenderOptions reference_options;
         reference_options.filter = FilterMode::reference;
@@ -218,7 +235,9 @@ TEST(GpuScenes, FaRoughIsAsCloseToTheTruthAsOnTheCpuAndBeatsHardwareAnisotropy) 
         Result<GpuRenderer> gpu = GpuRenderer::create(demo.scene);
         ASSERT_TRUE(gpu) << gpu.error().message;
         const double gpu_fa = rmse(gpu_render(*gpu, GpuFilter::fa_rough), reference, &demo.mask);
-        const double hw = rmse(gpu_render(*gpu, GpuFilter::hw_aniso), reference, &demo.mask);
+        const double hw = compare_hw_aniso
+                              ? rmse(gpu_render(*gpu, GpuFilter::hw_aniso), reference, &demo.mask)
+                              : NAN;
         const double trilinear =
             rmse(gpu_render(*gpu, GpuFilter::trilinear), reference, &demo.mask);
         std::printf(
@@ -229,9 +248,9 @@ TEST(GpuScenes, FaRoughIsAsCloseToTheTruthAsOnTheCpuAndBeatsHardwareAnisotropy) 
         // The procedural demo's textures are solid, band-limited alike in every filtered mode:
         // no map for the filters to differ on.
         if (name == "procedural") continue;
-        EXPECT_LT(gpu_fa, hw) << name;
-        // llvmpipe's anisotropic sampler is defective (docs/gpu.md), which would make the line
-        // above too easy there; trilinear, which it samples right, must be beaten as well.
+        if (compare_hw_aniso) {
+            EXPECT_LT(gpu_fa, hw) << name;
+        }
         if (name != "parabolic_mirror") {
             EXPECT_LT(gpu_fa, trilinear) << name;
         }

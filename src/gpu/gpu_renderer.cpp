@@ -292,6 +292,8 @@ void GpuRenderer::Impl::draw_pass(const CameraDesc& camera, int width, int heigh
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, gpu.meshes.vertices.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, gpu.meshes.triangles.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, gpu.meshes.parts.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, gpu.meshes.bvh_nodes.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, gpu.meshes.bvh_triangles.get());
     glBindVertexArray(vertex_array.get());
     glViewport(0, 0, width, height);
     glDisable(GL_DEPTH_TEST);

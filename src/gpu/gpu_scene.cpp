@@ -9,6 +9,7 @@
 
 #include "scene/mesh.h"
 #include "scene/shapes.h"
+#include "scene/triangle_bvh.h"
 #include "texture/footprint_assembly.h"
 
 namespace footprint::gpu {
@@ -236,6 +237,10 @@ float bump_frame_code(BumpFrame frame) {
 Result<MaterialRecord> material_record(const RenderMaterial& m, TextureSystem& textures,
                                        MapPool& pool, const std::string& name) {
     const MaterialDesc& d = m.desc;
+    if (d.environment_probe)
+        return Error{name +
+                     ": environment_probe: dynamic environment maps are not on the GPU "
+                     "path yet (render with --device cpu)"};
     MaterialRecord r{};
     auto place = [&](std::shared_ptr<const MipPyramid> pyramid, int layers) -> Result<MapRef> {
         if (std::optional<MapRef> ref = pool.add(std::move(pyramid), layers)) return *ref;
@@ -414,6 +419,19 @@ Status upload_meshes(const RenderScene& scene, MapPool& pool, GpuScene& gpu) {
         }
     }
     meshes.triangle_count = static_cast<int>(triangles.size());
+    std::vector<std::array<Vec3, 3>> corners;  // as the shader reads them
+    corners.reserve(triangles.size());
+    for (const auto& tri : triangles) {
+        auto at = [&](std::uint32_t v) {
+            const float* p = vertices[v].position;
+            return Vec3{p[0], p[1], p[2]};
+        };
+        corners.push_back({at(tri[0]), at(tri[1]), at(tri[2])});
+    }
+    Result<TriangleBvh> bvh = build_triangle_bvh(corners);
+    if (!bvh) return bvh.error();
+    meshes.bvh_nodes = storage_buffer(bvh->nodes);
+    meshes.bvh_triangles = storage_buffer(bvh->triangles);
     meshes.vertices = storage_buffer(vertices);
     meshes.indices = storage_buffer(indices);
     meshes.triangles = storage_buffer(triangles);
@@ -539,7 +557,7 @@ std::vector<LightRecord> light_records(const SceneDesc& scene, Vec3d camera_posi
         const bool point = light.type == LightType::point;
         store(r.direction, light.direction, point ? 1.0f : 0.0f);
         store(r.position, light.position - camera_position);
-        store(r.color, vec3_cast<double>(light.color));
+        store(r.color, vec3_cast<double>(light.color), light.shadows ? 1.0f : 0.0f);
         records.push_back(r);
     }
     return records;

@@ -53,8 +53,8 @@ struct MaterialRecord {  // common.glsl's Material
     float parallax[4];              // depth (0: none), steps, max_shift, unused
     int height_map[4];              // the parallax height map's unit and layer, unused
 };
-struct LightRecord {  // common.glsl's Light
-    float direction[4], position[4], color[4];
+struct LightRecord {                            // common.glsl's Light
+    float direction[4], position[4], color[4];  // color[3]: 1 where it casts shadows
 };
 struct MeshVertexRecord {  // geometry.glsl's MeshVertex
     float position[4];     // relative to GpuMeshes::anchor
@@ -71,6 +71,7 @@ struct GpuMeshes {
     int triangle_count = 0;
     Vec3d anchor;  // the point the vertex positions are relative to (in float)
     Buffer vertices, indices, triangles, parts;
+    Buffer bvh_nodes, bvh_triangles;  // the shadow rays' BVH (scene/triangle_bvh.h)
     VertexArray vertex_array;
 };
 

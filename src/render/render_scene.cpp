@@ -15,6 +15,7 @@
 #include "envmap/env_image_io.h"
 #include "envmap/env_pyramid_file.h"
 #include "image/image_io.h"
+#include "render/environment_probe.h"
 #include "render/material_model.h"
 #include "render/peer_filters.h"
 #include "scene/mesh.h"
@@ -575,6 +576,30 @@ Result<RenderScene> prepare_render_scene(const SceneDesc& desc,
         if (!accel) return scene_error(desc, "objects", accel.error());
         scene.mesh_accel_ = std::make_unique<MeshAccel>(std::move(*accel));
     }
+    // Environment probes last, as their views see every object. All are rendered before any is
+    // used, so that none shows another's reflection (one bounce).
+    std::vector<std::pair<int, std::unique_ptr<RenderEnvironment>>> probes;
+    for (int i = 0; i < object_count; ++i) {
+        const auto& probe = desc.objects[i].material.environment_probe;
+        if (!probe) continue;
+        const std::string key = object_key(i) + ".material.environment_probe";
+        Result<EnvironmentMap> map = render_environment_probe(scene, *probe, i);
+        if (!map) return scene_error(desc, key, map.error());
+        Result<EnvironmentHandle*> handle =
+            maps.textures.add_environment(maps.name("environment probe"), std::move(*map));
+        if (!handle) return scene_error(desc, key, handle.error());
+        auto environment = std::make_unique<RenderEnvironment>();
+        if (Status s = describe(maps.textures, *handle, *environment); !s)
+            return scene_error(desc, key, s.error());
+        probes.emplace_back(i, std::move(environment));
+    }
+    for (auto& [object, environment] : probes) {
+        if (scene.object_material_[object] >= 0)
+            scene.materials_[scene.object_material_[object]].probe = environment.get();
+        for (int m : scene.mesh_part_material_[object])
+            scene.materials_[m].probe = environment.get();
+        scene.probes_.push_back(std::move(environment));
+    }
     return scene;
 }
 
@@ -623,6 +648,15 @@ Status RenderScene::take_texture_errors() const {
 
 std::span<const TriangleMesh> RenderScene::mesh_parts(int object) const {
     return meshes_[static_cast<std::size_t>(object)];
+}
+
+bool RenderScene::occluded(const Ray& ray, double t_min, double t_max) const {
+    for (int i = 0; i < static_cast<int>(desc_.objects.size()); ++i) {
+        if (object_material_[i] >= 0 &&
+            intersect_analytic(desc_.objects[i].shape, ray, t_min, t_max))
+            return true;
+    }
+    return mesh_accel_ && mesh_accel_->occluded(ray, t_min, t_max);
 }
 
 std::optional<SceneHit> RenderScene::intersect(const Ray& ray, double t_min, double t_max) const {

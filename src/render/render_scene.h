@@ -50,6 +50,8 @@ class MeshAccel;
 struct TriangleMesh;
 
 // A material with its maps in the scene's texture system.
+struct RenderEnvironment;
+
 struct RenderMaterial {
     MaterialDesc desc;
     TextureHandle* base_color_map = nullptr;  // linear; null: desc.base_color only
@@ -76,6 +78,9 @@ struct RenderMaterial {
     // The environment's diffuse weight (its mean radiance × c): the footprint model's `diffuse`;
     // 1 in the metallic-roughness model, whose lights' Lambert weight (desc.diffuse) is 1/π.
     float ambient_weight = 1;
+    // An environment_probe material's cube map (rendered by prepare_render_scene()), which its
+    // mirror reflects instead of the scene's environment; null for the others.
+    const RenderEnvironment* probe = nullptr;
 
     bool metallic_roughness() const {
         return desc.model == MaterialDesc::Model::metallic_roughness;
@@ -137,6 +142,8 @@ class RenderScene {
 
     // The nearest hit along the ray with t in (t_min, t_max), over all objects. Thread-safe.
     std::optional<SceneHit> intersect(const Ray& ray, double t_min, double t_max) const;
+    // Whether any object is hit with t in (t_min, t_max): a shadow ray. Thread-safe.
+    bool occluded(const Ray& ray, double t_min, double t_max) const;
 
     // The unit normals of a bumped material's slopes (× its strength) as a texture of the scene's
     // texture system, for the `toksvig` peer mode: made at the first call for that bump map, then
@@ -150,6 +157,7 @@ class RenderScene {
     SceneDesc desc_;
     std::shared_ptr<TextureSystem> textures_;
     std::unique_ptr<RenderEnvironment> environment_;
+    std::vector<std::unique_ptr<RenderEnvironment>> probes_;  // RenderMaterial::probe's
     std::vector<RenderMaterial> materials_;             // one per object, then one per mesh part
     std::vector<int> object_material_;                  // analytic objects: index into materials_
     std::vector<std::vector<int>> mesh_part_material_;  // [object][part] for mesh objects

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "bump/local_frame.h"
@@ -22,6 +23,16 @@ namespace {
 
 Vec3 to_float(Vec3d v) {
     return vec3_cast<float>(v);
+}
+
+// How far a shadow ray starts off the surface: beyond the rounding of a float hit point (the
+// GPU's geometry and Embree's triangles are float) at the hit's distance from the eye and from
+// the origin, so that the surface never shadows itself; gpu/shaders/shading.glsl's twin.
+constexpr double kShadowBias = 1e-4;
+Vec3d shadow_origin(const SurfaceHit& s, Vec3d eye) {
+    const Vec3d ng =
+        dot(s.geometric_normal, eye - s.p) < 0 ? -s.geometric_normal : s.geometric_normal;
+    return s.p + kShadowBias * (1 + length(s.p - eye) + length(s.p)) * ng;
 }
 std::array<float, 3> to_array(Vec3 v) {
     return {v.x, v.y, v.z};
@@ -139,11 +150,13 @@ ModePolicy policy_of(FilterMode mode) {
     return policy;
 }
 
-SampleShader::SampleShader(const RenderScene& scene, const RenderOptions& options)
+SampleShader::SampleShader(const RenderScene& scene, const RenderOptions& options,
+                           int hidden_object)
     : scene_(scene),
       textures_(scene.textures()),
       options_(options),
-      policy_(policy_of(options.filter)) {
+      policy_(policy_of(options.filter)),
+      hidden_object_(hidden_object) {
     // footprint's own footprint assembly (the peers' GPU-style filter keeps its 16).
     if (policy_.lookup.filter == TextureFilter::footprint_assembly &&
         policy_.lookup.probe_rule == ProbeRule::gaussian)
@@ -172,15 +185,14 @@ Rgb SampleShader::background(const RayDifferential& ray) {
             env->map, d, dd_dx, dd_dy, EnvLookupOptions{policy_.lookup, env->rotation}, out));
     } else {
         static_cast<void>(textures_.environment_sample(
-            env->map, env->rotation * local_direction(origin, direction), out));
+            env->map, env->rotation * local_direction(*env, origin, direction), out));
     }
     return out;
 }
 
 // The direction in which the environment shows what a ray from p along r meets: r itself for a
 // map at infinity, else from the local map's capture point to where the ray leaves its proxy.
-Vec3 SampleShader::local_direction(Vec3 p, Vec3 r) const {
-    const RenderEnvironment& env = *scene_.environment();
+Vec3 SampleShader::local_direction(const RenderEnvironment& env, Vec3 p, Vec3 r) const {
     if (!env.proxy) return r;
     const std::optional<ProxyStep> step = proxy_step(*env.proxy, p, r);
     return step ? step->direction : r;
@@ -190,9 +202,9 @@ Vec3 SampleShader::local_direction(Vec3 p, Vec3 r) const {
 // env_proxy.h): its spreads ∂v_r/∂x, ∂v_r/∂y and roughness columns through ∂d = P ∂p + (t/|r|) P
 // ∂r, the pixel's own ∂p added; unchanged for a map at infinity or a ray that does not leave the
 // proxy.
-EnvFootprint SampleShader::through_proxy(const EnvFootprint& f, const SurfacePoint& point,
+EnvFootprint SampleShader::through_proxy(const RenderEnvironment& env, const EnvFootprint& f,
+                                         const SurfacePoint& point,
                                          const EnvFootprintOptions& options) const {
-    const RenderEnvironment& env = *scene_.environment();
     const std::optional<ProxyStep> step =
         env.proxy ? proxy_step(*env.proxy, point.p, f.reflected) : std::nullopt;
     if (!step) return f;
@@ -205,8 +217,21 @@ EnvFootprint SampleShader::through_proxy(const EnvFootprint& f, const SurfacePoi
                                  step->move({}, unkappa * (to_world * f.map_roughness2)), options);
 }
 
-std::optional<SurfacePoint> SampleShader::trace(const RayDifferential& ray, Vec2d random) {
-    const std::optional<SceneHit> hit = scene_.intersect(ray.ray, 1e-9, INFINITY);
+// The nearest hit on any object but `hidden_object` (the ray goes on through that one's surfaces).
+std::optional<SceneHit> SampleShader::nearest_hit(const Ray& ray, int hidden_object) const {
+    constexpr int kMaxPassed = 64;  // surfaces of the hidden object passed through (a mesh's many)
+    double t_min = 1e-9;
+    for (int i = 0; i < kMaxPassed; ++i) {
+        std::optional<SceneHit> hit = scene_.intersect(ray, t_min, INFINITY);
+        if (!hit || hit->surface.object != hidden_object) return hit;
+        t_min = hit->surface.t * (1 + 1e-9) + 1e-9;
+    }
+    return std::nullopt;
+}
+
+std::optional<SurfacePoint> SampleShader::trace(const RayDifferential& ray, Vec2d random,
+                                                int hidden_object) {
+    const std::optional<SceneHit> hit = nearest_hit(ray.ray, hidden_object);
     if (!hit) return std::nullopt;
     const SurfaceHit& s = hit->surface;
     SurfacePoint point;
@@ -273,6 +298,7 @@ std::optional<SurfacePoint> SampleShader::trace(const RayDifferential& ray, Vec2
     point.p = to_float(s.p);
     point.n = to_float(s.n), point.dndx = to_float(diff.dndx), point.dndy = to_float(diff.dndy);
     point.v = to_float(ray.ray.origin - s.p);
+    point.shadow_origin = shadow_origin(s, ray.ray.origin);
     if (dot(to_float(s.geometric_normal), point.v) < 0) {
         point.n = -point.n, point.dndx = -point.dndx, point.dndy = -point.dndy;
         point.frame.frame.t1 = -point.frame.frame.t1, point.frame.frame.t2 = -point.frame.frame.t2;
@@ -531,7 +557,7 @@ ShadingFactors SampleShader::shade(const SurfacePoint& point) {
         const float scale = ambient / std::numbers::pi_v<float>;
         out.diffuse[0] += scale * e.x, out.diffuse[1] += scale * e.y, out.diffuse[2] += scale * e.z;
     }
-    if (env && desc.mirror > 0) add_reflection(point, n_hat, v_hat, out);
+    if (desc.mirror > 0 && reflected_environment(point)) add_reflection(point, n_hat, v_hat, out);
     return out;
 }
 
@@ -546,8 +572,17 @@ float SampleShader::diffuse_slope_variance(const SurfacePoint& point) const {
     return std::max(0.0f, variance);
 }
 
+// Whether an object lies between `origin` and the light (none where the light casts no shadows).
+bool SampleShader::in_shadow(const LightDesc& light, Vec3d origin) const {
+    if (!light.shadows) return false;
+    if (light.type == LightType::directional)
+        return scene_.occluded({origin, -light.direction}, 0,
+                               std::numeric_limits<double>::infinity());
+    return scene_.occluded({origin, light.position - origin}, 0, 1);  // the light at t = 1
+}
+
 // Lambert + the material's highlight (Blinn-Phong or a microfacet BRDF, widened by K_b in the
-// rough modes) for every light.
+// rough modes) for every light that sees the point.
 void SampleShader::add_lights(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat,
                               ShadingFactors& out) const {
     const MaterialDesc& desc = point.material->desc;
@@ -578,7 +613,7 @@ void SampleShader::add_lights(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat,
             scale = 1.0f / d2;
         }
         const float cos_l = dot(n_hat, l);
-        if (cos_l <= 0) continue;
+        if (cos_l <= 0 || in_shadow(light, point.shadow_origin)) continue;
         const Vec3 h = normalize(l + v_hat);
         Rgb spec{};
         if (desc.specular > 0 && desc.highlight == MaterialDesc::Highlight::blinn_phong) {
@@ -604,9 +639,26 @@ void SampleShader::add_lights(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat,
 // the aperture and, in the rough modes, the slopes' covariance), or sampled in the reflected
 // direction; weighted by Schlick's Fresnel. In the rough modes Fresnel is averaged over the slopes
 // and the reflection looked up under the slopes weighted by it (shading/fresnel.h).
+const RenderEnvironment* SampleShader::reflected_environment(const SurfacePoint& point) const {
+    const RenderEnvironment* probe = tracing_reflection_ ? nullptr : point.material->probe;
+    return probe ? probe : scene_.environment();
+}
+
+// The reference's view of a probed mirror: the reflected ray traced into the scene (the object
+// that wears the probe passed through, as its probe leaves it out), its hit shaded with one bounce
+// (its own mirror reads the environment), or the background where it escapes.
+Rgb SampleShader::traced_reflection(const SurfacePoint& point, Vec3 r, Vec2d random) {
+    const RayDifferential ray{{point.shadow_origin, vec3_cast<double>(r)}, {}, {}, {}, {}};
+    tracing_reflection_ = true;
+    const std::optional<SurfacePoint> hit = trace(ray, random, point.object);
+    const Rgb c = hit ? combine(shade(*hit)) : background(ray);
+    tracing_reflection_ = false;
+    return c;
+}
+
 void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat,
                                   ShadingFactors& out) {
-    const RenderEnvironment& env = *scene_.environment();
+    const RenderEnvironment& env = *reflected_environment(point);  // shade() checked it
     const MaterialDesc& desc = point.material->desc;
     const Rgb& f0 = point.f0;
     // One F0 steers the Fresnel-weighted slopes: the channels' mean (their means are exact).
@@ -618,9 +670,13 @@ void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_
             if (dot(n_m, v_hat) > 0) n_hat = n_m;  // else the bump is dropped (§4)
         }
         const Vec3 r = 2.0f * dot(n_hat, v_hat) * n_hat - v_hat;
-        out.map_reflection = env.rotation * local_direction(point.p, r);
-        static_cast<void>(
-            textures_.environment_sample(env.map, out.map_reflection, out.reflection));
+        out.map_reflection = env.rotation * local_direction(env, point.p, r);
+        if (&env != scene_.environment() && options_.filter == FilterMode::reference) {
+            out.reflection = traced_reflection(point, r, {0.5, 0.5});
+        } else {
+            static_cast<void>(
+                textures_.environment_sample(env.map, out.map_reflection, out.reflection));
+        }
         ++lookups;
         for (int c = 0; c < 3; ++c)
             out.fresnel[c] = desc.mirror * schlick_fresnel(f0[c], dot(n_hat, v_hat));
@@ -657,9 +713,9 @@ void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_
     EnvFootprintOptions env_options;
     env_options.kappa = options_.kappa;
     env_options.rotation = env.rotation;
-    out.env_footprint =
-        through_proxy(compute_env_footprint(env.layout, env.texel_scale, geometry, env_options),
-                      point, env_options);
+    out.env_footprint = through_proxy(
+        env, compute_env_footprint(env.layout, env.texel_scale, geometry, env_options), point,
+        env_options);
     out.map_reflection = normalize(out.env_footprint->map_direction);
     if (policy_.stochastic) {
         // One direction the footprint's Gaussian picks (the pixel filter's σ = ½ pixel), read at
@@ -680,9 +736,9 @@ void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_
     if (facing_away > kFacingAwayThreshold && f_mean + f_away > 0) {
         // Slopes facing away from the eye are shaded with the surface's own normal (spec §4), as
         // the reference shades them: their share of the mirror term is a second lookup.
-        out.away_footprint =
-            through_proxy(compute_env_footprint(env.layout, env.texel_scale, flat, env_options),
-                          point, env_options);
+        out.away_footprint = through_proxy(
+            env, compute_env_footprint(env.layout, env.texel_scale, flat, env_options), point,
+            env_options);
         Rgb texel;
         static_cast<void>(
             textures_.environment(env.map, *out.away_footprint, policy_.lookup, texel));

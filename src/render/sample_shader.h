@@ -71,6 +71,7 @@ struct SurfacePoint {
     // Facing the viewer (a surface seen from behind is shaded as its mirror image).
     Vec3 p, n, dndx, dndy;  // n any length, ∂n per pixel step
     Vec3 v;                 // surface → eye
+    Vec3d shadow_origin;    // p lifted off the surface towards the eye: where shadow rays start
     SurfaceDifferentials diff;
     std::uint32_t random_seed = 0;  // the sample's draws, for stochastic lookups
 };
@@ -107,7 +108,9 @@ inline float channel_mean(const Rgb& rgb) {
 
 class SampleShader {
   public:
-    SampleShader(const RenderScene& scene, const RenderOptions& options);
+    // `hidden_object` (≥ 0): an object the camera rays pass through, as an environment probe's
+    // views leave out the object that wears it (render/environment_probe.h).
+    SampleShader(const RenderScene& scene, const RenderOptions& options, int hidden_object = -1);
 
     // The colour seen along one camera ray; `random` = two uniforms for the micro-roughness.
     Rgb shade(const RayDifferential& ray, Vec2d random) {
@@ -116,20 +119,28 @@ class SampleShader {
     }
 
     // The hit along `ray` and its inputs; nullopt if the ray escapes.
-    std::optional<SurfacePoint> trace(const RayDifferential& ray, Vec2d random);
+    std::optional<SurfacePoint> trace(const RayDifferential& ray, Vec2d random) {
+        return trace(ray, random, hidden_object_);
+    }
     ShadingFactors shade(const SurfacePoint& point);
     Rgb background(const RayDifferential& ray);
 
     std::uint64_t lookups = 0;
 
   private:
+    std::optional<SurfacePoint> trace(const RayDifferential& ray, Vec2d random, int hidden_object);
+    std::optional<SceneHit> nearest_hit(const Ray& ray, int hidden_object) const;
+    // The environment a point's mirror reflects: its material's probe, else the scene's (if any).
+    const RenderEnvironment* reflected_environment(const SurfacePoint& point) const;
+    Rgb traced_reflection(const SurfacePoint& point, Vec3 r, Vec2d random);
     float diffuse_slope_variance(const SurfacePoint& point) const;
-    Vec3 local_direction(Vec3 p, Vec3 r) const;
+    Vec3 local_direction(const RenderEnvironment& env, Vec3 p, Vec3 r) const;
     void parallax_coords(const RenderMaterial& material, const SurfaceHit& s,
                          const RayDifferential& ray, TextureCoords& coords);
-    EnvFootprint through_proxy(const EnvFootprint& f, const SurfacePoint& point,
-                               const EnvFootprintOptions& options) const;
+    EnvFootprint through_proxy(const RenderEnvironment& env, const EnvFootprint& f,
+                               const SurfacePoint& point, const EnvFootprintOptions& options) const;
     void add_lights(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat, ShadingFactors& out) const;
+    bool in_shadow(const LightDesc& light, Vec3d origin) const;
     void add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat, ShadingFactors& out);
     void read_map(TextureHandle* map, const TextureCoords& coords, RandomStream& random,
                   std::span<float> out);
@@ -164,6 +175,8 @@ class SampleShader {
     TextureSystem& textures_;
     const RenderOptions& options_;
     ModePolicy policy_;
+    int hidden_object_ = -1;
+    bool tracing_reflection_ = false;  // shading a traced reflection's hit: one bounce only
     std::unordered_map<const void*, std::pair<int, int>> sizes_;
 };
 

@@ -45,6 +45,25 @@ void clamp_to_triangle(double& b1, double& b2) {
     if (s > 1) b1 /= s, b2 /= s;
 }
 
+// The ray in Embree's float form, t in [max(t_min, 0), t_max] (+∞ past float's range).
+RTCRay embree_ray(const Ray& ray, double t_min, double t_max) {
+    RTCRay r{};
+    r.org_x = static_cast<float>(ray.origin.x);
+    r.org_y = static_cast<float>(ray.origin.y);
+    r.org_z = static_cast<float>(ray.origin.z);
+    r.dir_x = static_cast<float>(ray.direction.x);
+    r.dir_y = static_cast<float>(ray.direction.y);
+    r.dir_z = static_cast<float>(ray.direction.z);
+    r.tnear = static_cast<float>(std::max(t_min, 0.0));
+    r.tfar = t_max >= static_cast<double>(std::numeric_limits<float>::max())
+                 ? std::numeric_limits<float>::infinity()
+                 : static_cast<float>(t_max);
+    r.mask = 0xFFFFFFFFu;
+    r.flags = 0;
+    r.time = 0;
+    return r;
+}
+
 }  // namespace
 
 Result<MeshAccel> MeshAccel::build(std::vector<MeshInstance> instances) {
@@ -133,25 +152,22 @@ void MeshAccel::release() {
     device_ = nullptr;
 }
 
+bool MeshAccel::occluded(const Ray& ray, double t_min, double t_max) const {
+    if (!scene_ || !(t_max >= t_min)) return false;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay r = embree_ray(ray, t_min, t_max);
+    rtcOccluded1(scene_, &context, &r);
+    return r.tfar < 0;  // Embree sets tfar to −∞ on a hit
+}
+
 std::optional<MeshHitRecord> MeshAccel::intersect(const Ray& ray, double t_min,
                                                   double t_max) const {
     if (!scene_ || !(t_max >= t_min)) return std::nullopt;
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
-    rh.ray.org_x = static_cast<float>(ray.origin.x);
-    rh.ray.org_y = static_cast<float>(ray.origin.y);
-    rh.ray.org_z = static_cast<float>(ray.origin.z);
-    rh.ray.dir_x = static_cast<float>(ray.direction.x);
-    rh.ray.dir_y = static_cast<float>(ray.direction.y);
-    rh.ray.dir_z = static_cast<float>(ray.direction.z);
-    rh.ray.tnear = static_cast<float>(std::max(t_min, 0.0));
-    rh.ray.tfar = t_max >= static_cast<double>(std::numeric_limits<float>::max())
-                      ? std::numeric_limits<float>::infinity()
-                      : static_cast<float>(t_max);
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.ray.flags = 0;
-    rh.ray.time = 0;
+    rh.ray = embree_ray(ray, t_min, t_max);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;

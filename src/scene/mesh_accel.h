@@ -63,6 +63,9 @@ class MeshAccel {
     // The nearest hit with t in [t_min, t_max] (t_max may be +∞), or none. Thread-safe: any
     // number of threads may call it at once. The ray's direction need not be unit length.
     std::optional<MeshHitRecord> intersect(const Ray& ray, double t_min, double t_max) const;
+    // Whether any triangle is hit with t in [t_min, t_max] (a shadow ray): Embree's any-hit
+    // query, which stops at the first hit it finds. Thread-safe as intersect().
+    bool occluded(const Ray& ray, double t_min, double t_max) const;
 
     std::size_t size() const { return instances_.size(); }
     const MeshInstance& instance(int mesh) const { return instances_[mesh]; }

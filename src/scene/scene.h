@@ -78,6 +78,7 @@ struct LightDesc {
     Vec3d direction{0, -1, 0};  // directional: the direction the light travels (towards the scene)
     Vec3d position{0, 5, 0};    // point
     Vec3 color{1, 1, 1};        // linear RGB; irradiance (directional) or intensity (point, /d²)
+    bool shadows = true;        // whether objects between a surface and the light block it
 };
 
 enum class BumpFrame {
@@ -103,6 +104,14 @@ struct BumpDesc {
     // roughness lookups at the (s, t) where the view ray meets the relief `depth` deep.
     std::optional<ParallaxOptions> parallax;
 };
+
+// The lectures' dynamic environment map: before a frame the renderer renders the scene into a cube
+// map of `size`² texels per face from `center`, leaving out the objects that wear the material.
+struct EnvironmentProbeDesc {
+    Vec3d center{0, 0, 0};
+    int size = 128;  // 4 … kMaxProbeSize
+};
+constexpr int kMaxProbeSize = 2048;
 
 struct MaterialDesc {
     // The shading model (docs/scene-format.md#material-models):
@@ -135,6 +144,9 @@ struct MaterialDesc {
     float roughness = 0.45f;
     float mirror = 0;      // environment reflection weight (× Fresnel)
     float fresnel_f0 = 1;  // Schlick's F0; 1 = a perfect mirror
+    // A dynamic environment map: its mirror reflection reads a cube map of the scene rendered
+    // from `center`, where the other objects appear, instead of the scene's environment.
+    std::optional<EnvironmentProbeDesc> environment_probe;
     BumpDesc bump;
     float micro_roughness = 0;  // slope standard deviation below the bump map's resolution
     // What an invalid texel (NaN/Inf, n_z ≤ 0: an all-black map) of the material's normal maps

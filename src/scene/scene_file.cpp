@@ -247,6 +247,10 @@ class SceneParser {
         if (!j.is_string()) fail(path, "expected a string, got " + describe(j));
         return j.get<std::string>();
     }
+    bool boolean(const json& j, const std::string& path) const {
+        if (!j.is_boolean()) fail(path, "expected true or false, got " + describe(j));
+        return j.get<bool>();
+    }
     double number(const json& j, const std::string& path) const {
         if (!j.is_number()) fail(path, "expected a number, got " + describe(j));
         const double v = j.get<double>();
@@ -485,17 +489,19 @@ class SceneParser {
         for (const auto& item : j.items()) {
             const std::string& key = item.key();
             if (key == (directional ? "position" : "direction"))
-                fail(member(path, key), std::string("not a key of a ") +
-                                            (directional ? "directional" : "point") +
-                                            " light (it takes: type, " +
-                                            (directional ? "direction" : "position") + ", color)");
+                fail(member(path, key),
+                     std::string("not a key of a ") + (directional ? "directional" : "point") +
+                         " light (it takes: type, " + (directional ? "direction" : "position") +
+                         ", color, shadows)");
         }
-        check_keys(j, path, {"type", "direction", "position", "color"});
+        check_keys(j, path, {"type", "direction", "position", "color", "shadows"});
         if (const json* v = find(j, "direction"))
             light.direction = nonzero_vec3(*v, member(path, "direction"));
         if (const json* v = find(j, "position"))
             light.position = vec3(*v, member(path, "position"));
         if (const json* v = find(j, "color")) light.color = color(*v, member(path, "color"));
+        if (const json* v = find(j, "shadows"))
+            light.shadows = boolean(*v, member(path, "shadows"));
         return light;
     }
 
@@ -692,7 +698,7 @@ class SceneParser {
         check_keys(j, path,
                    {"model", "base_color", "diffuse", "specular", "shininess", "highlight",
                     "roughness", "metallic", "metallic_roughness", "mirror", "fresnel_f0", "bump",
-                    "micro_roughness", "invalid_normals", "non_finite"});
+                    "micro_roughness", "invalid_normals", "non_finite", "environment_probe"});
         MaterialDesc m;
         auto at = [&](std::string_view key) { return member(path, key); };
         if (mesh == MeshFileKind::gltf) m.model = MaterialDesc::Model::metallic_roughness;
@@ -759,6 +765,8 @@ class SceneParser {
         }
         if (const json* v = find(j, "micro_roughness"))
             m.micro_roughness = non_negative(*v, at("micro_roughness"));
+        if (const json* v = find(j, "environment_probe"))
+            m.environment_probe = parse_probe(*v, at("environment_probe"));
         if (const json* v = find(j, "bump")) {
             m.bump = parse_bump(*v, at("bump"));
             if (pbr && m.bump.source == BumpDesc::Source::procedural)
@@ -777,6 +785,24 @@ class SceneParser {
                      "bump.height_map (for a normal map's NaN texels: invalid_normals)");
         }
         return m;
+    }
+
+    // {"center": [x, y, z], "size": N, "layout": "cube"}: the only layout is the cube, whose faces
+    // the renderer renders as six square views.
+    EnvironmentProbeDesc parse_probe(const json& j, const std::string& path) const {
+        expect_object(j, path);
+        check_keys(j, path, {"center", "size", "layout"});
+        EnvironmentProbeDesc probe;
+        if (const json* v = find(j, "center")) probe.center = vec3(*v, member(path, "center"));
+        if (const json* v = find(j, "size"))
+            probe.size = integer(*v, member(path, "size"), 4, kMaxProbeSize);
+        if (const json* v = find(j, "layout")) {
+            const std::string name = string(*v, member(path, "layout"));
+            if (name != "cube")
+                fail(member(path, "layout"),
+                     "a probe is a cube map, got " + quoted(name) + suggest(name, {"cube"}));
+        }
+        return probe;
     }
 
     // {"procedural": "noise" | "turbulence" | "marble" | "checker", "scale": S, "octaves": N,

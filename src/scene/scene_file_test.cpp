@@ -61,7 +61,7 @@ constexpr const char* kCompleteScene = R"({
   "background": [0.25, 0.5, 0.75],
   "lights": [
     {"type": "directional", "direction": [1, -2, 0.5], "color": [2, 3, 4]},
-    {"type": "point", "position": [4, 5, 6], "color": [10, 20, 30]},
+    {"type": "point", "position": [4, 5, 6], "color": [10, 20, 30], "shadows": false},
     {}
   ],
   "objects": [
@@ -124,6 +124,8 @@ TEST(SceneFile, CompleteSceneParsesToTheExactValues) {
     EXPECT_EQ(s.lights[1].type, LightType::point);
     EXPECT_VEC3_EQ(s.lights[1].position, 4, 5, 6);
     EXPECT_VEC3_EQ(s.lights[1].color, 10, 20, 30);
+    EXPECT_TRUE(s.lights[0].shadows);
+    EXPECT_FALSE(s.lights[1].shadows);
     EXPECT_EQ(s.lights[2].type, LightType::directional);  // defaults
     EXPECT_VEC3_EQ(s.lights[2].direction, 0, -1, 0);
     EXPECT_VEC3_EQ(s.lights[2].color, 1, 1, 1);
@@ -359,6 +361,24 @@ TEST(SceneFile, EnvironmentProxiesParseToTheExactValues) {
     EXPECT_VEC3_EQ(s.center, 1, 2, 3);
     EXPECT_EQ(s.radius, 5.0f);
     EXPECT_VEC3_EQ(s.capture, 0, 1, 0);
+}
+
+TEST(SceneFile, EnvironmentProbesParseToTheExactValues) {
+    const Result<SceneDesc> s = parse_scene(R"({"camera": {}, "objects": [
+        {"shape": "sphere", "material": {"mirror": 1,
+         "environment_probe": {"center": [1, 2, 3], "size": 96, "layout": "cube"}}},
+        {"shape": "sphere", "material": {"environment_probe": {}}},
+        {"shape": "sphere"}]})",
+                                            "probe.json", {.check_files = false});
+    ASSERT_TRUE(s.ok()) << s.error().message;
+    const auto& probe = s->objects[0].material.environment_probe;
+    ASSERT_TRUE(probe);
+    EXPECT_VEC3_EQ(probe->center, 1, 2, 3);
+    EXPECT_EQ(probe->size, 96);
+    ASSERT_TRUE(s->objects[1].material.environment_probe);  // the defaults
+    EXPECT_VEC3_EQ(s->objects[1].material.environment_probe->center, 0, 0, 0);
+    EXPECT_EQ(s->objects[1].material.environment_probe->size, 128);
+    EXPECT_FALSE(s->objects[2].material.environment_probe);
 }
 
 TEST(SceneFile, MinimalSceneTakesTheDefaultsOfSceneDesc) {
@@ -680,6 +700,15 @@ const ErrorCase kErrorCases[] = {
      "environment.file[4]", "file 'missing.hdr' not found"},
     {"EnvironmentFaceNotAString", R"({"environment": {"file": ["front.hdr", 2]}})",
      "environment.file[1]", "expected a string, got a number"},
+    {"ProbeLayoutLatlong",
+     R"({"objects": [{"shape": "sphere", "material": {"environment_probe": {"layout": "latlong"}}}]})",
+     "objects[0].material.environment_probe.layout", "a probe is a cube map, got 'latlong'"},
+    {"ProbeSizeTooSmall",
+     R"({"objects": [{"shape": "sphere", "material": {"environment_probe": {"size": 2}}}]})",
+     "objects[0].material.environment_probe.size", "must be in 4..2048, got 2"},
+    {"ProbeUnknownKey",
+     R"({"objects": [{"shape": "sphere", "material": {"environment_probe": {"centre": [0, 0, 0]}}}]})",
+     "objects[0].material.environment_probe.centre", "did you mean 'center'?"},
     {"ProxyBoxAndSphere", R"({"environment": {"proxy": {"box": {"min": [0, 0, 0],
         "max": [1, 1, 1]}, "sphere": {"center": [0, 0, 0], "radius": 1}}}})",
      "environment.proxy", "needs exactly one of box and sphere"},
@@ -716,7 +745,10 @@ const ErrorCase kErrorCases[] = {
     {"LightTypeUnknown", R"({"lights": [{"type": "spot"}]})", "lights[0].type",
      "unknown light type 'spot' (expected one of: directional, point)"},
     {"DirectionalLightWithPosition", R"({"lights": [{"position": [0, 1, 0]}]})",
-     "lights[0].position", "not a key of a directional light (it takes: type, direction, color)"},
+     "lights[0].position",
+     "not a key of a directional light (it takes: type, direction, color, shadows)"},
+    {"LightShadowsNotABoolean", R"({"lights": [{"shadows": 1}]})", "lights[0].shadows",
+     "expected true or false, got a number"},
     {"PointLightWithDirection", R"({"lights": [{"type": "point"},
         {"type": "point", "direction": [0, 1, 0]}]})",
      "lights[1].direction", "not a key of a point light"},

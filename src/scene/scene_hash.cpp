@@ -74,6 +74,8 @@ void add_material(Fnv1a& h, const MaterialDesc& m) {
     if (!m.base_color_map.empty()) h.image(m.base_color_map);
     h.add(m.diffuse), h.add(m.specular), h.add(m.shininess), h.add(m.mirror);
     h.add(m.fresnel_f0), h.add(m.micro_roughness);
+    h.add(m.environment_probe.has_value());
+    if (const auto& p = m.environment_probe) h.add(p->center), h.add(p->size);
     h.add(static_cast<int>(m.highlight)), h.add(m.roughness);
     // Only where it is not the default, so that the footprint model's hashes stay as they were.
     if (m.model == MaterialDesc::Model::metallic_roughness) {
@@ -160,6 +162,7 @@ std::uint64_t scene_content_hash(const SceneDesc& scene) {
     h.add(scene.lights.size());
     for (const LightDesc& l : scene.lights) {
         h.add(static_cast<int>(l.type)), h.add(l.direction), h.add(l.position), h.add(l.color);
+        h.add(l.shadows ? 1 : 0);
     }
     h.add(scene.objects.size());
     for (const ObjectDesc& o : scene.objects) {

@@ -134,8 +134,11 @@ vec2 parallax_direction(vec3 v, vec3 dp_ds, vec3 dp_dt, vec3 n) {
     return is_finite(w.x + w.y) ? w : vec2(0);
 }
 
+// hw-aniso marches over trilinear heights, as engines do: ~30 anisotropic reads per pixel would
+// cost more than the shading they serve, and the heights only place the crossing.
 float parallax_height(Material m, vec2 st, vec4 dst, int mode) {
-    return lookup_2d(m.height_map.x, m.height_map.y, 1, st, dst, mode).a.r;
+    int height_mode = mode == MODE_HW_ANISO ? MODE_TRILINEAR : mode;
+    return lookup_2d(m.height_map.x, m.height_map.y, 1, st, dst, height_mode).a.r;
 }
 
 // The march (parallax_march()): material.parallax = (depth, steps, max_shift); st and dst updated.

@@ -60,7 +60,7 @@ struct Material {
 struct Light {
     vec4 direction;  // directional: the direction light travels; w = 0 directional, 1 point
     vec4 position;   // point light, camera-relative
-    vec4 color;
+    vec4 color;      // w = 1 where it casts shadows
 };
 
 layout(std430, binding = 0) readonly buffer Objects { Object objects[]; };

@@ -407,6 +407,18 @@ bool hit_triangle(int triangle, Ray ray, inout Hit hit) {
     return true;
 }
 
+// Analytic object o against the ray, nearer than hit.t (d = the direction / len, len its length).
+bool hit_object(Object o, Ray ray, float len, vec3 d, inout Hit hit) {
+    switch (o.info.x) {
+        case SHAPE_PLANE: return hit_plane(o, ray, len, d, hit);
+        case SHAPE_SPHERE: return hit_sphere(o, ray, len, d, hit);
+        case SHAPE_CYLINDER: return hit_cylinder(o, ray, len, d, hit);
+        case SHAPE_PARABOLOID: return hit_paraboloid(o, ray, len, d, hit);
+        case SHAPE_TORUS: return hit_torus(o, ray, len, d, hit);
+    }
+    return false;
+}
+
 // The nearest hit over all objects at pixel `pixel`; false where the ray escapes.
 bool intersect_scene(Ray ray, ivec2 pixel, out Hit hit) {
     hit.t = FLT_MAX;
@@ -417,19 +429,73 @@ bool intersect_scene(Ray ray, ivec2 pixel, out Hit hit) {
     }
     float len = length(ray.direction);
     vec3 d = ray.direction / len;
-    for (int i = 0; i < u_object_count; ++i) {
-        Object o = objects[i];
-        bool found = false;
-        switch (o.info.x) {
-            case SHAPE_PLANE: found = hit_plane(o, ray, len, d, hit); break;
-            case SHAPE_SPHERE: found = hit_sphere(o, ray, len, d, hit); break;
-            case SHAPE_CYLINDER: found = hit_cylinder(o, ray, len, d, hit); break;
-            case SHAPE_PARABOLOID: found = hit_paraboloid(o, ray, len, d, hit); break;
-            case SHAPE_TORUS: found = hit_torus(o, ray, len, d, hit); break;
-        }
-        if (found) hit.material = o.info.y;
-    }
+    for (int i = 0; i < u_object_count; ++i)
+        if (hit_object(objects[i], ray, len, d, hit)) hit.material = objects[i].info.y;
     return hit.material >= 0;
+}
+
+// ---- Shadow rays (RenderScene::occluded()): the analytic shapes, then the meshes through a BVH
+// built on the CPU by Embree's builder (scene/triangle_bvh.h's layout), any hit ending the search.
+struct BvhNode {
+    vec3 lo;
+    int next;  // inner: the second child (the first is the next node); leaf: its first entry
+    vec3 hi;
+    int count;  // 0: inner; a leaf's triangle count
+};
+layout(std430, binding = 7) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
+layout(std430, binding = 8) readonly buffer BvhTriangles { uint bvh_triangles[]; };
+const int BVH_MAX_DEPTH = 48;  // kTriangleBvhMaxDepth
+
+bool box_hit(BvhNode n, vec3 o, vec3 inv, float t_max) {
+    vec3 a = (n.lo - o) * inv, b = (n.hi - o) * inv;
+    vec3 near = min(a, b), far = max(a, b);
+    return max(max(near.x, near.y), max(near.z, 0.0)) <= min(min(far.x, far.y), min(far.z, t_max));
+}
+
+// Möller–Trumbore with t in (0, t_max), in the anchor's frame of the vertices.
+bool triangle_blocks(uint triangle, vec3 o, vec3 d, float t_max) {
+    uvec4 tri = mesh_triangles[triangle];
+    vec3 p0 = mesh_vertices[tri.x].position.xyz;
+    vec3 e1 = mesh_vertices[tri.y].position.xyz - p0, e2 = mesh_vertices[tri.z].position.xyz - p0;
+    vec3 pv = cross(d, e2);
+    float det = dot(e1, pv);
+    if (det == 0.0) return false;
+    vec3 tv = o - p0, qv = cross(tv, e1);
+    float u = dot(tv, pv) / det, v = dot(d, qv) / det, t = dot(e2, qv) / det;
+    return u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0 && t < t_max;
+}
+
+bool mesh_occluded(Ray ray, float t_max) {
+    if (u_mesh_triangles == 0) return false;
+    vec3 o = ray.origin - u_mesh_offset, d = ray.direction;
+    vec3 inv = 1.0 / mix(d, vec3(1e-30), equal(d, vec3(0)));  // no division by zero
+    int stack[BVH_MAX_DEPTH];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        int index = stack[--top];
+        BvhNode n = bvh_nodes[index];
+        if (!box_hit(n, o, inv, t_max)) continue;
+        if (n.count > 0) {
+            for (int k = 0; k < n.count; ++k)
+                if (triangle_blocks(bvh_triangles[n.next + k], o, d, t_max)) return true;
+        } else if (top + 2 <= BVH_MAX_DEPTH) {
+            stack[top++] = n.next;
+            stack[top++] = index + 1;
+        }
+    }
+    return false;
+}
+
+// Whether any object is hit with t in (0, t_max) (units of |direction|).
+bool scene_occluded(Ray ray, float t_max) {
+    float len = length(ray.direction);
+    vec3 d = ray.direction / len;
+    Hit probe;
+    probe.t = t_max;
+    for (int i = 0; i < u_object_count; ++i)
+        if (hit_object(objects[i], ray, len, d, probe)) return true;
+    return mesh_occluded(ray, t_max);
 }
 
 // ---- Ray differentials (scene/ray_differentials.h): the pinhole camera has ∂o = 0 and

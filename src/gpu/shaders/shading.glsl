@@ -200,6 +200,20 @@ void tangent_basis(vec3 n, out vec3 u, out vec3 v) {
     v = cross(n, u);
 }
 
+// ---- Shadows (SampleShader::in_shadow()). The ray starts off the surface on the eye's side by
+// the CPU's kShadowBias × (1 + the distances to the eye and to the world origin), beyond the
+// rounding of a float hit point.
+vec3 shadow_ray_origin(Hit hit, vec3 eye) {
+    vec3 ng = dot(hit.ng, eye - hit.p) < 0.0 ? -hit.ng : hit.ng;
+    return hit.p + 1e-4 * (1.0 + length(hit.p - eye) + length(hit.p + u_camera_position)) * ng;
+}
+
+bool in_shadow(Light light, vec3 origin) {
+    if (light.color.w == 0.0) return false;
+    if (light.direction.w == 0.0) return scene_occluded(Ray(origin, -light.direction.xyz), FLT_MAX);
+    return scene_occluded(Ray(origin, light.position.xyz - origin), 1.0);  // the light at t = 1
+}
+
 // ---- One hit, shaded (render/renderer.cpp's shade_hit()).
 vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
     Material material = materials[hit.material];
@@ -285,6 +299,7 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
     // A metallic-roughness material's α is in K_b; where the mode leaves K_b out, its texel's.
     float alpha = material.highlight.z > 0.0 ? (rough_mode ? 0.0 : sqrt(2.0 * micro_variance))
                                              : material.highlight.y;
+    vec3 shadow_origin = shadow_ray_origin(hit, ray.origin);
     for (int i = 0; i < u_light_count; ++i) {
         Light light = lights[i];
         vec3 l;
@@ -299,7 +314,7 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
             scale = 1.0 / d2;
         }
         float cos_l = dot(n_hat, l);
-        if (cos_l <= 0.0) continue;
+        if (cos_l <= 0.0 || in_shadow(light, shadow_origin)) continue;
         vec3 h = normalize(l + v_hat);
         int highlight = int(material.highlight.x);
         vec3 spec = vec3(0);
