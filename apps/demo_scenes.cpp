@@ -572,12 +572,6 @@ const std::vector<std::string>& demo_scene_names() {
     return names;
 }
 
-std::vector<std::string> gpu_demo_scene_names() {
-    std::vector<std::string> names = demo_scene_names();
-    std::erase(names, "environment_probe");
-    return names;
-}
-
 Result<DemoScene> make_demo_scene(const std::string& name, const DemoSceneOptions& options) {
     if (name == "cylinder") return cylinder(options);
     if (name == "parabolic_mirror") return parabolic_mirror(options);

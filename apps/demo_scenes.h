@@ -58,9 +58,6 @@ struct DemoScene {
 
 // The scene names above, in that order.
 const std::vector<std::string>& demo_scene_names();
-// Those the GPU path renders: all but environment_probe, whose dynamic environment map is not on
-// the GPU path yet.
-std::vector<std::string> gpu_demo_scene_names();
 
 // One scene, or an Error naming an unknown scene (listing the valid names).
 Result<DemoScene> make_demo_scene(const std::string& name, const DemoSceneOptions& options = {});

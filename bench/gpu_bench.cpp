@@ -92,7 +92,7 @@ int run_gpu_bench(const GpuBenchOptions& options) {
                     "frames/s", "wall ms");
     }
     const std::vector<std::string> scenes =
-        options.scenes.empty() ? gpu_demo_scene_names() : options.scenes;
+        options.scenes.empty() ? demo_scene_names() : options.scenes;
     std::vector<ModeTime> times;
     nlohmann::json targets = nlohmann::json::array(), quality = nlohmann::json::array();
     bool all_met = true;

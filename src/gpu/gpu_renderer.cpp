@@ -167,6 +167,9 @@ void GpuRenderer::Impl::set_frame_uniforms(const CameraDesc& camera, int width, 
     glUniform1i(uniform("u_light_count"), static_cast<int>(lights_now.size()));
 
     glUniform1i(uniform("u_env_layout"), layout_code(gpu));
+    if (!gpu.probe_sizes.empty())
+        glUniform1fv(uniform("u_probe_size"), static_cast<GLsizei>(gpu.probe_sizes.size()),
+                     gpu.probe_sizes.data());
     if (const RenderEnvironment* env = scene->environment()) {
         glUniformMatrix3fv(uniform("u_env_rotation"), 1, GL_TRUE, &env->rotation.m[0][0]);
         const Vec2 s = env->texel_scale;
@@ -212,6 +215,11 @@ void GpuRenderer::Impl::bind_textures(GpuFilter filter) const {
     if (gpu.cube) {
         glBindTextureUnit(gpu::kCubeUnit, gpu.cube.get());
         glBindSampler(gpu::kCubeUnit, gpu.cube_sampler.get());
+    }
+    for (std::size_t k = 0; k < gpu.probes.size(); ++k) {
+        const auto unit = static_cast<GLuint>(gpu::kProbeUnit + static_cast<int>(k));
+        glBindTextureUnit(unit, gpu.probes[k].get());
+        glBindSampler(unit, gpu.probe_sampler.get());
     }
     if (gpu.meshes.triangle_count > 0) {
         glBindTextureUnit(gpu::kVisibilityUnit, triangle_ids.get());
@@ -318,6 +326,8 @@ void assign_units(GLuint program) {
         set("u_maps[" + std::to_string(unit) + "]", unit);
     set("u_env_cube", gpu::kCubeUnit);
     set("u_visibility", gpu::kVisibilityUnit);
+    for (std::size_t k = 0; k < gpu::kMaxProbes; ++k)
+        set("u_probe_cubes[" + std::to_string(k) + "]", gpu::kProbeUnit + static_cast<int>(k));
 }
 
 }  // namespace

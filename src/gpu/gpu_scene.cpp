@@ -234,14 +234,27 @@ float bump_frame_code(BumpFrame frame) {
     return 2;
 }
 
+// Material m's environment probe's slot among `probes` (added at its first use), −1 for none.
+Result<int> probe_slot(const RenderMaterial& m, std::vector<const RenderEnvironment*>& probes,
+                       const std::string& name) {
+    if (!m.probe) return -1;
+    const auto it = std::find(probes.begin(), probes.end(), m.probe);
+    if (it != probes.end()) return static_cast<int>(it - probes.begin());
+    if (probes.size() == kMaxProbes)
+        return Error{name + ": environment_probe: the GPU path takes " +
+                     std::to_string(kMaxProbes) + " probed objects per scene"};
+    probes.push_back(m.probe);
+    return static_cast<int>(probes.size()) - 1;
+}
+
 Result<MaterialRecord> material_record(const RenderMaterial& m, TextureSystem& textures,
-                                       MapPool& pool, const std::string& name) {
+                                       MapPool& pool, std::vector<const RenderEnvironment*>& probes,
+                                       const std::string& name) {
     const MaterialDesc& d = m.desc;
-    if (d.environment_probe)
-        return Error{name +
-                     ": environment_probe: dynamic environment maps are not on the GPU "
-                     "path yet (render with --device cpu)"};
     MaterialRecord r{};
+    Result<int> probe = probe_slot(m, probes, name);
+    if (!probe) return probe.error();
+    r.probe[0] = *probe;
     auto place = [&](std::shared_ptr<const MipPyramid> pyramid, int layers) -> Result<MapRef> {
         if (std::optional<MapRef> ref = pool.add(std::move(pyramid), layers)) return *ref;
         return Error{name + ": the scene's maps come in more than " +
@@ -402,9 +415,9 @@ Status upload_meshes(const RenderScene& scene, MapPool& pool, GpuScene& gpu) {
         const std::span<const TriangleMesh> object_parts = scene.mesh_parts(i);
         for (std::size_t k = 0; k < object_parts.size(); ++k) {
             const TriangleMesh& part = object_parts[k];
-            Result<MaterialRecord> record =
-                material_record(scene.mesh_part_material(i, static_cast<int>(k)), scene.textures(),
-                                pool, object_name(desc, i) + " part '" + part.name + "'");
+            Result<MaterialRecord> record = material_record(
+                scene.mesh_part_material(i, static_cast<int>(k)), scene.textures(), pool,
+                gpu.probe_sources, object_name(desc, i) + " part '" + part.name + "'");
             if (!record) return record.error();
             const auto part_index = static_cast<std::uint32_t>(parts.size());
             parts.push_back({{static_cast<int>(gpu.materials.size()), part.has_normals() ? 1 : 0,
@@ -464,13 +477,23 @@ Result<GpuScene> upload_scene(const RenderScene& scene) {
             gpu.object_material.push_back(-1);
             continue;
         }
-        Result<MaterialRecord> record = material_record(
-            *scene.analytic_material(i), scene.textures(), pool, object_name(desc, i));
+        Result<MaterialRecord> record =
+            material_record(*scene.analytic_material(i), scene.textures(), pool, gpu.probe_sources,
+                            object_name(desc, i));
         if (!record) return record.error();
         gpu.object_material.push_back(static_cast<int>(gpu.materials.size()));
         gpu.materials.push_back(*record);
     }
     if (Status s = upload_meshes(scene, pool, gpu); !s) return s.error();
+    for (const RenderEnvironment* probe : gpu.probe_sources) {
+        Result<std::shared_ptr<const EnvironmentMap>> map =
+            scene.textures().environment_map(probe->map);
+        if (!map) return map.error();
+        gpu.probes.push_back(upload_cube(**map));
+        gpu.probe_sizes.push_back(static_cast<float>((*map)->face(0).width(0)));
+    }
+    if (!gpu.probes.empty())
+        gpu.probe_sampler = make_sampler(GL_CLAMP_TO_EDGE, GL_CLAMP_TO_EDGE, 1);
     gpu.material_maps = pool.upload(anisotropy);
     gpu.material_buffer = storage_buffer(gpu.materials);
     std::vector<float> spacing(kMaxProbeCount + 1);

@@ -22,6 +22,9 @@ constexpr int kEnvUnit = kMaterialUnits;  // a lat-long, sphere or paraboloid ma
 constexpr int kCapsUnit = kEnvUnit + 1;
 constexpr int kCubeUnit = kCapsUnit + 1;
 constexpr int kVisibilityUnit = kCubeUnit + 1;  // the mesh pass's triangle ids (render.frag)
+// The environment probes' cube maps (material.environment_probe): units kProbeUnit … + 3.
+constexpr int kProbeUnit = kVisibilityUnit + 1;
+constexpr std::size_t kMaxProbes = 4;  // environment.glsl's MAX_PROBES
 
 // An array texture and the two samplers a frame binds with it: plain trilinear (every mode but
 // hw-aniso) and anisotropic (hw-aniso).
@@ -52,6 +55,7 @@ struct MaterialRecord {  // common.glsl's Material
     float procedural_bump[4];       // pattern + 1 (0: none), scale, octaves, strength
     float parallax[4];              // depth (0: none), steps, max_shift, unused
     int height_map[4];              // the parallax height map's unit and layer, unused
+    int probe[4];  // the environment probe's index in GpuScene::probes (−1: none)
 };
 struct LightRecord {                            // common.glsl's Light
     float direction[4], position[4], color[4];  // color[3]: 1 where it casts shadows
@@ -92,6 +96,12 @@ struct GpuScene {
     Sampler cube_sampler;
     Buffer material_buffer, gaussian_spacing_buffer;
     GpuMeshes meshes;
+    // The probed materials' cube maps (RenderMaterial::probe), in the order the materials met them:
+    // MaterialRecord::probe's index.
+    std::vector<const RenderEnvironment*> probe_sources;
+    std::vector<Texture> probes;
+    std::vector<float> probe_sizes;  // texels along a face's edge
+    Sampler probe_sampler;
 };
 
 // Uploads every pyramid, material and mesh; an Error names the object whose maps need more array

@@ -148,6 +148,30 @@ TEST(EnvironmentProbe, AMirrorShowsItsNeighbourAsTheRayTracedReflectionDoes) {
     EXPECT_LT(small.with_probe, 0.25 * small.without);
 }
 
+// Every probed object has a probe of its own, which shows the other probed objects (and not its
+// own object).
+TEST(EnvironmentProbe, EachProbedObjectSeesTheOthers) {
+    SceneDesc desc;
+    desc.environment = smooth_environment();
+    desc.objects.push_back({"left", SphereShape{{-1.5, 0, 0}, 0.5}, probed_mirror({-1.5, 0, 0})});
+    desc.objects.push_back({"right", SphereShape{{1.5, 0, 0}, 0.5}, probed_mirror({1.5, 0, 0})});
+    Result<RenderScene> scene = prepare_render_scene(desc);
+    ASSERT_TRUE(scene) << scene.error().message;
+    const RenderMaterial* left = scene->intersect({{-1.5, 0, 5}, {0, 0, -1}}, 0, 10)->material;
+    const RenderMaterial* right = scene->intersect({{1.5, 0, 5}, {0, 0, -1}}, 0, 10)->material;
+    ASSERT_TRUE(left->probe && right->probe);
+    EXPECT_NE(left->probe, right->probe);
+    // Towards each other each probe sees the other mirror (which reflects the environment back,
+    // about the opposite direction's colour); away from each other, the environment.
+    float towards[3], truth[3];
+    const RenderEnvironment& env = *scene->environment();
+    ASSERT_TRUE(scene->textures().environment_sample(left->probe->map, {1, 0, 0}, towards));
+    ASSERT_TRUE(scene->textures().environment_sample(env.map, env.rotation * Vec3{1, 0, 0}, truth));
+    EXPECT_GT(std::abs(towards[2] - truth[2]), 0.5f);  // blue: 0.1 towards +x, 0.9 towards −x
+    ASSERT_TRUE(scene->textures().environment_sample(right->probe->map, {1, 0, 0}, towards));
+    EXPECT_NEAR(towards[2], truth[2], 0.01f);
+}
+
 // The reference's traced reflection shows the red sphere where the mirror faces it.
 TEST(EnvironmentProbe, TheReflectionTowardsTheNeighbourIsRed) {
     const SceneDesc desc = mirror_beside_red_sphere(0.5, true);

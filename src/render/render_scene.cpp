@@ -586,7 +586,7 @@ Result<RenderScene> prepare_render_scene(const SceneDesc& desc,
         Result<EnvironmentMap> map = render_environment_probe(scene, *probe, i);
         if (!map) return scene_error(desc, key, map.error());
         Result<EnvironmentHandle*> handle =
-            maps.textures.add_environment(maps.name("environment probe"), std::move(*map));
+            maps.textures.add_environment(maps.name(key), std::move(*map));
         if (!handle) return scene_error(desc, key, handle.error());
         auto environment = std::make_unique<RenderEnvironment>();
         if (Status s = describe(maps.textures, *handle, *environment); !s)

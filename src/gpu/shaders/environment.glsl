@@ -18,11 +18,75 @@ uniform int u_env_layout;
 uniform mat3 u_env_rotation;   // A: world → map
 uniform vec2 u_env_texel_scale;  // S = (W0, H0) of level 0 (a cube face's size for both)
 uniform int u_env_caps;        // 1: the lat-long map has polar caps
+uniform int u_env_proxy;       // a local map's proxy: 0 none (at infinity), 1 a box, 2 a sphere
 uniform vec3 u_env_sh[9];      // the radiance's nine SH coefficients, world space (irradiance)
 const int kMaxEnvLevels = 16;
 uniform float u_env_prefilter[kMaxEnvLevels];  // each level's prefilter variance (level-0 texels²)
 uniform ivec2 u_env_wrap;  // the map's wrap in s and t: 1 repeat, 0 clamp
 uniform samplerCube u_env_cube;  // the lat-long map and its caps are u_maps[MAP_ENV], [MAP_CAPS]
+
+// Dynamic environment maps (material.environment_probe, render/environment_probe.h): cube maps of
+// the scene rendered on the CPU, one per probed object, each on its own unit.
+const int MAX_PROBES = 4;  // gpu_scene.h's kMaxProbes
+uniform samplerCube u_probe_cubes[MAX_PROBES];
+uniform float u_probe_size[MAX_PROBES];  // texels along a face's edge
+
+// The environment the lookups below read: the scene's, or a probe's (a cube map at infinity in
+// world axes, without caps or proxy). The shading switches between them per lookup.
+int env_layout;
+mat3 env_rotation;
+vec2 env_texel_scale;
+int env_caps;
+int env_proxy;
+int env_probe;  // −1: the scene's cube map
+
+void use_scene_environment() {
+    env_layout = u_env_layout;
+    env_rotation = u_env_rotation;
+    env_texel_scale = u_env_texel_scale;
+    env_caps = u_env_caps;
+    env_proxy = u_env_proxy;
+    env_probe = -1;
+}
+
+void use_probe(int k) {
+    env_layout = ENV_CUBE;
+    env_rotation = mat3(1);
+    env_texel_scale = vec2(u_probe_size[k]);
+    env_caps = 0;
+    env_proxy = 0;
+    env_probe = k;
+}
+
+// The probe's cube: an array of samplers takes constant indices only, where pixels may differ.
+#define PROBE_CASES(CALL) \
+    switch (env_probe) {  \
+        case 0: CALL(0);  \
+        case 1: CALL(1);  \
+        case 2: CALL(2);  \
+        default: CALL(3); \
+    }
+
+vec4 env_cube_lod(vec3 direction, float lod) {
+    if (env_probe < 0) return textureLod(u_env_cube, direction, lod);
+#define PROBE_LOD(i) return textureLod(u_probe_cubes[i], direction, lod)
+    PROBE_CASES(PROBE_LOD)
+#undef PROBE_LOD
+}
+
+vec4 env_cube_grad(vec3 direction, vec3 d_dx, vec3 d_dy) {
+    if (env_probe < 0) return textureGrad(u_env_cube, direction, d_dx, d_dy);
+#define PROBE_GRAD(i) return textureGrad(u_probe_cubes[i], direction, d_dx, d_dy)
+    PROBE_CASES(PROBE_GRAD)
+#undef PROBE_GRAD
+}
+
+int env_cube_levels() {
+    if (env_probe < 0) return textureQueryLevels(u_env_cube);
+#define PROBE_LEVELS(i) return textureQueryLevels(u_probe_cubes[i])
+    PROBE_CASES(PROBE_LEVELS)
+#undef PROBE_LEVELS
+}
 
 // Where a direction lands on the map and the Jacobian J_P = ∂(s,t)/∂r there (rows ds, dt).
 struct EnvPoint {
@@ -137,7 +201,7 @@ vec3 paraboloid_direction(int face, vec2 st) {
 }
 
 EnvPoint env_point(vec3 r) {
-    switch (u_env_layout) {
+    switch (env_layout) {
         case ENV_CUBE: return cube_point_on(cube_face(r), r);
         case ENV_SPHERE: return sphere_point(r);
         case ENV_PARABOLOID: return paraboloid_point(r);
@@ -146,7 +210,7 @@ EnvPoint env_point(vec3 r) {
 }
 
 vec3 env_direction(int face, vec2 st) {
-    switch (u_env_layout) {
+    switch (env_layout) {
         case ENV_CUBE: return cube_direction(face, st);
         case ENV_SPHERE: return sphere_direction(st);
         case ENV_PARABOLOID: return paraboloid_direction(face, st);
@@ -156,12 +220,11 @@ vec3 env_direction(int face, vec2 st) {
 
 // G x = S J_P x: the map motion, in level-0 texels, of a change x of the (map-space) direction.
 vec2 map_motion(EnvPoint p, vec3 x) {
-    return u_env_texel_scale * vec2(dot(p.ds, x), dot(p.dt, x));
+    return env_texel_scale * vec2(dot(p.ds, x), dot(p.dt, x));
 }
 
 // ---- A local map's proxy (envmap/env_proxy.h): the direction from the capture point to where
 // a ray leaves the box or sphere, and the footprint's spreads moved with it.
-uniform int u_env_proxy;  // 0: the map at infinity, 1: a box, 2: a sphere
 uniform vec3 u_env_proxy_min, u_env_proxy_max;  // the box; a sphere: its centre, (radius, 0, 0)
 uniform vec3 u_env_proxy_capture;               // c (world space)
 
@@ -173,11 +236,11 @@ struct ProxyStep {
 
 bool proxy_step(vec3 p, vec3 r, out ProxyStep s) {
     float length_r = length(r);
-    if (u_env_proxy == 0 || !(length_r > 0.0) || !is_finite(length_r)) return false;
+    if (env_proxy == 0 || !(length_r > 0.0) || !is_finite(length_r)) return false;
     vec3 r_hat = r / length_r;
     float t;
     vec3 m = vec3(0);
-    if (u_env_proxy == 1) {  // the slabs' far crossing
+    if (env_proxy == 1) {  // the slabs' far crossing
         float t_near = -1e30, t_far = 1e30;
         int axis = -1;
         for (int k = 0; k < 3; ++k) {
@@ -254,19 +317,19 @@ void set_isotropic(inout EnvFootprint f, float tp) {
 EnvFootprint footprint_of_spread(vec3 r, vec3 dr_dx, vec3 dr_dy, vec3 rough1, vec3 rough2) {
     EnvFootprint f;
     f.fallback = false;
-    f.map_direction = u_env_rotation * r;
+    f.map_direction = env_rotation * r;
     f.point = env_point(f.map_direction);
-    f.map_dr_dx = u_env_rotation * dr_dx;
-    f.map_dr_dy = u_env_rotation * dr_dy;
-    f.map_rough1 = u_kappa * (u_env_rotation * rough1);
-    f.map_rough2 = u_kappa * (u_env_rotation * rough2);
-    if (u_env_layout == ENV_SPHERE && f.point.ds == vec3(0) && f.point.dt == vec3(0)) {
+    f.map_dr_dx = env_rotation * dr_dx;
+    f.map_dr_dy = env_rotation * dr_dy;
+    f.map_rough1 = u_kappa * (env_rotation * rough1);
+    f.map_rough2 = u_kappa * (env_rotation * rough2);
+    if (env_layout == ENV_SPHERE && f.point.ds == vec3(0) && f.point.dt == vec3(0)) {
         float theta = (largest_tangent_singular_value(r, dr_dx, dr_dy) +
                        u_kappa * largest_tangent_singular_value(r, rough1, rough2)) / length(r);
-        set_isotropic(f, 0.25 * u_env_texel_scale.x * theta);
+        set_isotropic(f, 0.25 * env_texel_scale.x * theta);
         return f;
     }
-    if (u_env_layout == ENV_LATLONG) {
+    if (env_layout == ENV_LATLONG) {
         vec3 m = f.map_direction;
         float spread = sqrt(dot(dr_dx, dr_dx) + dot(dr_dy, dr_dy)) +
                        abs(u_kappa) * sqrt(dot(rough1, rough1) + dot(rough2, rough2));
@@ -275,7 +338,7 @@ EnvFootprint footprint_of_spread(vec3 r, vec3 dr_dx, vec3 dr_dy, vec3 rough1, ve
             float theta = (largest_tangent_singular_value(r, dr_dx, dr_dy) +
                            u_kappa * largest_tangent_singular_value(r, rough1, rough2)) / length(r);
             if (rho == 0.0 || rho < sin(min(theta, 0.5 * PI)) * length(m)) {
-                set_isotropic(f, u_env_texel_scale.y / PI * theta);
+                set_isotropic(f, env_texel_scale.y / PI * theta);
                 return f;
             }
         }
@@ -283,8 +346,8 @@ EnvFootprint footprint_of_spread(vec3 r, vec3 dr_dx, vec3 dr_dy, vec3 rough1, ve
     f.d_dx = map_motion(f.point, f.map_dr_dx);
     f.d_dy = map_motion(f.point, f.map_dr_dy);
     vec3 curvature = footprint_matrix(f.d_dx, f.d_dy);
-    vec3 roughness = footprint_matrix(map_motion(f.point, u_env_rotation * rough1),
-                                      map_motion(f.point, u_env_rotation * rough2));
+    vec3 roughness = footprint_matrix(map_motion(f.point, env_rotation * rough1),
+                                      map_motion(f.point, env_rotation * rough2));
     f.k = curvature + (u_kappa * u_kappa) * roughness;  // eq. 13
     return f;
 }
@@ -339,8 +402,8 @@ EnvFootprint reflection_footprint(vec3 p, vec3 v, vec3 dv_dx, vec3 dv_dy, vec3 n
     if (!f.fallback && !is_finite(f.k.x + f.k.y + f.k.z + f.d_dx.x + f.d_dx.y + f.d_dy.x + f.d_dy.y)) {
         // §4: isotropic from the roughness alone, T_p = max(1, κ·‖G A_n E‖·l1).
         Ellipse gae = ellipse_of(footprint_matrix(
-            map_motion(f.point, u_env_rotation * A_N(n_len * t.t1)),
-            map_motion(f.point, u_env_rotation * A_N(n_len * t.t2))));
+            map_motion(f.point, env_rotation * A_N(n_len * t.t1)),
+            map_motion(f.point, env_rotation * A_N(n_len * t.t2))));
         float tp = u_kappa * gae.l1 * ellipse_of(k_b).l1;  // l1 = √λ_max(K_b)
         set_isotropic(f, is_finite(tp) ? max(1.0, tp) : 1.0);
         f.map_dr_dx = f.map_dr_dy = f.map_rough1 = f.map_rough2 = vec3(0);
@@ -354,7 +417,7 @@ EnvFootprint reflection_footprint(vec3 p, vec3 v, vec3 dv_dx, vec3 dv_dy, vec3 n
 
 // One trilinear probe of the cube map at a map-space direction.
 vec4 env_probe_direction(vec3 direction, float lod) {
-    return textureLod(u_env_cube, direction, lod);
+    return env_cube_lod(direction, lod);
 }
 
 ivec2 env_level_size(int level) {
@@ -367,7 +430,7 @@ ivec2 env_level_size(int level) {
 // centre's direction lands in.
 vec4 env_texel(int face, ivec2 i, int level) {
     ivec2 size = env_level_size(level);
-    if (u_env_layout == ENV_LATLONG) {
+    if (env_layout == ENV_LATLONG) {
         if (i.y < 0 || i.y >= size.y) {
             i.y = i.y < 0 ? -1 - i.y : 2 * size.y - 1 - i.y;
             i.x += size.x / 2;
@@ -397,7 +460,7 @@ bool taps_beyond_edge(vec2 st, int level) {
     ivec2 size = env_level_size(level);
     vec2 x = st * vec2(size) - 0.5;
     bool t_out = x.y < 0.0 || x.y > float(size.y - 1);
-    return u_env_layout == ENV_LATLONG ? t_out : t_out || x.x < 0.0 || x.x > float(size.x - 1);
+    return env_layout == ENV_LATLONG ? t_out : t_out || x.x < 0.0 || x.x > float(size.x - 1);
 }
 
 // One trilinear probe of MAP_ENV: the hardware's, or, where its taps reach beyond an edge, the
@@ -414,16 +477,16 @@ vec4 env_probe_2d(int face, vec2 st, float lod) {
 
 // A point sample (level-0 bilinear) in world direction r: the `point` mode.
 vec3 env_point_sample(vec3 r) {
-    vec3 m = u_env_rotation * r;
-    if (u_env_layout == ENV_CUBE) return env_probe_direction(m, 0.0).rgb;
+    vec3 m = env_rotation * r;
+    if (env_layout == ENV_CUBE) return env_probe_direction(m, 0.0).rgb;
     EnvPoint p = env_point(m);
     return env_probe_2d(p.face, p.st, 0.0).rgb;
 }
 
 // The GPU's own anisotropic filter over the footprint's curvature term (no roughness).
 vec3 env_hardware(EnvFootprint f) {
-    if (u_env_layout == ENV_CUBE)  // trilinear: cube maps get no anisotropy on most hardware
-        return textureGrad(u_env_cube, f.map_direction, f.map_dr_dx, f.map_dr_dy).rgb;
+    if (env_layout == ENV_CUBE)  // trilinear: cube maps get no anisotropy on most hardware
+        return env_cube_grad(f.map_direction, f.map_dr_dx, f.map_dr_dy).rgb;
     return hardware_lookup(MAP_ENV, f.point.face, 1, f.point.st, f.d_dx, f.d_dy).a.rgb;
 }
 
@@ -440,7 +503,7 @@ CapFootprint cap_footprint(EnvFootprint f, float latlong_trace) {
     CapFootprint c;
     vec3 r = f.map_direction;
     c.valid = false;
-    if (u_env_caps == 0 || !(abs(r.y) >= 0.8660254 * length(r))) return c;
+    if (env_caps == 0 || !(abs(r.y) >= 0.8660254 * length(r))) return c;
     c.layer = r.y > 0.0 ? 0 : 1;
     EnvPoint p = cube_point_on(2 + c.layer, r);
     float n = map_size(MAP_CAPS).x;
@@ -482,8 +545,8 @@ TangentProbes tangent_probes(vec3 direction) {
     t.e1 = normalize(cross(t.centre, abs(t.centre.x) < 0.6 ? vec3(1, 0, 0) : vec3(0, 1, 0)));
     t.e2 = cross(t.centre, t.e1);
     EnvPoint p = env_point(t.centre);
-    float j11 = u_env_texel_scale.x * dot(p.ds, t.e1), j12 = u_env_texel_scale.x * dot(p.ds, t.e2);
-    float j21 = u_env_texel_scale.y * dot(p.dt, t.e1), j22 = u_env_texel_scale.y * dot(p.dt, t.e2);
+    float j11 = env_texel_scale.x * dot(p.ds, t.e1), j12 = env_texel_scale.x * dot(p.ds, t.e2);
+    float j21 = env_texel_scale.y * dot(p.dt, t.e1), j22 = env_texel_scale.y * dot(p.dt, t.e2);
     float det = j11 * j22 - j12 * j21;
     t.valid = abs(det) > 1e-12 * (j11 * j11 + j12 * j12 + j21 * j21 + j22 * j22) && is_finite(det);
     t.inv = t.valid ? mat2(j22, -j21, -j12, j11) / det : mat2(0);  // column-major
@@ -509,7 +572,7 @@ float tangent_distortion(TangentProbes t) {
 // paraboloid hemisphere.
 EnvPoint place_probe(int face, vec2 st) {
     vec2 ab = 2.0 * st - 1.0;
-    bool outside = u_env_layout == ENV_LATLONG ? st.y < 0.0 || st.y > 1.0 : dot(ab, ab) > 1.0;
+    bool outside = env_layout == ENV_LATLONG ? st.y < 0.0 || st.y > 1.0 : dot(ab, ab) > 1.0;
     return outside ? env_point(env_direction(face, st)) : EnvPoint(face, st, vec3(0), vec3(0));
 }
 
@@ -529,9 +592,9 @@ ProbeLine probe_line(EnvFootprint f, Plan plan) {
     line.tangent.valid = false;
     line.path = false;
     line.h = line.q = vec2(0);
-    if (u_env_layout == ENV_CUBE) return line;
+    if (env_layout == ENV_CUBE) return line;
     line.tangent = tangent_probes(f.map_direction);
-    line.path = u_env_layout == ENV_LATLONG && line.tangent.valid && plan.count > 2;
+    line.path = env_layout == ENV_LATLONG && line.tangent.valid && plan.count > 2;
     if (line.path) {
         vec2 c = f.point.st;
         vec2 a = tangent_place(line.tangent, probe_offset(plan, plan.count - 1)).st - c;
@@ -546,8 +609,8 @@ ProbeLine probe_line(EnvFootprint f, Plan plan) {
 
 // Probe i of a line, at the plan's lod (the centre face's).
 vec4 line_probe(EnvFootprint f, Plan plan, ProbeLine line, int i) {
-    vec2 on_plane = f.point.st + probe_offset(plan, i) / u_env_texel_scale;
-    if (u_env_layout == ENV_CUBE)
+    vec2 on_plane = f.point.st + probe_offset(plan, i) / env_texel_scale;
+    if (env_layout == ENV_CUBE)
         return env_probe_direction(cube_direction(f.point.face, on_plane), plan.lod);
     float half_count = 0.5 * float(plan.count - 1), u = (float(i) - half_count) / half_count;
     vec2 on_path = f.point.st + u * (line.h + u * line.q);
@@ -647,19 +710,19 @@ vec3 env_ewa(int face, vec2 st, Ellipse e, int max_level) {
 // fallback footprint.
 vec3 env_lookup(EnvFootprint f, int mode, float latlong_trace) {
     if (mode == MODE_HW_ANISO) return env_hardware(f);
-    if (u_env_layout == ENV_LATLONG) {
+    if (env_layout == ENV_LATLONG) {
         CapFootprint cap = cap_footprint(f, latlong_trace);
         if (cap.valid) return cap_lookup(cap, mode);
     }
-    int max_level = u_env_layout == ENV_CUBE ? textureQueryLevels(u_env_cube) - 1
+    int max_level = env_layout == ENV_CUBE ? env_cube_levels() - 1
                                              : map_max_level(MAP_ENV);
     Ellipse e = is_finite(f.k.x + f.k.y + f.k.z) ? ellipse_of(f.k) : Ellipse(0.0, 0.0, vec2(1, 0));
-    if (u_env_layout == ENV_SPHERE) {
+    if (env_layout == ENV_SPHERE) {
         // §3.2: towards the singular rim the anisotropy grows without bound; λ1 ≤ W/2.
-        e.l1 = min(e.l1, 0.5 * u_env_texel_scale.x);
+        e.l1 = min(e.l1, 0.5 * env_texel_scale.x);
         e.l2 = min(e.l2, e.l1);
     }
-    float limit = 4.0 * max(u_env_texel_scale.x, u_env_texel_scale.y);
+    float limit = 4.0 * max(env_texel_scale.x, env_texel_scale.y);
     e.l1 = min(e.l1, limit);
     e.l2 = min(e.l2, limit);
     Plan plan;
@@ -669,7 +732,7 @@ vec3 env_lookup(EnvFootprint f, int mode, float latlong_trace) {
         // Towards the sphere map's rim the map adds up to 67:1 of its own anisotropy: a line
         // there may take N_max × its distortion (environment_map.cpp's sphere_probe_limit).
         int max_probes = u_max_probes;
-        if (u_env_layout == ENV_SPHERE) {
+        if (env_layout == ENV_SPHERE) {
             TangentProbes t = tangent_probes(f.map_direction);
             if (t.valid)
                 max_probes = int(min(ceil(float(max(max_probes, 1)) * tangent_distortion(t)),
@@ -678,15 +741,15 @@ vec3 env_lookup(EnvFootprint f, int mode, float latlong_trace) {
         plan = plan_probes(e, max_probes, max_level);
         // Beyond the probe budget on a lat-long map: EWA (LookupOptions::ewa_beyond_probes, the
         // fa modes' setting); the other layouts keep the raised level.
-        if (u_env_layout == ENV_LATLONG && exceeds_probe_budget(plan, e))
+        if (env_layout == ENV_LATLONG && exceeds_probe_budget(plan, e))
             return env_ewa(f.point.face, f.point.st, e, max_level);
     }
     // Trilinear filters the centre face alone, its taps wrapped or clamped as the pyramid's
     // (environment_map.cpp's general_lookup() → texture_lookup()).
-    if (mode == MODE_TRILINEAR && u_env_layout != ENV_CUBE)
+    if (mode == MODE_TRILINEAR && env_layout != ENV_CUBE)
         return sample_lod(MAP_ENV, vec3(f.point.st, f.point.face), plan.lod).rgb;
     if (plan.count == 1)
-        return u_env_layout == ENV_CUBE ? env_probe_direction(f.map_direction, plan.lod).rgb
+        return env_layout == ENV_CUBE ? env_probe_direction(f.map_direction, plan.lod).rgb
                                         : env_probe_2d(f.point.face, f.point.st, plan.lod).rgb;
     return env_line(f, plan);
 }

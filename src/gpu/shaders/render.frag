@@ -5,6 +5,7 @@
 layout(location = 0) out vec4 out_color;
 
 void main() {
+    use_scene_environment();
     vec2 pixel = gl_FragCoord.xy;  // the pixel's centre (i + ½, j + ½)
     Ray ray = camera_ray(pixel);
     vec3 dddx = u_pixel_angle * u_camera_right, dddy = -u_pixel_angle * u_camera_up;

@@ -334,7 +334,9 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
         float variance = 0.5 * (k_b.x + k_b.z) - (material.highlight.z > 0.0 ? micro_variance : 0.0);
         color += material.f0.w * base * env_irradiance(n_hat, rough_mode ? max(0.0, variance) : 0.0) / PI;
     }
-    if (u_env_layout != ENV_NONE && material.weights.w > 0.0) {
+    int probe = material.probe.x;  // a dynamic environment map's cube, read instead of the scene's
+    if ((u_env_layout != ENV_NONE || probe >= 0) && material.weights.w > 0.0) {
+        if (probe >= 0) use_probe(probe);
         vec3 texel;
         vec3 fresnel = schlick_fresnel3(f0, dot(n_hat, v_hat));
         float f0_mean = channel_mean(f0);  // steers the Fresnel-weighted slopes
@@ -377,6 +379,7 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
                                                      2.0 * dot(n_hat, v_hat) * n_hat - v_hat));
         }
         color += material.weights.w * fresnel * texel;
+        use_scene_environment();
     }
     return color;
 }
