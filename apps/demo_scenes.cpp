@@ -497,7 +497,7 @@ DemoScene environment_probe(const DemoSceneOptions& options) {
                    "bricks generated, ",
                    {}};
     SceneDesc& scene = demo.scene = base_scene(options);
-    scene.camera = {{0, 1.3, 4.2}, {0, 0.7, 0}, {0, 1, 0}, 45};
+    scene.camera = {{0, 1.4, 5.2}, {0, 0.6, 0}, {0, 1, 0}, 40};
     scene.environment = daylight_environment(options, demo.assets);
     scene.environment->rotation_deg = {0, 60, 0};
     scene.lights.push_back({LightType::directional, {-0.6, -0.7, -0.4}, {}, {2, 1.9f, 1.7f}});
@@ -510,19 +510,19 @@ DemoScene environment_probe(const DemoSceneOptions& options) {
     ground.uv_scale = 0.5;
     scene.objects.push_back({"pavement", ground, pavement});
     MaterialDesc chrome = mirror(0.9f);
-    chrome.environment_probe = EnvironmentProbeDesc{{0, 0.8, 0}, 256};
-    scene.objects.push_back({"chrome sphere", SphereShape{{0, 0.8, 0}, 0.8}, chrome});
+    chrome.environment_probe = EnvironmentProbeDesc{{0, 0.6, 0}, 256};
+    scene.objects.push_back({"chrome sphere", SphereShape{{0, 0.6, 0}, 0.6}, chrome});
     MaterialDesc red;
     red.base_color = {0.75f, 0.1f, 0.06f};
     red.specular = 0.4f;
-    scene.objects.push_back({"red sphere", SphereShape{{1.6, 0.45, 0.6}, 0.45}, red});
+    scene.objects.push_back({"red sphere", SphereShape{{2.1, 0.45, 0.4}, 0.45}, red});
     MaterialDesc green = red;
     green.base_color = {0.1f, 0.55f, 0.15f};
     scene.objects.push_back(
-        {"green torus", TorusShape{{-1.5, 0.5, 0.4}, {0.5, 0.3, 1}, 0.4, 0.14}, green});
+        {"green torus", TorusShape{{-2.0, 0.5, 0.3}, {0.5, 0.3, 1}, 0.4, 0.14}, green});
     MaterialDesc blue = red;
     blue.base_color = {0.1f, 0.2f, 0.7f};
-    scene.objects.push_back({"blue sphere", SphereShape{{-0.4, 0.3, 1.5}, 0.3}, blue});
+    scene.objects.push_back({"blue sphere", SphereShape{{-0.7, 0.3, 2.0}, 0.3}, blue});
     add_camera_move(scene, {0.3, 0, 0}, {0, 0, 0});
     return demo;
 }

@@ -262,10 +262,8 @@ TEST(GpuScenes, FaRoughIsAsCloseToTheTruthAsOnTheCpuAndBeatsHardwareAnisotropy) 
             name.c_str(), cpu, gpu_fa, hw, trilinear);
         EXPECT_LE(gpu_fa, 1.1 * cpu + kNegligibleRmse) << name;
         // The procedural demo's textures are solid, band-limited alike in every filtered mode:
-        // no map for the filters to differ on. The probe demo's error against the reference's
-        // traced reflections is the probe's parallax (its pavement seen from the sphere's centre),
-        // which trilinear's blur hides in part: not a filter's error.
-        if (name == "procedural" || name == "environment_probe") continue;
+        // no map for the filters to differ on.
+        if (name == "procedural") continue;
         if (compare_hw_aniso) {
             EXPECT_LT(gpu_fa, hw) << name;
         }

@@ -46,10 +46,12 @@ MaterialDesc probed_mirror(Vec3d centre) {
 }
 
 // With nothing else in the scene, the probe sees the environment: its texels in every direction
-// are the environment's, to the resampling of a smooth map.
+// are the environment's, to the resampling of a smooth map. The environment is rotated: the probe
+// holds it in world axes.
 TEST(EnvironmentProbe, AProbeOfAnEmptySceneIsTheEnvironment) {
     SceneDesc desc;
     desc.environment = smooth_environment();
+    desc.environment->rotation_deg = {20, 60, 0};
     desc.objects.push_back({"mirror", SphereShape{{0, 0, 0}, 1}, probed_mirror({0, 0, 0})});
     Result<RenderScene> scene = prepare_render_scene(desc);
     ASSERT_TRUE(scene) << scene.error().message;
@@ -135,8 +137,8 @@ ProbeErrors probe_errors(double radius) {
 }
 
 // The probe sees the red sphere from the mirror's centre, the reflection from its surface: the
-// parallax, up to one radius, is the error left (fa-rough against its own reference without a
-// neighbour: 0.001), and it shrinks with the mirror.
+// parallax, up to one radius, is the error left, and it shrinks with the mirror (the figures:
+// docs/performance.md, accuracy bounds).
 TEST(EnvironmentProbe, AMirrorShowsItsNeighbourAsTheRayTracedReflectionDoes) {
     constexpr double kParallaxRmse = 0.045;  // radius 0.5 at 2.5 from the neighbour
     const ProbeErrors large = probe_errors(0.5);
@@ -181,7 +183,8 @@ TEST(EnvironmentProbe, TheReflectionTowardsTheNeighbourIsRed) {
     const Vec3d eye = desc.camera.position;
     const Vec3d n = normalize(normalize(eye) + normalize(kRedCentre));
     for (FilterMode mode : {FilterMode::reference, FilterMode::fa_rough, FilterMode::bilinear}) {
-        detail::SampleShader shader(*scene, RenderOptions{mode});
+        const RenderOptions options{mode};  // the shader keeps a reference to it
+        detail::SampleShader shader(*scene, options);
         const Vec3d p = 0.5 * n;
         const detail::Rgb c = shader.shade({{eye, p - eye}, {}, {}, {}, {}}, {0.5, 0.5});
         EXPECT_GT(c[0], 3 * c[1]) << filter_mode_name(mode);

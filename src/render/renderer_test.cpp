@@ -245,8 +245,8 @@ TEST(Renderer, ALocalMapsProxyShowsTheWallTheReflectedRayMeets) {
         "[ local map ] mean |error| against the one-bounce reference: proxy %.4f "
         "(largest %.4f at pixel %d,%d), at infinity %.4f\n",
         error[0], largest, where.first, where.second, error[1]);
-    // Measured: mean 0.0010, largest 0.039 where a pixel's rays straddle the wall/ceiling edge
-    // (the footprint is linearised on one face), against 0.29 at infinity.
+    // The largest error is where a pixel's rays straddle the wall/ceiling edge: the footprint is
+    // linearised on one face (docs/performance.md, accuracy bounds).
     constexpr double kMean = 0.002, kLargest = 0.05;
     EXPECT_LT(error[0], kMean);
     EXPECT_LT(largest, kLargest);

@@ -108,8 +108,9 @@ inline float channel_mean(const Rgb& rgb) {
 
 class SampleShader {
   public:
-    // `hidden_object` (≥ 0): an object the camera rays pass through, as an environment probe's
-    // views leave out the object that wears it (render/environment_probe.h).
+    // `options` is kept by reference: it must outlive the shader. `hidden_object` (≥ 0): an object
+    // the camera rays pass through, as an environment probe's views leave out the object that
+    // wears it (render/environment_probe.h).
     SampleShader(const RenderScene& scene, const RenderOptions& options, int hidden_object = -1);
 
     // The colour seen along one camera ray; `random` = two uniforms for the micro-roughness.

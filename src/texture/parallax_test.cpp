@@ -75,8 +75,8 @@ TEST(Parallax, TheMarchFindsTheBruteForceIntersection) {
         "[ parallax ] 32 steps: RMS (s, t) error %.5f where the right peak is met, %d of %d rays "
         "stepped over a peak; no parallax %.4f\n",
         rmse, far_off, kRays, flat);
-    // Measured: 4.7e-4 where the right peak is met (the linear refinement's error on a curved
-    // relief), 5 of 2000 rays (0.25 %) stepped over a thin peak.
+    // Where the right peak is met, the error is the linear refinement's on a curved relief; a few
+    // rays step over a thin peak (docs/performance.md, accuracy bounds).
     constexpr double kRmse = 6e-4, kSteppedOver = 0.01;
     EXPECT_LT(rmse, kRmse);
     EXPECT_LT(far_off, kSteppedOver * kRays);

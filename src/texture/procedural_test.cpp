@@ -59,9 +59,8 @@ struct Group {
 TEST(ProceduralTexture, BandLimitedValuesApproachTheFootprintsMean) {
     std::vector<double> quantiles;  // of the standard normal, 24 per axis
     for (int i = 0; i < 24; ++i) quantiles.push_back(inverse_normal_cdf((i + 0.5) / 24));
-    // Measured 2026-12-03: noise 0.018, turbulence 0.025, marble 0.017, checker 0.122 (the box is
-    // axis-aligned, the footprint is not: its axes' correlation is lost); point values 0.060,
-    // 0.077, 0.159, 0.443. Bounds ≈ 1.3× the measured.
+    // Bounds ≈ 1.3× the measured (docs/performance.md, accuracy bounds). The checker's is the
+    // loosest: its box is axis-aligned, the footprint is not, and their correlation is lost.
     const Group groups[] = {{ProceduralPattern::noise, "noise", 0.023},
                             {ProceduralPattern::turbulence, "turbulence", 0.032},
                             {ProceduralPattern::marble, "marble", 0.022},
@@ -143,9 +142,8 @@ TEST(ProceduralTexture, BandLimitedSlopesKeepTheFootprintsSlopeMoments) {
         const char* name;
         double mean_bound, covariance_bound;  // RMSE over the RMS point slope
     };
-    // Measured 2026-12-03 (RMSE over E|∇v|²'s root, or over E|∇v|² for the traces): mean slopes
-    // noise 0.146, turbulence 0.156, marble 0.139 (point gradients 0.95–0.98); covariance traces
-    // 0.067, 0.060, 0.101 (none: 0.91, 0.84, 0.79). Bounds ≈ 1.3× the measured.
+    // RMSE over E|∇v|²'s root, or over E|∇v|² for the traces; bounds ≈ 1.3× the measured
+    // (docs/performance.md, accuracy bounds).
     const SlopeGroup groups[] = {{ProceduralPattern::noise, "noise", 0.19, 0.09},
                                  {ProceduralPattern::turbulence, "turbulence", 0.20, 0.08},
                                  {ProceduralPattern::marble, "marble", 0.18, 0.13}};
