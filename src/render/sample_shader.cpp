@@ -34,6 +34,7 @@ Vec3d shadow_origin(const SurfaceHit& s, Vec3d eye) {
         dot(s.geometric_normal, eye - s.p) < 0 ? -s.geometric_normal : s.geometric_normal;
     return s.p + kShadowBias * (1 + length(s.p - eye) + length(s.p)) * ng;
 }
+
 std::array<float, 3> to_array(Vec3 v) {
     return {v.x, v.y, v.z};
 }
@@ -635,10 +636,6 @@ void SampleShader::add_lights(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat,
     }
 }
 
-// The mirror reflection: the environment filtered over the footprint of spec §2 (the curvature,
-// the aperture and, in the rough modes, the slopes' covariance), or sampled in the reflected
-// direction; weighted by Schlick's Fresnel. In the rough modes Fresnel is averaged over the slopes
-// and the reflection looked up under the slopes weighted by it (shading/fresnel.h).
 const RenderEnvironment* SampleShader::reflected_environment(const SurfacePoint& point) const {
     const RenderEnvironment* probe = tracing_reflection_ ? nullptr : point.material->probe;
     return probe ? probe : scene_.environment();
@@ -656,6 +653,10 @@ Rgb SampleShader::traced_reflection(const SurfacePoint& point, Vec3 r, Vec2d ran
     return c;
 }
 
+// The mirror reflection: the environment filtered over the footprint of spec §2 (the curvature,
+// the aperture and, in the rough modes, the slopes' covariance), or sampled in the reflected
+// direction; weighted by Schlick's Fresnel. In the rough modes Fresnel is averaged over the slopes
+// and the reflection looked up under the slopes weighted by it (shading/fresnel.h).
 void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat,
                                   ShadingFactors& out) {
     const RenderEnvironment& env = *reflected_environment(point);  // shade() checked it
