@@ -402,6 +402,22 @@ std::pair<Image, Image> brick_maps(int size) {
     return {std::move(heights), std::move(colours)};
 }
 
+// The generated bricks as a material: their colours, and their heights as a bump map of `relief`
+// (the relief's depth over one map period, one unit of (u, v); none at 0) in the natural frame.
+MaterialDesc brick_material(float specular, float relief) {
+    auto [heights, colours] = brick_maps(512);
+    MaterialDesc bricks;
+    bricks.base_color_map = generated(std::move(colours), "generated bricks");
+    bricks.specular = specular;
+    if (relief > 0) {
+        bricks.bump.source = BumpDesc::Source::height_map;
+        bricks.bump.map = generated(std::move(heights), "generated brick heights");
+        bricks.bump.strength = relief;
+        bricks.bump.frame = BumpFrame::natural;
+    }
+    return bricks;
+}
+
 DemoScene parallax(const DemoSceneOptions& options) {
     DemoScene demo{"parallax",
                    "parallax-occlusion mapping: a brick wall and pavement whose bricks stand out "
@@ -413,15 +429,8 @@ DemoScene parallax(const DemoSceneOptions& options) {
     scene.environment = daylight_environment(options, demo.assets);
     scene.environment->rotation_deg = {0, 120, 0};
     scene.lights.push_back({LightType::directional, {0.6, -0.5, -0.6}, {}, {1.5f, 1.4f, 1.2f}});
-    auto [heights, colours] = brick_maps(512);
-    MaterialDesc bricks;
+    MaterialDesc bricks = brick_material(0.1f, 0.04f);
     bricks.base_color = {1, 1, 1};
-    bricks.base_color_map = generated(std::move(colours), "generated bricks");
-    bricks.specular = 0.1f;
-    bricks.bump.source = BumpDesc::Source::height_map;
-    bricks.bump.map = generated(std::move(heights), "generated brick heights");
-    bricks.bump.strength = 0.04f;  // the relief's depth over one map period (one unit of (u, v))
-    bricks.bump.frame = BumpFrame::natural;
     bricks.bump.parallax = ParallaxOptions{0.04f, 24};
     PlaneShape pavement;
     pavement.size = {4, 4};
@@ -451,14 +460,7 @@ DemoScene shadows(const DemoSceneOptions& options) {
     LightDesc lamp{LightType::point, {}, {-1.5, 1.4, 1.8}, {0.5f, 0.55f, 0.7f}};
     lamp.shadows = false;
     scene.lights.push_back(lamp);
-    auto [heights, colours] = brick_maps(512);
-    MaterialDesc pavement;
-    pavement.base_color_map = generated(std::move(colours), "generated bricks");
-    pavement.specular = 0.15f;
-    pavement.bump.source = BumpDesc::Source::height_map;
-    pavement.bump.map = generated(std::move(heights), "generated brick heights");
-    pavement.bump.strength = 0.02f;
-    pavement.bump.frame = BumpFrame::natural;
+    const MaterialDesc pavement = brick_material(0.15f, 0.02f);
     PlaneShape ground;
     ground.size = {10, 10};
     ground.center = {0, 0, -2};
@@ -501,10 +503,7 @@ DemoScene environment_probe(const DemoSceneOptions& options) {
     scene.environment = daylight_environment(options, demo.assets);
     scene.environment->rotation_deg = {0, 60, 0};
     scene.lights.push_back({LightType::directional, {-0.6, -0.7, -0.4}, {}, {2, 1.9f, 1.7f}});
-    auto [heights, colours] = brick_maps(512);
-    MaterialDesc pavement;
-    pavement.base_color_map = generated(std::move(colours), "generated bricks");
-    pavement.specular = 0.1f;
+    const MaterialDesc pavement = brick_material(0.1f, 0);
     PlaneShape ground;
     ground.size = {10, 10};
     ground.uv_scale = 0.5;

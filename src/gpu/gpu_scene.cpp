@@ -261,31 +261,22 @@ Result<MaterialRecord> material_record(const RenderMaterial& m, TextureSystem& t
                      std::to_string(kMaterialUnits) +
                      " different sizes (or wrap modes); the GPU path takes that many"};
     };
-    MapRef color, bump;
-    if (m.base_color_map) {
-        Result<std::shared_ptr<const MipPyramid>> pyramid = textures.pyramid(m.base_color_map);
+    // A one-layer map (colour, F0, heights) as the texture system built its pyramid, a grey one
+    // as RGB; `out` untouched where the material has none.
+    auto place_map = [&](TextureHandle* map, bool grey, MapRef& out) -> Status {
+        if (!map) return {};
+        Result<std::shared_ptr<const MipPyramid>> pyramid = textures.pyramid(map);
         if (!pyramid) return Error{name + ": " + pyramid.error().message};
-        if (m.base_color_grey) *pyramid = grey_as_rgb(**pyramid);
+        if (grey) *pyramid = grey_as_rgb(**pyramid);
         Result<MapRef> ref = place(std::move(*pyramid), 1);
         if (!ref) return ref.error();
-        color = *ref;
-    }
-    MapRef f0;
-    if (m.f0_map) {
-        Result<std::shared_ptr<const MipPyramid>> pyramid = textures.pyramid(m.f0_map);
-        if (!pyramid) return Error{name + ": " + pyramid.error().message};
-        Result<MapRef> ref = place(std::move(*pyramid), 1);
-        if (!ref) return ref.error();
-        f0 = *ref;
-    }
-    MapRef heights;
-    if (m.height_map) {
-        Result<std::shared_ptr<const MipPyramid>> pyramid = textures.pyramid(m.height_map);
-        if (!pyramid) return Error{name + ": " + pyramid.error().message};
-        Result<MapRef> ref = place(std::move(*pyramid), 1);
-        if (!ref) return ref.error();
-        heights = *ref;
-    }
+        out = *ref;
+        return {};
+    };
+    MapRef color, bump, f0, heights;
+    if (Status s = place_map(m.base_color_map, m.base_color_grey, color); !s) return s.error();
+    if (Status s = place_map(m.f0_map, false, f0); !s) return s.error();
+    if (Status s = place_map(m.height_map, false, heights); !s) return s.error();
     Vec2 offset;
     if (m.bump) {
         Result<std::shared_ptr<const BumpPyramid>> pyramid = textures.bump_pyramid(m.bump);
