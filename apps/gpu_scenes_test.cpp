@@ -233,8 +233,8 @@ TEST(GpuScenes, FaRoughIsAsCloseToTheTruthAsOnTheCpuAndBeatsHardwareAnisotropy) 
     GTEST_SKIP() << "the 1024-spp references are too slow under the sanitizers (Release runs it)";
 #endif
     FOOTPRINT_GPU_DEVICE_OR_SKIP();
-    // llvmpipe's anisotropic sampler is defective (docs/gpu.md) and slow at grazing angles (minutes
-    // on the sea): there the comparison with hw-aniso would be too easy and cost most of the test.
+    // llvmpipe's anisotropic sampler is defective and slow at grazing angles (docs/gpu.md): there
+    // the comparison with hw-aniso would be too easy and cost most of the test.
     // It runs on hardware devices; `footprint-bench gpu --quality` reports it everywhere.
     std::string why;
     const bool compare_hw_aniso =
