@@ -316,12 +316,19 @@ DemoScene procedural_bump(const DemoSceneOptions& options) {
     return demo;
 }
 
-// A box room seen from `room.capture`: tiled floor, coloured walls, a bright window and a ceiling
-// light (HDR), each texel the mean of 2 × 2 directions.
-Image room_latlong(const EnvProxy& room, int width) {
-    const int height = width / 2;
-    Image image(width, height, 3);
-    auto radiance = [&](Vec3 q) -> Vec3 {
+// The local-map demo's world: a box room (tiled floor, coloured walls, a window onto the sky and
+// a ceiling light, HDR) with a booth in its far right corner, open at the front and on the left,
+// lined with teal cloth and lit by a warm strip under its roof.
+struct RoomWorld {
+    EnvProxy room, booth;
+    RoomWorld() {
+        room.min = {-4, 0, -5}, room.max = {4, 3, 3};
+        room.capture = {0, 1.5f, -1};
+        booth.min = {1.6f, 0, -4.8f}, booth.max = {3.8f, 2, -3};
+        booth.capture = {2.7f, 1, -3.9f};
+    }
+
+    Vec3 room_wall(Vec3 q) const {
         const float eps = 1e-3f;
         if (q.y < room.min.y + eps) {  // floor: 0.5 m tiles
             const bool dark = (int(std::floor(2 * q.x)) + int(std::floor(2 * q.z))) & 1;
@@ -337,37 +344,108 @@ Image room_latlong(const EnvProxy& room, int width) {
         if (q.x < room.min.x + eps) return {0.6f, 0.15f, 0.1f};
         if (q.x > room.max.x + -eps) return {0.1f, 0.25f, 0.6f};
         return {0.85f, 0.85f, 0.8f};
-    };
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            Vec3 sum{0, 0, 0};
-            for (int k = 0; k < 4; ++k) {
-                const float s = (x + 0.25f + 0.5f * (k & 1)) / width;
-                const float t = (y + 0.25f + 0.5f * (k >> 1)) / height;
-                const Vec3 w = env_direction(EnvLayout::latlong, 0, s, t);
-                const std::optional<ProxyStep> step = proxy_step(room, room.capture, w);
-                if (step) sum = sum + 0.25f * radiance(step->direction + room.capture);
-            }
-            image.at(x, y, 0) = sum.x, image.at(x, y, 1) = sum.y, image.at(x, y, 2) = sum.z;
+    }
+
+    // The booth's back (z = min), right (x = max) and roof (y = max) from inside: cloth with gold
+    // stripes, and the light strip.
+    Vec3 booth_wall(Vec3 q, int axis) const {
+        if (axis == 1)
+            return std::abs(q.x - booth.capture.x) < 0.8f && std::abs(q.z - booth.capture.z) < 0.2f
+                       ? Vec3{3, 2.4f, 1.4f}
+                       : Vec3{0.08f, 0.3f, 0.3f};
+        const float along = axis == 2 ? q.x : q.z;
+        const bool stripe = std::abs(along * 4 - std::round(along * 4)) < 0.06f;
+        return stripe ? Vec3{0.8f, 0.6f, 0.2f} : Vec3{0.05f, 0.35f, 0.35f};
+    }
+
+    // What a ray from o (inside the room) along the unit direction w meets first.
+    Vec3 seen(Vec3 o, Vec3 w) const {
+        const std::optional<ProxyStep> step = proxy_step(room, o, w);
+        if (!step) return {0, 0, 0};
+        const Vec3 q_room = step->direction + room.capture;
+        float nearest = length(q_room - o);
+        Vec3 colour = room_wall(q_room);
+        const float walls[3] = {booth.max.x, booth.max.y, booth.min.z};  // right, roof, back
+        for (int axis = 0; axis < 3; ++axis) {
+            const float d = (&w.x)[axis];
+            if (d == 0) continue;
+            const float t = (walls[axis] - (&o.x)[axis]) / d;
+            const Vec3 q = o + t * w;
+            bool inside = t > 1e-4f && t < nearest;
+            for (int k = 0; k < 3; ++k)
+                if (k != axis)
+                    inside =
+                        inside && (&q.x)[k] >= (&booth.min.x)[k] && (&q.x)[k] <= (&booth.max.x)[k];
+            if (inside) nearest = t, colour = booth_wall(q, axis);
         }
-    return image;
+        return colour;
+    }
+
+    // The world from `from` along the directions of face f's texel (x, y) of a `layout` map of
+    // width × height: the mean of n × n.
+    Image capture(Vec3 from, EnvLayout layout, int face, int width, int height, int n) const {
+        Image image(width, height, 3);
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                Vec3 sum{0, 0, 0};
+                for (int j = 0; j < n; ++j)
+                    for (int i = 0; i < n; ++i) {
+                        const float s = (x + (i + 0.5f) / n) / width;
+                        const float t = (y + (j + 0.5f) / n) / height;
+                        sum = sum + seen(from, normalize(env_direction(layout, face, s, t)));
+                    }
+                sum = sum / static_cast<float>(n * n);
+                image.at(x, y, 0) = sum.x, image.at(x, y, 1) = sum.y, image.at(x, y, 2) = sum.z;
+            }
+        return image;
+    }
+};
+
+// The booth's back, side and roof as planes of cloth, which the booth's map lights.
+void add_booth_walls(const EnvProxy& b, SceneDesc& scene) {
+    MaterialDesc cloth;
+    cloth.diffuse = 1;
+    cloth.base_color = {0.15f, 0.6f, 0.6f};
+    const Vec3d centre{(b.min.x + b.max.x) / 2, (b.min.y + b.max.y) / 2, (b.min.z + b.max.z) / 2};
+    const Vec3d size{b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z};
+    auto wall = [&](Vec3d center, Vec3d normal, Vec2d extent) {
+        PlaneShape plane;
+        plane.center = center, plane.normal = normal, plane.size = extent;
+        return plane;
+    };
+    scene.objects.push_back(
+        {"booth back", wall({centre.x, centre.y, b.min.z}, {0, 0, 1}, {size.x, size.y}), cloth});
+    scene.objects.push_back(
+        {"booth side", wall({b.max.x, centre.y, centre.z}, {-1, 0, 0}, {size.z, size.y}), cloth});
+    scene.objects.push_back(
+        {"booth roof", wall({centre.x, b.max.y, centre.z}, {0, -1, 0}, {size.x, size.z}), cloth});
 }
 
 DemoScene local_environment(const DemoSceneOptions& options) {
     DemoScene demo{"local_environment",
-                   "a room's local environment map with a box proxy: a chrome sphere and a "
-                   "polished floor reflect the walls where their reflected rays meet them",
-                   "environment generated (a room), ",
+                   "local environment maps with box proxies, one nested in the other: a chrome "
+                   "sphere and a polished floor reflect the room's walls where their reflected "
+                   "rays meet them, and a sphere in the booth the booth's",
+                   "environments generated (a room, a booth in it), ",
                    {}};
     SceneDesc& scene = demo.scene = base_scene(options);
-    EnvProxy room;
-    room.min = {-4, 0, -5}, room.max = {4, 3, 3};
-    room.capture = {0, 1.5f, -1};
-    scene.camera = {{-1.5, 1.6, 2.2}, {0.5, 0.7, -2}, {0, 1, 0}, 60};
-    scene.environment = generated_environment(room_latlong(room, 1024), "generated room");
-    scene.environment->proxy = room;
+    const RoomWorld world;
+    scene.camera = {{-1.5, 1.6, 2.2}, {0.8, 0.8, -2.5}, {0, 1, 0}, 60};
+    scene.environment = generated_environment(
+        world.capture(world.room.capture, EnvLayout::latlong, 0, 1024, 512, 2), "generated room");
+    scene.environment->proxy = world.room;
+    EnvironmentDesc booth;  // a cube map: the GPU reads it as it is
+    booth.layout = EnvLayout::cube;
+    for (int face = 0; face < 6; ++face)
+        booth.images.push_back(
+            generated(world.capture(world.booth.capture, EnvLayout::cube, face, 256, 256, 4),
+                      "generated booth face " + std::to_string(face)));
+    booth.proxy = world.booth;
+    scene.local_environments.push_back(std::move(booth));
     MaterialDesc chrome = mirror(0.9f);
-    scene.objects.push_back({"chrome sphere", SphereShape{{1, 0.7, -2}, 0.7}, chrome});
+    scene.objects.push_back({"chrome sphere", SphereShape{{-0.3, 0.7, -2.2}, 0.7}, chrome});
+    scene.objects.push_back(
+        {"chrome sphere in the booth", SphereShape{{2.65, 0.7, -3.95}, 0.7}, chrome});
     PlaneShape floor;
     floor.center = {-0.5, 0.005, -1.2};  // a polished slab on the tiled floor
     floor.size = {3, 2.5};
@@ -375,6 +453,7 @@ DemoScene local_environment(const DemoSceneOptions& options) {
     polished.diffuse = 0.5f;
     polished.base_color = {0.35f, 0.3f, 0.25f};
     scene.objects.push_back({"polished floor", floor, polished});
+    add_booth_walls(world.booth, scene);
     add_camera_move(scene, {0.3, 0, 0}, {0.3, 0, 0});
     return demo;
 }

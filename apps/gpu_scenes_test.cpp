@@ -10,6 +10,7 @@
 #include "demo_assets.h"
 #include "demo_scenes.h"
 #include "envmap/env_convert.h"
+#include "envmap/env_image_io.h"
 #include "envmap/environment_map.h"
 #include "gpu/gpu_renderer.h"
 #include "gpu/gpu_test_device.h"
@@ -219,6 +220,89 @@ TEST(GpuScenes, AFifthProbedObjectIsRefusedNamingIt) {
     Result<RenderScene> four = prepare_render_scene(desc);
     ASSERT_TRUE(four) << four.error().message;
     EXPECT_TRUE(GpuRenderer::create(*four)) << "four probes fit";
+}
+
+// The zebra mirrors in two nested local maps: a room (the zebra as a lat-long map) and, around the
+// sphere, a sphere proxy (the zebra as a sphere map, turned); outside both, the background. The
+// GPU reads every local map as a cube map, converting the others (envmap/env_convert.h); the CPU
+// rendering the same scene with those cube maps in their place is what it must match, in every
+// mode but trilinear (which the CPU reads on a cube's centre face only).
+TEST(GpuScenes, NestedLocalMapsOfAnyLayoutMatchTheCpuRendererOfTheirCubeMaps) {
+    FOOTPRINT_GPU_DEVICE_OR_SKIP();
+    SceneDesc desc = zebra_mirrors(EnvLayout::latlong).desc();
+    EnvironmentDesc room = *desc.environment,
+                    alcove = *zebra_mirrors(EnvLayout::sphere).desc().environment;
+    desc.environment.reset();
+    desc.background = {0.2f, 0.1f, 0.05f};
+    room.proxy = EnvProxy{EnvProxy::Shape::box, {-5, -1, -5}, {5, 4, 5}, {}, 1, {0, 1, 0}};
+    alcove.proxy =
+        EnvProxy{EnvProxy::Shape::sphere, {}, {}, {-0.6f, 0.5f, 0}, 1.1f, {-0.6f, 0.8f, 0}};
+    alcove.rotation_deg = {0, 35, 0};
+    desc.local_environments = {room, alcove};
+    Result<RenderScene> scene = prepare_render_scene(desc);
+    ASSERT_TRUE(scene) << scene.error().message;
+    Result<GpuRenderer> gpu = GpuRenderer::create(*scene);
+    ASSERT_TRUE(gpu) << gpu.error().message;
+    for (EnvironmentDesc& local : desc.local_environments) {  // the GPU's cube maps on the CPU
+        EnvImages images{local.layout, {}};
+        for (const ImageSource& face : local.images) images.faces.push_back(*face.image);
+        Result<EnvironmentMap> map = make_environment_map(images);
+        ASSERT_TRUE(map) << map.error().message;
+        Result<EnvImages> cube = convert_environment(*map, EnvLayout::cube);
+        ASSERT_TRUE(cube) << cube.error().message;
+        local.layout = EnvLayout::cube;
+        local.images.clear();
+        for (Image& face : cube->faces)
+            local.images.push_back({{}, std::make_shared<Image>(std::move(face)), "cube face"});
+    }
+    Result<RenderScene> cubes = prepare_render_scene(desc);
+    ASSERT_TRUE(cubes) << cubes.error().message;
+    for (GpuFilter f : {GpuFilter::point, GpuFilter::fa, GpuFilter::fa_rough}) {
+        RenderOptions options;
+        options.filter = *cpu_counterpart(f);
+        const double d = rmse(gpu_render(*gpu, f), render(*cubes, options));
+        std::printf("nested local maps %-9s GPU vs CPU RMSE %.2e\n", gpu_filter_name(f), d);
+        EXPECT_LT(d, gpu_cpu_tolerance(f)) << gpu_filter_name(f);
+    }
+}
+
+// The cube maps besides the scene's take a texture unit each: beyond four (local maps and probed
+// objects together) the scene is refused, naming what did not fit.
+TEST(GpuScenes, AFifthLocalMapIsRefused) {
+    FOOTPRINT_GPU_DEVICE_OR_SKIP();
+    SceneDesc desc;
+    desc.width = 8, desc.height = 6;
+    desc.camera = {{0, 0, 10}, {0, 0, 0}, {0, 1, 0}, 60};
+    auto uniform = std::make_shared<Image>(8, 4, 3);
+    for (int k = 0; k < 5; ++k) {
+        EnvironmentDesc local;
+        local.images.push_back({{}, uniform, "uniform"});
+        local.proxy = EnvProxy{EnvProxy::Shape::sphere, {}, {}, {0, 0, 0}, 1.0f + k, {}};
+        desc.local_environments.push_back(local);
+    }
+    Result<RenderScene> five = prepare_render_scene(desc);
+    ASSERT_TRUE(five) << five.error().message;
+    Result<GpuRenderer> gpu = GpuRenderer::create(*five);
+    ASSERT_FALSE(gpu);
+    EXPECT_NE(gpu.error().message.find("local_environments: the GPU path takes 4 local maps"),
+              std::string::npos)
+        << gpu.error().message;
+    desc.local_environments.resize(3);
+    MaterialDesc probed;
+    probed.mirror = 1;
+    probed.environment_probe = EnvironmentProbeDesc{{0, 0, 0}, 4};
+    desc.objects = {{"ball", SphereShape{{0, 0, 0}, 0.5}, probed},
+                    {"second ball", SphereShape{{2, 0, 0}, 0.5}, probed}};
+    desc.objects[1].material.environment_probe->center = {2, 0, 0};
+    Result<RenderScene> mixed = prepare_render_scene(desc);
+    ASSERT_TRUE(mixed) << mixed.error().message;
+    gpu = GpuRenderer::create(*mixed);
+    ASSERT_FALSE(gpu);
+    EXPECT_NE(
+        gpu.error().message.find("objects[1] (second ball): environment_probe: the GPU path "
+                                 "takes 4 cube maps per scene, local maps and probed objects"),
+        std::string::npos)
+        << gpu.error().message;
 }
 
 // Against the ground truth (the CPU's reference mode, 1024 samples per pixel), interior RMSE:

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace footprint {
 
@@ -70,6 +71,27 @@ std::optional<ProxyStep> proxy_step(const EnvProxy& proxy, Vec3 p, Vec3 r) {
     if (!is_finite(step.direction) || !(dot(step.direction, step.direction) > 0))
         return std::nullopt;
     return step;
+}
+
+bool proxy_contains(const EnvProxy& proxy, Vec3 p) {
+    constexpr float kSurface = 1e-4f;  // of the box's largest extent or the sphere's radius
+    if (proxy.shape == EnvProxy::Shape::sphere) {
+        const Vec3 o = p - proxy.center;
+        const float radius = proxy.radius * (1 + kSurface);
+        return dot(o, o) <= radius * radius;
+    }
+    const Vec3 extent = proxy.max - proxy.min;
+    const float tolerance = kSurface * std::max({extent.x, extent.y, extent.z});
+    return p.x >= proxy.min.x - tolerance && p.x <= proxy.max.x + tolerance &&
+           p.y >= proxy.min.y - tolerance && p.y <= proxy.max.y + tolerance &&
+           p.z >= proxy.min.z - tolerance && p.z <= proxy.max.z + tolerance;
+}
+
+float proxy_volume(const EnvProxy& proxy) {
+    if (proxy.shape == EnvProxy::Shape::sphere)
+        return 4.0f / 3.0f * std::numbers::pi_v<float> * proxy.radius * proxy.radius * proxy.radius;
+    const Vec3 extent = proxy.max - proxy.min;
+    return extent.x * extent.y * extent.z;
 }
 
 }  // namespace footprint

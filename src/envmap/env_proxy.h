@@ -21,6 +21,10 @@
 // pixel's ∂r/∂x, ∂r/∂y and the roughness columns — and P ∂p adds the pixel's own motion across
 // the surface, which a map at infinity does not see. ProxyStep applies both to an EnvFootprint's
 // vectors (env_footprint.h), which then gives the footprint in d's texel space.
+//
+// Nested proxies. A scene may hold several local maps (a room, an alcove in it, a cabinet in
+// that): each point reads the innermost one whose proxy contains it, the smallest by volume among
+// those that do, and the scene's environment where none does.
 #pragma once
 
 #include <optional>
@@ -50,5 +54,11 @@ struct ProxyStep {
 // The step for a ray from p along r (any nonzero length), or nullopt where the ray does not leave
 // the proxy forwards (the map is then at infinity: d = r).
 std::optional<ProxyStep> proxy_step(const EnvProxy& proxy, Vec3 p, Vec3 r);
+
+// Whether p lies in the proxy, its surface included to within 1e-4 of its size: a room's floor
+// that is the box's face belongs to the room wherever the hit point rounds.
+bool proxy_contains(const EnvProxy& proxy, Vec3 p);
+// The proxy's volume, which orders nested proxies (innermost first).
+float proxy_volume(const EnvProxy& proxy);
 
 }  // namespace footprint

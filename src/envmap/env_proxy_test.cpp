@@ -94,5 +94,31 @@ TEST(EnvProxy, TheFootprintsJacobianMatchesFiniteDifferences) {
     }
 }
 
+// Containment against each shape's inequality, on random points and on the surface itself (a
+// room's floor lies on its box's face); volumes from the shapes' formulas.
+TEST(EnvProxy, ContainmentFollowsTheShapeAndKeepsItsSurface) {
+    std::mt19937 rng(13);
+    const EnvProxy box = room_box(), sphere = room_sphere();
+    for (int i = 0; i < 2000; ++i) {
+        const Vec3 p = Vec3{1, 1.5f, -1} + random_vector(rng, 6);
+        const bool in_box = p.x >= -3 && p.x <= 5 && p.y >= 0 && p.y <= 3 && p.z >= -4 && p.z <= 2;
+        const bool in_sphere = length(p - sphere.center) <= sphere.radius;
+        // Away from the surfaces (1e-3 of the size) the tolerance cannot decide.
+        const float box_gap = std::min({std::abs(p.x + 3), std::abs(p.x - 5), std::abs(p.y),
+                                        std::abs(p.y - 3), std::abs(p.z + 4), std::abs(p.z - 2)});
+        if (box_gap > 8e-3f) EXPECT_EQ(proxy_contains(box, p), in_box) << p.x << " " << p.y;
+        if (std::abs(length(p - sphere.center) - sphere.radius) > 4e-3f)
+            EXPECT_EQ(proxy_contains(sphere, p), in_sphere);
+    }
+    // On the surface, rounded either way by a float's last bits: inside.
+    EXPECT_TRUE(proxy_contains(box, {0, std::nextafter(0.0f, -1.0f), 0}));
+    EXPECT_TRUE(proxy_contains(box, {5.0001f, 1, 0}));
+    EXPECT_FALSE(proxy_contains(box, {5.01f, 1, 0}));
+    EXPECT_TRUE(proxy_contains(sphere, sphere.center + Vec3{0, 4.0001f, 0}));
+    EXPECT_FALSE(proxy_contains(sphere, sphere.center + Vec3{0, 4.01f, 0}));
+    EXPECT_FLOAT_EQ(proxy_volume(box), 8 * 3 * 6);
+    EXPECT_FLOAT_EQ(proxy_volume(sphere), 4.0f / 3.0f * 3.14159265f * 64);
+}
+
 }  // namespace
 }  // namespace footprint

@@ -102,6 +102,9 @@ struct GpuRenderer::Impl {
     GLint uniform(const char* name) const { return glGetUniformLocation(program.get(), name); }
     void set_frame_uniforms(const CameraDesc& camera, int width, int height,
                             const GpuRenderOptions& options);
+    void set_proxy_uniforms(const std::optional<EnvProxy>& proxy, const std::string& name,
+                            const std::string& index);
+    void set_slot_uniforms();
     void bind_textures(GpuFilter filter) const;
     void ensure_target(int width, int height);
     void ensure_visibility(int width, int height);
@@ -167,34 +170,52 @@ void GpuRenderer::Impl::set_frame_uniforms(const CameraDesc& camera, int width, 
     glUniform1i(uniform("u_light_count"), static_cast<int>(lights_now.size()));
 
     glUniform1i(uniform("u_env_layout"), layout_code(gpu));
-    if (!gpu.probe_sizes.empty())
-        glUniform1fv(uniform("u_probe_size"), static_cast<GLsizei>(gpu.probe_sizes.size()),
-                     gpu.probe_sizes.data());
+    set_slot_uniforms();
     if (const RenderEnvironment* env = scene->environment()) {
         glUniformMatrix3fv(uniform("u_env_rotation"), 1, GL_TRUE, &env->rotation.m[0][0]);
         const Vec2 s = env->texel_scale;
         glUniform2f(uniform("u_env_texel_scale"), s.x, s.y);
         glUniform1i(uniform("u_env_caps"), gpu.has_caps ? 1 : 0);
         glUniform3fv(uniform("u_env_sh"), 9, &env->irradiance.coefficients[0].x);
-        const std::optional<EnvProxy>& proxy = env->proxy;
-        glUniform1i(uniform("u_env_proxy"), !proxy                                 ? 0
-                                            : proxy->shape == EnvProxy::Shape::box ? 1
-                                                                                   : 2);
-        if (proxy) {
-            const bool box = proxy->shape == EnvProxy::Shape::box;
-            const Vec3 lo = box ? proxy->min : proxy->center;
-            const Vec3 hi = box ? proxy->max : Vec3{proxy->radius, 0, 0};
-            glUniform3f(uniform("u_env_proxy_min"), lo.x, lo.y, lo.z);
-            glUniform3f(uniform("u_env_proxy_max"), hi.x, hi.y, hi.z);
-            glUniform3f(uniform("u_env_proxy_capture"), proxy->capture.x, proxy->capture.y,
-                        proxy->capture.z);
-        }
+        set_proxy_uniforms(env->proxy, "u_env_proxy", "");
         constexpr int kMaxEnvLevels = 16;  // environment.glsl's
         std::array<float, kMaxEnvLevels> prefilter{};
         for (std::size_t l = 0; l < gpu.env_prefilter.size(); ++l)
             prefilter[std::min<std::size_t>(l, kMaxEnvLevels - 1)] = gpu.env_prefilter[l];
         glUniform1fv(uniform("u_env_prefilter"), kMaxEnvLevels, prefilter.data());
         glUniform2i(uniform("u_env_wrap"), gpu.env_repeat[0] ? 1 : 0, gpu.env_repeat[1] ? 1 : 0);
+    }
+}
+
+// A proxy as environment.glsl's uniforms `name` (its shape), `name`_min, _max and _capture, each
+// with `index` ("" or "[k]") after it.
+void GpuRenderer::Impl::set_proxy_uniforms(const std::optional<EnvProxy>& proxy,
+                                           const std::string& name, const std::string& index) {
+    glUniform1i(uniform((name + index).c_str()), !proxy                                 ? 0
+                                                 : proxy->shape == EnvProxy::Shape::box ? 1
+                                                                                        : 2);
+    if (!proxy) return;
+    const bool box = proxy->shape == EnvProxy::Shape::box;
+    const Vec3 lo = box ? proxy->min : proxy->center;
+    const Vec3 hi = box ? proxy->max : Vec3{proxy->radius, 0, 0};
+    const Vec3 c = proxy->capture;
+    glUniform3f(uniform((name + "_min" + index).c_str()), lo.x, lo.y, lo.z);
+    glUniform3f(uniform((name + "_max" + index).c_str()), hi.x, hi.y, hi.z);
+    glUniform3f(uniform((name + "_capture" + index).c_str()), c.x, c.y, c.z);
+}
+
+// Each cube slot's size, rotation, proxy and irradiance (environment.glsl's u_slot_*).
+void GpuRenderer::Impl::set_slot_uniforms() {
+    glUniform1i(uniform("u_local_count"), gpu.local_count);
+    for (std::size_t k = 0; k < gpu.slots.size(); ++k) {
+        const RenderEnvironment& env = *gpu.slots[k].source;
+        const std::string index = "[" + std::to_string(k) + "]";
+        glUniform1f(uniform(("u_slot_size" + index).c_str()), gpu.slots[k].size);
+        glUniformMatrix3fv(uniform(("u_slot_rotation" + index).c_str()), 1, GL_TRUE,
+                           &env.rotation.m[0][0]);
+        set_proxy_uniforms(env.proxy, "u_slot_proxy", index);
+        glUniform3fv(uniform(("u_slot_sh[" + std::to_string(9 * k) + "]").c_str()), 9,
+                     &env.irradiance.coefficients[0].x);
     }
 }
 
@@ -216,10 +237,10 @@ void GpuRenderer::Impl::bind_textures(GpuFilter filter) const {
         glBindTextureUnit(gpu::kCubeUnit, gpu.cube.get());
         glBindSampler(gpu::kCubeUnit, gpu.cube_sampler.get());
     }
-    for (std::size_t k = 0; k < gpu.probes.size(); ++k) {
-        const auto unit = static_cast<GLuint>(gpu::kProbeUnit + static_cast<int>(k));
-        glBindTextureUnit(unit, gpu.probes[k].get());
-        glBindSampler(unit, gpu.probe_sampler.get());
+    for (std::size_t k = 0; k < gpu.slots.size(); ++k) {
+        const auto unit = static_cast<GLuint>(gpu::kSlotUnit + static_cast<int>(k));
+        glBindTextureUnit(unit, gpu.slots[k].cube.get());
+        glBindSampler(unit, gpu.slot_sampler.get());
     }
     if (gpu.meshes.triangle_count > 0) {
         glBindTextureUnit(gpu::kVisibilityUnit, triangle_ids.get());
@@ -326,8 +347,8 @@ void assign_units(GLuint program) {
         set("u_maps[" + std::to_string(unit) + "]", unit);
     set("u_env_cube", gpu::kCubeUnit);
     set("u_visibility", gpu::kVisibilityUnit);
-    for (std::size_t k = 0; k < gpu::kMaxProbes; ++k)
-        set("u_probe_cubes[" + std::to_string(k) + "]", gpu::kProbeUnit + static_cast<int>(k));
+    for (std::size_t k = 0; k < gpu::kMaxCubeSlots; ++k)
+        set("u_slot_cubes[" + std::to_string(k) + "]", gpu::kSlotUnit + static_cast<int>(k));
 }
 
 }  // namespace

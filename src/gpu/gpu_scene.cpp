@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <span>
 #include <variant>
 
+#include "envmap/env_convert.h"
+#include "envmap/env_image_io.h"
 #include "scene/mesh.h"
 #include "scene/shapes.h"
 #include "scene/triangle_bvh.h"
@@ -160,6 +163,25 @@ Texture upload_cube(const EnvironmentMap& map) {
     return cube;
 }
 
+// A slot's map as a cube map: a probe's or a cube map's own levels, another layout resampled into
+// a cube map of the same angular resolution (envmap/env_convert.h), filtered by its texels.
+Status upload_slot(const RenderScene& scene, CubeSlot& slot) {
+    Result<std::shared_ptr<const EnvironmentMap>> map =
+        scene.textures().environment_map(slot.source->map);
+    if (!map) return map.error();
+    std::shared_ptr<const EnvironmentMap> cube = *map;
+    if (cube->layout() != EnvLayout::cube) {
+        Result<EnvImages> faces = convert_environment(*cube, EnvLayout::cube);
+        if (!faces) return faces.error();
+        Result<EnvironmentMap> converted = make_environment_map(*faces);
+        if (!converted) return converted.error();
+        cube = std::make_shared<EnvironmentMap>(std::move(*converted));
+    }
+    slot.cube = upload_cube(*cube);
+    slot.size = static_cast<float>(cube->face(0).width(0));
+    return {};
+}
+
 std::string object_name(const SceneDesc& scene, int i) {
     const std::string& name = scene.objects[static_cast<std::size_t>(i)].name;
     return "objects[" + std::to_string(i) + "]" + (name.empty() ? "" : " (" + name + ")");
@@ -234,25 +256,27 @@ float bump_frame_code(BumpFrame frame) {
     return 2;
 }
 
-// Material m's environment probe's slot among `probes` (added at its first use), −1 for none.
-Result<int> probe_slot(const RenderMaterial& m, std::vector<const RenderEnvironment*>& probes,
+// Material m's environment probe's cube slot (added at its first use), −1 for none.
+Result<int> probe_slot(const RenderMaterial& m, std::vector<CubeSlot>& slots,
                        const std::string& name) {
     if (!m.probe) return -1;
-    const auto it = std::find(probes.begin(), probes.end(), m.probe);
-    if (it != probes.end()) return static_cast<int>(it - probes.begin());
-    if (probes.size() == kMaxProbes)
+    const auto it = std::find_if(slots.begin(), slots.end(),
+                                 [&](const CubeSlot& slot) { return slot.source == m.probe; });
+    if (it != slots.end()) return static_cast<int>(it - slots.begin());
+    if (slots.size() == kMaxCubeSlots)
         return Error{name + ": environment_probe: the GPU path takes " +
-                     std::to_string(kMaxProbes) + " probed objects per scene"};
-    probes.push_back(m.probe);
-    return static_cast<int>(probes.size()) - 1;
+                     std::to_string(kMaxCubeSlots) +
+                     " cube maps per scene, local maps and probed objects together"};
+    slots.push_back({m.probe, {}, 0});
+    return static_cast<int>(slots.size()) - 1;
 }
 
 Result<MaterialRecord> material_record(const RenderMaterial& m, TextureSystem& textures,
-                                       MapPool& pool, std::vector<const RenderEnvironment*>& probes,
+                                       MapPool& pool, std::vector<CubeSlot>& slots,
                                        const std::string& name) {
     const MaterialDesc& d = m.desc;
     MaterialRecord r{};
-    Result<int> probe = probe_slot(m, probes, name);
+    Result<int> probe = probe_slot(m, slots, name);
     if (!probe) return probe.error();
     r.probe[0] = *probe;
     auto place = [&](std::shared_ptr<const MipPyramid> pyramid, int layers) -> Result<MapRef> {
@@ -407,8 +431,8 @@ Status upload_meshes(const RenderScene& scene, MapPool& pool, GpuScene& gpu) {
         for (std::size_t k = 0; k < object_parts.size(); ++k) {
             const TriangleMesh& part = object_parts[k];
             Result<MaterialRecord> record = material_record(
-                scene.mesh_part_material(i, static_cast<int>(k)), scene.textures(), pool,
-                gpu.probe_sources, object_name(desc, i) + " part '" + part.name + "'");
+                scene.mesh_part_material(i, static_cast<int>(k)), scene.textures(), pool, gpu.slots,
+                object_name(desc, i) + " part '" + part.name + "'");
             if (!record) return record.error();
             const auto part_index = static_cast<std::uint32_t>(parts.size());
             parts.push_back({{static_cast<int>(gpu.materials.size()), part.has_normals() ? 1 : 0,
@@ -460,6 +484,13 @@ Result<GpuScene> upload_scene(const RenderScene& scene) {
     const SceneDesc& desc = scene.desc();
     if (scene.environment())
         if (Status s = upload_environment(scene, gpu, anisotropy); !s) return s.error();
+    if (scene.local_environments().size() > kMaxCubeSlots)
+        return Error{"local_environments: the GPU path takes " + std::to_string(kMaxCubeSlots) +
+                     " local maps per scene, got " +
+                     std::to_string(scene.local_environments().size())};
+    for (const std::unique_ptr<RenderEnvironment>& local : scene.local_environments())
+        gpu.slots.push_back({local.get(), {}, 0});
+    gpu.local_count = static_cast<int>(gpu.slots.size());
     for (int i = 0; i < static_cast<int>(desc.objects.size()); ++i) {
         // Meshes are drawn by upload_meshes()'s buffers; an invalid shape never hits
         // (scene/shapes.h): both are left out of the analytic objects.
@@ -468,23 +499,16 @@ Result<GpuScene> upload_scene(const RenderScene& scene) {
             gpu.object_material.push_back(-1);
             continue;
         }
-        Result<MaterialRecord> record =
-            material_record(*scene.analytic_material(i), scene.textures(), pool, gpu.probe_sources,
-                            object_name(desc, i));
+        Result<MaterialRecord> record = material_record(
+            *scene.analytic_material(i), scene.textures(), pool, gpu.slots, object_name(desc, i));
         if (!record) return record.error();
         gpu.object_material.push_back(static_cast<int>(gpu.materials.size()));
         gpu.materials.push_back(*record);
     }
     if (Status s = upload_meshes(scene, pool, gpu); !s) return s.error();
-    for (const RenderEnvironment* probe : gpu.probe_sources) {
-        Result<std::shared_ptr<const EnvironmentMap>> map =
-            scene.textures().environment_map(probe->map);
-        if (!map) return map.error();
-        gpu.probes.push_back(upload_cube(**map));
-        gpu.probe_sizes.push_back(static_cast<float>((*map)->face(0).width(0)));
-    }
-    if (!gpu.probes.empty())
-        gpu.probe_sampler = make_sampler(GL_CLAMP_TO_EDGE, GL_CLAMP_TO_EDGE, 1);
+    for (CubeSlot& slot : gpu.slots)
+        if (Status s = upload_slot(scene, slot); !s) return s.error();
+    if (!gpu.slots.empty()) gpu.slot_sampler = make_sampler(GL_CLAMP_TO_EDGE, GL_CLAMP_TO_EDGE, 1);
     gpu.material_maps = pool.upload(anisotropy);
     gpu.material_buffer = storage_buffer(gpu.materials);
     std::vector<float> spacing(kMaxProbeCount + 1);

@@ -22,9 +22,9 @@ constexpr int kEnvUnit = kMaterialUnits;  // a lat-long, sphere or paraboloid ma
 constexpr int kCapsUnit = kEnvUnit + 1;
 constexpr int kCubeUnit = kCapsUnit + 1;
 constexpr int kVisibilityUnit = kCubeUnit + 1;  // the mesh pass's triangle ids (render.frag)
-// The environment probes' cube maps (material.environment_probe): units kProbeUnit … + 3.
-constexpr int kProbeUnit = kVisibilityUnit + 1;
-constexpr std::size_t kMaxProbes = 4;  // environment.glsl's MAX_PROBES
+// The cube slots (CubeSlot below): units kSlotUnit … + 3.
+constexpr int kSlotUnit = kVisibilityUnit + 1;
+constexpr std::size_t kMaxCubeSlots = 4;  // environment.glsl's MAX_CUBE_SLOTS
 
 // An array texture and the two samplers a frame binds with it: plain trilinear (every mode but
 // hw-aniso) and anisotropic (hw-aniso).
@@ -55,7 +55,7 @@ struct MaterialRecord {  // common.glsl's Material
     float procedural_bump[4];       // pattern + 1 (0: none), scale, octaves, strength
     float parallax[4];              // depth (0: none), steps, max_shift, unused
     int height_map[4];              // the parallax height map's unit and layer, unused
-    int probe[4];  // the environment probe's index in GpuScene::probes (−1: none)
+    int probe[4];                   // the environment probe's index in GpuScene::slots (−1: none)
 };
 struct LightRecord {                            // common.glsl's Light
     float direction[4], position[4], color[4];  // color[3]: 1 where it casts shadows
@@ -79,6 +79,14 @@ struct GpuMeshes {
     VertexArray vertex_array;
 };
 
+// A cube map on a unit of its own (kSlotUnit + its index), read through its own rotation and
+// proxy: a local map (converted to a cube map where it is another layout) or a probe.
+struct CubeSlot {
+    const RenderEnvironment* source = nullptr;
+    Texture cube;
+    float size = 0;  // texels along a face's edge
+};
+
 struct GpuScene {
     std::vector<MapTexture> material_maps;  // on units 0, 1, …
     std::vector<MaterialRecord> materials;
@@ -96,12 +104,12 @@ struct GpuScene {
     Sampler cube_sampler;
     Buffer material_buffer, gaussian_spacing_buffer;
     GpuMeshes meshes;
-    // The probed materials' cube maps (RenderMaterial::probe), in the order the materials met them:
-    // MaterialRecord::probe's index.
-    std::vector<const RenderEnvironment*> probe_sources;
-    std::vector<Texture> probes;
-    std::vector<float> probe_sizes;  // texels along a face's edge
-    Sampler probe_sampler;
+    // The cube maps besides the scene's: the local maps, innermost first (RenderScene::
+    // local_environments(), so that the first whose proxy contains a point is its map), then the
+    // probed materials' (RenderMaterial::probe) in the order the materials met them.
+    std::vector<CubeSlot> slots;
+    int local_count = 0;
+    Sampler slot_sampler;
 };
 
 // Uploads every pyramid, material and mesh; an Error names the object whose maps need more array

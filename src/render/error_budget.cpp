@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <unordered_map>
 #include <vector>
 
 #include "envmap/env_reference.h"
@@ -267,12 +268,12 @@ SphereGaussian footprint_gaussian(const EnvFootprint& f) {
 class BudgetPixel {
   public:
     BudgetPixel(const RenderScene& scene, const ErrorBudgetOptions& options,
-                const EnvironmentMap* env_map, LevelZeroImages& images)
-        : filtered_options_(render_options(options, options.filter, 1)),
+                LevelZeroImages& images)
+        : scene_(scene),
+          filtered_options_(render_options(options, options.filter, 1)),
           reference_options_(render_options(options, FilterMode::reference, options.spp)),
           filtered_(scene, filtered_options_),
           reference_(scene, reference_options_),
-          env_map_(env_map),
           images_(images) {}
 
     // Writes the reference, the filtered pixel and every hybrid of pixel (x, y).
@@ -348,6 +349,7 @@ class BudgetPixel {
     Rgb combine_with(BudgetTerm term, const SurfacePoint& centre, ShadingFactors f,
                      const SampleSums& sums) {
         const ShadingFactors mean = sums.means();
+        const EnvironmentMap* env_map = whole_map(f.environment);  // the map R was read from
         switch (term) {
             case BudgetTerm::texture:
                 f.base = mean.base;
@@ -381,12 +383,12 @@ class BudgetPixel {
                 f.fresnel = mean.fresnel;
                 break;
             case BudgetTerm::env_filter:
-                if (env_map_ && f.env_footprint) {
+                if (env_map && f.env_footprint) {
                     f.reflection =
-                        exact_environment(*env_map_, footprint_gaussian(*f.env_footprint));
+                        exact_environment(*env_map, footprint_gaussian(*f.env_footprint));
                     if (f.away_footprint) {
                         const Rgb away =
-                            exact_environment(*env_map_, footprint_gaussian(*f.away_footprint));
+                            exact_environment(*env_map, footprint_gaussian(*f.away_footprint));
                         for (int c = 0; c < 3; ++c) {
                             f.reflection[c] += f.away_weight * (away[c] - f.reflection[c]);
                         }
@@ -394,14 +396,14 @@ class BudgetPixel {
                 }
                 break;
             case BudgetTerm::env_footprint:
-                if (env_map_ && f.fresnel != Rgb{}) {
-                    f.reflection = exact_environment(*env_map_, sums.directions.gaussian());
+                if (env_map && f.fresnel != Rgb{}) {
+                    f.reflection = exact_environment(*env_map, sums.directions.gaussian());
                 }
                 break;
             case BudgetTerm::env_two_lobes:
-                if (env_map_ && f.fresnel != Rgb{}) {
+                if (env_map && f.fresnel != Rgb{}) {
                     f.reflection = sums.two_lobes(
-                        [&](const SphereGaussian& g) { return exact_environment(*env_map_, g); });
+                        [&](const SphereGaussian& g) { return exact_environment(*env_map, g); });
                 }
                 break;
             case BudgetTerm::reflection:
@@ -423,10 +425,24 @@ class BudgetPixel {
         return detail::combine(f);
     }
 
+    // An environment's whole map (the scene's, a local map or a probe), for the exact integrals;
+    // null for none or a map that cannot be read whole. Cached: the texture system takes a lock.
+    const EnvironmentMap* whole_map(const RenderEnvironment* environment) {
+        if (!environment) return nullptr;
+        auto [it, added] = maps_.try_emplace(environment);
+        if (added) {
+            Result<std::shared_ptr<const EnvironmentMap>> map =
+                scene_.textures().environment_map(environment->map);
+            if (map) it->second = *map;
+        }
+        return it->second.get();
+    }
+
+    const RenderScene& scene_;
     RenderOptions filtered_options_, reference_options_;
     detail::SampleShader filtered_, reference_;
-    const EnvironmentMap* env_map_;
     LevelZeroImages& images_;
+    std::unordered_map<const RenderEnvironment*, std::shared_ptr<const EnvironmentMap>> maps_;
 };
 
 }  // namespace
@@ -459,15 +475,9 @@ ErrorBudgetImages render_error_budget(const RenderScene& scene, const ErrorBudge
     out.filtered = Image(width, height, 3);
     out.terms.assign(kTermCount, Image(width, height, 3));
 
-    std::shared_ptr<const EnvironmentMap> env_map;
-    if (const RenderEnvironment* env = scene.environment()) {
-        Result<std::shared_ptr<const EnvironmentMap>> map =
-            scene.textures().environment_map(env->map);
-        if (map) env_map = *map;
-    }
     LevelZeroImages images(scene.textures());
     detail::for_each_tile(width, height, options.threads, [&](const detail::Tile& tile) {
-        BudgetPixel pixel(scene, options, env_map.get(), images);
+        BudgetPixel pixel(scene, options, images);
         for (int y = tile.y0; y < tile.y1; ++y) {
             for (int x = tile.x0; x < tile.x1; ++x) pixel.render(camera, x, y, out);
         }

@@ -167,6 +167,39 @@ TEST(ErrorBudget, OnAPerfectMirrorTheReflectionCarriesAllTheError) {
     }
 }
 
+// A local map around the mirror (scene/scene.h's local_environments): the exact Gaussians are
+// taken over the map the pixel reflects, not the scene's. With uniform maps every Gaussian's
+// integral is that map's colour, which the filtered pixel shows too.
+TEST(ErrorBudget, TheExactReflectionReadsTheLocalMapThePixelReflects) {
+    MaterialDesc material;
+    material.diffuse = 0;
+    material.mirror = 1;
+    material.fresnel_f0 = 1;
+    SceneDesc desc = plane_scene(material);
+    auto uniform = [](float r, float g, float b) {
+        auto image = std::make_shared<Image>(16, 8, 3);
+        for (std::size_t i = 0; i < image->pixel_count(); ++i)
+            image->pixels[3 * i] = r, image->pixels[3 * i + 1] = g, image->pixels[3 * i + 2] = b;
+        EnvironmentDesc env;
+        env.layout = EnvLayout::latlong;
+        env.images.push_back(ImageSource{{}, image, "uniform"});
+        return env;
+    };
+    desc.environment = uniform(0, 1, 0);
+    desc.local_environments = {uniform(1, 0.5f, 0)};
+    desc.local_environments[0].proxy =
+        EnvProxy{EnvProxy::Shape::box, {-50, -1, -50}, {50, 20, 50}, {}, 1, {0, 1, 0}};
+    RenderScene scene;
+    const ErrorBudgetImages budget = budget_of(desc, scene);
+    const Image mask = interior_mask(scene);
+    for (BudgetTerm term :
+         {BudgetTerm::env_filter, BudgetTerm::env_footprint, BudgetTerm::env_two_lobes}) {
+        EXPECT_LT(max_difference(term_image(budget, term), budget.filtered, &mask), 1e-3)
+            << budget_term_name(term);
+        EXPECT_NEAR(term_image(budget, term).at(12, 12, 0), 1.0f, 1e-3) << budget_term_name(term);
+    }
+}
+
 // sphere_gaussian_from_spread of the ray differentials is sphere_gaussian_from_ray_differentials,
 // and more spread vectors add their covariances.
 TEST(ErrorBudget, SpreadVectorsAddTheirCovariances) {

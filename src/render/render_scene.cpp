@@ -475,7 +475,9 @@ Status describe(TextureSystem& textures, EnvironmentHandle* handle,
 // The environment in the texture system: an environment pyramid file by its name, read tile by
 // tile (a copy in RGB × intensity, held whole, where it is not that already), any other files' or
 // images' pyramids built here and registered.
+// `key`: the scene's key of the map, which names it in the texture system.
 Result<std::unique_ptr<RenderEnvironment>> prepare_environment(const EnvironmentDesc& desc,
+                                                               const std::string& key,
                                                                SceneMaps& maps) {
     auto environment = std::make_unique<RenderEnvironment>();
     environment->rotation = rotation_xyz_degrees(static_cast<float>(desc.rotation_deg.x),
@@ -504,10 +506,29 @@ Result<std::unique_ptr<RenderEnvironment>> prepare_environment(const Environment
     }
     if (!map) return map.error();
     Result<EnvironmentHandle*> handle =
-        maps.textures.add_environment(maps.name("environment"), std::move(*map));
+        maps.textures.add_environment(maps.name(key), std::move(*map));
     if (!handle) return handle.error();
     if (Status s = describe(maps.textures, *handle, *environment); !s) return s.error();
     return environment;
+}
+
+// The scene's local maps, innermost first: by their proxies' volume, the scene's order where
+// equal (the first that contains a point is then the innermost, RenderScene::environment_at()).
+Status prepare_local_environments(const SceneDesc& desc, SceneMaps& maps,
+                                  std::vector<std::unique_ptr<RenderEnvironment>>& out) {
+    for (std::size_t i = 0; i < desc.local_environments.size(); ++i) {
+        const std::string key = "local_environments[" + std::to_string(i) + "]";
+        const EnvironmentDesc& local = desc.local_environments[i];
+        if (!local.proxy) return scene_error(desc, key + ".proxy", Error{"a local map needs one"});
+        Result<std::unique_ptr<RenderEnvironment>> environment =
+            prepare_environment(local, key, maps);
+        if (!environment) return scene_error(desc, key, environment.error());
+        out.push_back(std::move(*environment));
+    }
+    std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) {
+        return proxy_volume(*a->proxy) < proxy_volume(*b->proxy);
+    });
+    return {};
 }
 
 }  // namespace
@@ -525,10 +546,12 @@ Result<RenderScene> prepare_render_scene(const SceneDesc& desc,
     SceneMaps maps(*textures);
     if (desc.environment) {
         Result<std::unique_ptr<RenderEnvironment>> environment =
-            prepare_environment(*desc.environment, maps);
+            prepare_environment(*desc.environment, "environment", maps);
         if (!environment) return scene_error(desc, "environment", environment.error());
         scene.environment_ = std::move(*environment);
     }
+    if (Status s = prepare_local_environments(desc, maps, scene.local_environments_); !s)
+        return s.error();
     const int object_count = static_cast<int>(desc.objects.size());
     scene.object_material_.assign(object_count, -1);
     scene.mesh_part_material_.resize(object_count);
@@ -601,6 +624,12 @@ Result<RenderScene> prepare_render_scene(const SceneDesc& desc,
         scene.probes_.push_back(std::move(environment));
     }
     return scene;
+}
+
+const RenderEnvironment* RenderScene::environment_at(Vec3 p) const {
+    for (const std::unique_ptr<RenderEnvironment>& local : local_environments_)
+        if (proxy_contains(*local->proxy, p)) return local.get();
+    return environment_.get();
 }
 
 TextureHandle* RenderScene::toksvig_normals(const RenderMaterial& material) const {

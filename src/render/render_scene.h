@@ -119,6 +119,14 @@ class RenderScene {
 
     const SceneDesc& desc() const { return desc_; }
     const RenderEnvironment* environment() const { return environment_.get(); }
+    // The map that a point p sees: the innermost local map whose proxy contains p, else the
+    // scene's environment (null where there is none).
+    const RenderEnvironment* environment_at(Vec3 p) const;
+    // The local maps, innermost first (by their proxies' volume): the order environment_at()
+    // tries them in.
+    std::span<const std::unique_ptr<RenderEnvironment>> local_environments() const {
+        return local_environments_;
+    }
     // The texture system holding the scene's maps (thread-safe, as all its calls are).
     TextureSystem& textures() const { return *textures_; }
     // After rendering: the texture errors met since the last call — a stored file's tile that
@@ -157,7 +165,8 @@ class RenderScene {
     SceneDesc desc_;
     std::shared_ptr<TextureSystem> textures_;
     std::unique_ptr<RenderEnvironment> environment_;
-    std::vector<std::unique_ptr<RenderEnvironment>> probes_;  // RenderMaterial::probe's
+    std::vector<std::unique_ptr<RenderEnvironment>> local_environments_;  // innermost first
+    std::vector<std::unique_ptr<RenderEnvironment>> probes_;              // RenderMaterial::probe's
     std::vector<RenderMaterial> materials_;             // one per object, then one per mesh part
     std::vector<int> object_material_;                  // analytic objects: index into materials_
     std::vector<std::vector<int>> mesh_part_material_;  // [object][part] for mesh objects

@@ -253,6 +253,177 @@ TEST(Renderer, ALocalMapsProxyShowsTheWallTheReflectedRayMeets) {
     EXPECT_GT(error[1], 50 * error[0]);
 }
 
+// Nested local maps: a point reads the innermost map whose proxy contains it (the smallest), the
+// scene's environment outside them all. Uniform maps make each pixel that map's colour exactly —
+// the mirror's (F0 = 1) and the diffuse light's (L = E/π) — and the background seen from a camera
+// inside, between or outside the proxies. The outer room is listed first, so that taking the
+// maps in the scene's order instead of the innermost fails.
+TEST(Renderer, TheInnermostLocalMapContainingThePointWins) {
+    EnvProxy room, alcove;
+    room.min = {-4, 0, -4}, room.max = {4, 3, 4};
+    alcove.shape = EnvProxy::Shape::sphere;
+    alcove.center = {1.5f, 0.5f, 0}, alcove.radius = 1.6f;
+    alcove.capture = alcove.center;
+    SceneDesc desc;
+    desc.width = 48, desc.height = 32;
+    desc.camera = {{0, 6, 7}, {0, 0.5, 0}, {0, 1, 0}, 75};
+    desc.environment = latlong_environment(constant_image(16, 8, 0, 1, 0));           // green
+    desc.local_environments = {latlong_environment(constant_image(16, 8, 1, 0, 0)),   // red room
+                               latlong_environment(constant_image(16, 8, 0, 0, 1))};  // blue
+    desc.local_environments[0].proxy = room;
+    desc.local_environments[1].proxy = alcove;
+    const Vec3 red{1, 0, 0}, green{0, 1, 0}, blue{0, 0, 1};
+    auto expected = [&](Vec3 p) {  // from the shapes' inequalities
+        if (length(p - alcove.center) < alcove.radius) return blue;
+        if (std::abs(p.x) < 4 && p.y > 0 && p.y < 3 && std::abs(p.z) < 4) return red;
+        return green;
+    };
+    auto near_an_edge = [&](Vec3 p) {
+        return std::abs(length(p - alcove.center) - alcove.radius) < 0.15f ||
+               std::abs(std::abs(p.x) - 4) < 0.15f || std::abs(std::abs(p.z) - 4) < 0.15f;
+    };
+    PlaneShape floor;  // y = 0.5, reaching beyond the room
+    floor.center = {0, 0.5, 0};
+    floor.size = {12, 12};
+    MaterialDesc matte;
+    matte.diffuse = 1, matte.base_color = {1, 1, 1};
+    for (const MaterialDesc& material : {mirror_material(1), matte}) {
+        desc.objects = {{"floor", floor, material}};
+        Result<RenderScene> scene = prepare_render_scene(desc);
+        ASSERT_TRUE(scene.ok()) << scene.error().message;
+        const PinholeCamera camera(desc.camera, desc.width, desc.height);
+        for (FilterMode mode : {FilterMode::bilinear, FilterMode::fa, FilterMode::fa_rough}) {
+            RenderOptions options;
+            options.filter = mode;
+            const Image rendered = render(*scene, options);
+            std::map<int, int> seen;  // pixels per expected colour (by its channel)
+            for (int y = 0; y < desc.height; ++y)
+                for (int x = 0; x < desc.width; ++x) {
+                    const Ray ray = camera.ray(x + 0.5, y + 0.5).ray;
+                    const std::optional<SceneHit> hit = scene->intersect(ray, 0, INFINITY);
+                    if (!hit) continue;
+                    const Vec3 p = vec3_cast<float>(hit->surface.p);
+                    if (near_an_edge(p)) continue;
+                    const Vec3 want = expected(p);
+                    for (int c = 0; c < 3; ++c)
+                        ASSERT_NEAR(rendered.at(x, y, c), (&want.x)[c], 1e-4)
+                            << "pixel " << x << "," << y << " mode " << filter_mode_name(mode);
+                    ++seen[want.x > 0 ? 0 : want.y > 0 ? 1 : 2];
+                }
+            EXPECT_GT(seen[0], 50);
+            EXPECT_GT(seen[1], 50);
+            EXPECT_GT(seen[2], 20);
+        }
+    }
+    // The background, from a camera in the alcove, in the room, and outside both.
+    desc.objects.clear();
+    for (const auto& [position, want] :
+         {std::pair{Vec3d{1.5, 0.6, 0.2}, blue}, std::pair{Vec3d{-2, 2, 2}, red},
+          std::pair{Vec3d{0, 5, 9}, green}}) {
+        desc.camera = {position, {0, 1, 0}, {0, 1, 0}, 60};
+        Result<RenderScene> scene = prepare_render_scene(desc);
+        ASSERT_TRUE(scene.ok()) << scene.error().message;
+        RenderOptions options;
+        options.filter = FilterMode::fa;
+        const Image rendered = render(*scene, options);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(rendered.at(7, 11, c), (&want.x)[c], 1e-4);
+    }
+}
+
+// Nested local maps against the ray-traced one-bounce reference, as the test above it: a room and
+// an alcove in it, each captured from its own point, and a mirror floor reaching into both. Each
+// pixel reads the map of the proxy around its hit point along that proxy's own parallax; pixels
+// whose Gaussian's rays fall on both sides of the alcove's wall are left out.
+TEST(Renderer, NestedLocalMapsShowTheWallsOfTheProxyAroundThePoint) {
+    EnvProxy room, alcove;
+    room.min = {-4, 0, -4}, room.max = {4, 3, 4};
+    room.capture = {0, 1.5f, 0};
+    alcove.min = {0.5f, 0, -1.5f}, alcove.max = {3.5f, 2, 2.5f};
+    alcove.capture = {2, 1, 0.5f};
+    auto room_wall = [](Vec3 q) {
+        return Vec3{0.5f + 0.4f * std::sin(1.3f * q.x + 0.7f * q.z),
+                    0.5f + 0.4f * std::sin(2.2f * q.y + 0.5f * q.x),
+                    0.5f + 0.4f * std::cos(0.9f * q.z - 0.6f * q.y)};
+    };
+    auto alcove_wall = [](Vec3 q) {
+        return Vec3{0.3f + 0.2f * std::cos(1.7f * q.z - 0.4f * q.y),
+                    0.4f + 0.3f * std::sin(1.1f * q.x + 1.9f * q.y),
+                    0.6f + 0.3f * std::sin(0.8f * q.x + 1.2f * q.z)};
+    };
+    auto capture = [](const EnvProxy& proxy, auto wall) {  // the walls from proxy.capture
+        auto image = std::make_shared<Image>(1024, 512, 3);
+        for (int y = 0; y < 512; ++y)
+            for (int x = 0; x < 1024; ++x) {
+                const Vec3 w =
+                    env_direction(EnvLayout::latlong, 0, (x + 0.5f) / 1024, (y + 0.5f) / 512);
+                const Vec3 c = wall(proxy_step(proxy, proxy.capture, w)->direction + proxy.capture);
+                image->at(x, y, 0) = c.x, image->at(x, y, 1) = c.y, image->at(x, y, 2) = c.z;
+            }
+        EnvironmentDesc env = latlong_environment(image);
+        env.proxy = proxy;
+        return env;
+    };
+    SceneDesc desc;
+    desc.width = 48, desc.height = 32;
+    desc.camera = {{-2, 2.5, 3}, {1, 0.5, 0.5}, {0, 1, 0}, 50};
+    desc.local_environments = {capture(room, room_wall), capture(alcove, alcove_wall)};
+    PlaneShape floor;
+    floor.center = {1, 0.5, 1};
+    floor.size = {4, 4};
+    desc.objects.push_back({"mirror floor", floor, mirror_material(1)});
+    Result<RenderScene> scene = prepare_render_scene(desc);
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    const Image mask = interior_mask(*scene);
+    RenderOptions options;
+    options.filter = FilterMode::fa;
+    const Image rendered = render(*scene, options);
+    const PinholeCamera camera(desc.camera, desc.width, desc.height);
+    std::vector<double> quantiles;
+    for (int i = 0; i < 8; ++i) quantiles.push_back(inverse_normal_cdf((i + 0.5) / 8));
+    auto in_alcove = [&](Vec3 p) {
+        return p.x > alcove.min.x && p.x < alcove.max.x && p.z > alcove.min.z &&
+               p.z < alcove.max.z;  // (the floor lies between its floor and ceiling)
+    };
+    double error = 0, largest = 0;
+    int pixels[2] = {0, 0};
+    for (int y = 0; y < desc.height; ++y)
+        for (int x = 0; x < desc.width; ++x) {
+            if (mask.at(x, y, 0) < 0.5f) continue;
+            Vec3 want{0, 0, 0};
+            int inside = 0;
+            for (double qx : quantiles)
+                for (double qy : quantiles) {
+                    const Ray ray = camera.ray(x + 0.5 + 0.5 * qx, y + 0.5 + 0.5 * qy).ray;
+                    const std::optional<SceneHit> hit = scene->intersect(ray, 0, INFINITY);
+                    ASSERT_TRUE(hit.has_value());
+                    const Vec3 d = vec3_cast<float>(normalize(ray.direction));
+                    const Vec3 r{d.x, -d.y, d.z};  // the floor's n = +y
+                    const Vec3 p = vec3_cast<float>(hit->surface.p);
+                    const bool in = in_alcove(p);
+                    inside += in;
+                    const EnvProxy& proxy = in ? alcove : room;
+                    const Vec3 q = proxy_step(proxy, p, r)->direction + proxy.capture;
+                    want = want + (1.0f / 64) * (in ? alcove_wall(q) : room_wall(q));
+                }
+            if (inside != 0 && inside != 64) continue;  // straddling the alcove's wall
+            for (int c = 0; c < 3; ++c) {
+                const double e = std::abs(rendered.at(x, y, c) - (&want.x)[c]);
+                error += e;
+                largest = std::max(largest, e);
+            }
+            ++pixels[inside == 64];
+        }
+    ASSERT_GT(pixels[0], 150);
+    ASSERT_GT(pixels[1], 100);
+    error /= 3.0 * (pixels[0] + pixels[1]);
+    std::printf(
+        "[ nested local maps ] mean |error| %.4f, largest %.4f (%d room, %d alcove pixels)\n",
+        error, largest, pixels[0], pixels[1]);
+    constexpr double kMean = 0.002, kLargest = 0.05;  // as the single local map's bounds
+    EXPECT_LT(error, kMean);
+    EXPECT_LT(largest, kLargest);
+}
+
 SceneDesc busy_scene() {
     SceneDesc scene;
     scene.width = 40, scene.height = 30;

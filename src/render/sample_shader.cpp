@@ -165,14 +165,14 @@ SampleShader::SampleShader(const RenderScene& scene, const RenderOptions& option
 }
 
 Rgb SampleShader::background(const RayDifferential& ray) {
-    const RenderEnvironment* env = scene_.environment();
+    const Vec3 origin = to_float(ray.ray.origin), direction = to_float(ray.ray.direction);
+    const RenderEnvironment* env = scene_.environment_at(origin);
     if (!env) {
         const Vec3 b = scene_.desc().background;
         return {b.x, b.y, b.z};
     }
     ++lookups;
     Rgb out{};
-    const Vec3 origin = to_float(ray.ray.origin), direction = to_float(ray.ray.direction);
     if (policy_.filtered) {
         // A local map's direction from its capture point, the ray differentials moved with it.
         const std::optional<ProxyStep> step =
@@ -551,7 +551,7 @@ ShadingFactors SampleShader::shade(const SurfacePoint& point) {
     ShadingFactors out;
     out.base = point.base;
     add_lights(point, n_hat, v_hat, out);
-    const RenderEnvironment* env = scene_.environment();
+    const RenderEnvironment* env = scene_.environment_at(point.p);
     const float ambient = point.material->ambient_weight;
     if (env && ambient > 0) {
         const Vec3 e = irradiance(env->irradiance, n_hat, diffuse_slope_variance(point));
@@ -638,7 +638,7 @@ void SampleShader::add_lights(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat,
 
 const RenderEnvironment* SampleShader::reflected_environment(const SurfacePoint& point) const {
     const RenderEnvironment* probe = tracing_reflection_ ? nullptr : point.material->probe;
-    return probe ? probe : scene_.environment();
+    return probe ? probe : scene_.environment_at(point.p);
 }
 
 // The reference's view of a probed mirror: the reflected ray traced into the scene (the object
@@ -660,6 +660,7 @@ Rgb SampleShader::traced_reflection(const SurfacePoint& point, Vec3 r, Vec2d ran
 void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_hat,
                                   ShadingFactors& out) {
     const RenderEnvironment& env = *reflected_environment(point);  // shade() checked it
+    out.environment = &env;
     const MaterialDesc& desc = point.material->desc;
     const Rgb& f0 = point.f0;
     // One F0 steers the Fresnel-weighted slopes: the channels' mean (their means are exact).
@@ -672,7 +673,7 @@ void SampleShader::add_reflection(const SurfacePoint& point, Vec3 n_hat, Vec3 v_
         }
         const Vec3 r = 2.0f * dot(n_hat, v_hat) * n_hat - v_hat;
         out.map_reflection = env.rotation * local_direction(env, point.p, r);
-        if (&env != scene_.environment() && options_.filter == FilterMode::reference) {
+        if (&env == point.material->probe && options_.filter == FilterMode::reference) {
             out.reflection = traced_reflection(point, r, {0.5, 0.5});
         } else {
             static_cast<void>(

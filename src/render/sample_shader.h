@@ -87,6 +87,7 @@ struct ShadingFactors {
     // footprint; where some of the slopes face away from the eye, R = (1 − w)·R(env_footprint) +
     // w·R(away_footprint), w = away_weight (shading/fresnel.h).
     Vec3 map_reflection;
+    const RenderEnvironment* environment = nullptr;  // the map R was read from
     std::optional<EnvFootprint> env_footprint, away_footprint;
     float away_weight = 0;
 };
@@ -131,7 +132,8 @@ class SampleShader {
   private:
     std::optional<SurfacePoint> trace(const RayDifferential& ray, Vec2d random, int hidden_object);
     std::optional<SceneHit> nearest_hit(const Ray& ray, int hidden_object) const;
-    // The environment a point's mirror reflects: its material's probe, else the scene's (if any).
+    // The environment a point's mirror reflects: its material's probe, else the innermost local
+    // map around it, else the scene's (if any).
     const RenderEnvironment* reflected_environment(const SurfacePoint& point) const;
     Rgb traced_reflection(const SurfacePoint& point, Vec3 r, Vec2d random);
     float diffuse_slope_variance(const SurfacePoint& point) const;

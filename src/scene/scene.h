@@ -240,6 +240,10 @@ struct SceneDesc {
     // time t0 + (t1 − t0)·i/(N − 1) over the path's [t0, t1] (camera_at).
     std::vector<CameraKeyframe> camera_path;
     std::optional<EnvironmentDesc> environment;  // none: black background, no reflections
+    // Local maps, each with a proxy (envmap/env_proxy.h): a point inside one or more of their
+    // proxies reads the innermost (the smallest) instead of `environment`, in its reflections,
+    // its diffuse light and the background seen from it.
+    std::vector<EnvironmentDesc> local_environments;
     Vec3 background{0, 0, 0};  // seen where rays escape and there is no environment
     std::vector<LightDesc> lights;
     std::vector<ObjectDesc> objects;

@@ -186,9 +186,9 @@ class SceneParser {
     SceneDesc parse(const json& root) {
         if (!root.is_object())
             fail("", "expected a JSON object at the top level, got " + describe(root));
-        check_keys(
-            root, "",
-            {"image", "camera", "camera_path", "environment", "background", "lights", "objects"});
+        check_keys(root, "",
+                   {"image", "camera", "camera_path", "environment", "local_environments",
+                    "background", "lights", "objects"});
         SceneDesc scene;
         scene.source = file_;
         if (const json* image = find(root, "image")) parse_image(*image, "image", scene);
@@ -197,6 +197,16 @@ class SceneParser {
             scene.camera_path = parse_camera_path(*path, "camera_path", scene.camera);
         if (const json* env = find(root, "environment"))
             scene.environment = parse_environment(*env, "environment");
+        if (const json* locals = find(root, "local_environments")) {
+            expect_array(*locals, "local_environments");
+            for (std::size_t i = 0; i < locals->size(); ++i) {
+                const std::string path = element("local_environments", i);
+                const json& local = (*locals)[i];
+                expect_object(local, path);
+                require(local, path, "proxy");
+                scene.local_environments.push_back(parse_environment(local, path));
+            }
+        }
         if (const json* background = find(root, "background"))
             scene.background = color(*background, "background");
         if (const json* lights = find(root, "lights")) {

@@ -1,4 +1,5 @@
 #include "scene/scene_file.h"
+#include "scene/scene_hash.h"
 
 #include <gtest/gtest.h>
 
@@ -363,6 +364,31 @@ TEST(SceneFile, EnvironmentProxiesParseToTheExactValues) {
     EXPECT_VEC3_EQ(s.capture, 0, 1, 0);
 }
 
+TEST(SceneFile, LocalEnvironmentsParseInTheirOrderWithTheirProxies) {
+    const Result<SceneDesc> s = parse_scene(R"({"camera": {}, "environment": {"file": "sky.hdr"},
+        "local_environments": [
+          {"file": "room.hdr", "proxy": {"box": {"min": [-4, 0, -5], "max": [4, 3, 3]}}},
+          {"file": "alcove.hdr", "layout": "latlong", "intensity": 2,
+           "proxy": {"sphere": {"center": [1, 1, 1], "radius": 0.5}}}],
+        "objects": []})",
+                                            "locals.json", {.check_files = false});
+    ASSERT_TRUE(s.ok()) << s.error().message;
+    ASSERT_EQ(s->local_environments.size(), 2u);
+    const EnvironmentDesc& room = s->local_environments[0];
+    EXPECT_EQ(room.images[0].file.filename(), "room.hdr");
+    EXPECT_EQ(room.proxy->shape, EnvProxy::Shape::box);
+    EXPECT_VEC3_EQ(room.proxy->max, 4, 3, 3);
+    const EnvironmentDesc& alcove = s->local_environments[1];
+    EXPECT_EQ(alcove.images[0].file.filename(), "alcove.hdr");
+    EXPECT_EQ(alcove.intensity, 2.0f);
+    EXPECT_EQ(alcove.proxy->shape, EnvProxy::Shape::sphere);
+    EXPECT_EQ(alcove.proxy->radius, 0.5f);
+    // The scene's hash sees them (eval's caches are keyed by it).
+    SceneDesc without = *s;
+    without.local_environments.pop_back();
+    EXPECT_NE(scene_content_hash(*s), scene_content_hash(without));
+}
+
 TEST(SceneFile, EnvironmentProbesParseToTheExactValues) {
     const Result<SceneDesc> s = parse_scene(R"({"camera": {}, "objects": [
         {"shape": "sphere", "material": {"mirror": 1,
@@ -700,6 +726,18 @@ const ErrorCase kErrorCases[] = {
      "environment.file[4]", "file 'missing.hdr' not found"},
     {"EnvironmentFaceNotAString", R"({"environment": {"file": ["front.hdr", 2]}})",
      "environment.file[1]", "expected a string, got a number"},
+    {"LocalEnvironmentsNotAnArray", R"({"local_environments": {"file": "room.hdr"}})",
+     "local_environments", "expected an array, got an object"},
+    {"LocalEnvironmentNotAnObject", R"({"local_environments": ["room.hdr"]})",
+     "local_environments[0]", "expected an object, got a string"},
+    {"LocalEnvironmentWithoutProxy", R"({"local_environments": [{"file": "sky.hdr"}]})",
+     "local_environments[0].proxy", "required key is missing"},
+    {"LocalEnvironmentBadProxy", R"({"local_environments": [{"file": "sky.hdr",
+        "proxy": {"sphere": {"center": [0, 0, 0], "radius": -1}}}]})",
+     "local_environments[0].proxy.sphere.radius", "must be > 0"},
+    {"LocalEnvironmentUnknownKey", R"({"local_environments": [{"file": "sky.hdr",
+        "proxy": {"sphere": {"center": [0, 0, 0], "radius": 1}}, "rotation": [0, 0, 0]}]})",
+     "local_environments[0].rotation", "did you mean 'rotation_deg'?"},
     {"ProbeLayoutLatlong",
      R"({"objects": [{"shape": "sphere", "material": {"environment_probe": {"layout": "latlong"}}}]})",
      "objects[0].material.environment_probe.layout", "a probe is a cube map, got 'latlong'"},

@@ -138,6 +138,16 @@ void add_shape(Fnv1a& h, const ShapeDesc& shape) {
         shape);
 }
 
+void add_environment(Fnv1a& h, const EnvironmentDesc& e) {
+    h.add(e.images.size());
+    for (const ImageSource& image : e.images) h.image(image);
+    h.add(static_cast<int>(e.layout)), h.add(e.rotation_deg), h.add(e.intensity);
+    if (const std::optional<EnvProxy>& p = e.proxy) {  // (nothing otherwise: hashes stand)
+        h.add(std::string("proxy")), h.add(static_cast<int>(p->shape));
+        h.add(p->min), h.add(p->max), h.add(p->center), h.add(p->radius), h.add(p->capture);
+    }
+}
+
 }  // namespace
 
 std::uint64_t scene_content_hash(const SceneDesc& scene) {
@@ -148,15 +158,10 @@ std::uint64_t scene_content_hash(const SceneDesc& scene) {
     h.add(scene.camera_path.size());
     for (const CameraKeyframe& k : scene.camera_path) h.add(k.time), add_camera(h, k.camera);
     h.add(scene.environment.has_value());
-    if (scene.environment) {
-        const EnvironmentDesc& e = *scene.environment;
-        h.add(e.images.size());
-        for (const ImageSource& image : e.images) h.image(image);
-        h.add(static_cast<int>(e.layout)), h.add(e.rotation_deg), h.add(e.intensity);
-        if (const std::optional<EnvProxy>& p = e.proxy) {  // (nothing otherwise: hashes stand)
-            h.add(std::string("proxy")), h.add(static_cast<int>(p->shape));
-            h.add(p->min), h.add(p->max), h.add(p->center), h.add(p->radius), h.add(p->capture);
-        }
+    if (scene.environment) add_environment(h, *scene.environment);
+    if (!scene.local_environments.empty()) {  // (nothing otherwise: hashes stand)
+        h.add(std::string("local_environments")), h.add(scene.local_environments.size());
+        for (const EnvironmentDesc& e : scene.local_environments) add_environment(h, e);
     }
     h.add(scene.background);
     h.add(scene.lights.size());

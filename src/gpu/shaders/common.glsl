@@ -55,7 +55,7 @@ struct Material {
                                    // strength
     vec4 parallax;                 // depth (0: none), steps, max_shift, unused
     ivec4 height_map;              // the parallax height map's u_maps index and layer, unused
-    ivec4 probe;                   // the environment probe's index (−1: none), unused
+    ivec4 probe;                   // the environment probe's cube slot (−1: none), unused
 };
 
 struct Light {

@@ -19,26 +19,37 @@ uniform mat3 u_env_rotation;   // A: world → map
 uniform vec2 u_env_texel_scale;  // S = (W0, H0) of level 0 (a cube face's size for both)
 uniform int u_env_caps;        // 1: the lat-long map has polar caps
 uniform int u_env_proxy;       // a local map's proxy: 0 none (at infinity), 1 a box, 2 a sphere
+uniform vec3 u_env_proxy_min, u_env_proxy_max;  // the box; a sphere: its centre, (radius, 0, 0)
+uniform vec3 u_env_proxy_capture;               // c (world space)
 uniform vec3 u_env_sh[9];      // the radiance's nine SH coefficients, world space (irradiance)
 const int kMaxEnvLevels = 16;
 uniform float u_env_prefilter[kMaxEnvLevels];  // each level's prefilter variance (level-0 texels²)
 uniform ivec2 u_env_wrap;  // the map's wrap in s and t: 1 repeat, 0 clamp
 uniform samplerCube u_env_cube;  // the lat-long map and its caps are u_maps[MAP_ENV], [MAP_CAPS]
 
-// Dynamic environment maps (material.environment_probe, render/environment_probe.h): cube maps of
-// the scene rendered on the CPU, one per probed object, each on its own unit.
-const int MAX_PROBES = 4;  // gpu_scene.h's kMaxProbes
-uniform samplerCube u_probe_cubes[MAX_PROBES];
-uniform float u_probe_size[MAX_PROBES];  // texels along a face's edge
+// Cube maps besides the scene's, each on a unit of its own with its own rotation, size, proxy and
+// irradiance (gpu_scene.h's CubeSlot): the local maps (local_environments, converted to cube maps
+// where they are not), innermost first, then the dynamic environment maps
+// (material.environment_probe, render/environment_probe.h) that the CPU rendered.
+const int MAX_CUBE_SLOTS = 4;  // gpu_scene.h's kMaxCubeSlots
+uniform samplerCube u_slot_cubes[MAX_CUBE_SLOTS];
+uniform float u_slot_size[MAX_CUBE_SLOTS];  // texels along a face's edge
+uniform mat3 u_slot_rotation[MAX_CUBE_SLOTS];
+uniform int u_slot_proxy[MAX_CUBE_SLOTS];  // as u_env_proxy
+uniform vec3 u_slot_proxy_min[MAX_CUBE_SLOTS], u_slot_proxy_max[MAX_CUBE_SLOTS];
+uniform vec3 u_slot_proxy_capture[MAX_CUBE_SLOTS];
+uniform vec3 u_slot_sh[9 * MAX_CUBE_SLOTS];
+uniform int u_local_count;  // slots 0 … u_local_count − 1 hold the local maps
 
-// The environment the lookups below read: the scene's, or a probe's (a cube map at infinity in
-// world axes, without caps or proxy). The shading switches between them per lookup.
+// The environment the lookups below read: the scene's or a slot's. The shading switches between
+// them per point and per lookup.
 int env_layout;
 mat3 env_rotation;
 vec2 env_texel_scale;
 int env_caps;
 int env_proxy;
-int env_probe;  // −1: the scene's cube map
+vec3 env_proxy_min, env_proxy_max, env_proxy_capture;
+int env_slot;  // −1: the scene's
 
 void use_scene_environment() {
     env_layout = u_env_layout;
@@ -46,21 +57,52 @@ void use_scene_environment() {
     env_texel_scale = u_env_texel_scale;
     env_caps = u_env_caps;
     env_proxy = u_env_proxy;
-    env_probe = -1;
+    env_proxy_min = u_env_proxy_min;
+    env_proxy_max = u_env_proxy_max;
+    env_proxy_capture = u_env_proxy_capture;
+    env_slot = -1;
 }
 
-void use_probe(int k) {
+void use_slot(int k) {
     env_layout = ENV_CUBE;
-    env_rotation = mat3(1);
-    env_texel_scale = vec2(u_probe_size[k]);
+    env_rotation = u_slot_rotation[k];
+    env_texel_scale = vec2(u_slot_size[k]);
     env_caps = 0;
-    env_proxy = 0;
-    env_probe = k;
+    env_proxy = u_slot_proxy[k];
+    env_proxy_min = u_slot_proxy_min[k];
+    env_proxy_max = u_slot_proxy_max[k];
+    env_proxy_capture = u_slot_proxy_capture[k];
+    env_slot = k;
 }
 
-// The probe's cube: an array of samplers takes constant indices only, where pixels may differ.
-#define PROBE_CASES(CALL) \
-    switch (env_probe) {  \
+// Whether p lies in slot k's proxy, its surface included (envmap/env_proxy.h's proxy_contains).
+bool slot_contains(int k, vec3 p) {
+    const float surface = 1e-4;
+    vec3 lo = u_slot_proxy_min[k], hi = u_slot_proxy_max[k];
+    if (u_slot_proxy[k] == 2) {
+        float radius = hi.x * (1.0 + surface);
+        return dot(p - lo, p - lo) <= radius * radius;
+    }
+    vec3 extent = hi - lo;
+    float tolerance = surface * max(extent.x, max(extent.y, extent.z));
+    return all(greaterThanEqual(p, lo - tolerance)) && all(lessThanEqual(p, hi + tolerance));
+}
+
+// The map that p sees: the innermost local map whose proxy contains it (the first: they are
+// ordered), else the scene's (RenderScene::environment_at).
+void use_environment_at(vec3 p) {
+    for (int k = 0; k < u_local_count; ++k) {
+        if (slot_contains(k, p)) {
+            use_slot(k);
+            return;
+        }
+    }
+    use_scene_environment();
+}
+
+// The slot's cube: an array of samplers takes constant indices only, where pixels may differ.
+#define SLOT_CASES(CALL) \
+    switch (env_slot) {  \
         case 0: CALL(0);  \
         case 1: CALL(1);  \
         case 2: CALL(2);  \
@@ -68,24 +110,24 @@ void use_probe(int k) {
     }
 
 vec4 env_cube_lod(vec3 direction, float lod) {
-    if (env_probe < 0) return textureLod(u_env_cube, direction, lod);
-#define PROBE_LOD(i) return textureLod(u_probe_cubes[i], direction, lod)
-    PROBE_CASES(PROBE_LOD)
-#undef PROBE_LOD
+    if (env_slot < 0) return textureLod(u_env_cube, direction, lod);
+#define SLOT_LOD(i) return textureLod(u_slot_cubes[i], direction, lod)
+    SLOT_CASES(SLOT_LOD)
+#undef SLOT_LOD
 }
 
 vec4 env_cube_grad(vec3 direction, vec3 d_dx, vec3 d_dy) {
-    if (env_probe < 0) return textureGrad(u_env_cube, direction, d_dx, d_dy);
-#define PROBE_GRAD(i) return textureGrad(u_probe_cubes[i], direction, d_dx, d_dy)
-    PROBE_CASES(PROBE_GRAD)
-#undef PROBE_GRAD
+    if (env_slot < 0) return textureGrad(u_env_cube, direction, d_dx, d_dy);
+#define SLOT_GRAD(i) return textureGrad(u_slot_cubes[i], direction, d_dx, d_dy)
+    SLOT_CASES(SLOT_GRAD)
+#undef SLOT_GRAD
 }
 
 int env_cube_levels() {
-    if (env_probe < 0) return textureQueryLevels(u_env_cube);
-#define PROBE_LEVELS(i) return textureQueryLevels(u_probe_cubes[i])
-    PROBE_CASES(PROBE_LEVELS)
-#undef PROBE_LEVELS
+    if (env_slot < 0) return textureQueryLevels(u_env_cube);
+#define SLOT_LEVELS(i) return textureQueryLevels(u_slot_cubes[i])
+    SLOT_CASES(SLOT_LEVELS)
+#undef SLOT_LEVELS
 }
 
 // Where a direction lands on the map and the Jacobian J_P = ∂(s,t)/∂r there (rows ds, dt).
@@ -225,8 +267,6 @@ vec2 map_motion(EnvPoint p, vec3 x) {
 
 // ---- A local map's proxy (envmap/env_proxy.h): the direction from the capture point to where
 // a ray leaves the box or sphere, and the footprint's spreads moved with it.
-uniform vec3 u_env_proxy_min, u_env_proxy_max;  // the box; a sphere: its centre, (radius, 0, 0)
-uniform vec3 u_env_proxy_capture;               // c (world space)
 
 struct ProxyStep {
     vec3 direction;  // d = q − c
@@ -245,11 +285,11 @@ bool proxy_step(vec3 p, vec3 r, out ProxyStep s) {
         int axis = -1;
         for (int k = 0; k < 3; ++k) {
             if (r_hat[k] == 0.0) {
-                if (p[k] < u_env_proxy_min[k] || p[k] > u_env_proxy_max[k]) return false;
+                if (p[k] < env_proxy_min[k] || p[k] > env_proxy_max[k]) return false;
                 continue;
             }
-            float t0 = (u_env_proxy_min[k] - p[k]) / r_hat[k];
-            float t1 = (u_env_proxy_max[k] - p[k]) / r_hat[k];
+            float t0 = (env_proxy_min[k] - p[k]) / r_hat[k];
+            float t1 = (env_proxy_max[k] - p[k]) / r_hat[k];
             t_near = max(t_near, min(t0, t1));
             if (max(t0, t1) < t_far) {
                 t_far = max(t0, t1);
@@ -260,8 +300,8 @@ bool proxy_step(vec3 p, vec3 r, out ProxyStep s) {
         t = t_far;
         m[axis] = 1.0;
     } else {
-        vec3 o = p - u_env_proxy_min;
-        float radius = u_env_proxy_max.x;
+        vec3 o = p - env_proxy_min;
+        float radius = env_proxy_max.x;
         float b = dot(o, r_hat), disc = b * b - (dot(o, o) - radius * radius);
         if (!(disc >= 0.0)) return false;
         t = -b + sqrt(disc);
@@ -269,7 +309,7 @@ bool proxy_step(vec3 p, vec3 r, out ProxyStep s) {
         m = (o + t * r_hat) / radius;
     }
     if (!(abs(dot(m, r_hat)) > 1e-4)) return false;
-    s = ProxyStep(p + t * r_hat - u_env_proxy_capture, r_hat, m, t / length_r);
+    s = ProxyStep(p + t * r_hat - env_proxy_capture, r_hat, m, t / length_r);
     return dot(s.direction, s.direction) > 0.0;
 }
 
@@ -789,11 +829,12 @@ vec3 env_irradiance(vec3 n, float slope_variance) {
         g2 = (3.0 * x_ex_e1(x) - 1.0) / 2.0;
     }
     float a0 = PI, a1 = 2.0 * PI / 3.0 * g1, a2 = PI / 4.0 * g2;
-    vec3 e = a0 * 0.282095 * u_env_sh[0] +
-             a1 * 0.488603 * (n.y * u_env_sh[1] + n.z * u_env_sh[2] + n.x * u_env_sh[3]) +
-             a2 * (1.092548 * (n.x * n.y * u_env_sh[4] + n.y * n.z * u_env_sh[5] +
-                               n.x * n.z * u_env_sh[7]) +
-                   0.315392 * (3.0 * n.z * n.z - 1.0) * u_env_sh[6] +
-                   0.546274 * (n.x * n.x - n.y * n.y) * u_env_sh[8]);
+    vec3 sh[9];
+    for (int i = 0; i < 9; ++i) sh[i] = env_slot < 0 ? u_env_sh[i] : u_slot_sh[9 * env_slot + i];
+    vec3 e = a0 * 0.282095 * sh[0] +
+             a1 * 0.488603 * (n.y * sh[1] + n.z * sh[2] + n.x * sh[3]) +
+             a2 * (1.092548 * (n.x * n.y * sh[4] + n.y * n.z * sh[5] + n.x * n.z * sh[7]) +
+                   0.315392 * (3.0 * n.z * n.z - 1.0) * sh[6] +
+                   0.546274 * (n.x * n.x - n.y * n.y) * sh[8]);
     return max(e, vec3(0));
 }

@@ -329,14 +329,16 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
         color += scale * light.color.rgb * (material.weights.x * cos_l * base + spec);
     }
 
-    if (u_env_layout != ENV_NONE && material.f0.w > 0.0) {
+    vec3 p_world = hit.p + u_camera_position;
+    use_environment_at(p_world);  // the innermost local map around the point, else the scene's
+    if (env_layout != ENV_NONE && material.f0.w > 0.0) {
         // K_b's mean variance widens the diffuse light, less a metallic-roughness material's own.
         float variance = 0.5 * (k_b.x + k_b.z) - (material.highlight.z > 0.0 ? micro_variance : 0.0);
         color += material.f0.w * base * env_irradiance(n_hat, rough_mode ? max(0.0, variance) : 0.0) / PI;
     }
-    int probe = material.probe.x;  // a dynamic environment map's cube, read instead of the scene's
-    if ((u_env_layout != ENV_NONE || probe >= 0) && material.weights.w > 0.0) {
-        if (probe >= 0) use_probe(probe);
+    int probe = material.probe.x;  // a dynamic environment map's slot, which the mirror reads
+    if (probe >= 0) use_slot(probe);
+    if (env_layout != ENV_NONE && material.weights.w > 0.0) {
         vec3 texel;
         vec3 fresnel = schlick_fresnel3(f0, dot(n_hat, v_hat));
         float f0_mean = channel_mean(f0);  // steers the Fresnel-weighted slopes
@@ -358,7 +360,6 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
                 k_env = w.k;
             }
             Frame t = bumped ? frame : Frame(vec3(1, 0, 0), vec3(0, 1, 0), 1.0);
-            vec3 p_world = hit.p + u_camera_position;
             EnvFootprint f = reflection_footprint(p_world, v, -diff.dpdx, -diff.dpdy, n, dndx, dndy,
                                                   bumped ? b_env : vec2(0), t,
                                                   bumped ? roughness_factor(k_env) : vec3(0), k_env);
@@ -375,20 +376,21 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
                 fresnel += facing_away * schlick_fresnel3(f0, cos_surface);
             }
         } else {
-            texel = env_point_sample(local_direction(hit.p + u_camera_position,
+            texel = env_point_sample(local_direction(p_world,
                                                      2.0 * dot(n_hat, v_hat) * n_hat - v_hat));
         }
         color += material.weights.w * fresnel * texel;
-        use_scene_environment();
     }
+    use_scene_environment();
     return color;
 }
 
 // A ray that escapes: the environment filtered over the camera ray's own differentials (form (a)),
 // or the background colour.
 vec3 background(Ray ray, vec3 dddx, vec3 dddy) {
-    if (u_env_layout == ENV_NONE) return u_background;
     vec3 origin = ray.origin + u_camera_position;
+    use_environment_at(origin);
+    if (env_layout == ENV_NONE) return u_background;
     if (u_mode == MODE_POINT) return env_point_sample(local_direction(origin, ray.direction));
     return env_lookup(ray_footprint(origin, ray.direction, dddx, dddy), u_mode, 0.0);
 }
