@@ -42,6 +42,15 @@ SceneDesc plane_scene(const MaterialDesc& material) {
     return scene;
 }
 
+// A mirror of F0 = 1: the environment times one.
+MaterialDesc perfect_mirror() {
+    MaterialDesc material;
+    material.diffuse = 0;
+    material.mirror = 1;
+    material.fresnel_f0 = 1;
+    return material;
+}
+
 ErrorBudgetImages budget_of(const SceneDesc& desc, RenderScene& scene) {
     Result<RenderScene> prepared = prepare_render_scene(desc);
     EXPECT_TRUE(prepared.ok()) << prepared.error().message;
@@ -134,11 +143,7 @@ TEST(ErrorBudget, OnALitTexturedPlaneTheTextureCarriesAllTheError) {
 // the samples, so its hybrid is the reference; the exact Gaussian of the mode's own footprint is
 // environment_reference() of that footprint.
 TEST(ErrorBudget, OnAPerfectMirrorTheReflectionCarriesAllTheError) {
-    MaterialDesc material;
-    material.diffuse = 0;
-    material.mirror = 1;
-    material.fresnel_f0 = 1;
-    SceneDesc desc = plane_scene(material);
+    SceneDesc desc = plane_scene(perfect_mirror());
     EnvironmentDesc env;
     env.layout = EnvLayout::latlong;
     env.images.push_back(ImageSource{{}, stripes(128, 64), "striped sky"});
@@ -171,11 +176,7 @@ TEST(ErrorBudget, OnAPerfectMirrorTheReflectionCarriesAllTheError) {
 // taken over the map the pixel reflects, not the scene's. With uniform maps every Gaussian's
 // integral is that map's colour, which the filtered pixel shows too.
 TEST(ErrorBudget, TheExactReflectionReadsTheLocalMapThePixelReflects) {
-    MaterialDesc material;
-    material.diffuse = 0;
-    material.mirror = 1;
-    material.fresnel_f0 = 1;
-    SceneDesc desc = plane_scene(material);
+    SceneDesc desc = plane_scene(perfect_mirror());
     auto uniform = [](float r, float g, float b) {
         auto image = std::make_shared<Image>(16, 8, 3);
         for (std::size_t i = 0; i < image->pixel_count(); ++i)

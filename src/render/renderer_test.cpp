@@ -167,6 +167,30 @@ TEST(Renderer, AMatteSphereIsLitByTheEnvironmentsIrradianceAtItsNormal) {
     }
 }
 
+// Smooth colours over a room's walls, floor and ceiling, for the local-map tests.
+Vec3 smooth_wall(Vec3 q) {
+    return Vec3{0.5f + 0.4f * std::sin(1.3f * q.x + 0.7f * q.z),
+                0.5f + 0.4f * std::sin(2.2f * q.y + 0.5f * q.x),
+                0.5f + 0.4f * std::cos(0.9f * q.z - 0.6f * q.y)};
+}
+
+// The walls `wall` paints on `proxy` seen from its capture point: a 1024 × 512 lat-long local map
+// with that proxy.
+template <class Wall>
+EnvironmentDesc captured_walls(const EnvProxy& proxy, Wall wall) {
+    auto image = std::make_shared<Image>(1024, 512, 3);
+    for (int y = 0; y < 512; ++y)
+        for (int x = 0; x < 1024; ++x) {
+            const Vec3 w =
+                env_direction(EnvLayout::latlong, 0, (x + 0.5f) / 1024, (y + 0.5f) / 512);
+            const Vec3 c = wall(proxy_step(proxy, proxy.capture, w)->direction + proxy.capture);
+            image->at(x, y, 0) = c.x, image->at(x, y, 1) = c.y, image->at(x, y, 2) = c.z;
+        }
+    EnvironmentDesc env = latlong_environment(image);
+    env.proxy = proxy;
+    return env;
+}
+
 // A local map (envmap/env_proxy.h): a box room's walls captured from a point c into a lat-long
 // map, and a mirror floor away from c. With the room as the proxy every mirror pixel shows the
 // walls its reflected rays meet: a ray-traced one-bounce reference, computed here over the pixel
@@ -176,23 +200,10 @@ TEST(Renderer, ALocalMapsProxyShowsTheWallTheReflectedRayMeets) {
     EnvProxy room;
     room.min = {-4, 0, -4}, room.max = {4, 3, 4};
     room.capture = {0, 1.5f, 0};
-    auto wall = [](Vec3 q) {  // smooth colours over the walls, floor and ceiling
-        return Vec3{0.5f + 0.4f * std::sin(1.3f * q.x + 0.7f * q.z),
-                    0.5f + 0.4f * std::sin(2.2f * q.y + 0.5f * q.x),
-                    0.5f + 0.4f * std::cos(0.9f * q.z - 0.6f * q.y)};
-    };
-    auto image = std::make_shared<Image>(1024, 512, 3);
-    for (int y = 0; y < 512; ++y)
-        for (int x = 0; x < 1024; ++x) {
-            const Vec3 w =
-                env_direction(EnvLayout::latlong, 0, (x + 0.5f) / 1024, (y + 0.5f) / 512);
-            const Vec3 c = wall(proxy_step(room, room.capture, w)->direction + room.capture);
-            image->at(x, y, 0) = c.x, image->at(x, y, 1) = c.y, image->at(x, y, 2) = c.z;
-        }
     SceneDesc desc;
     desc.width = 48, desc.height = 32;
     desc.camera = {{-2, 2.5, 3}, {1, 0.5, 0.5}, {0, 1, 0}, 50};
-    desc.environment = latlong_environment(image);
+    desc.environment = captured_walls(room, smooth_wall);
     PlaneShape floor;
     floor.center = {1, 0.5, 1};
     floor.size = {4, 4};
@@ -225,8 +236,8 @@ TEST(Renderer, ALocalMapsProxyShowsTheWallTheReflectedRayMeets) {
                         const Vec3 r{float(d.x), -float(d.y), float(d.z)};  // the floor's n = +y
                         const Vec3 p{float(hit->surface.p.x), float(hit->surface.p.y),
                                      float(hit->surface.p.z)};
-                        want = want +
-                               (1.0f / 64) * wall(proxy_step(room, p, r)->direction + room.capture);
+                        want = want + (1.0f / 64) * smooth_wall(proxy_step(room, p, r)->direction +
+                                                                room.capture);
                     }
                 for (int c = 0; c < 3; ++c) {
                     const double e = std::abs(rendered.at(x, y, c) - (&want.x)[c]);
@@ -340,33 +351,16 @@ TEST(Renderer, NestedLocalMapsShowTheWallsOfTheProxyAroundThePoint) {
     room.capture = {0, 1.5f, 0};
     alcove.min = {0.5f, 0, -1.5f}, alcove.max = {3.5f, 2, 2.5f};
     alcove.capture = {2, 1, 0.5f};
-    auto room_wall = [](Vec3 q) {
-        return Vec3{0.5f + 0.4f * std::sin(1.3f * q.x + 0.7f * q.z),
-                    0.5f + 0.4f * std::sin(2.2f * q.y + 0.5f * q.x),
-                    0.5f + 0.4f * std::cos(0.9f * q.z - 0.6f * q.y)};
-    };
     auto alcove_wall = [](Vec3 q) {
         return Vec3{0.3f + 0.2f * std::cos(1.7f * q.z - 0.4f * q.y),
                     0.4f + 0.3f * std::sin(1.1f * q.x + 1.9f * q.y),
                     0.6f + 0.3f * std::sin(0.8f * q.x + 1.2f * q.z)};
     };
-    auto capture = [](const EnvProxy& proxy, auto wall) {  // the walls from proxy.capture
-        auto image = std::make_shared<Image>(1024, 512, 3);
-        for (int y = 0; y < 512; ++y)
-            for (int x = 0; x < 1024; ++x) {
-                const Vec3 w =
-                    env_direction(EnvLayout::latlong, 0, (x + 0.5f) / 1024, (y + 0.5f) / 512);
-                const Vec3 c = wall(proxy_step(proxy, proxy.capture, w)->direction + proxy.capture);
-                image->at(x, y, 0) = c.x, image->at(x, y, 1) = c.y, image->at(x, y, 2) = c.z;
-            }
-        EnvironmentDesc env = latlong_environment(image);
-        env.proxy = proxy;
-        return env;
-    };
     SceneDesc desc;
     desc.width = 48, desc.height = 32;
     desc.camera = {{-2, 2.5, 3}, {1, 0.5, 0.5}, {0, 1, 0}, 50};
-    desc.local_environments = {capture(room, room_wall), capture(alcove, alcove_wall)};
+    desc.local_environments = {captured_walls(room, smooth_wall),
+                               captured_walls(alcove, alcove_wall)};
     PlaneShape floor;
     floor.center = {1, 0.5, 1};
     floor.size = {4, 4};
@@ -403,7 +397,7 @@ TEST(Renderer, NestedLocalMapsShowTheWallsOfTheProxyAroundThePoint) {
                     inside += in;
                     const EnvProxy& proxy = in ? alcove : room;
                     const Vec3 q = proxy_step(proxy, p, r)->direction + proxy.capture;
-                    want = want + (1.0f / 64) * (in ? alcove_wall(q) : room_wall(q));
+                    want = want + (1.0f / 64) * (in ? alcove_wall(q) : smooth_wall(q));
                 }
             if (inside != 0 && inside != 64) continue;  // straddling the alcove's wall
             for (int c = 0; c < 3; ++c) {
