@@ -80,14 +80,14 @@ Status RunOutputs::create_directories(const fs::path& dir) {
     return {};
 }
 
-Status RunOutputs::save(const std::vector<ImageToSave>& images) {
-    if (Status saved = save_images(images); !saved) return saved;
+Status RunOutputs::save(const std::vector<ImageToSave>& images, const ImageSaveOptions& options) {
+    if (Status saved = save_images(images, options); !saved) return saved;
     for (const ImageToSave& item : images) files_.push_back(item.file);
     return {};
 }
 
-Status RunOutputs::save(const Image& image, const fs::path& file) {
-    return save({{&image, file}});
+Status RunOutputs::save(const Image& image, const fs::path& file, const ImageSaveOptions& options) {
+    return save({{&image, file}}, options);
 }
 
 Status RunOutputs::write(const fs::path& file, std::string_view bytes) {

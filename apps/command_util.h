@@ -51,8 +51,9 @@ class RunOutputs {
     // Creates `dir` and its missing parents: "cannot create 'out/a': Not a directory".
     Status create_directories(const std::filesystem::path& dir);
     // save_images (image_io.h): all the images or none; the message names the file at fault.
-    Status save(const std::vector<ImageToSave>& images);
-    Status save(const Image& image, const std::filesystem::path& file);
+    Status save(const std::vector<ImageToSave>& images, const ImageSaveOptions& options = {});
+    Status save(const Image& image, const std::filesystem::path& file,
+                const ImageSaveOptions& options = {});
     Status write(const std::filesystem::path& file, std::string_view bytes);
     // The run completed: what it wrote stays.
     void keep() { kept_ = true; }

@@ -1,5 +1,6 @@
 // footprint — the command-line program: argument parsing only; the commands live in demo.cpp,
-// env_command.cpp, eval_command.cpp, maketx_command.cpp, metrics_command.cpp, render_command.cpp,
+// env_command.cpp, eval_command.cpp, maketx_command.cpp, merge_command.cpp, metrics_command.cpp,
+// render_command.cpp,
 // texture_demo.cpp and view_command.cpp.
 //   footprint --version
 //   footprint demo [--out DIR] [--scene NAME...] [--size N] [--spp N] [--threads N] [--quiet]
@@ -15,8 +16,9 @@
 //   footprint env convert IN [IN...] --to LAYOUT -o OUT [-o OUT...] [--size N] [--from LAYOUT]
 //                         [--from-cube-layout A] [--cube-layout A] [--repair-non-finite] [--quiet]
 //   footprint render SCENE -o OUT [--filter MODE] [--spp N] [--seed N] [--size WIDTH]
-//                    [--frames N] [--threads N] [--exposure E] [--device cpu|gpu] [--json]
-//                    [--quiet]
+//                    [--frames N|A-B/N] [--tile I/N] [--threads N] [--exposure E]
+//                    [--device cpu|gpu] [--json] [--quiet]
+//   footprint merge TILE.exr... -o OUT [--exposure E] [--quiet]
 //   footprint view SCENE [--filter MODE] [--size WxH] [--exposure E] [--frames N]
 //                  [--screenshot FILE]
 //   footprint maketx IN -o OUT.exr [--wrap MODE[,MODE]] [--downsample box|tent] [--tile-size N]
@@ -31,10 +33,12 @@
 #include <vector>
 
 #include "cli_options.h"
+#include "command_util.h"
 #include "demo.h"
 #include "env_command.h"
 #include "eval_command.h"
 #include "maketx_command.h"
+#include "merge_command.h"
 #include "metrics_command.h"
 #include "render_command.h"
 #include "texture_demo.h"
@@ -321,8 +325,13 @@ int run(int argc, char** argv) {
     render_cmd
         ->add_option("--exposure", render.exposure, "Exposure in stops (PNG/JPEG/TIFF output)")
         ->capture_default_str();
-    render_cmd->add_option("--frames", render.frames,
-                           "Render N ≥ 1 frames along the scene's camera_path (OUT_0000.png, …)");
+    std::string render_frames, render_tile;
+    render_cmd->add_option("--frames", render_frames,
+                           "N: render N ≥ 1 frames along the scene's camera_path (OUT_0000.png, "
+                           "…); A-B/N: only frames A to B of those N");
+    render_cmd->add_option("--tile", render_tile,
+                           "I/N: render the I-th of N horizontal bands into OUT.exr (footprint "
+                           "merge assembles them)");
     render_cmd
         ->add_option("--device", render.device,
                      "cpu, or gpu: the GPU path, one sample per pixel (--filter " +
@@ -337,6 +346,18 @@ int run(int argc, char** argv) {
                            "EXR), read tile by tile like maketx output");
     render_cmd->add_flag("--json", render.json, "Print a one-line JSON summary to stdout");
     render_cmd->add_flag("--quiet,-q", render.quiet, "No progress output");
+
+    footprint::MergeCommandOptions merge;
+    std::vector<std::string> merge_tiles;
+    std::string merge_output;
+    CLI::App* merge_cmd = app.add_subcommand(
+        "merge", "Assemble the bands of footprint render --tile into the whole image");
+    merge_cmd->add_option("tiles", merge_tiles, "The bands (.exr), in any order")->required();
+    merge_cmd->add_option("-o,--out", merge_output, "Output image (as footprint render -o)")
+        ->required();
+    merge_cmd->add_option("--exposure", merge.exposure, "Exposure in stops (PNG/JPEG/TIFF output)")
+        ->capture_default_str();
+    merge_cmd->add_flag("--quiet,-q", merge.quiet, "No report line");
 
     footprint::ViewCommandOptions view;
     CLI::App* view_cmd = app.add_subcommand(
@@ -396,7 +417,18 @@ int run(int argc, char** argv) {
     if (*render_cmd) {
         render.scene = render_scene;
         render.output = render_output;
+        if (!render_frames.empty())
+            if (auto s = footprint::parse_frames_option(render_frames, render); !s)
+                return footprint::fail(s.error().message);
+        if (!render_tile.empty())
+            if (auto s = footprint::parse_tile_option(render_tile, render); !s)
+                return footprint::fail(s.error().message);
         return footprint::run_render_command(render);
+    }
+    if (*merge_cmd) {
+        merge.tiles.assign(merge_tiles.begin(), merge_tiles.end());
+        merge.output = merge_output;
+        return footprint::run_merge_command(merge);
     }
     if (*view_cmd) return footprint::run_view_command(view);
     if (*maketx_cmd) {

@@ -1,7 +1,8 @@
 // apps/render_command.h — `footprint render`: a scene rendered with one filter mode.
 //
 //   footprint render SCENE -o OUT [--filter MODE] [--spp N] [--seed N] [--size WIDTH]
-//                    [--frames N] [--threads N] [--exposure E] [--device cpu|gpu]
+//                    [--frames N|A-B/N] [--tile I/N] [--threads N] [--exposure E] [--device
+//                    cpu|gpu]
 //                    [--texture-memory-mb N] [--texture-cache-dir DIR] [--json] [--quiet]
 //
 // --device gpu renders on the GPU path (gpu/gpu_renderer.h), headless through EGL, one sample per
@@ -16,7 +17,10 @@
 // RenderOptions::seed): the same seed gives the same image, different seeds independent samples.
 // --frames N renders N frames along the scene's camera_path (scene/scene.h; an error without one)
 // into OUT with the frame number before the extension: out.png → out_0000.png … (4 digits, more if
-// N needs them).
+// N needs them); --frames A-B/N only frames A … B of them, into the same files.
+// --tile I/N renders the I-th of N bands of rows (tile_rows) into OUT, which must be .exr: the
+// band's pixels as the whole image has them, its place in the image as the file's data window.
+// `footprint merge` (merge_command.h) assembles the bands bit for bit into the whole image.
 //
 // Every map of the scene is read through one TextureSystem (texture_system.h): files that store
 // MIP levels (maketx output) tile by tile through a cache of at most --texture-memory-mb MiB of
@@ -47,6 +51,11 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
+
+#include "core/result.h"
+#include "render/renderer.h"
 
 namespace footprint {
 
@@ -57,16 +66,32 @@ struct RenderCommandOptions {
     std::optional<int> spp;           // 1 … 65536; not given: 1, or 64 for the reference
     std::optional<int> width;         // --size: 16 … 16384; not given: the scene's own size
     std::uint32_t seed = 1;
-    int threads = 0;               // 0: all cores
-    float exposure = 0;            // stops, for integer outputs
-    std::optional<int> frames;     // 1 … 100000: a sequence; not given: one image (scene camera)
-    std::string device = "cpu";    // "cpu" or "gpu"
-    int texture_memory_mb = 1024;  // the texture system's max_memory_mb, ≥ 1
+    int threads = 0;            // 0: all cores
+    float exposure = 0;         // stops, for integer outputs
+    std::optional<int> frames;  // 1 … 100000: a sequence; not given: one image (scene camera)
+    // --frames A-B/N: frames A … B (0 ≤ A ≤ B < N, the files' numbers) of the sequence of N =
+    // `frames`, each written to the file the whole sequence writes it to (one task of a farm).
+    std::optional<std::pair<int, int>> frame_range;
+    // --tile I/N: the I-th (1 ≤ I ≤ N) of N horizontal bands (tile_rows()), written as an OpenEXR
+    // band of the full image, which `footprint merge` assembles.
+    std::optional<std::pair<int, int>> tile;
+    std::string device = "cpu";               // "cpu" or "gpu"
+    int texture_memory_mb = 1024;             // the texture system's max_memory_mb, ≥ 1
     std::filesystem::path texture_cache_dir;  // its cache_dir; empty: built pyramids in memory
     bool json = false;
     bool quiet = false;
 };
 int run_render_command(const RenderCommandOptions& options);
+
+// The command line's "--frames N" or "--frames A-B/N" into options.frames and .frame_range, and
+// "--tile I/N" into options.tile; an Error quotes the text and says what it takes. The numbers'
+// ranges are checked by run_render_command.
+Status parse_frames_option(std::string_view text, RenderCommandOptions& options);
+Status parse_tile_option(std::string_view text, RenderCommandOptions& options);
+
+// The rows of band i (1 … n) of an image `height` rows tall: [⌊(i − 1)·H/n⌋, ⌊i·H/n⌋), so that the
+// n bands cover every row once and differ in height by at most one.
+RowBand tile_rows(int i, int n, int height);
 
 // The file of frame `frame` of a sequence of `frame_count` written to `output`
 // (out.png → out_0007.png).

@@ -1,5 +1,6 @@
 #include "gpu/gpu_renderer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -416,22 +417,31 @@ Result<Image> GpuRenderer::render(const CameraDesc& camera, int width, int heigh
                      std::to_string(max_size[1]) + " on this GPU"};
     Impl& impl = *impl_;
     impl.ensure_target(width, height);
+    // Framebuffer row j is image row j (render.frag), so a band is a scissor of its rows.
+    const int first = options.rows ? std::clamp(options.rows->begin, 0, height) : 0;
+    const int rows = options.rows ? std::clamp(options.rows->end, first, height) - first : height;
+    if (rows == 0) return Image(width, 0, 3);
     glBindFramebuffer(GL_FRAMEBUFFER, impl.framebuffer.get());
+    if (options.rows) {
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(0, first, width, rows);
+    }
     const auto start = std::chrono::steady_clock::now();
     impl.begin_timing(0);
     impl.draw_pass(camera, width, height, options);
     impl.end_timing(0);
     glFinish();
+    glDisable(GL_SCISSOR_TEST);
     const double wall_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    std::vector<float> rgba(static_cast<std::size_t>(width) * height * 4);
+    std::vector<float> rgba(static_cast<std::size_t>(width) * rows * 4);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, rgba.data());
+    glReadPixels(0, first, width, rows, GL_RGBA, GL_FLOAT, rgba.data());
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     const double gpu_ms = impl.elapsed_ms(0);
     if (std::string e = gpu::gl_error("rendering a frame"); !e.empty()) return Error{e};
     if (stats) *stats = {gpu_ms, wall_ms};
-    Image image(width, height, 3);
+    Image image(width, rows, 3);
     for (std::size_t i = 0; i < image.pixel_count(); ++i)
         for (int c = 0; c < 3; ++c) image.pixels[i * 3 + c] = rgba[i * 4 + c];
     return image;

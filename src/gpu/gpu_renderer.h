@@ -48,6 +48,7 @@
 #include <footprint/core/result.h>
 #include <footprint/image/image.h>
 #include <footprint/render/render_scene.h>
+#include <footprint/render/renderer.h>
 
 namespace footprint {
 
@@ -83,6 +84,9 @@ struct GpuRenderOptions {
     // frame_count 0: the scene's camera.
     int frame = 0;
     int frame_count = 0;
+    // A band of rows, as RenderOptions::rows: render() shades and returns only those (scissored),
+    // each pixel as the whole image's.
+    std::optional<RowBand> rows = std::nullopt;
 };
 
 struct GpuFrameStats {

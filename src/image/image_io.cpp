@@ -321,6 +321,7 @@ struct EncodedPixels {
     OIIO::TypeDesc data_format = OIIO::TypeDesc::FLOAT;
     const void* data = nullptr;
     bool linear = false;
+    std::optional<ImageBand> band = std::nullopt;  // EXR: the data window in the display window
 };
 
 // Encodes `pixels` as the format of `file`'s extension into memory with OpenImageIO. The writers
@@ -357,6 +358,11 @@ Result<std::vector<unsigned char>> encode_with_oiio(const fs::path& file, FileKi
             break;
     }
     spec.alpha_channel = (channels == 2 || channels == 4) ? channels - 1 : -1;
+    if (pixels.band) {
+        spec.y = pixels.band->y;
+        spec.full_width = pixels.band->full_width;
+        spec.full_height = pixels.band->full_height;
+    }
     // OpenImageIO 2.4 writes a TIFF's Exif block (which an sRGB colour space brings) over the
     // main directory when the TIFF goes to memory: an sRGB TIFF is written without it.
     if (kind != FileKind::tiff || pixels.linear) {
@@ -529,6 +535,21 @@ Result<Image> load_image(const fs::path& file, const ImageLoadOptions& options) 
     return image;
 }
 
+Result<ImageBand> load_image_band(const fs::path& file) {
+    Result<std::unique_ptr<OIIO::ImageInput>> in = open_image(file);
+    if (!in) return in.error();
+    const OIIO::ImageSpec spec = (*in)->spec();
+    (*in)->close();
+    if (spec.x != spec.full_x || spec.width != spec.full_width || spec.full_y != 0 || spec.y < 0 ||
+        spec.y + spec.height > spec.full_height)
+        return Error{"cannot read '" + file.string() + "' as a band of rows: its data window " +
+                     std::to_string(spec.width) + "x" + std::to_string(spec.height) + " at (" +
+                     std::to_string(spec.x) + ", " + std::to_string(spec.y) +
+                     ") is not whole rows of its " + std::to_string(spec.full_width) + "x" +
+                     std::to_string(spec.full_height) + " image"};
+    return ImageBand{spec.y, spec.full_width, spec.full_height};
+}
+
 Result<std::vector<Image>> load_image_levels(const fs::path& file,
                                              const ImageLoadOptions& options) {
     Result<std::unique_ptr<OIIO::ImageInput>> in = open_image(file);
@@ -607,6 +628,10 @@ std::optional<std::string> target_problem(const fs::path& file, FileKind kind,
     if (kind == FileKind::jpeg && options.bits != 8) {
         return "JPEG files hold 8 bits per channel only, not " + std::to_string(options.bits);
     }
+    if (options.band && kind != FileKind::exr) {
+        return "a band of a larger image is written as an OpenEXR data window: the file must be "
+               ".exr";
+    }
     return location_problem(file);
 }
 
@@ -657,12 +682,20 @@ Result<std::vector<unsigned char>> encode_image(const Image& image, const fs::pa
     if (auto problem = image_problem(image)) return write_error(file, *problem);
     const FileKind kind = kind_of(file);
     if (auto problem = target_problem(file, kind, options)) return write_error(file, *problem);
+    if (const std::optional<ImageBand>& b = options.band;
+        b && (b->full_width != image.width || b->y < 0 || b->y + image.height > b->full_height))
+        return write_error(
+            file, "rows " + std::to_string(b->y) + " to " + std::to_string(b->y + image.height) +
+                      " of a " + std::to_string(image.width) + "-wide image are not a band of a " +
+                      std::to_string(b->full_width) + "x" + std::to_string(b->full_height) +
+                      " image");
 
     const bool integer_format = is_integer_format(kind);
     const bool srgb = options.encoding == ColorEncoding::srgb ||
                       (options.encoding == ColorEncoding::automatic && integer_format);
     EncodedPixels pixels{image.width, image.height, file_channels(kind, image.channels)};
     pixels.linear = !srgb;
+    pixels.band = options.band;
     std::vector<float> converted;
     std::vector<std::uint8_t> codes8;
     std::vector<std::uint16_t> codes16;

@@ -69,6 +69,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -142,13 +143,29 @@ Status save_image_level_chains(const std::vector<LevelChain>& parts,
                                const std::filesystem::path& file,
                                const LevelsSaveOptions& options = {});
 
+// A band of rows of a larger image, as an OpenEXR file's data window inside its display window:
+// rows [y, y + the image's height) of a full_width × full_height image, whose width it has (a
+// render split across machines: `footprint render --tile`, `footprint merge`).
+struct ImageBand {
+    int y = 0;
+    int full_width = 0, full_height = 0;
+};
+
 struct ImageSaveOptions {
     // automatic: sRGB for .png .jpg .jpeg .tif .tiff, linear for .exr .hdr. srgb / linear force
     // the encoding for any format.
     ColorEncoding encoding = ColorEncoding::automatic;
     int bits = 8;           // 8 or 16 for PNG and TIFF; JPEG accepts only 8; ignored for EXR/HDR
     bool exr_half = false;  // EXR: write 16-bit half floats instead of 32-bit floats
+    // EXR only (an error for the other formats, which have no data window): the image is this
+    // band of a larger one.
+    std::optional<ImageBand> band = std::nullopt;
 };
+
+// Where `file`'s pixels sit in its full image (its header only): an OpenEXR band's rows, or the
+// whole image (y = 0, the full size its own) for every other file. A data window that is not a
+// band of whole rows is refused, naming the file.
+Result<ImageBand> load_image_band(const std::filesystem::path& file);
 
 // Writes `image` to `file`, the format chosen by the extension (see is_supported_image_extension).
 // The target is replaced atomically; on failure nothing is left behind.

@@ -153,6 +153,45 @@ TEST_F(ImageIo, ExrFloatRoundTripIsBitExact) {
     }
 }
 
+// A band of rows is an EXR data window: its pixels as saved, its place read back, and what
+// OpenImageIO itself sees (the display window the full image's); other files are whole images.
+TEST_F(ImageIo, AnExrBandKeepsItsPlaceInTheFullImage) {
+    const Image band = make_image(9, 4, 3, 0.0f, 2.0f, 3);
+    const fs::path file = path("band.exr");
+    ImageSaveOptions options;
+    options.band = ImageBand{5, 9, 12};
+    ASSERT_TRUE(save_image(band, file, options).ok());
+    const Result<Image> loaded = load_image(file);
+    ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+    EXPECT_EQ(loaded->pixels, band.pixels);
+    const Result<ImageBand> place = load_image_band(file);
+    ASSERT_TRUE(place.ok()) << place.error().message;
+    EXPECT_EQ(place->y, 5);
+    EXPECT_EQ(place->full_width, 9);
+    EXPECT_EQ(place->full_height, 12);
+    auto in = OIIO::ImageInput::open(file.string());
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().y, 5);
+    EXPECT_EQ(in->spec().full_height, 12);
+    const fs::path whole = path("whole.png");
+    ASSERT_TRUE(save_image(band, whole).ok());
+    const Result<ImageBand> own = load_image_band(whole);
+    ASSERT_TRUE(own.ok()) << own.error().message;
+    EXPECT_EQ(own->y, 0);
+    EXPECT_EQ(own->full_height, 4);
+    // Not an EXR, or not inside the full image: refused, nothing written.
+    const Status png = save_image(band, path("band.png"), options);
+    ASSERT_FALSE(png.ok());
+    EXPECT_NE(png.error().message.find("must be .exr"), std::string::npos) << png.error().message;
+    options.band = ImageBand{10, 9, 12};
+    const Status outside = save_image(band, path("outside.exr"), options);
+    ASSERT_FALSE(outside.ok());
+    EXPECT_NE(outside.error().message.find("rows 10 to 14"), std::string::npos)
+        << outside.error().message;
+    EXPECT_FALSE(fs::exists(path("band.png")));
+    EXPECT_FALSE(fs::exists(path("outside.exr")));
+}
+
 // ---- MIP levels --------------------------------------------------------------------------------
 
 // Random levels of OpenEXR's round-down chain from width × height to 1 × 1.

@@ -134,14 +134,16 @@ Image render(const RenderScene& scene, const RenderOptions& options, RenderStats
     const auto start = std::chrono::steady_clock::now();
     const int width = scene.desc().width, height = scene.desc().height;
     const PinholeCamera camera(view_camera(scene.desc(), options), width, height);
-    Image image(width, height, 3);
+    const int first = options.rows ? std::clamp(options.rows->begin, 0, height) : 0;
+    const int rows = options.rows ? std::clamp(options.rows->end, first, height) - first : height;
+    Image image(width, rows, 3);
     std::atomic<std::uint64_t> lookups{0}, non_finite_samples{0}, non_finite_pixels{0};
-    detail::for_each_tile(width, height, options.threads, [&](const detail::Tile& tile) {
+    detail::for_each_tile(width, rows, options.threads, [&](const detail::Tile& tile) {
         detail::SampleShader shader(scene, options);
         SampleCounts counts;
         for (int y = tile.y0; y < tile.y1; ++y) {
             for (int x = tile.x0; x < tile.x1; ++x) {
-                const Rgb c = render_pixel_with(shader, camera, options, x, y, counts);
+                const Rgb c = render_pixel_with(shader, camera, options, x, first + y, counts);
                 std::copy(c.begin(), c.end(), image.at(x, y));
             }
         }
@@ -153,7 +155,7 @@ Image render(const RenderScene& scene, const RenderOptions& options, RenderStats
     if (stats) {
         stats->seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        stats->pixels = static_cast<std::uint64_t>(width) * height;
+        stats->pixels = static_cast<std::uint64_t>(width) * rows;
         stats->samples = stats->pixels * static_cast<std::uint64_t>(std::max(1, options.spp));
         stats->lookups = lookups;
         stats->non_finite_samples = non_finite_samples;

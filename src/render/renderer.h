@@ -98,6 +98,10 @@ std::span<const FilterMode> all_filter_modes();
 // The peers, in the order above.
 std::span<const FilterMode> peer_filter_modes();
 
+struct RowBand {
+    int begin = 0, end = 0;
+};
+
 struct RenderOptions {
     FilterMode filter = FilterMode::fa_rough;
     int spp = 1;      // samples per pixel, ≥ 1 (the reference's default is set by the caller)
@@ -114,6 +118,10 @@ struct RenderOptions {
     // frame uses the same seed.
     int frame = 0;
     int frame_count = 0;
+    // A band of rows [begin, end) of the image (0 ≤ begin < end ≤ height), for renders split
+    // across machines: render() returns width × (end − begin) pixels, each bit for bit the whole
+    // image's (a pixel's samples depend on its place only). None: the whole image.
+    std::optional<RowBand> rows = std::nullopt;
 };
 
 struct RenderStats {
@@ -125,7 +133,8 @@ struct RenderStats {
     std::uint64_t non_finite_pixels = 0;   // pixels without a finite sample (written as 0)
 };
 
-// Renders desc().width × desc().height linear RGB in tiles of 16 × 16 pixels on oneTBB.
+// Renders desc().width × desc().height linear RGB (or the band of RenderOptions::rows) in tiles of
+// 16 × 16 pixels on oneTBB.
 // `tile_done` (optional) is called once per finished tile, from the worker threads (a progress
 // bar: render_tile_count() calls in all).
 Image render(const RenderScene& scene, const RenderOptions& options, RenderStats* stats = nullptr,
