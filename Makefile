@@ -2,6 +2,8 @@
 #   make        Release build with debug info into build/ (build/footprint, build/footprint-bench)
 #   make demo   ... then runs the demo on the built-in image (writes out/)
 #   make test   ... then runs the unit tests, in Release and under ASan+UBSan (build-asan/)
+#   make test-tsan ... the threaded tests under ThreadSanitizer (build-tsan/; CI runs it too)
+#   make soak   ... then renders SOAK_SCENES (10000) random scenes in every mode (tests/soak/)
 #   make python ... the Python module into build/python/ (PYTHONPATH=build/python python3)
 #   make bench  ... then runs the texture and environment benchmarks (bench-out/texture.json, env.json)
 #   make instructions  ... then counts instructions per environment lookup under callgrind
@@ -14,7 +16,7 @@ ifneq ($(CCACHE),)
     CMAKE_FLAGS += -DCMAKE_CXX_COMPILER_LAUNCHER=$(CCACHE)
 endif
 
-.PHONY: all deps build build-asan demo test test-release test-asan bench instructions format clean python
+.PHONY: all deps build build-asan build-tsan demo test test-release test-asan test-tsan soak bench instructions format clean python
 
 all: build
 
@@ -30,6 +32,11 @@ build-asan: deps
 	    -DFOOTPRINT_TESTS_ONLY=ON $(CMAKE_FLAGS) >/dev/null
 	@cmake --build build-asan -j $(JOBS) --target footprint-tests
 
+build-tsan: deps
+	@cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DFOOTPRINT_TSAN=ON \
+	    -DFOOTPRINT_TESTS_ONLY=ON $(CMAKE_FLAGS) >/dev/null
+	@cmake --build build-tsan -j $(JOBS) --target footprint-tsan-tests
+
 python: build
 
 demo: build
@@ -44,6 +51,14 @@ test-asan: build-asan
 
 test: test-release test-asan
 
+test-tsan: build-tsan
+	cd build-tsan && TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$(CURDIR)/tests/tsan.supp" \
+	    ctest --output-on-failure -j $(JOBS)
+
+SOAK_SCENES ?= 10000
+soak: build
+	./build/tests/footprint-soak $(SOAK_SCENES)
+
 bench: build
 	./build/footprint-bench texture --json bench-out/texture.json
 	./build/footprint-bench env --json bench-out/env.json
@@ -55,4 +70,4 @@ format:
 	clang-format -i $$(git ls-files '*.h' '*.cpp')
 
 clean:
-	rm -rf build build-asan
+	rm -rf build build-asan build-tsan

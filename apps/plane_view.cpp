@@ -1,14 +1,12 @@
 #include "plane_view.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <numbers>
 
+#include "core/parallel.h"
 #include "math/sample_patterns.h"
 #include "progress.h"
 
@@ -53,9 +51,9 @@ template <class RowFunction>
 PlaneRenderStats render_rows(int height, Progress* progress, const RowFunction& row) {
     const auto start = std::chrono::steady_clock::now();
     std::atomic<std::uint64_t> lookups{0};
-    tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& r) {
+    parallel_for(0, height, 1, [&](int first, int end) {
         std::uint64_t local = 0;
-        for (int y = r.begin(); y != r.end(); ++y) {
+        for (int y = first; y != end; ++y) {
             local += row(y);
             if (progress) progress->advance();
         }

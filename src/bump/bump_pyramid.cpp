@@ -1,11 +1,10 @@
 #include "bump/bump_pyramid.h"
 
-#include <tbb/parallel_for.h>
-
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "core/parallel.h"
 #include "texture/downsample.h"
 
 namespace footprint {
@@ -47,7 +46,7 @@ Result<BumpPyramid> BumpPyramid::build(const Image& slopes, const BumpPyramidOpt
 
     // The mean slope, in double (rows in parallel, combined in row order: deterministic).
     std::vector<double> row_sums(std::size_t(slopes.height) * 2, 0.0);
-    tbb::parallel_for(0, slopes.height, [&](int y) {
+    parallel_for_each(0, slopes.height, [&](int y) {
         double s0 = 0, s1 = 0;
         for (int x = 0; x < slopes.width; ++x) {
             s0 += slopes.at(x, y, 0);
@@ -81,7 +80,7 @@ Result<BumpPyramid> BumpPyramid::build(const Image& slopes, const BumpPyramidOpt
     levels.emplace_back(slopes.width, slopes.height, kMomentChannels);
     {
         Image& l0 = levels.back();
-        tbb::parallel_for(std::size_t(0), slopes.pixel_count(), [&](std::size_t i) {
+        parallel_for_each(std::size_t(0), slopes.pixel_count(), [&](std::size_t i) {
             const double m1 = slopes.pixels[2 * i] - double(p.offset_.x);
             const double m2 = slopes.pixels[2 * i + 1] - double(p.offset_.y);
             const double own = extra.empty() ? 0.0 : double(extra.pixels[i]);
@@ -111,7 +110,7 @@ Result<BumpPyramid> BumpPyramid::build(const Image& slopes, const BumpPyramidOpt
             detail::downsample<double, double>(previous.data(), w, h, next.data(), nw, nh,
                                                kMomentChannels, po);
         Image level(nw, nh, kMomentChannels);
-        tbb::parallel_for(std::size_t(0), next.size(),
+        parallel_for_each(std::size_t(0), next.size(),
                           [&](std::size_t i) { level.pixels[i] = float(next[i]); });
         levels.push_back(std::move(level));
         previous = std::move(next);

@@ -1,14 +1,13 @@
 // bump/slope_map.cpp — slope maps from height maps and normal maps (conventions in slope_map.h).
 #include "bump/slope_map.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <string>
 
+#include "core/parallel.h"
 #include "image/image_io.h"
 
 namespace footprint {
@@ -113,8 +112,8 @@ Result<Image> slopes_from_height_map(const Image& height, const HeightMapOptions
     const double scale_v = static_cast<double>(options.height_scale) / options.texel_size_v;
     Image slopes(w, h, 2);
     // Rows in parallel (oneTBB); a float overflow is reported for the first texel in row order.
-    tbb::parallel_for(tbb::blocked_range<int>(0, h, 16), [&](const tbb::blocked_range<int>& rows) {
-        for (int y = rows.begin(); y < rows.end(); ++y) {
+    parallel_for(0, h, 16, [&](int first, int end) {
+        for (int y = first; y < end; ++y) {
             const Stencil sv = stencil(y, h, options.wrap_v);
             for (int x = 0; x < w; ++x) {
                 const Stencil su = stencil(x, w, options.wrap_u);

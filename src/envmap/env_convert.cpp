@@ -1,12 +1,11 @@
 #include "envmap/env_convert.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
+
+#include "core/parallel.h"
 
 namespace footprint {
 
@@ -88,29 +87,28 @@ Result<EnvImages> convert_environment(const EnvironmentMap& source, EnvLayout to
     result.faces.assign(faces, Image(width, height, channels));
 
     const double half_step_s = 0.5 / width, half_step_t = 0.5 / height;
-    tbb::parallel_for(
-        tbb::blocked_range<int>(0, faces * height, 4), [&](const tbb::blocked_range<int>& rows) {
-            std::vector<EnvRayDifferential> rays(static_cast<std::size_t>(width));
-            for (int row = rows.begin(); row != rows.end(); ++row) {
-                const int face = row / height, y = row % height;
-                const double t = (y + 0.5) / height;
-                for (int x = 0; x < width; ++x) {
-                    const double s = (x + 0.5) / width;
-                    // Ray differentials per output texel (env_convert.h).
-                    const Vec3d r = unit_direction(to, face, s, t);
-                    const Vec3d dx = unit_direction(to, face, s + half_step_s, t) -
-                                     unit_direction(to, face, s - half_step_s, t);
-                    const Vec3d dy = unit_direction(to, face, s, t + half_step_t) -
-                                     unit_direction(to, face, s, t - half_step_t);
-                    rays[static_cast<std::size_t>(x)] = {vec3_cast<float>(r), vec3_cast<float>(dx),
-                                                         vec3_cast<float>(dy)};
-                }
-                // The row's texels are contiguous, channels interleaved: the batch's layout.
-                environment_lookup_batch(source, rays, options.lookup,
-                                         result.faces[static_cast<std::size_t>(face)].at(0, y));
-                if (options.on_row) options.on_row();
+    parallel_for(0, faces * height, 4, [&](int first_row, int end_row) {
+        std::vector<EnvRayDifferential> rays(static_cast<std::size_t>(width));
+        for (int row = first_row; row != end_row; ++row) {
+            const int face = row / height, y = row % height;
+            const double t = (y + 0.5) / height;
+            for (int x = 0; x < width; ++x) {
+                const double s = (x + 0.5) / width;
+                // Ray differentials per output texel (env_convert.h).
+                const Vec3d r = unit_direction(to, face, s, t);
+                const Vec3d dx = unit_direction(to, face, s + half_step_s, t) -
+                                 unit_direction(to, face, s - half_step_s, t);
+                const Vec3d dy = unit_direction(to, face, s, t + half_step_t) -
+                                 unit_direction(to, face, s, t - half_step_t);
+                rays[static_cast<std::size_t>(x)] = {vec3_cast<float>(r), vec3_cast<float>(dx),
+                                                     vec3_cast<float>(dy)};
             }
-        });
+            // The row's texels are contiguous, channels interleaved: the batch's layout.
+            environment_lookup_batch(source, rays, options.lookup,
+                                     result.faces[static_cast<std::size_t>(face)].at(0, y));
+            if (options.on_row) options.on_row();
+        }
+    });
     return result;
 }
 

@@ -4,8 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include <tbb/parallel_for.h>
-
+#include "core/parallel.h"
 #include "envmap/env_layout_detail.h"
 #include "envmap/env_sampling.h"
 #include "envmap/tiled_environment.h"
@@ -43,7 +42,7 @@ Image polar_cap_image(const EnvironmentMap& map, int face, int size) {
     const float n = static_cast<float>(size);
     const float inv_pi = 1.0f / std::numbers::pi_v<float>;
     detail::dispatch_stride(level0.stride(), [&]<int S>() {
-        tbb::parallel_for(0, size, [&](int y) {
+        parallel_for_each(0, size, [&](int y) {
             for (int x = 0; x < size; ++x) {
                 const Vec3 d = cube_direction<float>(face, (x + 0.5f) / n, (y + 0.5f) / n);
                 const float len = std::sqrt(dot(d, d));

@@ -1,8 +1,5 @@
 #include "metrics/flip.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -11,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/parallel.h"
 #include "metrics/image_metrics.h"
 
 namespace footprint {
@@ -178,9 +176,7 @@ struct Plane {
 // Runs body(y) for every row, rows in parallel.
 template <class Body>
 void for_each_row(int height, const Body& body) {
-    tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& r) {
-        for (int y = r.begin(); y != r.end(); ++y) body(y);
-    });
+    parallel_for_each(0, height, body);
 }
 
 // A 1-D filter: weight[k + radius] for offsets k = −radius … radius. The derivative filters are

@@ -1,7 +1,5 @@
 #include "render/sample_shader.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -10,6 +8,7 @@
 #include <numbers>
 
 #include "bump/local_frame.h"
+#include "core/parallel.h"
 #include "envmap/env_footprint.h"
 #include "math/sample_patterns.h"
 #include "shading/blinn_phong.h"
@@ -819,15 +818,11 @@ void for_each_tile(int width, int height, int threads,
                    const std::function<void(const Tile&)>& body) {
     const int tiles_x = (width + kTileSize - 1) / kTileSize;
     auto run = [&] {
-        tbb::parallel_for(tbb::blocked_range<int>(0, tile_count(width, height), 1),
-                          [&](const tbb::blocked_range<int>& r) {
-                              for (int i = r.begin(); i != r.end(); ++i) {
-                                  const int x0 = (i % tiles_x) * kTileSize;
-                                  const int y0 = (i / tiles_x) * kTileSize;
-                                  body(Tile{x0, y0, std::min(width, x0 + kTileSize),
-                                            std::min(height, y0 + kTileSize)});
-                              }
-                          });
+        parallel_for_each(0, tile_count(width, height), [&](int i) {
+            const int x0 = (i % tiles_x) * kTileSize;
+            const int y0 = (i / tiles_x) * kTileSize;
+            body(Tile{x0, y0, std::min(width, x0 + kTileSize), std::min(height, y0 + kTileSize)});
+        });
     };
     if (threads > 0) {
         tbb::task_arena arena(threads);

@@ -1,10 +1,10 @@
 #include "texture/downsample.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <vector>
+
+#include "core/parallel.h"
 
 namespace footprint::detail {
 
@@ -98,10 +98,10 @@ void downsample(const In* src, int sw, int sh, T* dst, int dw, int dh, int strid
     const std::size_t src_row = static_cast<std::size_t>(sw) * stride;
     if (src_pitch == 0) src_pitch = static_cast<std::ptrdiff_t>(src_row);
     if (dst_pitch == 0) dst_pitch = static_cast<std::ptrdiff_t>(dw) * stride;
-    tbb::parallel_for(tbb::blocked_range<int>(0, dh, 8), [&](const tbb::blocked_range<int>& rows) {
+    parallel_for(0, dh, 8, [&](int first, int end) {
         std::vector<T> column_sum(src_row);
         T acc[MipPyramid::kMaxChannels];
-        for (int y = rows.begin(); y < rows.end(); ++y) {
+        for (int y = first; y < end; ++y) {
             std::fill(column_sum.begin(), column_sum.end(), T(0));
             for (int k = yt.first[y]; k < yt.first[y + 1]; ++k) {
                 const T w = static_cast<T>(yt.taps[k].weight);

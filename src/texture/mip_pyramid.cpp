@@ -1,13 +1,12 @@
 #include "texture/mip_pyramid.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <cstring>
 #include <string>
 
+#include "core/parallel.h"
 #include "texture/downsample.h"
 #include "texture/summed_area_table.h"
 
@@ -18,7 +17,7 @@ namespace {
 // The image's texels row-major with each texel padded from `channels` to `stride` floats, rows
 // `pitch` floats apart.
 void copy_padded(const Image& image, int stride, float* padded, std::ptrdiff_t pitch) {
-    tbb::parallel_for(0, image.height, [&](int y) {
+    parallel_for_each(0, image.height, [&](int y) {
         for (int x = 0; x < image.width; ++x)
             std::copy_n(image.at(x, y), image.channels, &padded[y * pitch + x * stride]);
     });
@@ -160,7 +159,7 @@ void MipPyramid::store_level(int level, const std::vector<float>& row_major) {
             std::copy_n(&row_major[y * row], row, writable_texel(level, 0, y));
         return;
     }
-    tbb::parallel_for(0, l.height, [&](int y) {
+    parallel_for_each(0, l.height, [&](int y) {
         for (int x = 0; x < l.width; ++x) {
             const float* src = &row_major[(static_cast<std::size_t>(y) * l.width + x) * stride_];
             std::copy_n(src, stride_, writable_texel(level, x, y));
