@@ -209,6 +209,25 @@ TEST(EnvDegenerate, NonFiniteInputGivesAFiniteColour) {
     }
 }
 
+TEST(EnvDegenerate, FootprintsTooLargeForTheirAxesReadTheCoarsestLevel) {
+    // A finite K whose ellipse overflows (entries near FLT_MAX; a direction 1e-19 long with
+    // derivatives of 1e-3) is far larger than the map: footprint assembly reads the coarsest level,
+    // as it does for a footprint of a million texels. (Its axes were NaN and its probe count
+    // undefined before; found by fuzz_lookup, tests/data/bad/fuzz/lookup/.)
+    for (EnvLayout layout : kAllEnvLayouts) {
+        const EnvironmentMap map = test::env_map(layout, 16, smooth);
+        EnvFootprint f = compute_env_footprint(layout, map.texel_scale(), {0.3f, 0.2f, 1},
+                                               {1e-3f, 0, 0}, {0, 1e-3f, 0});
+        float huge, overflowing;
+        f.matrix = Sym2{1e12f, 0, 1e12f};
+        environment_lookup(map, f, LookupOptions{}, &huge);
+        f.matrix = Sym2{3e38f, 1e38f, 3e38f};
+        ASSERT_TRUE(f.matrix.is_finite());
+        environment_lookup(map, f, LookupOptions{}, &overflowing);
+        EXPECT_EQ(overflowing, huge) << layout_name(layout);
+    }
+}
+
 // §4 row 10a / §3.4: exactly at a lat-long pole J_P is undefined; the footprint is isotropic
 // with T_p = (H0/π)·θ_fp, θ_fp the angular radius of the ray differentials (κ·roughness added in
 // form (b)).

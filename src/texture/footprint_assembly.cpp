@@ -241,7 +241,10 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
             if (l1 <= tp * isotropic_ratio) {
                 tp = std::sqrt(tp * std::max(l1, kMinTexelSize));  // one probe, √(λ1 T_p)
             } else {
-                n = static_cast<int>(std::ceil(rule_b_root(l1, tp)));
+                // Bounded as a float: a footprint beyond INT_MAX texels (or a NaN one) holds
+                // more probes than any budget, and no int holds its count.
+                n = static_cast<int>(std::fmin(std::ceil(rule_b_root(l1, tp)),
+                                               static_cast<float>(kMaxProbeCount + 1)));
                 if (n > max_probes) {
                     n = max_probes;
                     tp = std::max(tp, l1 * std::sqrt(3.0f / static_cast<float>(n * n + 2)));
@@ -270,8 +273,11 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
             if (!(sigma * spacing_factor(2) <= tp)) {
                 // First guess from the continuous truncated Gaussian (v ≈ 0.774 at κ = 2), then
                 // exact.
-                n = std::max(3, static_cast<int>(
-                                    std::ceil(2 * kGaussianProbeExtent * sigma / (tp * 0.88f))) +
+                // (Bounded as a float, as Rule B's, and so that c(N) stays in its table: a guess
+                // of kMaxProbeCount is at least any budget, and the descent finds the same N.)
+                n = std::max(3, static_cast<int>(std::fmin(
+                                    std::ceil(2 * kGaussianProbeExtent * sigma / (tp * 0.88f)),
+                                    static_cast<float>(kMaxProbeCount - 1))) +
                                     1);
                 while (n < max_probes && sigma * spacing_factor(n) > tp) ++n;
                 while (n > 3 && sigma * spacing_factor(n - 1) <= tp) --n;
