@@ -172,13 +172,6 @@ template <class Map>
     const Vec2 size = map.texel_scale();
     FootprintEllipse e = footprint.matrix.is_finite() ? make_footprint_ellipse(footprint.matrix)
                                                       : FootprintEllipse{};
-    if (!std::isfinite(e.major_radius) || !std::isfinite(e.minor_radius) ||
-        !is_finite(e.major_axis)) {
-        // A finite K whose axes overflow (entries near FLT_MAX): a footprint far larger than the
-        // map, which reads its coarsest level, as one four map sizes across does.
-        const float limit = 4.0f * std::max(size.x, size.y);
-        e = make_footprint_ellipse(limit, limit, 0.0f);
-    }
     if (map.layout() == EnvLayout::sphere && e.major_radius > 0.5f * size.x) {
         // §3.2: towards the singular rim the anisotropy grows without bound; clamp λ1 ≤ W/2.
         e.major_radius = 0.5f * size.x;

@@ -173,10 +173,12 @@ void short_plans4(Float4 xx, Float4 xy, Float4 yy, ProbeRule rule, int max_probe
     const Float4 zero(0.0f), one(1.0f);
     const EllipseLanes<Float4> ellipse = footprint_ellipse_lanes(xx, xy, yy);
     const Float4 l1 = ellipse.major_radius, l2 = ellipse.minor_radius;
-    // plan_probes(): more than one probe, N ≤ kShortLineProbes and within the budget.
+    // plan_probes(): more than one probe, N ≤ kShortLineProbes and within the budget; axes beyond
+    // kMaxPlannedRadius, or not finite, go plan_probes()' way (bounded there).
     const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
     const Float4 tp = max_like_std(l2, one);
-    Mask4 planned = !(l1 <= tp * Float4(ratio));
+    Mask4 planned = !(l1 <= tp * Float4(ratio)) & (l1 <= Float4(kMaxPlannedRadius)) &
+                    is_finite(ellipse.major_axis.x) & is_finite(ellipse.major_axis.y);
     Int4 n(2);
     Float4 spacing, falloff(0.0f);
     if (rule == ProbeRule::moment_matched) {
@@ -229,8 +231,13 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
                       int max_level, float lod_bias, float isotropic_ratio) {
     isotropic_ratio = std::max(isotropic_ratio, kIsotropicRatio);
     constexpr float kMinTexelSize = 1.0f;  // T_min: smaller footprints are magnification
-    const float l1 = footprint.major_radius, l2 = footprint.minor_radius;
-    const Vec2 r1 = footprint.major_axis;
+    float l1 = footprint.major_radius, l2 = footprint.minor_radius;
+    Vec2 r1 = footprint.major_axis;
+    if (!(l1 <= kMaxPlannedRadius) || !is_finite(r1)) {  // also NaN
+        l1 = kMaxPlannedRadius;
+        l2 = std::isfinite(l2) ? std::min(l2, l1) : l1;
+        if (!is_finite(r1)) r1 = {1, 0};
+    }
     max_probes = std::clamp(max_probes, 1, kMaxProbeCount);
     ProbePlan plan;
 
