@@ -174,10 +174,10 @@ void short_plans4(Float4 xx, Float4 xy, Float4 yy, ProbeRule rule, int max_probe
     const EllipseLanes<Float4> ellipse = footprint_ellipse_lanes(xx, xy, yy);
     const Float4 l1 = ellipse.major_radius, l2 = ellipse.minor_radius;
     // plan_probes(): more than one probe, N ≤ kShortLineProbes and within the budget; axes beyond
-    // kMaxPlannedRadius, or not finite, go plan_probes()' way (bounded there).
+    // kMaxPlannedRadius, or not finite (a NaN λ2 too), go plan_probes()' way (bounded there).
     const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
     const Float4 tp = max_like_std(l2, one);
-    Mask4 planned = !(l1 <= tp * Float4(ratio)) & (l1 <= Float4(kMaxPlannedRadius)) &
+    Mask4 planned = !(l1 <= tp * Float4(ratio)) & (l1 <= Float4(kMaxPlannedRadius)) & (l2 >= zero) &
                     is_finite(ellipse.major_axis.x) & is_finite(ellipse.major_axis.y);
     Int4 n(2);
     Float4 spacing, falloff(0.0f);
@@ -238,6 +238,7 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
         l2 = std::isfinite(l2) ? std::min(l2, l1) : l1;
         if (!is_finite(r1)) r1 = {1, 0};
     }
+    if (!(l2 >= 0)) l2 = 0;  // NaN: planned as rank one
     max_probes = std::clamp(max_probes, 1, kMaxProbeCount);
     ProbePlan plan;
 

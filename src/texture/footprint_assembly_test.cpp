@@ -96,6 +96,17 @@ TEST(FootprintAssembly, FootprintsBeyondAnyBudgetTakeTheBudgetAtTheCoarsestLevel
         EXPECT_GE(plan.count, 1);
         EXPECT_LE(plan.count, kMaxProbes);
     }
+    // A NaN minor axis is planned as rank one (Rule A divided by it: its count was undefined).
+    for (const ProbeRule rule :
+         {ProbeRule::moment_matched, ProbeRule::gaussian, ProbeRule::ext, ProbeRule::texram}) {
+        FootprintEllipse nan_minor = make_footprint_ellipse(8, 2, 0.3f);
+        nan_minor.minor_radius = std::numeric_limits<float>::quiet_NaN();
+        const ProbePlan plan = plan_probes(nan_minor, rule, kMaxProbes, kMaxLevel);
+        FootprintEllipse rank_one = make_footprint_ellipse(8, 0, 0.3f);
+        const ProbePlan expected = plan_probes(rank_one, rule, kMaxProbes, kMaxLevel);
+        EXPECT_EQ(plan.count, expected.count);
+        EXPECT_EQ(plan.lod, expected.lod);
+    }
 }
 
 TEST(FootprintAssembly, RuleAAndTexramPlans) {
