@@ -8,6 +8,7 @@
 #   make bench  ... then runs the texture and environment benchmarks (bench-out/texture.json, env.json)
 #   make instructions  ... then counts instructions per environment lookup under callgrind
 #   make format clang-formats the sources
+#   make fuzz   ... the libFuzzer targets (clang) into build-fuzz/, each run FUZZ_SECONDS (default 60)
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 # ccache, where installed, makes rebuilds in fresh clones and other build folders cheap.
@@ -16,7 +17,7 @@ ifneq ($(CCACHE),)
     CMAKE_FLAGS += -DCMAKE_CXX_COMPILER_LAUNCHER=$(CCACHE)
 endif
 
-.PHONY: all deps build build-asan build-tsan demo test test-release test-asan test-tsan soak bench instructions format clean python
+.PHONY: all deps build build-asan build-tsan demo test test-release test-asan test-tsan soak bench instructions format clean python fuzz
 
 all: build
 
@@ -30,7 +31,7 @@ build: deps
 build-asan: deps
 	@cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DFOOTPRINT_SANITIZE=ON \
 	    -DFOOTPRINT_TESTS_ONLY=ON $(CMAKE_FLAGS) >/dev/null
-	@cmake --build build-asan -j $(JOBS) --target footprint-tests
+	@cmake --build build-asan -j $(JOBS) --target footprint-tests fuzz-replay
 
 build-tsan: deps
 	@cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DFOOTPRINT_TSAN=ON \
@@ -65,6 +66,18 @@ bench: build
 
 instructions: build
 	bash bench/env-instructions.sh build
+
+# Fuzzing (docs/testing.md#fuzzing): the fuzz targets built with clang, libFuzzer and the
+# sanitizers, each run FUZZ_SECONDS over its seed corpus (fuzz/corpus/), FUZZ_JOBS at a time.
+# Fails if any target crashes; its crash files stay in build-fuzz/fuzz-out/<target>/.
+FUZZ_SECONDS ?= 60
+FUZZ_JOBS ?= 1
+FUZZ_TARGETS ?= scene_json image_load env_layouts mesh texture_file lookup
+fuzz: deps
+	@cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++-14 \
+	    -DFOOTPRINT_FUZZ=ON -DFOOTPRINT_TESTS_ONLY=ON $(CMAKE_FLAGS) >/dev/null
+	@cmake --build build-fuzz -j $(JOBS) --target fuzz-targets
+	@FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_JOBS=$(FUZZ_JOBS) fuzz/run.sh build-fuzz $(FUZZ_TARGETS)
 
 format:
 	clang-format -i $$(git ls-files '*.h' '*.cpp')

@@ -17,6 +17,7 @@ packages=(
     libepoxy-dev libegl-dev libgl1-mesa-dri libglfw3-dev      # the GPU path (OpenGL 4.5, EGL)
     xvfb xauth                                                # footprint view's test (a display)
     pybind11-dev python3-dev python3-numpy python3-pytest     # the Python module and its tests
+    clang-14 libclang-rt-14-dev                               # make fuzz (libFuzzer)
 )
 
 missing=()

@@ -79,7 +79,9 @@ Result<EnvImages> convert_environment(const EnvironmentMap& source, EnvLayout to
         return Error{"output size " + std::to_string(size) +
                      " is odd; a lat-long map is N x N/2 with N even"};
 
-    const auto [width, height] = env_face_size(to, size);
+    // (Not a structured binding: clang 14 cannot capture one in the lambda below.)
+    const std::array<int, 2> face_size = env_face_size(to, size);
+    const int width = face_size[0], height = face_size[1];
     const int faces = face_count(to);
     const int channels = source.channels();
     EnvImages result;

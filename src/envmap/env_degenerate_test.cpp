@@ -209,6 +209,32 @@ TEST(EnvDegenerate, NonFiniteInputGivesAFiniteColour) {
     }
 }
 
+TEST(EnvDegenerate, FootprintsTooLargeForTheirAxesAreFiltered) {
+    // A finite K whose ellipse overflows (entries near FLT_MAX, from a direction 1e-19 long next
+    // to derivatives of 1e-3: axes NaN or infinite), or whose axes' squares overflow (1.7e19
+    // texels), is planned at kMaxPlannedRadius: the probes' count was undefined and their spacing
+    // NaN before (found by fuzz_lookup and fuzz_env_layouts, tests/data/bad/fuzz/). The result is a
+    // weighted mean of the map's texels, alike alone and in a batch.
+    for (EnvLayout layout : kAllEnvLayouts) {
+        const EnvironmentMap map = test::env_map(layout, 16, smooth);
+        EnvFootprint f = compute_env_footprint(layout, map.texel_scale(), {0.3f, 0.2f, 1},
+                                               {1e-3f, 0, 0}, {0, 1e-3f, 0});
+        for (const Sym2 k : {Sym2{3e38f, 1e38f, 3e38f}, Sym2{3e38f, 0, 1}}) {
+            ASSERT_TRUE(k.is_finite());
+            f.matrix = k;
+            float single = NAN, batch = NAN;
+            environment_lookup(map, f, LookupOptions{}, &single);
+            environment_lookup_batch(map, std::span<const EnvFootprint>(&f, 1), LookupOptions{},
+                                     &batch);
+            // smooth() spans 0.5 ± 0.39 over the sphere; bilinear and the levels' box means stay
+            // inside.
+            EXPECT_GE(single, 0.1f) << layout_name(layout);
+            EXPECT_LE(single, 0.9f) << layout_name(layout);
+            EXPECT_EQ(batch, single) << layout_name(layout);
+        }
+    }
+}
+
 // §4 row 10a / §3.4: exactly at a lat-long pole J_P is undefined; the footprint is isotropic
 // with T_p = (H0/π)·θ_fp, θ_fp the angular radius of the ray differentials (κ·roughness added in
 // form (b)).

@@ -327,6 +327,22 @@ TEST(EnvironmentMap, LatLongPolarCapsHoldTheMapAndJoinItSmoothly) {
     EXPECT_LT(worst_jump, 1.5e-3f);
 }
 
+TEST(EnvironmentMap, ThePoleTexelOfAnOddSizedCapAveragesEveryLongitude) {
+    // A cap of odd size has a texel centred on the pole, where a lat-long texel is 0 radians wide:
+    // that texel takes the most samples (64²), not an infinite count converted to int (undefined;
+    // 2² on x86). Found by fuzz_lookup (tests/data/bad/fuzz/lookup/).
+    Image image(6, 3, 1, 0.0f);
+    image.at(0, 0, 0) = 1;  // the top row's mean is 1/6
+    const EnvironmentMap map = std::move(EnvironmentMap::from_latlong(image).value());
+    ASSERT_NE(map.polar_cap(0), nullptr);
+    ASSERT_EQ(map.polar_cap(0)->width(0), 3);  // ⌈1.5·2·3/π⌉
+    const float pole = map.polar_cap(0)->texel(0, 1, 1)[0];
+    // The pole texel averages the top row over every longitude: measured 0.0037 off its mean with
+    // 64² samples; 2² samples (four longitudes) are 0.021 off.
+    constexpr float kPoleTolerance = 0.008f;
+    EXPECT_NEAR(pole, 1.0f / 6, kPoleTolerance);
+}
+
 TEST(EnvironmentMap, PolarCapsKeepTheRoughnessFallbackOfNonFiniteInput) {
     // A non-finite ∂n/∂x near a pole leaves §4's isotropic fallback from the roughness alone, in
     // lat-long texels and without direction differentials: the caps must not turn it into a point

@@ -51,8 +51,10 @@ Image polar_cap_image(const EnvironmentMap& map, int face, int size) {
                 const float latlong_angle =
                     std::min(2 * std::numbers::pi_v<float> * sin_colatitude / latlong_size.x,
                              std::numbers::pi_v<float> / latlong_size.y);
-                const int k =
-                    std::clamp(static_cast<int>(std::ceil(texel_angle / latlong_angle)), 2, 64);
+                // Clamped as a float: at the pole itself (the centre texel of a cap of odd size)
+                // latlong_angle is 0 and the ratio infinite, which no int holds.
+                const int k = static_cast<int>(
+                    std::clamp(std::ceil(texel_angle / latlong_angle), 2.0f, 64.0f));
                 detail::Texel<S> sum{};
                 for (int j = 0; j < k; ++j)
                     for (int i = 0; i < k; ++i) {

@@ -163,9 +163,10 @@ class TextureSystemImpl final : public TextureSystem {
         : options_(options), cache_(options.max_memory_mb << 20) {}
 
     TextureHandle* handle(std::string_view name) override {
-        auto [file, added] = files_.find_or_add(name, [&] {
+        const auto found = files_.find_or_add(name, [&] {
             return std::make_unique<TextureHandle>(std::string(name), next_file_id_++);
         });
+        TextureHandle* file = found.first;  // (clang 14 cannot capture a structured binding)
         std::call_once(file->opened, [&] {
             if (name.find(kUdim) != std::string_view::npos) {
                 file->udim = true;

@@ -173,10 +173,12 @@ void short_plans4(Float4 xx, Float4 xy, Float4 yy, ProbeRule rule, int max_probe
     const Float4 zero(0.0f), one(1.0f);
     const EllipseLanes<Float4> ellipse = footprint_ellipse_lanes(xx, xy, yy);
     const Float4 l1 = ellipse.major_radius, l2 = ellipse.minor_radius;
-    // plan_probes(): more than one probe, N ≤ kShortLineProbes and within the budget.
+    // plan_probes(): more than one probe, N ≤ kShortLineProbes and within the budget; axes beyond
+    // kMaxPlannedRadius, or not finite (a NaN λ2 too), go plan_probes()' way (bounded there).
     const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
     const Float4 tp = max_like_std(l2, one);
-    Mask4 planned = !(l1 <= tp * Float4(ratio));
+    Mask4 planned = !(l1 <= tp * Float4(ratio)) & (l1 <= Float4(kMaxPlannedRadius)) & (l2 >= zero) &
+                    is_finite(ellipse.major_axis.x) & is_finite(ellipse.major_axis.y);
     Int4 n(2);
     Float4 spacing, falloff(0.0f);
     if (rule == ProbeRule::moment_matched) {
@@ -229,8 +231,14 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
                       int max_level, float lod_bias, float isotropic_ratio) {
     isotropic_ratio = std::max(isotropic_ratio, kIsotropicRatio);
     constexpr float kMinTexelSize = 1.0f;  // T_min: smaller footprints are magnification
-    const float l1 = footprint.major_radius, l2 = footprint.minor_radius;
-    const Vec2 r1 = footprint.major_axis;
+    float l1 = footprint.major_radius, l2 = footprint.minor_radius;
+    Vec2 r1 = footprint.major_axis;
+    if (!(l1 <= kMaxPlannedRadius) || !is_finite(r1)) {  // also NaN
+        l1 = kMaxPlannedRadius;
+        l2 = std::isfinite(l2) ? std::min(l2, l1) : l1;
+        if (!is_finite(r1)) r1 = {1, 0};
+    }
+    if (!(l2 >= 0)) l2 = 0;  // NaN: planned as rank one
     max_probes = std::clamp(max_probes, 1, kMaxProbeCount);
     ProbePlan plan;
 
@@ -241,7 +249,10 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
             if (l1 <= tp * isotropic_ratio) {
                 tp = std::sqrt(tp * std::max(l1, kMinTexelSize));  // one probe, √(λ1 T_p)
             } else {
-                n = static_cast<int>(std::ceil(rule_b_root(l1, tp)));
+                // Bounded as a float: a footprint beyond INT_MAX texels (or a NaN one) holds
+                // more probes than any budget, and no int holds its count.
+                n = static_cast<int>(std::fmin(std::ceil(rule_b_root(l1, tp)),
+                                               static_cast<float>(kMaxProbeCount + 1)));
                 if (n > max_probes) {
                     n = max_probes;
                     tp = std::max(tp, l1 * std::sqrt(3.0f / static_cast<float>(n * n + 2)));
@@ -270,8 +281,11 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
             if (!(sigma * spacing_factor(2) <= tp)) {
                 // First guess from the continuous truncated Gaussian (v ≈ 0.774 at κ = 2), then
                 // exact.
-                n = std::max(3, static_cast<int>(
-                                    std::ceil(2 * kGaussianProbeExtent * sigma / (tp * 0.88f))) +
+                // (Bounded as a float, as Rule B's, and so that c(N) stays in its table: a guess
+                // of kMaxProbeCount is at least any budget, and the descent finds the same N.)
+                n = std::max(3, static_cast<int>(std::fmin(
+                                    std::ceil(2 * kGaussianProbeExtent * sigma / (tp * 0.88f)),
+                                    static_cast<float>(kMaxProbeCount - 1))) +
                                     1);
                 while (n < max_probes && sigma * spacing_factor(n) > tp) ++n;
                 while (n > 3 && sigma * spacing_factor(n - 1) <= tp) --n;

@@ -90,7 +90,13 @@ inline LodBlend effective_lod_blend(const ProbePlan& plan, LodBlend blend) {
     return blend == LodBlend::automatic ? LodBlend::variance_matched : blend;
 }
 
-// The probes for a footprint ellipse (finite, λ1 ≥ λ2 ≥ 0). max_probes ≥ 1; max_level = the
+// Axes beyond this many texels are planned at this radius: such a footprint (64 times a 16K map)
+// reads the coarsest level of any pyramid, whatever its size, and bounded so its probes' positions
+// stay in int range and its squares finite (λ1² overflows from 1.8e19).
+constexpr float kMaxPlannedRadius = 1e6f;
+
+// The probes for a footprint ellipse (λ1 ≥ λ2 ≥ 0; a λ1 beyond kMaxPlannedRadius or not finite, as
+// from a K near FLT_MAX, is planned at kMaxPlannedRadius). max_probes ≥ 1; max_level = the
 // pyramid's coarsest level. lod_bias is added before clamping.
 ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max_probes,
                       int max_level, float lod_bias = 0, float isotropic_ratio = kIsotropicRatio);

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <random>
 
 #include "texture/kernel_moments.h"
@@ -74,6 +75,37 @@ TEST(FootprintAssembly, RuleBPlansMatchTheSpecExamples) {
         EXPECT_NEAR(plan.lod, std::log2(c.texel_size), 1e-4f);
         // Spacing never exceeds the probe size: no gaps between probes.
         EXPECT_LE(length(plan.step), plan.texel_size * (1 + 1e-5f));
+    }
+}
+
+TEST(FootprintAssembly, FootprintsBeyondAnyBudgetTakeTheBudgetAtTheCoarsestLevel) {
+    // λ1 of 1e12 texels (a huge finite K), infinite or NaN: more probes than any budget, whose
+    // count no int holds (undefined before; found by fuzz_lookup, tests/data/bad/fuzz/lookup/).
+    // Both weightings take N_max probes on the coarsest level.
+    constexpr int kMaxProbes = 16, kMaxLevel = 12;
+    for (const ProbeRule rule : {ProbeRule::moment_matched, ProbeRule::gaussian}) {
+        for (const float l1 : {1e12f, std::numeric_limits<float>::infinity()}) {
+            const ProbePlan plan =
+                plan_probes(make_footprint_ellipse(l1, 2, 0.3f), rule, kMaxProbes, kMaxLevel);
+            EXPECT_EQ(plan.count, kMaxProbes) << l1;
+            EXPECT_EQ(plan.lod, static_cast<float>(kMaxLevel)) << l1;
+        }
+        FootprintEllipse nan = make_footprint_ellipse(8, 2, 0.3f);
+        nan.major_radius = std::numeric_limits<float>::quiet_NaN();
+        const ProbePlan plan = plan_probes(nan, rule, kMaxProbes, kMaxLevel);
+        EXPECT_GE(plan.count, 1);
+        EXPECT_LE(plan.count, kMaxProbes);
+    }
+    // A NaN minor axis is planned as rank one (Rule A divided by it: its count was undefined).
+    for (const ProbeRule rule :
+         {ProbeRule::moment_matched, ProbeRule::gaussian, ProbeRule::ext, ProbeRule::texram}) {
+        FootprintEllipse nan_minor = make_footprint_ellipse(8, 2, 0.3f);
+        nan_minor.minor_radius = std::numeric_limits<float>::quiet_NaN();
+        const ProbePlan plan = plan_probes(nan_minor, rule, kMaxProbes, kMaxLevel);
+        FootprintEllipse rank_one = make_footprint_ellipse(8, 0, 0.3f);
+        const ProbePlan expected = plan_probes(rank_one, rule, kMaxProbes, kMaxLevel);
+        EXPECT_EQ(plan.count, expected.count);
+        EXPECT_EQ(plan.lod, expected.lod);
     }
 }
 

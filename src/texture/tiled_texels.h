@@ -72,6 +72,9 @@ class TiledTexels {
     // keeps their tiles, and clear() them when it lets go of one.
     class Slots {
       public:
+        // User-provided: clang 14 otherwise finds Slots not default-constructible inside
+        // TiledTexels (Window's member initialisers are parsed after the enclosing class).
+        Slots() {}
         void clear() {
             for (Window& slot : slots_) slot.level = -1;  // holds nothing
         }
