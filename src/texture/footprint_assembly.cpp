@@ -177,7 +177,8 @@ void short_plans4(Float4 xx, Float4 xy, Float4 yy, ProbeRule rule, int max_probe
     // kMaxPlannedRadius, or not finite (a NaN λ2 too), go plan_probes()' way (bounded there).
     const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
     const Float4 tp = max_like_std(l2, one);
-    Mask4 planned = !(l1 <= tp * Float4(ratio)) & (l1 <= Float4(kMaxPlannedRadius)) & (l2 >= zero) &
+    const Mask4 anisotropic = !(l1 <= tp * Float4(ratio));
+    Mask4 planned = anisotropic & (l1 <= Float4(kMaxPlannedRadius)) & (l2 >= zero) &
                     is_finite(ellipse.major_axis.x) & is_finite(ellipse.major_axis.y);
     Int4 n(2);
     Float4 spacing, falloff(0.0f);
