@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <numbers>
 
 #include "bump/local_frame.h"
@@ -814,6 +817,23 @@ int tile_count(int width, int height) {
     return ((width + kTileSize - 1) / kTileSize) * ((height + kTileSize - 1) / kTileSize);
 }
 
+namespace {
+
+// The arena of `threads` workers, made once and kept for the process. oneTBB 2021 keeps memory,
+// and a cost every later arena pays, for every task_arena ever constructed: one per render call
+// made a long-running process (a soak, a renderer's frames) grow and slow down without bound
+// (docs/testing.md's soak). Several renders may share an arena at once.
+tbb::task_arena& arena_of(int threads) {
+    static std::mutex mutex;
+    static auto* arenas = new std::map<int, std::unique_ptr<tbb::task_arena>>;  // never destroyed
+    const std::lock_guard lock(mutex);
+    std::unique_ptr<tbb::task_arena>& arena = (*arenas)[threads];
+    if (!arena) arena = std::make_unique<tbb::task_arena>(threads);
+    return *arena;
+}
+
+}  // namespace
+
 void for_each_tile(int width, int height, int threads,
                    const std::function<void(const Tile&)>& body) {
     const int tiles_x = (width + kTileSize - 1) / kTileSize;
@@ -825,8 +845,7 @@ void for_each_tile(int width, int height, int threads,
         });
     };
     if (threads > 0) {
-        tbb::task_arena arena(threads);
-        arena.execute(run);
+        arena_of(threads).execute(run);
     } else {
         run();
     }
