@@ -106,9 +106,12 @@ TEST(EnvProxy, ContainmentFollowsTheShapeAndKeepsItsSurface) {
         // Away from the surfaces (1e-3 of the size) the tolerance cannot decide.
         const float box_gap = std::min({std::abs(p.x + 3), std::abs(p.x - 5), std::abs(p.y),
                                         std::abs(p.y - 3), std::abs(p.z + 4), std::abs(p.z - 2)});
-        if (box_gap > 8e-3f) EXPECT_EQ(proxy_contains(box, p), in_box) << p.x << " " << p.y;
-        if (std::abs(length(p - sphere.center) - sphere.radius) > 4e-3f)
+        if (box_gap > 8e-3f) {
+            EXPECT_EQ(proxy_contains(box, p), in_box) << p.x << " " << p.y;
+        }
+        if (std::abs(length(p - sphere.center) - sphere.radius) > 4e-3f) {
             EXPECT_EQ(proxy_contains(sphere, p), in_sphere);
+        }
     }
     // On the surface, rounded either way by a float's last bits: inside.
     EXPECT_TRUE(proxy_contains(box, {0, std::nextafter(0.0f, -1.0f), 0}));
