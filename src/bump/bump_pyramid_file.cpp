@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "image/image_input.h"
 #include "image/image_io.h"
 
 namespace footprint {
@@ -46,11 +47,9 @@ Status save_bump_pyramid(const BumpPyramid& pyramid, const std::filesystem::path
 }
 
 Result<BumpPyramid> load_bump_pyramid(const std::filesystem::path& file) {
-    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(file.string());
-    if (!in) {
-        Result<Image> image = load_image(file);  // names the cause best (no such file, …)
-        return image ? cannot_read(file, OIIO::geterror()) : image.error();
-    }
+    Result<std::unique_ptr<OIIO::ImageInput>> opened = detail::open_image_input(file);
+    if (!opened) return opened.error();
+    std::unique_ptr<OIIO::ImageInput> in = std::move(*opened);
     const std::optional<Vec2> offset = slope_offset(in->spec());
     if (!offset || in->spec().channelnames != kChannelNames)
         return cannot_read(file, "it is not a bump pyramid (footprint maketx --bump writes them)");
@@ -72,12 +71,9 @@ Result<BumpPyramid> load_bump_pyramid(const std::filesystem::path& file) {
 }
 
 std::optional<Vec2> bump_pyramid_file_offset(const std::filesystem::path& file) {
-    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(file.string());
-    if (!in) {
-        (void)OIIO::geterror();
-        return std::nullopt;
-    }
-    return slope_offset(in->spec());
+    Result<std::unique_ptr<OIIO::ImageInput>> in = detail::open_image_input(file);
+    if (!in) return std::nullopt;
+    return slope_offset((*in)->spec());
 }
 
 }  // namespace footprint

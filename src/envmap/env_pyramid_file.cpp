@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "envmap/tiled_environment.h"
+#include "image/image_input.h"
 #include "image/image_io.h"
 
 namespace footprint {
@@ -25,11 +26,9 @@ struct OpenedPyramid {
     EnvLayout layout;
 };
 Result<OpenedPyramid> open_pyramid(const std::filesystem::path& file) {
-    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(file.string());
-    if (!in) {
-        Result<Image> image = load_image(file);  // names the cause best (no such file, …)
-        return image ? cannot_read(file, OIIO::geterror()) : image.error();
-    }
+    Result<std::unique_ptr<OIIO::ImageInput>> opened = detail::open_image_input(file);
+    if (!opened) return opened.error();
+    std::unique_ptr<OIIO::ImageInput> in = std::move(*opened);
     const std::optional<EnvLayout> layout =
         parse_env_layout(in->spec().get_string_attribute(kLayoutAttribute));
     if (!layout)
@@ -171,12 +170,8 @@ Result<TiledEnvShape> environment_pyramid_shape(const std::filesystem::path& fil
 }  // namespace detail
 
 bool is_environment_pyramid_file(const std::filesystem::path& file) {
-    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(file.string());
-    if (!in) {
-        (void)OIIO::geterror();
-        return false;
-    }
-    return in->spec().find_attribute(kLayoutAttribute) != nullptr;
+    Result<std::unique_ptr<OIIO::ImageInput>> in = detail::open_image_input(file);
+    return in && (*in)->spec().find_attribute(kLayoutAttribute) != nullptr;
 }
 
 }  // namespace footprint

@@ -7,13 +7,12 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
+#include <limits>
 #include <new>
 #include <optional>
 #include <random>
@@ -23,6 +22,7 @@
 
 #include "image/color.h"
 #include "image/exr_parts.h"
+#include "image/image_input.h"
 #include "image/image_io_detail.h"
 
 namespace footprint {
@@ -50,26 +50,8 @@ Error write_error(const fs::path& file, const std::string& cause) {
     return Error{"cannot write " + quoted(file) + ": " + cause};
 }
 
-// OpenImageIO's message as one line ("" when it has none): newlines joined with "; ".
-std::string clean_oiio_message(std::string message) {
-    std::string out;
-    std::size_t start = 0;
-    while (start <= message.size()) {
-        std::size_t end = message.find('\n', start);
-        if (end == std::string::npos) end = message.size();
-        std::string line = message.substr(start, end - start);
-        while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-        if (!line.empty()) {
-            if (!out.empty()) out += "; ";
-            out += line;
-        }
-        start = end + 1;
-    }
-    return out;
-}
-
 std::string with_oiio_message(std::string cause, const std::string& oiio_message) {
-    std::string message = clean_oiio_message(oiio_message);
+    std::string message = detail::one_line(oiio_message);
     if (!message.empty()) cause += " (OpenImageIO: " + message + ")";
     return cause;
 }
@@ -97,95 +79,6 @@ bool automatic_decodes_srgb(const OIIO::ImageSpec& spec) {
            !says_linear(spec.get_string_attribute("oiio:ColorSpace"));
 }
 
-// Checks that `file` is an existing, non-empty, readable regular file (clearer messages than
-// OpenImageIO gives for these cases).
-std::optional<Error> check_readable(const fs::path& file) {
-    std::error_code ec;
-    const fs::file_status st = fs::status(file, ec);
-    if (st.type() == fs::file_type::not_found) return read_error(file, "no such file");
-    if (ec) return read_error(file, ec.message());
-    if (st.type() == fs::file_type::directory) return read_error(file, "it is a directory");
-    if (st.type() != fs::file_type::regular) return read_error(file, "it is not a regular file");
-    const std::uintmax_t size = fs::file_size(file, ec);
-    if (!ec && size == 0) return read_error(file, "the file is empty");
-    std::FILE* f = std::fopen(file.c_str(), "rb");
-    if (f == nullptr) {
-        return read_error(file, "cannot open it: " + std::generic_category().message(errno));
-    }
-    std::fclose(f);
-    return std::nullopt;
-}
-
-// CRC-32 as PNG uses it (ISO 3309, polynomial 0xEDB88320), updated over `size` bytes.
-std::uint32_t crc32_update(std::uint32_t crc, const unsigned char* data, std::size_t size) {
-    static const std::array<std::uint32_t, 256> table = [] {
-        std::array<std::uint32_t, 256> t{};
-        for (std::uint32_t n = 0; n < 256; ++n) {
-            std::uint32_t c = n;
-            for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-            t[n] = c;
-        }
-        return t;
-    }();
-    for (std::size_t i = 0; i < size; ++i) crc = table[(crc ^ data[i]) & 0xffu] ^ (crc >> 8);
-    return crc;
-}
-
-// If `file` starts with the PNG signature, walks its chunks and returns the cause if it is
-// truncated or a critical chunk is corrupt. libpng reports these itself, but it also prints them
-// to stderr and OpenImageIO 2.4 leaks memory on that path, so they are caught here first.
-std::optional<std::string> check_png_structure(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) return std::nullopt;  // OpenImageIO will report it
-    constexpr std::array<unsigned char, 8> kSignature = {0x89, 'P',  'N',  'G',
-                                                         '\r', '\n', 0x1a, '\n'};
-    std::array<unsigned char, 8> head{};
-    if (!in.read(reinterpret_cast<char*>(head.data()), head.size()) || head != kSignature) {
-        return std::nullopt;  // not a PNG file: left to OpenImageIO
-    }
-    std::vector<unsigned char> buffer(1 << 16);
-    bool first = true;
-    for (;;) {
-        std::array<unsigned char, 8> header{};
-        if (!in.read(reinterpret_cast<char*>(header.data()), header.size())) {
-            return std::string("the file is truncated (the PNG ends before its IEND chunk)");
-        }
-        const std::uint32_t length = (std::uint32_t{header[0]} << 24) |
-                                     (std::uint32_t{header[1]} << 16) |
-                                     (std::uint32_t{header[2]} << 8) | std::uint32_t{header[3]};
-        const std::string type(reinterpret_cast<const char*>(header.data()) + 4, 4);
-        const bool letters = std::all_of(type.begin(), type.end(), [](char c) {
-            return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
-        });
-        if (length > 0x7fffffffu || !letters || (first && type != "IHDR")) {
-            return std::string("the file is corrupt (invalid PNG chunk header)");
-        }
-        first = false;
-        const bool critical = type[0] >= 'A' && type[0] <= 'Z';
-        std::uint32_t crc = crc32_update(0xffffffffu, header.data() + 4, 4);
-        std::uint32_t left = length;
-        while (left > 0) {
-            const std::size_t n = std::min<std::size_t>(left, buffer.size());
-            if (!in.read(reinterpret_cast<char*>(buffer.data()), static_cast<std::streamsize>(n))) {
-                return "the file is truncated (PNG chunk '" + type + "' is cut off)";
-            }
-            if (critical) crc = crc32_update(crc, buffer.data(), n);
-            left -= static_cast<std::uint32_t>(n);
-        }
-        std::array<unsigned char, 4> stored{};
-        if (!in.read(reinterpret_cast<char*>(stored.data()), stored.size())) {
-            return "the file is truncated (PNG chunk '" + type + "' is cut off)";
-        }
-        const std::uint32_t expected = (std::uint32_t{stored[0]} << 24) |
-                                       (std::uint32_t{stored[1]} << 16) |
-                                       (std::uint32_t{stored[2]} << 8) | std::uint32_t{stored[3]};
-        if (critical && (crc ^ 0xffffffffu) != expected) {
-            return "the file is corrupt (checksum mismatch in PNG chunk '" + type + "')";
-        }
-        if (type == "IEND") return std::nullopt;
-    }
-}
-
 void decode_srgb(Image& image, const OIIO::TypeDesc& format, int alpha_channel) {
     // 8- and 16-bit files hold exact codes k / (2^bits − 1): decode them through a table.
     std::vector<float> table;
@@ -208,7 +101,10 @@ void decode_srgb(Image& image, const OIIO::TypeDesc& format, int alpha_channel) 
             const long k = std::lround(std::clamp(v, 0.0f, 1.0f) * scale);
             v = table[static_cast<std::size_t>(k)];
         } else {
-            v = srgb_to_linear(v);
+            // A float file forced to sRGB: the curve goes on above 1 (as scRGB's does) but
+            // saturates at the largest float, where it would overflow to +Inf (above ~1e16), so
+            // that an image whose file values were finite stays finite.
+            v = std::min(srgb_to_linear(v), std::numeric_limits<float>::max());
         }
     }
 }
@@ -433,32 +329,17 @@ bool is_supported_image_extension(const fs::path& file) {
 }
 
 bool is_srgb_encoded(const fs::path& file) {
-    auto in = OIIO::ImageInput::open(file.string());
-    if (!in) {
-        OIIO::geterror();  // clear OpenImageIO's pending message: the caller asked a yes/no
-                           // question
-        return false;
-    }
-    const bool srgb = automatic_decodes_srgb(in->spec());
-    in->close();
-    return srgb;
+    Result<std::unique_ptr<OIIO::ImageInput>> in = detail::open_image_input(file);
+    return in && automatic_decodes_srgb((*in)->spec());
 }
 
 namespace {
 
 // `file` opened for reading, its first subimage current; the error names the file.
 Result<std::unique_ptr<OIIO::ImageInput>> open_image(const fs::path& file) {
-    if (auto error = check_readable(file)) return *error;
-    if (auto cause = check_png_structure(file)) return read_error(file, *cause);
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);  // keep straight alpha as stored
-    auto in = OIIO::ImageInput::open(file.string(), &config);
-    if (!in) {
-        return read_error(file,
-                          with_oiio_message("unknown format, or the file is corrupt or truncated",
-                                            OIIO::geterror()));
-    }
-    return in;
+    return detail::open_image_input(file, config);
 }
 
 // MIP level `level` of the open file's first subimage, checked, read and decoded; `where` leads

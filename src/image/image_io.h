@@ -1,6 +1,7 @@
 // image/image_io.h — reading and writing image files (PNG, JPEG, EXR, HDR, TIFF, …).
 //
-// load_image() reads any format OpenImageIO reads into an Image; save_image() writes an Image as
+// load_image() reads any format OpenImageIO reads into an Image, with the reader the file's
+// extension names (a PNG named .exr is refused, not guessed); save_image() writes an Image as
 // PNG, JPEG, EXR, Radiance HDR or TIFF, chosen by the file's extension.
 //
 // Conventions
@@ -44,12 +45,14 @@
 //
 // Errors (core/result.h): nothing is printed and nothing throws. Every failure returns an Error
 // whose message names the file in quotes and the cause: "cannot read 'a.png': no such file",
-// "… it is a directory", "… the file is empty", "… the file is truncated or corrupt
+// "… it is a directory", "… the file is empty", "… OpenImageIO's png reader cannot read it: it is
+// corrupt, truncated or of another format (OpenImageIO: …)", "… the file is truncated or corrupt
 // (OpenImageIO: …)", "… it has 5 channels; footprint reads 1 to 4", "… the image has zero size";
 // "cannot write 'b.exr': directory 'out' does not exist", "… unsupported extension '.bmp'
 // (supported: …)", "… No space left on device" (the system's text for a failed write, fsync or
 // close). A failed load never returns an image. PNG files are checked for truncation
-// and chunk checksum errors before they are decoded.
+// and chunk checksum errors, OpenEXR files' headers by OpenEXR's core library ("… the OpenEXR
+// header is corrupt (OpenEXR: …)"), before they are decoded.
 //
 // Atomic, checked saves: OpenImageIO encodes the file into memory (its writers do not all report
 // a failed write, e.g. libpng on a full disk), then save_image writes the bytes to a hidden
@@ -98,7 +101,8 @@ struct ImageLoadOptions {
     std::function<void(const std::string&)> warn = {};
 };
 
-// Reads `file` (any format OpenImageIO reads) into a linear-light float Image with 1–4 channels.
+// Reads `file` (any format OpenImageIO reads, by its extension) into a linear-light float Image
+// with 1–4 channels.
 Result<Image> load_image(const std::filesystem::path& file, const ImageLoadOptions& options = {});
 
 // Every MIP level `file` stores (those of its first subimage: OpenImageIO maketx's .tx files,
@@ -193,7 +197,7 @@ bool is_srgb_encoded(const std::filesystem::path& file);
 Status write_file_atomically(const std::filesystem::path& file, std::string_view bytes);
 
 // True if save_image can write `file`'s extension (case-insensitive): .png .jpg .jpeg .exr .hdr
-// .tif .tiff. load_image reads these and any other format OpenImageIO supports.
+// .tif .tiff. load_image reads these and any other format OpenImageIO supports (by extension).
 bool is_supported_image_extension(const std::filesystem::path& file);
 
 }  // namespace footprint

@@ -17,6 +17,7 @@
 #include <random>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "image/color.h"
@@ -372,6 +373,19 @@ TEST_F(ImageIo, SrgbDecodeIsApplied) {
     for (float v : srgb->pixels) EXPECT_NEAR(v, expected, kDecodeTolerance);
 }
 
+// fuzz_image_load found it: an RGBE file of huge values, forced to sRGB, decoded to +Inf after
+// the check that refuses non-finite values. The decode saturates at the largest float.
+TEST_F(ImageIo, SrgbDecodeOfHugeFloatsStaysFinite) {
+    const fs::path file = path("huge.exr");
+    const float huge = 1e30f, large = 1e15f, two = 2.0f;
+    write_with_oiio(file, 3, 1, 1, OIIO::TypeDesc::FLOAT, {huge, large, two});
+    const Result<Image> srgb = load_image(file, {ColorEncoding::srgb, NonFinitePolicy::refuse});
+    ASSERT_TRUE(srgb.ok()) << srgb.error().message;
+    EXPECT_EQ(srgb->pixels[0], std::numeric_limits<float>::max());
+    EXPECT_EQ(srgb->pixels[1], srgb_to_linear(large));  // ~9e35: below the saturation
+    EXPECT_NEAR(srgb->pixels[2], 4.9538f, 1e-3f);       // ((2 + 0.055) / 1.055)^2.4
+}
+
 TEST_F(ImageIo, LinearPngIsTaggedAndLoadedBackLinear) {
     Image image(3, 2, 3, 128.0f / 255.0f);
     const fs::path file = path("data.png");
@@ -680,7 +694,45 @@ TEST_F(ImageIo, FiveChannelExrIsAnError) {
     expect_load_error(file, "5 channels");
 }
 
+// OpenImageIO hands a file that the extension's reader refuses to every reader it has; footprint
+// reads with the extension's reader only, and says which refused.
+TEST_F(ImageIo, OnlyTheExtensionsReaderReadsAFile) {
+    const Image image = make_image(4, 4, 3, 0.0f, 1.0f);
+    ASSERT_TRUE(save_image(image, path("a.png")).ok());
+    const std::string png = read_bytes(path("a.png"));
+    for (const auto& [name, reader] :
+         {std::pair{"png_named.exr", "openexr reader"}, std::pair{"png_named.tif", "tiff reader"},
+          std::pair{"png_named.jpg", "jpeg reader"}, std::pair{"png_named.hdr", "hdr reader"}}) {
+        write_bytes(path(name), png);
+        expect_load_error(path(name), reader);
+        EXPECT_FALSE(is_srgb_encoded(path(name))) << name;
+    }
+    write_bytes(path("png_named.xyz"), png);
+    expect_load_error(path("png_named.xyz"), "no reader for .xyz files");
+    write_bytes(path("png_without_extension"), png);
+    expect_load_error(path("png_without_extension"), "no extension");
+    ASSERT_TRUE(load_image(path("a.png")).ok());
+}
+
 #ifdef FOOTPRINT_TEST_DATA_DIR
+// tests/data/bad/corrupt_header.exr (fuzz_image_load found it): 2 KB of OpenEXR whose first
+// header has a line order of 109 and whose second claims a 2 GB string, on which OpenEXR 3.1's
+// C++ reader allocates gigabytes. OpenEXR's core library refuses it before any reader runs,
+// whatever the extension.
+TEST_F(ImageIo, CorruptExrHeaderIsRefusedBeforeAnyReaderRuns) {
+    const fs::path corrupt = fs::path(FOOTPRINT_TEST_DATA_DIR) / "bad" / "corrupt_header.exr";
+    const std::string cause =
+        "the OpenEXR header is corrupt (OpenEXR: Attribute 'lineOrder' (type 'lineOrder'): "
+        "Invalid value 109";
+    expect_load_error(corrupt, cause);
+    const Result<std::vector<Image>> levels = load_image_levels(corrupt);
+    ASSERT_FALSE(levels.ok());
+    EXPECT_NE(levels.error().message.find(cause), std::string::npos) << levels.error().message;
+    EXPECT_FALSE(is_srgb_encoded(corrupt));
+    write_bytes(path("exr_named.tif"), read_bytes(corrupt));
+    expect_load_error(path("exr_named.tif"), cause);
+}
+
 TEST_F(ImageIo, BadFilesInTestDataAreErrors) {
     const fs::path bad = fs::path(FOOTPRINT_TEST_DATA_DIR) / "bad";
     ASSERT_TRUE(fs::is_directory(bad)) << bad;

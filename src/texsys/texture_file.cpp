@@ -10,6 +10,7 @@
 
 #include "bump/bump_pyramid_file.h"
 #include "image/color.h"
+#include "image/image_input.h"
 #include "image/image_io.h"
 
 namespace footprint {
@@ -47,12 +48,12 @@ fs::path cached_pyramid_file(const fs::path& file, const TextureSystemOptions& o
 }
 
 void TextureHandle::open(const TextureSystemOptions& options) {
-    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(name);
-    if (!in) {  // load_image() names the cause best (no such file, a directory, …)
-        Result<Image> image = load_image(name);
-        error = image ? cannot_read(name, OIIO::geterror()) : image.error();
+    Result<std::unique_ptr<OIIO::ImageInput>> opened = detail::open_image_input(name);
+    if (!opened) {
+        error = opened.error();
         return;
     }
+    std::unique_ptr<OIIO::ImageInput> in = std::move(*opened);
     const OIIO::ImageSpec spec = in->spec();
     read_wrap_modes(spec, options.default_wrap, info);
     int levels = 1;
@@ -117,11 +118,12 @@ void TextureHandle::open(const TextureSystemOptions& options) {
 }
 
 void TextureHandle::open_stored(const std::string& file, const TextureSystemOptions& options) {
-    input_ = OIIO::ImageInput::open(file);
-    if (!input_) {
-        error = cannot_read(file, OIIO::geterror());
+    Result<std::unique_ptr<OIIO::ImageInput>> opened = detail::open_image_input(file);
+    if (!opened) {
+        error = opened.error();
         return;
     }
+    input_ = std::move(*opened);
     if (subimage_ > 0 && !input_->seek_subimage(subimage_, 0)) {
         error = cannot_read(file, "part " + std::to_string(subimage_) + " is missing");
         return;

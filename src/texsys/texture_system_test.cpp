@@ -495,6 +495,34 @@ TEST(TextureSystem, EnvironmentMapsAreReadTileByTileWithinTheBound) {
 
 // A truncated environment pyramid file: an error naming it, reported once; with a missing colour,
 // that colour.
+#ifdef FOOTPRINT_TEST_DATA_DIR
+// A 2 KB OpenEXR file with corrupt header sizes (fuzz_texture_file found it; OpenEXR 3.1's C++
+// reader allocates gigabytes on it) is refused by OpenEXR's core library before any reader
+// runs: as a texture, a bump map and an environment map.
+TEST(TextureSystem, ACorruptExrHeaderIsAnErrorBeforeAnyReaderRuns) {
+    const std::string file =
+        (std::filesystem::path(FOOTPRINT_TEST_DATA_DIR) / "bad" / "corrupt_header.exr").string();
+    const auto expect_named = [&](const Status& s) {
+        ASSERT_FALSE(s);
+        EXPECT_NE(s.error().message.find("'" + file + "'"), std::string::npos) << s.error().message;
+        EXPECT_NE(s.error().message.find("the OpenEXR header is corrupt"), std::string::npos)
+            << s.error().message;
+    };
+    auto ts = make_system();
+    const TextureCoords c{0.5f, 0.5f, 0.01f, 0, 0, 0.01f};
+    float out[3];
+    SlopeStatistics statistics;
+    expect_named(ts->texture(file, c, {}, out));
+    expect_named(ts->bump(file, c, {}, &statistics));
+    expect_named(
+        ts->environment(file, Vec3{0, 0, 1}, Vec3{0.01f, 0, 0}, Vec3{0, 0.01f, 0}, {}, out));
+    EXPECT_FALSE(load_environment_pyramid(file));
+    EXPECT_FALSE(is_environment_pyramid_file(file));
+    EXPECT_FALSE(load_bump_pyramid(file));
+    EXPECT_FALSE(bump_pyramid_file_offset(file));
+}
+#endif
+
 TEST(TextureSystem, ATruncatedEnvironmentPyramidIsAnErrorNamingIt) {
     test::TempDir dir;
     const EnvironmentMap map = load_environment({[&] {

@@ -1,0 +1,198 @@
+// image/image_input.cpp — the checks before OpenImageIO's readers see a file (image_input.h).
+#include "image/image_input.h"
+
+#include <openexr.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <system_error>
+#include <vector>
+
+namespace footprint::detail {
+namespace {
+
+namespace fs = std::filesystem;
+
+Error read_error(const fs::path& file, const std::string& cause) {
+    return Error{"cannot read '" + file.string() + "': " + cause};
+}
+
+// Checks that `file` is an existing, non-empty, readable regular file (clearer messages than
+// OpenImageIO gives for these cases).
+std::optional<Error> check_readable(const fs::path& file) {
+    std::error_code ec;
+    const fs::file_status st = fs::status(file, ec);
+    if (st.type() == fs::file_type::not_found) return read_error(file, "no such file");
+    if (ec) return read_error(file, ec.message());
+    if (st.type() == fs::file_type::directory) return read_error(file, "it is a directory");
+    if (st.type() != fs::file_type::regular) return read_error(file, "it is not a regular file");
+    const std::uintmax_t size = fs::file_size(file, ec);
+    if (!ec && size == 0) return read_error(file, "the file is empty");
+    std::FILE* f = std::fopen(file.c_str(), "rb");
+    if (f == nullptr) {
+        return read_error(file, "cannot open it: " + std::generic_category().message(errno));
+    }
+    std::fclose(f);
+    return std::nullopt;
+}
+
+// CRC-32 as PNG uses it (ISO 3309, polynomial 0xEDB88320), updated over `size` bytes.
+std::uint32_t crc32_update(std::uint32_t crc, const unsigned char* data, std::size_t size) {
+    static const std::array<std::uint32_t, 256> table = [] {
+        std::array<std::uint32_t, 256> t{};
+        for (std::uint32_t n = 0; n < 256; ++n) {
+            std::uint32_t c = n;
+            for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+            t[n] = c;
+        }
+        return t;
+    }();
+    for (std::size_t i = 0; i < size; ++i) crc = table[(crc ^ data[i]) & 0xffu] ^ (crc >> 8);
+    return crc;
+}
+
+// If `file` starts with the PNG signature, walks its chunks and returns the cause if it is
+// truncated or a critical chunk is corrupt. libpng reports these itself, but it also prints them
+// to stderr and OpenImageIO 2.4 leaks memory on that path, so they are caught here first.
+std::optional<std::string> check_png_structure(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) return std::nullopt;  // OpenImageIO will report it
+    constexpr std::array<unsigned char, 8> kSignature = {0x89, 'P',  'N',  'G',
+                                                         '\r', '\n', 0x1a, '\n'};
+    std::array<unsigned char, 8> head{};
+    if (!in.read(reinterpret_cast<char*>(head.data()), head.size()) || head != kSignature) {
+        return std::nullopt;  // not a PNG file: left to OpenImageIO
+    }
+    std::vector<unsigned char> buffer(1 << 16);
+    bool first = true;
+    for (;;) {
+        std::array<unsigned char, 8> header{};
+        if (!in.read(reinterpret_cast<char*>(header.data()), header.size())) {
+            return std::string("the file is truncated (the PNG ends before its IEND chunk)");
+        }
+        const std::uint32_t length = (std::uint32_t{header[0]} << 24) |
+                                     (std::uint32_t{header[1]} << 16) |
+                                     (std::uint32_t{header[2]} << 8) | std::uint32_t{header[3]};
+        const std::string type(reinterpret_cast<const char*>(header.data()) + 4, 4);
+        const bool letters = std::all_of(type.begin(), type.end(), [](char c) {
+            return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
+        });
+        if (length > 0x7fffffffu || !letters || (first && type != "IHDR")) {
+            return std::string("the file is corrupt (invalid PNG chunk header)");
+        }
+        first = false;
+        const bool critical = type[0] >= 'A' && type[0] <= 'Z';
+        std::uint32_t crc = crc32_update(0xffffffffu, header.data() + 4, 4);
+        std::uint32_t left = length;
+        while (left > 0) {
+            const std::size_t n = std::min<std::size_t>(left, buffer.size());
+            if (!in.read(reinterpret_cast<char*>(buffer.data()), static_cast<std::streamsize>(n))) {
+                return "the file is truncated (PNG chunk '" + type + "' is cut off)";
+            }
+            if (critical) crc = crc32_update(crc, buffer.data(), n);
+            left -= static_cast<std::uint32_t>(n);
+        }
+        std::array<unsigned char, 4> stored{};
+        if (!in.read(reinterpret_cast<char*>(stored.data()), stored.size())) {
+            return "the file is truncated (PNG chunk '" + type + "' is cut off)";
+        }
+        const std::uint32_t expected = (std::uint32_t{stored[0]} << 24) |
+                                       (std::uint32_t{stored[1]} << 16) |
+                                       (std::uint32_t{stored[2]} << 8) | std::uint32_t{stored[3]};
+        if (critical && (crc ^ 0xffffffffu) != expected) {
+            return "the file is corrupt (checksum mismatch in PNG chunk '" + type + "')";
+        }
+        if (type == "IEND") return std::nullopt;
+    }
+}
+
+// The message of the first error OpenEXR's core library reports while exr_start_read() runs on
+// this thread. Its error callback gets no pointer of ours (the context's user_data belongs to
+// the default file reader), so the destination is a thread-local.
+thread_local std::string* exr_first_error = nullptr;
+
+void keep_first_exr_error(exr_const_context_t, exr_result_t, const char* message) {
+    if (exr_first_error != nullptr && exr_first_error->empty()) *exr_first_error = message;
+}
+
+// If `file` starts with OpenEXR's magic number (whatever its extension), the first problem
+// OpenEXR's core library finds in its headers. OpenEXRCore checks every attribute against the
+// format's rules and the file's length before it allocates; OpenEXR 3.1's C++ reader, which
+// OpenImageIO 2.4 reads with, allocates what a corrupt size claims.
+std::optional<std::string> check_exr_headers(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    constexpr std::array<unsigned char, 4> kMagic = {0x76, 0x2f, 0x31, 0x01};
+    std::array<unsigned char, 4> head{};
+    if (!in.read(reinterpret_cast<char*>(head.data()), head.size()) || head != kMagic) {
+        return std::nullopt;  // not an OpenEXR file: left to the reader
+    }
+    std::string first_error;
+    exr_first_error = &first_error;
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.error_handler_fn = keep_first_exr_error;
+    exr_context_t context = nullptr;
+    const exr_result_t result = exr_start_read(&context, file.c_str(), &init);
+    exr_first_error = nullptr;
+    if (result == EXR_ERR_SUCCESS) {
+        exr_finish(&context);
+        return std::nullopt;
+    }
+    if (first_error.empty()) first_error = exr_get_default_error_message(result);
+    return "the OpenEXR header is corrupt (OpenEXR: " + first_error + ")";
+}
+
+}  // namespace
+
+std::string one_line(const std::string& message) {
+    std::string out;
+    std::size_t start = 0;
+    while (start <= message.size()) {
+        std::size_t end = message.find('\n', start);
+        if (end == std::string::npos) end = message.size();
+        std::string line = message.substr(start, end - start);
+        while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+        if (!line.empty()) {
+            if (!out.empty()) out += "; ";
+            out += line;
+        }
+        start = end + 1;
+    }
+    return out;
+}
+
+Result<std::unique_ptr<OIIO::ImageInput>> open_image_input(const fs::path& file,
+                                                           const OIIO::ImageSpec& config) {
+    if (auto error = check_readable(file)) return *error;
+    if (auto cause = check_png_structure(file)) return read_error(file, *cause);
+    if (auto cause = check_exr_headers(file)) return read_error(file, *cause);
+    // Created from the extension alone ("exr", not the file's name), the reader is the only one
+    // that sees the file.
+    std::string extension = file.extension().string();
+    if (extension.empty()) return read_error(file, "it has no extension (which picks the reader)");
+    extension.erase(0, 1);
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::create(extension);
+    if (!in) {
+        (void)OIIO::geterror();
+        return read_error(file, "OpenImageIO has no reader for ." + extension + " files");
+    }
+    OIIO::ImageSpec spec;
+    if (!in->open(file.string(), spec, config)) {
+        std::string cause = std::string("OpenImageIO's ") + in->format_name() +
+                            " reader cannot read it: it is corrupt, truncated or of another format";
+        const std::string message = one_line(in->geterror());
+        if (!message.empty()) cause += " (OpenImageIO: " + message + ")";
+        (void)OIIO::geterror();
+        return read_error(file, cause);
+    }
+    return in;
+}
+
+}  // namespace footprint::detail

@@ -1,0 +1,34 @@
+// image/image_input.h — opening an image file for reading with OpenImageIO, private to the modules
+// that read files (image, bump, envmap, texsys). Every reader in footprint opens files here, so
+// that a corrupt file meets the same checks wherever it is read.
+//
+// OpenImageIO's ImageInput::open() trusts more than footprint can: when the reader the extension
+// names refuses a file, it hands the file to every other reader it has (DICOM, camera raw, FITS,
+// …), and OpenEXR 3.1's C++ reader allocates whatever a corrupt header's attribute sizes claim
+// (gigabytes, for a 2 KB file). open_image_input() opens with the extension's reader only, and
+// checks a PNG's chunks and an OpenEXR's headers before that reader sees them.
+#pragma once
+
+#include <OpenImageIO/imageio.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "core/result.h"
+
+namespace footprint::detail {
+
+// `file` opened by the OpenImageIO reader its extension names, its first subimage current;
+// `config` holds OpenImageIO's configuration hints ("oiio:UnassociatedAlpha", …). The error is
+// "cannot read '<file>': <cause>": no such file, a directory, an empty file, no reader for the
+// extension, a corrupt PNG chunk, a corrupt OpenEXR header (OpenEXR's words), or the reader's
+// refusal (OpenImageIO's words).
+Result<std::unique_ptr<OIIO::ImageInput>> open_image_input(
+    const std::filesystem::path& file, const OIIO::ImageSpec& config = OIIO::ImageSpec());
+
+// OpenImageIO's message (often several lines) as one line: its lines joined with "; ", "" when
+// it has none.
+std::string one_line(const std::string& message);
+
+}  // namespace footprint::detail
