@@ -113,6 +113,20 @@ std::optional<std::string> check_png_structure(const fs::path& file) {
     }
 }
 
+// A tile may hold as many texels as its image, or 1024² where the image is smaller. A corrupt
+// header can claim tiles of millions of rows for a few texels, and readers allocate a whole tile
+// for every tile they read.
+constexpr std::uint64_t kSmallImageTileTexels = std::uint64_t{1} << 20;
+
+std::optional<std::string> tile_problem(std::uint64_t tile_width, std::uint64_t tile_height,
+                                        std::uint64_t width, std::uint64_t height) {
+    const std::uint64_t limit = std::max(width * height, kSmallImageTileTexels);
+    if (tile_height == 0 || tile_width <= limit / tile_height) return std::nullopt;
+    return "its tiles (" + std::to_string(tile_width) + " x " + std::to_string(tile_height) +
+           " texels) are larger than the image (" + std::to_string(width) + " x " +
+           std::to_string(height) + ") and than 1024 x 1024: the header is corrupt";
+}
+
 // The message of the first error OpenEXR's core library reports while exr_start_read() runs on
 // this thread. Its error callback gets no pointer of ours (the context's user_data belongs to
 // the default file reader), so the destination is a thread-local.
@@ -120,6 +134,34 @@ thread_local std::string* exr_first_error = nullptr;
 
 void keep_first_exr_error(exr_const_context_t, exr_result_t, const char* message) {
     if (exr_first_error != nullptr && exr_first_error->empty()) *exr_first_error = message;
+}
+
+// The first part of an open OpenEXR file whose tiles tile_problem() refuses, and why.
+std::optional<std::string> exr_tile_problem(exr_const_context_t context) {
+    int parts = 0;
+    if (exr_get_count(context, &parts) != EXR_ERR_SUCCESS) return std::nullopt;
+    for (int part = 0; part < parts; ++part) {
+        exr_storage_t storage{};
+        std::uint32_t tile_width = 0, tile_height = 0;
+        exr_tile_level_mode_t levels{};
+        exr_tile_round_mode_t rounding{};
+        exr_attr_box2i_t window{};
+        if (exr_get_storage(context, part, &storage) != EXR_ERR_SUCCESS ||
+            (storage != EXR_STORAGE_TILED && storage != EXR_STORAGE_DEEP_TILED) ||
+            exr_get_tile_descriptor(context, part, &tile_width, &tile_height, &levels, &rounding) !=
+                EXR_ERR_SUCCESS ||
+            exr_get_data_window(context, part, &window) != EXR_ERR_SUCCESS) {
+            continue;
+        }
+        const auto extent = [](int min, int max) {
+            return static_cast<std::uint64_t>(std::int64_t{max} - min + 1);
+        };
+        if (auto cause = tile_problem(tile_width, tile_height, extent(window.min.x, window.max.x),
+                                      extent(window.min.y, window.max.y))) {
+            return "part " + std::to_string(part) + ": " + *cause;
+        }
+    }
+    return std::nullopt;
 }
 
 // If `file` starts with OpenEXR's magic number (whatever its extension), the first problem
@@ -140,10 +182,14 @@ std::optional<std::string> check_exr_headers(const fs::path& file) {
     exr_context_t context = nullptr;
     const exr_result_t result = exr_start_read(&context, file.c_str(), &init);
     exr_first_error = nullptr;
+    std::optional<std::string> tiles;
     if (result == EXR_ERR_SUCCESS) {
+        tiles = exr_tile_problem(context);
         exr_finish(&context);
-        return std::nullopt;
     }
+    // The core library's lenient parse skips an attribute it finds corrupt, reports it and
+    // succeeds; OpenEXR's C++ reader would still read that attribute. So any report refuses.
+    if (result == EXR_ERR_SUCCESS && first_error.empty()) return tiles;
     if (first_error.empty()) first_error = exr_get_default_error_message(result);
     return "the OpenEXR header is corrupt (OpenEXR: " + first_error + ")";
 }
@@ -191,6 +237,13 @@ Result<std::unique_ptr<OIIO::ImageInput>> open_image_input(const fs::path& file,
         if (!message.empty()) cause += " (OpenImageIO: " + message + ")";
         (void)OIIO::geterror();
         return read_error(file, cause);
+    }
+    if (spec.tile_width > 0) {  // a TIFF's first directory (an OpenEXR's parts are checked above)
+        if (auto cause = tile_problem(static_cast<std::uint64_t>(spec.tile_width),
+                                      static_cast<std::uint64_t>(spec.tile_height),
+                                      static_cast<std::uint64_t>(spec.width),
+                                      static_cast<std::uint64_t>(spec.height)))
+            return read_error(file, *cause);
     }
     return in;
 }

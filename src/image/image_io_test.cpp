@@ -733,6 +733,41 @@ TEST_F(ImageIo, CorruptExrHeaderIsRefusedBeforeAnyReaderRuns) {
     expect_load_error(path("exr_named.tif"), cause);
 }
 
+// tests/data/bad/corrupt_attribute_size.exr (fuzz_image_load): a tiled OpenEXR whose "wrapmodes"
+// string claims 1.9 GB. OpenEXR's core library skips that attribute and succeeds, but says so;
+// the C++ reader would allocate the 1.9 GB. What the core library says is enough to refuse.
+TEST_F(ImageIo, AnExrAttributeTheCoreLibrarySkipsIsRefused) {
+    const fs::path corrupt =
+        fs::path(FOOTPRINT_TEST_DATA_DIR) / "bad" / "corrupt_attribute_size.exr";
+    expect_load_error(corrupt,
+                      "the OpenEXR header is corrupt (OpenEXR: Attribute 'wrapmodes', type "
+                      "'string': Invalid size 1879074048)");
+}
+
+// tests/data/bad/huge_tiles.exr (fuzz_image_load): an 8 x 6 OpenEXR whose tiles claim 16 x
+// 1511424 texels, 290 MB that OpenImageIO allocated for every tile it read (2.7 s and 400 MB
+// for a 923-byte file). Tiles larger than the image are refused beyond 1024² texels; below that
+// they are ordinary (64² tiles of a small image).
+TEST_F(ImageIo, TilesFarLargerThanTheImageAreRefused) {
+    const fs::path corrupt = fs::path(FOOTPRINT_TEST_DATA_DIR) / "bad" / "huge_tiles.exr";
+    expect_load_error(corrupt,
+                      "part 0: its tiles (16 x 1511424 texels) are larger than the image "
+                      "(8 x 6) and than 1024 x 1024: the header is corrupt");
+    for (const int tile : {64, 1024}) {
+        const fs::path file = path("tiles" + std::to_string(tile) + ".exr");
+        auto out = OIIO::ImageOutput::create(file.string());
+        ASSERT_TRUE(out);
+        OIIO::ImageSpec spec(8, 6, 1, OIIO::TypeDesc::FLOAT);
+        spec.tile_width = spec.tile_height = tile;
+        const std::vector<float> texels(48, 0.5f);
+        ASSERT_TRUE(out->open(file.string(), spec) &&
+                    out->write_image(OIIO::TypeDesc::FLOAT, texels.data()) && out->close());
+        const Result<Image> loaded = load_image(file);
+        ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+        EXPECT_EQ(loaded->pixels, texels);
+    }
+}
+
 TEST_F(ImageIo, BadFilesInTestDataAreErrors) {
     const fs::path bad = fs::path(FOOTPRINT_TEST_DATA_DIR) / "bad";
     ASSERT_TRUE(fs::is_directory(bad)) << bad;
