@@ -64,6 +64,17 @@ RTCRay embree_ray(const Ray& ray, double t_min, double t_max) {
     return r;
 }
 
+// Whether Embree accepts `r`: every origin and direction component within ±1.844e18 (Embree's
+// FLT_LARGE), not NaN. Embree asserts otherwise (Debian's build aborts), and a ray beyond that
+// range meets no triangle in float precision: it misses.
+bool embree_traces(const RTCRay& r) {
+    constexpr float kLarge = 1.844e18f;
+    for (const float v : {r.org_x, r.org_y, r.org_z, r.dir_x, r.dir_y, r.dir_z}) {
+        if (!(std::abs(v) <= kLarge)) return false;
+    }
+    return !std::isnan(r.tnear) && !std::isnan(r.tfar);
+}
+
 }  // namespace
 
 Result<MeshAccel> MeshAccel::build(std::vector<MeshInstance> instances) {
@@ -157,6 +168,7 @@ bool MeshAccel::occluded(const Ray& ray, double t_min, double t_max) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay r = embree_ray(ray, t_min, t_max);
+    if (!embree_traces(r)) return false;
     rtcOccluded1(scene_, &context, &r);
     return r.tfar < 0;  // Embree sets tfar to −∞ on a hit
 }
@@ -168,6 +180,7 @@ std::optional<MeshHitRecord> MeshAccel::intersect(const Ray& ray, double t_min,
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
     rh.ray = embree_ray(ray, t_min, t_max);
+    if (!embree_traces(rh.ray)) return std::nullopt;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;

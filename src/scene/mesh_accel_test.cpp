@@ -151,6 +151,21 @@ TEST(MeshAccel, RespectsTheRayInterval) {
     EXPECT_FALSE(accel->intersect(Ray{{0.1, 0.2, 2}, {0, 0, 1}}, 0, 10).has_value());
 }
 
+// fuzz_scene_json: a camera at 1.1e31 gave Embree a ray it asserts on (Debian's Embree aborts).
+// Rays beyond Embree's range miss, and no ray aborts.
+TEST(MeshAccel, RaysBeyondEmbreesRangeMiss) {
+    const TriangleMesh floor = quad(0);
+    Result<MeshAccel> accel = MeshAccel::build({{0, &floor}});
+    ASSERT_TRUE(accel.ok());
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (const Ray& ray : {Ray{{0.1, 1.1e31, 2}, {0, -1, -1}}, Ray{{0.1, 0.2, 2}, {0, 0, -1e30}},
+                           Ray{{0.1, nan, 2}, {0, 0, -1}}}) {
+        EXPECT_FALSE(accel->intersect(ray, 0, 1e300).has_value());
+        EXPECT_FALSE(accel->occluded(ray, 0, 1e300));
+    }
+    EXPECT_TRUE(accel->intersect(Ray{{0.1, 0.2, 1e18}, {0, 0, -1}}, 0, 2e18).has_value());
+}
+
 TEST(MeshAccel, EmptyAndMoved) {
     const Ray ray{{0, 0, 2}, {0, 0, -1}};
     MeshAccel none;
