@@ -8,7 +8,6 @@
 #include <cctype>
 #include <cerrno>
 #include <cstdint>
-#include <cstdio>
 #include <fstream>
 #include <optional>
 #include <string>
@@ -20,13 +19,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-Error read_error(const fs::path& file, const std::string& cause) {
-    return Error{"cannot read '" + file.string() + "': " + cause};
-}
+// What a file's first bytes say it is: only these formats have checks of their own.
+enum class Signature { png, exr, other };
 
 // Checks that `file` is an existing, non-empty, readable regular file (clearer messages than
-// OpenImageIO gives for these cases).
-std::optional<Error> check_readable(const fs::path& file) {
+// OpenImageIO gives for these cases), opens it as `in` and reads its signature (`in` is left after
+// a PNG's).
+Result<Signature> open_checked(const fs::path& file, std::ifstream& in) {
     std::error_code ec;
     const fs::file_status st = fs::status(file, ec);
     if (st.type() == fs::file_type::not_found) return read_error(file, "no such file");
@@ -35,12 +34,20 @@ std::optional<Error> check_readable(const fs::path& file) {
     if (st.type() != fs::file_type::regular) return read_error(file, "it is not a regular file");
     const std::uintmax_t size = fs::file_size(file, ec);
     if (!ec && size == 0) return read_error(file, "the file is empty");
-    std::FILE* f = std::fopen(file.c_str(), "rb");
-    if (f == nullptr) {
+    errno = 0;
+    in.open(file, std::ios::binary);
+    if (!in) {
         return read_error(file, "cannot open it: " + std::generic_category().message(errno));
     }
-    std::fclose(f);
-    return std::nullopt;
+    constexpr std::array<char, 8> kPng = {'\x89', 'P', 'N', 'G', '\r', '\n', '\x1a', '\n'};
+    constexpr std::array<char, 4> kExr = {'\x76', '\x2f', '\x31', '\x01'};
+    std::array<char, 8> head{};
+    in.read(head.data(), head.size());
+    const auto read = static_cast<std::size_t>(in.gcount());
+    if (read == kPng.size() && head == kPng) return Signature::png;
+    if (read >= kExr.size() && std::equal(kExr.begin(), kExr.end(), head.begin()))
+        return Signature::exr;
+    return Signature::other;
 }
 
 // CRC-32 as PNG uses it (ISO 3309, polynomial 0xEDB88320), updated over `size` bytes.
@@ -58,18 +65,10 @@ std::uint32_t crc32_update(std::uint32_t crc, const unsigned char* data, std::si
     return crc;
 }
 
-// If `file` starts with the PNG signature, walks its chunks and returns the cause if it is
+// Walks the chunks of a PNG file (`in` just after its signature) and returns the cause if it is
 // truncated or a critical chunk is corrupt. libpng reports these itself, but it also prints them
 // to stderr and OpenImageIO 2.4 leaks memory on that path, so they are caught here first.
-std::optional<std::string> check_png_structure(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) return std::nullopt;  // OpenImageIO will report it
-    constexpr std::array<unsigned char, 8> kSignature = {0x89, 'P',  'N',  'G',
-                                                         '\r', '\n', 0x1a, '\n'};
-    std::array<unsigned char, 8> head{};
-    if (!in.read(reinterpret_cast<char*>(head.data()), head.size()) || head != kSignature) {
-        return std::nullopt;  // not a PNG file: left to OpenImageIO
-    }
+std::optional<std::string> png_problem(std::istream& in) {
     std::vector<unsigned char> buffer(1 << 16);
     bool first = true;
     for (;;) {
@@ -164,17 +163,11 @@ std::optional<std::string> exr_tile_problem(exr_const_context_t context) {
     return std::nullopt;
 }
 
-// If `file` starts with OpenEXR's magic number (whatever its extension), the first problem
-// OpenEXR's core library finds in its headers. OpenEXRCore checks every attribute against the
-// format's rules and the file's length before it allocates; OpenEXR 3.1's C++ reader, which
-// OpenImageIO 2.4 reads with, allocates what a corrupt size claims.
-std::optional<std::string> check_exr_headers(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    constexpr std::array<unsigned char, 4> kMagic = {0x76, 0x2f, 0x31, 0x01};
-    std::array<unsigned char, 4> head{};
-    if (!in.read(reinterpret_cast<char*>(head.data()), head.size()) || head != kMagic) {
-        return std::nullopt;  // not an OpenEXR file: left to the reader
-    }
+// The first problem OpenEXR's core library finds in the headers of the OpenEXR file `file`.
+// OpenEXRCore checks every attribute against the format's rules and the file's length before it
+// allocates; OpenEXR 3.1's C++ reader, which OpenImageIO 2.4 reads with, allocates what a corrupt
+// size claims.
+std::optional<std::string> exr_header_problem(const fs::path& file) {
     std::string first_error;
     exr_first_error = &first_error;
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
@@ -196,6 +189,10 @@ std::optional<std::string> check_exr_headers(const fs::path& file) {
 
 }  // namespace
 
+Error read_error(const fs::path& file, const std::string& cause) {
+    return Error{"cannot read '" + file.string() + "': " + cause};
+}
+
 std::string one_line(const std::string& message) {
     std::string out;
     std::size_t start = 0;
@@ -215,25 +212,31 @@ std::string one_line(const std::string& message) {
 
 Result<std::unique_ptr<OIIO::ImageInput>> open_image_input(const fs::path& file,
                                                            const OIIO::ImageSpec& config) {
-    if (auto error = check_readable(file)) return *error;
-    if (auto cause = check_png_structure(file)) return read_error(file, *cause);
-    if (auto cause = check_exr_headers(file)) return read_error(file, *cause);
+    std::ifstream in;
+    const Result<Signature> signature = open_checked(file, in);
+    if (!signature) return signature.error();
+    // An OpenEXR is vetted whatever its extension: any reader handed it would trust its header.
+    if (*signature == Signature::png)
+        if (auto cause = png_problem(in)) return read_error(file, *cause);
+    if (*signature == Signature::exr)
+        if (auto cause = exr_header_problem(file)) return read_error(file, *cause);
+    in.close();
     // Created from the extension alone ("exr", not the file's name), the reader is the only one
     // that sees the file.
     std::string extension = file.extension().string();
     if (extension.empty()) return read_error(file, "it has no extension (which picks the reader)");
     extension.erase(0, 1);
     for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::create(extension);
-    if (!in) {
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::create(extension);
+    if (!input) {
         (void)OIIO::geterror();
         return read_error(file, "OpenImageIO has no reader for ." + extension + " files");
     }
     OIIO::ImageSpec spec;
-    if (!in->open(file.string(), spec, config)) {
-        std::string cause = std::string("OpenImageIO's ") + in->format_name() +
+    if (!input->open(file.string(), spec, config)) {
+        std::string cause = std::string("OpenImageIO's ") + input->format_name() +
                             " reader cannot read it: it is corrupt, truncated or of another format";
-        const std::string message = one_line(in->geterror());
+        const std::string message = one_line(input->geterror());
         if (!message.empty()) cause += " (OpenImageIO: " + message + ")";
         (void)OIIO::geterror();
         return read_error(file, cause);
@@ -245,7 +248,7 @@ Result<std::unique_ptr<OIIO::ImageInput>> open_image_input(const fs::path& file,
                                       static_cast<std::uint64_t>(spec.height)))
             return read_error(file, *cause);
     }
-    return in;
+    return input;
 }
 
 }  // namespace footprint::detail

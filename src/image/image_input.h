@@ -27,6 +27,9 @@ namespace footprint::detail {
 Result<std::unique_ptr<OIIO::ImageInput>> open_image_input(
     const std::filesystem::path& file, const OIIO::ImageSpec& config = OIIO::ImageSpec());
 
+// "cannot read '<file>': <cause>", the error every reader gives.
+Error read_error(const std::filesystem::path& file, const std::string& cause);
+
 // OpenImageIO's message (often several lines) as one line: its lines joined with "; ", "" when
 // it has none.
 std::string one_line(const std::string& message);

@@ -42,10 +42,6 @@ std::string quoted(const fs::path& file) {
     return s;
 }
 
-Error read_error(const fs::path& file, const std::string& cause) {
-    return Error{"cannot read " + quoted(file) + ": " + cause};
-}
-
 Error write_error(const fs::path& file, const std::string& cause) {
     return Error{"cannot write " + quoted(file) + ": " + cause};
 }
@@ -158,8 +154,8 @@ std::optional<Error> handle_non_finite(Image& image, const fs::path& file,
                               value_text(image.pixels[bad[0]]) + ")";
     const std::string n = std::to_string(bad.size());
     if (options.non_finite == NonFinitePolicy::refuse) {
-        return read_error(file, n + (bad.size() == 1 ? " value is" : " values are") +
-                                    " not finite (NaN or infinite)" + first);
+        return detail::read_error(file, n + (bad.size() == 1 ? " value is" : " values are") +
+                                            " not finite (NaN or infinite)" + first);
     }
     // Repair from the file's values only, so the result does not depend on the order.
     std::vector<float> repaired(bad.size());
@@ -348,7 +344,7 @@ Result<Image> read_level(OIIO::ImageInput& in, int level, const fs::path& file,
                          const ImageLoadOptions& options, const std::string& where) {
     const auto fail = [&](const std::string& cause) {
         (void)in.geterror();  // drop pending messages so OpenImageIO does not print them
-        return read_error(file, where + cause);
+        return detail::read_error(file, where + cause);
     };
     if (!in.seek_subimage(0, level)) return fail("the file has no such MIP level");
     const OIIO::ImageSpec spec = in.spec();
@@ -379,7 +375,7 @@ Result<Image> read_level(OIIO::ImageInput& in, int level, const fs::path& file,
     }
     if (!in.read_image(0, level, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()) ||
         in.has_error()) {
-        return read_error(
+        return detail::read_error(
             file, where + with_oiio_message("the file is truncated or corrupt", in.geterror()));
     }
     if (auto error = handle_non_finite(image, file, options)) return *error;

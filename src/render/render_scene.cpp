@@ -49,8 +49,8 @@ Error scene_error(const SceneDesc& desc, const std::string& key, const Error& er
 }
 
 // The hint added where a NaN or infinite texel was refused: the scene key that repairs them.
-std::string repair_hint(const char* where) {
-    return std::string(" (the ") + where + " key \"non_finite\": \"repair\" replaces them)";
+std::string repair_hint(const std::string& where) {
+    return " (the " + where + " key \"non_finite\": \"repair\" replaces them)";
 }
 
 Result<Image> load_source(const ImageSource& source, ColorEncoding encoding,
@@ -423,8 +423,8 @@ Result<EnvironmentMap> rgb_times(const EnvironmentMap& stored, float intensity) 
     return EnvironmentMap::from_face_levels(stored.layout(), faces, caps);
 }
 
-// The environment's images in RGB × intensity, from memory or its files.
-Result<EnvImages> environment_images(const EnvironmentDesc& desc) {
+// The environment's images in RGB × intensity, from memory or its files; `key` is its scene key.
+Result<EnvImages> environment_images(const EnvironmentDesc& desc, const std::string& key) {
     EnvImages images;
     images.layout = desc.layout;
     const bool in_memory = !desc.images.empty() && desc.images[0].image != nullptr;
@@ -440,7 +440,7 @@ Result<EnvImages> environment_images(const EnvironmentDesc& desc) {
         if (!loaded && desc.non_finite == NonFinitePolicy::refuse) {
             options.image.non_finite = NonFinitePolicy::repair;
             if (load_environment_images(files, options))
-                return Error{loaded.error().message + repair_hint("environment")};
+                return Error{loaded.error().message + repair_hint(key)};
         }
         if (!loaded) return loaded.error();
         images = std::move(*loaded);
@@ -500,7 +500,7 @@ Result<std::unique_ptr<RenderEnvironment>> prepare_environment(const Environment
         if (!whole) return whole.error();
         map = rgb_times(**whole, desc.intensity);
     } else {
-        Result<EnvImages> images = environment_images(desc);
+        Result<EnvImages> images = environment_images(desc, key);
         if (!images) return images.error();
         map = make_environment_map(*images);
     }

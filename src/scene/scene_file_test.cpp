@@ -1264,12 +1264,17 @@ struct NonFiniteCase {
     const char* name;
     const char* scene;          // with %KEY% where the key goes
     const char* error_key;      // the key path the refusal starts with
-    const char* hint_location;  // "environment" or "material"
+    const char* hint_location;  // the key that takes "non_finite"
 };
 
 const NonFiniteCase kNonFiniteCases[] = {
     {"Environment", R"({"camera": {}, "objects": [], "environment": {"file": "bad.exr"%KEY%}})",
      "environment", "environment"},
+    {"LocalEnvironment",
+     R"({"camera": {}, "objects": [],
+         "local_environments": [{"file": "bad.exr",
+                                 "proxy": {"box": {"min": [-1, -1, -1], "max": [1, 1, 1]}}%KEY%}]})",
+     "local_environments[0]", "local_environments[0]"},
     {"BaseColor",
      R"({"camera": {"position": [0, 1, 2], "look_at": [0, 0, 0]},
          "lights": [{"direction": [0, -1, 0]}],

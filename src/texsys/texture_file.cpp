@@ -19,10 +19,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-Error cannot_read(const std::string& file, const std::string& why) {
-    return Error{"cannot read '" + file + "': " + why};
-}
-
 void read_wrap_modes(const OIIO::ImageSpec& spec, WrapMode fallback, TextureInfo& info) {
     const WrapModes modes = parse_oiio_wrap_modes(spec.get_string_attribute("wrapmodes"));
     info.wrap_s = modes.s.value_or(fallback);
@@ -66,11 +62,11 @@ void TextureHandle::open(const TextureSystemOptions& options) {
                  in->spec().height == std::max(1, spec.height >> l);
     }
     stored = stored && std::max(spec.width >> (levels - 1), spec.height >> (levels - 1)) == 1;
-    in.reset();
     if (stored) {
-        open_stored(name, options);
+        open_stored(name, std::move(in), options);
         return;
     }
+    in.reset();
     // A pyramid built in an earlier run (or by another system) is opened, not built again.
     const fs::path cached =
         options.cache_dir.empty()
@@ -87,7 +83,7 @@ void TextureHandle::open(const TextureSystemOptions& options) {
         return;
     }
     if (image->empty() || image->channels > MipPyramid::kMaxChannels) {
-        error = cannot_read(
+        error = detail::read_error(
             name, std::to_string(image->channels) + " channels of " + std::to_string(image->width) +
                       "×" + std::to_string(image->height) + " texels (1 to " +
                       std::to_string(MipPyramid::kMaxChannels) + " channels can be filtered)");
@@ -123,9 +119,14 @@ void TextureHandle::open_stored(const std::string& file, const TextureSystemOpti
         error = opened.error();
         return;
     }
-    input_ = std::move(*opened);
-    if (subimage_ > 0 && !input_->seek_subimage(subimage_, 0)) {
-        error = cannot_read(file, "part " + std::to_string(subimage_) + " is missing");
+    open_stored(file, std::move(*opened), options);
+}
+
+void TextureHandle::open_stored(const std::string& file, std::unique_ptr<OIIO::ImageInput> input,
+                                const TextureSystemOptions& options) {
+    input_ = std::move(input);
+    if (!input_->seek_subimage(subimage_, 0)) {
+        error = detail::read_error(file, "part " + std::to_string(subimage_) + " is missing");
         return;
     }
     const OIIO::ImageSpec& spec = input_->spec();
@@ -245,7 +246,7 @@ Result<MipPyramid> TextureHandle::read_whole() {
 
 void TextureHandle::fail_read(const std::string& why) {
     std::lock_guard lock(read_error_mutex);
-    if (!read_error) read_error = cannot_read(name, why);
+    if (!read_error) read_error = detail::read_error(name, why);
     read_failed = true;
 }
 

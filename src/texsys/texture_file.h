@@ -69,7 +69,11 @@ class TextureHandle {
     std::map<int, TextureHandle*> udim_tiles;
 
   private:
+    // Opens `file`, which holds stored levels, to be read tile by tile.
     void open_stored(const std::string& file, const TextureSystemOptions& options);
+    // ... through `input`, already open on it.
+    void open_stored(const std::string& file, std::unique_ptr<OIIO::ImageInput> input,
+                     const TextureSystemOptions& options);
     void fail_read(const std::string& why);
 
     std::mutex read_mutex_;  // one read at a time through input_
