@@ -114,7 +114,8 @@ TEST(RenderBands, ABandIsTheWholeImagesRowsInEveryMode) {
     }
 }
 
-TEST(RenderBands, AGpuBandIsTheWholeImagesRows) {
+// A suite (so a process) of its own: see RenderCommandGpuTest in render_cli_test.cpp.
+TEST(GpuRenderBands, ABandIsTheWholeImagesRows) {
     FOOTPRINT_GPU_DEVICE_OR_SKIP();
     SceneDesc desc;
     desc.width = 32, desc.height = 18;
