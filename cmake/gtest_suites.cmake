@@ -3,7 +3,7 @@
 #
 # Not gtest_discover_tests(), which makes a test, and so a process, of every test: each process
 # first loads OpenImageIO's few hundred shared libraries (most of a short test's time,
-# docs/testing.md#running-them), while a suite's tests share one process. The list is made when
+# docs/testing.md#how-the-tests-are-organised), while a suite's tests share one process. The list is made when
 # TARGET is built (it runs `TARGET --gtest_list_tests`), as gtest_discover_tests() makes its.
 set(FOOTPRINT_GTEST_SUITES_SCRIPT "${CMAKE_CURRENT_LIST_DIR}/gtest_suites_list.cmake")
 

@@ -215,9 +215,9 @@ Result<std::unique_ptr<OIIO::ImageInput>> open_image_input(const fs::path& file,
     std::ifstream in;
     const Result<Signature> signature = open_checked(file, in);
     if (!signature) return signature.error();
-    // An OpenEXR is vetted whatever its extension: any reader handed it would trust its header.
     if (*signature == Signature::png)
         if (auto cause = png_problem(in)) return read_error(file, *cause);
+    // An OpenEXR is vetted whatever its extension: any reader handed it would trust its header.
     if (*signature == Signature::exr)
         if (auto cause = exr_header_problem(file)) return read_error(file, *cause);
     in.close();
