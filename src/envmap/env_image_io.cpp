@@ -1,9 +1,10 @@
 #include "envmap/env_image_io.h"
 
+#include <openexr.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
-#include <fstream>
 #include <system_error>
 
 namespace footprint {
@@ -161,11 +162,6 @@ Status check_output_file(const fs::path& file) {
     return {};
 }
 
-std::uint32_t read_u32_le(const unsigned char* p) {
-    return static_cast<std::uint32_t>(p[0]) | static_cast<std::uint32_t>(p[1]) << 8 |
-           static_cast<std::uint32_t>(p[2]) << 16 | static_cast<std::uint32_t>(p[3]) << 24;
-}
-
 }  // namespace
 
 const char* cube_arrangement_name(CubeArrangement arrangement) {
@@ -305,38 +301,21 @@ Image assemble_paraboloid_image(const Image& front, const Image& back) {
 }
 
 std::optional<EnvLayout> read_openexr_envmap_attribute(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) return std::nullopt;
-    // The header of a (first) part: magic, version, then attributes "name\0type\0" + int32 size +
-    // value, ended by an empty name (OpenEXR file layout). 1 MiB is far more than any header.
-    std::vector<unsigned char> bytes(1 << 20);
-    in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    bytes.resize(static_cast<std::size_t>(in.gcount()));
-    if (bytes.size() < 8 || read_u32_le(bytes.data()) != 20000630u) return std::nullopt;
-    std::size_t pos = 8;
-    auto read_string = [&](std::string& out) {
-        const auto end = std::find(bytes.begin() + static_cast<std::ptrdiff_t>(pos), bytes.end(),
-                                   static_cast<unsigned char>(0));
-        if (end == bytes.end()) return false;
-        out.assign(bytes.begin() + static_cast<std::ptrdiff_t>(pos), end);
-        pos = static_cast<std::size_t>(end - bytes.begin()) + 1;
-        return true;
-    };
-    std::string name, type;
-    while (pos < bytes.size()) {
-        if (!read_string(name) || name.empty()) return std::nullopt;
-        if (!read_string(type) || pos + 4 > bytes.size()) return std::nullopt;
-        const std::uint32_t size = read_u32_le(bytes.data() + pos);
-        pos += 4;
-        if (size > bytes.size() - pos) return std::nullopt;
-        if (name == "envmap" && type == "envmap" && size >= 1) {
-            if (bytes[pos] == 0) return EnvLayout::latlong;  // ENVMAP_LATLONG
-            if (bytes[pos] == 1) return EnvLayout::cube;     // ENVMAP_CUBE
-            return std::nullopt;
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    // Silent: a file that is not OpenEXR has no such attribute, and load_image has reported
+    // whatever makes an OpenEXR unreadable.
+    init.error_handler_fn = [](exr_const_context_t, exr_result_t, const char*) {};
+    exr_context_t context = nullptr;
+    std::optional<EnvLayout> layout;
+    if (exr_start_read(&context, file.c_str(), &init) == EXR_ERR_SUCCESS) {
+        exr_envmap_t envmap{};
+        if (exr_attr_get_envmap(context, 0, "envmap", &envmap) == EXR_ERR_SUCCESS) {
+            if (envmap == EXR_ENVMAP_LATLONG) layout = EnvLayout::latlong;
+            if (envmap == EXR_ENVMAP_CUBE) layout = EnvLayout::cube;
         }
-        pos += size;
+        exr_finish(&context);
     }
-    return std::nullopt;
+    return layout;
 }
 
 Result<EnvImages> load_environment_images(const std::vector<fs::path>& files,
