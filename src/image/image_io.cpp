@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <limits>
@@ -338,6 +339,50 @@ Result<std::unique_ptr<OIIO::ImageInput>> open_image(const fs::path& file) {
     return detail::open_image_input(file, config);
 }
 
+// Bytes of the file's own texels read_float_texels() converts at a time.
+constexpr std::size_t kBandBytes = std::size_t{4} << 20;
+
+// Rows of a band: kBandBytes of rows or one row, whole tiles high, at most the image.
+int band_rows(const OIIO::ImageSpec& spec) {
+    const std::size_t row_bytes = spec.scanline_bytes(/*native=*/true);
+    std::int64_t rows = static_cast<std::int64_t>(std::max<std::size_t>(kBandBytes / row_bytes, 1));
+    if (spec.tile_height > 0)
+        rows = (rows + spec.tile_height - 1) / spec.tile_height * spec.tile_height;
+    return static_cast<int>(std::min<std::int64_t>(rows, spec.height));
+}
+
+// Level `level` of the open file's first subimage as float texels. OpenImageIO 2.4 converts
+// through a buffer of 64 MiB of scanlines whatever the image's size, even to the file's own type;
+// only a request for the native layout (TypeDesc::UNKNOWN) reads straight into the caller's
+// memory. So float files are read as they are, and other types a band at a time and converted
+// here; OpenImageIO converts only files whose channels differ in type.
+bool read_float_texels(OIIO::ImageInput& in, int level, const OIIO::ImageSpec& spec,
+                       std::vector<float>& texels) {
+    const int channels = spec.nchannels;
+    if (!spec.channelformats.empty())
+        return in.read_image(0, level, 0, channels, OIIO::TypeDesc::FLOAT, texels.data());
+    if (spec.format == OIIO::TypeDesc::FLOAT)
+        return in.read_image(0, level, 0, channels, OIIO::TypeDesc::UNKNOWN, texels.data());
+    const int rows = band_rows(spec);
+    std::vector<std::byte> band(static_cast<std::size_t>(rows) * spec.scanline_bytes(true));
+    for (int y = 0; y < spec.height; y += rows) {
+        const int y_end = std::min(y + rows, spec.height);
+        const bool read = spec.tile_width > 0
+                              ? in.read_tiles(0, level, spec.x, spec.x + spec.width, spec.y + y,
+                                              spec.y + y_end, spec.z, spec.z + 1, 0, channels,
+                                              OIIO::TypeDesc::UNKNOWN, band.data())
+                              : in.read_scanlines(0, level, spec.y + y, spec.y + y_end, spec.z, 0,
+                                                  channels, OIIO::TypeDesc::UNKNOWN, band.data());
+        float* out = texels.data() + static_cast<std::size_t>(y) * spec.width * channels;
+        if (!read || !OIIO::convert_image(channels, spec.width, y_end - y, 1, band.data(),
+                                          spec.format, OIIO::AutoStride, OIIO::AutoStride,
+                                          OIIO::AutoStride, out, OIIO::TypeDesc::FLOAT,
+                                          OIIO::AutoStride, OIIO::AutoStride, OIIO::AutoStride))
+            return false;
+    }
+    return true;
+}
+
 // MIP level `level` of the open file's first subimage, checked, read and decoded; `where` leads
 // the cause in messages ("MIP level 3: ", or nothing for an image's only level).
 Result<Image> read_level(OIIO::ImageInput& in, int level, const fs::path& file,
@@ -373,8 +418,7 @@ Result<Image> read_level(OIIO::ImageInput& in, int level, const fs::path& file,
         return fail("not enough memory for " + std::to_string(spec.width) + " x " +
                     std::to_string(spec.height) + " pixels");
     }
-    if (!in.read_image(0, level, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()) ||
-        in.has_error()) {
+    if (!read_float_texels(in, level, spec, image.pixels) || in.has_error()) {
         return detail::read_error(
             file, where + with_oiio_message("the file is truncated or corrupt", in.geterror()));
     }

@@ -282,6 +282,65 @@ TEST_F(ImageIo, ExrHalfRoundTripWithinHalfPrecision) {
     }
 }
 
+// load_image reads the file's own texels and converts them to float itself, in bands of rows
+// (OpenImageIO 2.4's conversion goes through 64 MiB of scanlines); the floats must be the ones
+// OpenImageIO's read_image gives, bit for bit, for every texel type, tiled or not, in one band or
+// several (a band is 4 MiB: 341 rows of 2048 RGB 16-bit texels, 384 when tiles are 64 high), and
+// for channels of several types (which OpenImageIO still converts).
+TEST_F(ImageIo, EveryTexelTypeReadsAsOpenImageIOConvertsIt) {
+    struct Case {
+        const char* name;
+        OIIO::TypeDesc format;
+        int tile = 0;
+        std::vector<OIIO::TypeDesc> channel_formats = {};
+        int width = 37, height = 23;
+    };
+    using T = OIIO::TypeDesc;
+    const std::vector<Case> cases = {
+        {"u8.png", T::UINT8},
+        {"u16.png", T::UINT16},
+        {"i8.tif", T::INT8},
+        {"i16.tif", T::INT16},
+        {"u32.tif", T::UINT32},
+        {"f64.tif", T::DOUBLE},
+        {"u8_tiled.tif", T::UINT8, 16},
+        {"half.exr", T::HALF},
+        {"float.exr", T::FLOAT},
+        {"half_tiled.exr", T::HALF, 16},
+        {"mixed.exr", T::FLOAT, 0, {T::HALF, T::FLOAT, T::HALF}},
+        {"u16_bands.tif", T::UINT16, 0, {}, 2048, 700},
+        {"u16_tiled_bands.tif", T::UINT16, 64, {}, 2048, 700},
+    };
+    const int channels = 3;
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.name);
+        std::vector<float> written(std::size_t(c.width) * c.height * channels);
+        for (std::size_t i = 0; i < written.size(); ++i)
+            written[i] = 1.5f * std::sin(0.37f * static_cast<float>(i));  // also < 0 and > 1
+        const fs::path file = path(c.name);
+        auto out = OIIO::ImageOutput::create(file.string());
+        ASSERT_TRUE(out) << OIIO::geterror();
+        OIIO::ImageSpec spec(c.width, c.height, channels, c.format);
+        spec.tile_width = spec.tile_height = c.tile;
+        spec.channelformats = c.channel_formats;
+        spec.attribute("compression", "none");
+        ASSERT_TRUE(out->open(file.string(), spec) && out->write_image(T::FLOAT, written.data()) &&
+                    out->close())
+            << out->geterror();
+
+        auto in = OIIO::ImageInput::open(file.string());
+        ASSERT_TRUE(in) << OIIO::geterror();
+        ASSERT_EQ(in->spec().tile_width, c.tile);
+        ASSERT_EQ(in->spec().channelformats.empty(), c.channel_formats.empty());
+        std::vector<float> expected(written.size());
+        ASSERT_TRUE(in->read_image(0, 0, 0, channels, T::FLOAT, expected.data()));
+
+        const Result<Image> loaded = load_image(file, {ColorEncoding::linear});
+        ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+        EXPECT_TRUE(loaded->pixels == expected);  // not EXPECT_EQ: millions of values
+    }
+}
+
 TEST_F(ImageIo, Srgb8PngRoundTrip) {
     for (int channels = 1; channels <= 4; ++channels) {
         const Image image = make_image(16, 9, channels, 0.0f, 1.0f, 10u + channels);
