@@ -187,6 +187,28 @@ std::optional<std::string> exr_header_problem(const fs::path& file) {
     return "the OpenEXR header is corrupt (OpenEXR: " + first_error + ")";
 }
 
+// The first subimage or MIP level (a TIFF directory) of the open `input` whose tiles
+// tile_problem() refuses, and why; `input` is left at its first subimage.
+std::optional<std::string> level_tile_problem(OIIO::ImageInput& input) {
+    for (int subimage = 0; input.seek_subimage(subimage, 0); ++subimage) {
+        for (int level = 0; input.seek_subimage(subimage, level); ++level) {
+            const OIIO::ImageSpec& spec = input.spec();
+            if (spec.tile_width <= 0) continue;
+            std::optional<std::string> cause = tile_problem(
+                static_cast<std::uint64_t>(spec.tile_width),
+                static_cast<std::uint64_t>(spec.tile_height),
+                static_cast<std::uint64_t>(spec.width), static_cast<std::uint64_t>(spec.height));
+            if (!cause) continue;
+            if (subimage == 0 && level == 0) return cause;
+            return "subimage " + std::to_string(subimage) + ", MIP level " + std::to_string(level) +
+                   ": " + *cause;
+        }
+    }
+    input.seek_subimage(0, 0);
+    (void)input.geterror();  // the failed seek's message, which would fail the next read
+    return std::nullopt;
+}
+
 }  // namespace
 
 Error read_error(const fs::path& file, const std::string& cause) {
@@ -241,13 +263,8 @@ Result<std::unique_ptr<OIIO::ImageInput>> open_image_input(const fs::path& file,
         (void)OIIO::geterror();
         return read_error(file, cause);
     }
-    if (spec.tile_width > 0) {  // a TIFF's first directory (an OpenEXR's parts are checked above)
-        if (auto cause = tile_problem(static_cast<std::uint64_t>(spec.tile_width),
-                                      static_cast<std::uint64_t>(spec.tile_height),
-                                      static_cast<std::uint64_t>(spec.width),
-                                      static_cast<std::uint64_t>(spec.height)))
-            return read_error(file, *cause);
-    }
+    if (*signature != Signature::exr)  // an OpenEXR's parts are checked above
+        if (auto cause = level_tile_problem(*input)) return read_error(file, *cause);
     return input;
 }
 

@@ -22,8 +22,9 @@ namespace footprint::detail {
 // `file` opened by the OpenImageIO reader its extension names, its first subimage current;
 // `config` holds OpenImageIO's configuration hints ("oiio:UnassociatedAlpha", …). The error is
 // "cannot read '<file>': <cause>": no such file, a directory, an empty file, no reader for the
-// extension, a corrupt PNG chunk, a corrupt OpenEXR header (OpenEXR's words), or the reader's
-// refusal (OpenImageIO's words).
+// extension, a corrupt PNG chunk, a corrupt OpenEXR header (OpenEXR's words), the reader's
+// refusal (OpenImageIO's words), or tiles far larger than their image in any subimage or MIP
+// level (a TIFF directory).
 Result<std::unique_ptr<OIIO::ImageInput>> open_image_input(
     const std::filesystem::path& file, const OIIO::ImageSpec& config = OIIO::ImageSpec());
 

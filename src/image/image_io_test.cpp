@@ -812,6 +812,11 @@ TEST_F(ImageIo, TilesFarLargerThanTheImageAreRefused) {
     expect_load_error(corrupt,
                       "part 0: its tiles (16 x 1511424 texels) are larger than the image "
                       "(8 x 6) and than 1024 x 1024: the header is corrupt");
+    // Every TIFF directory is checked, not only the first: this MIP level's tiles would cost
+    // OpenImageIO 400 MB a tile read.
+    expect_load_error(fs::path(FOOTPRINT_TEST_DATA_DIR) / "bad" / "huge_tiles_level1.tif",
+                      "subimage 0, MIP level 1: its tiles (8192 x 16384 texels) are larger than "
+                      "the image (16 x 16) and than 1024 x 1024: the header is corrupt");
     for (const int tile : {64, 1024}) {
         const fs::path file = path("tiles" + std::to_string(tile) + ".exr");
         auto out = OIIO::ImageOutput::create(file.string());

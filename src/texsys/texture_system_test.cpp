@@ -521,6 +521,21 @@ TEST(TextureSystem, ACorruptExrHeaderIsAnErrorBeforeAnyReaderRuns) {
     EXPECT_FALSE(load_bump_pyramid(file));
     EXPECT_FALSE(bump_pyramid_file_offset(file));
 }
+
+// A stored MIP level whose TIFF directory claims tiles of 8192 × 16384 texels: the texture system
+// reads tiles of stored levels, so it must refuse the file as load_image does.
+TEST(TextureSystem, ATiffLevelOfCorruptTileSizesIsAnErrorNamingIt) {
+    const std::string file =
+        (std::filesystem::path(FOOTPRINT_TEST_DATA_DIR) / "bad" / "huge_tiles_level1.tif").string();
+    auto ts = make_system();
+    float out[3];
+    const Status s = ts->texture(file, TextureCoords{0.5f, 0.5f, 0.3f, 0, 0, 0.3f}, {}, out);
+    ASSERT_FALSE(s);
+    EXPECT_NE(s.error().message.find("'" + file + "'"), std::string::npos) << s.error().message;
+    EXPECT_NE(s.error().message.find("MIP level 1: its tiles (8192 x 16384 texels)"),
+              std::string::npos)
+        << s.error().message;
+}
 #endif
 
 TEST(TextureSystem, ATruncatedEnvironmentPyramidIsAnErrorNamingIt) {
