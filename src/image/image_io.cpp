@@ -410,6 +410,18 @@ Result<Image> read_level(OIIO::ImageInput& in, int level, const fs::path& file,
         return fail("the image is too large (" + std::to_string(spec.width) + " x " +
                     std::to_string(spec.height) + " x " + std::to_string(spec.nchannels) + ")");
     }
+    // Uncompressed texels take at least a bit each: a header of a few hundred bytes that claims
+    // gigabytes would otherwise be allocated and read for seconds before the data runs out.
+    const std::uint64_t texels =
+        static_cast<std::uint64_t>(spec.width) * static_cast<std::uint64_t>(spec.height);
+    std::error_code size_error;
+    const std::uintmax_t file_bytes = fs::file_size(file, size_error);
+    if (spec.get_string_attribute("compression") == "none" && !size_error &&
+        file_bytes < texels / 8) {
+        return fail("the file is truncated: its header claims " + std::to_string(spec.width) +
+                    " x " + std::to_string(spec.height) + " uncompressed texels, more than its " +
+                    std::to_string(file_bytes) + " bytes hold");
+    }
 
     Image image;
     try {

@@ -832,6 +832,18 @@ TEST_F(ImageIo, TilesFarLargerThanTheImageAreRefused) {
     }
 }
 
+// fuzz_image_load found it: an 885-byte uncompressed OpenEXR whose header claims 268435460 × 1
+// RGB texels was allocated (3.2 GB of floats) and read for 88 s before its data ran out.
+TEST_F(ImageIo, AFileTooShortForItsUncompressedTexelsIsRefusedBeforeReading) {
+    const std::string input = read_bytes(fs::path(FOOTPRINT_TEST_DATA_DIR) / "bad" / "fuzz" /
+                                         "image_load" / "uncompressed_exr_claims_gigabytes");
+    const fs::path file = path("claims_gigabytes.exr");
+    write_bytes(file, input.substr(1));  // the fuzz input's first byte picks the extension
+    expect_load_error(file,
+                      "the file is truncated: its header claims 268435460 x 1 uncompressed "
+                      "texels, more than its 885 bytes hold");
+}
+
 TEST_F(ImageIo, BadFilesInTestDataAreErrors) {
     const fs::path bad = fs::path(FOOTPRINT_TEST_DATA_DIR) / "bad";
     ASSERT_TRUE(fs::is_directory(bad)) << bad;
