@@ -7,6 +7,7 @@ packages=(
     build-essential cmake ninja-build clang-format pkg-config
     libopenimageio-dev openimageio-tools libopencv-core-dev   # image I/O + benchmark peer
     libopenexr-dev                                            # multi-part MIP-mapped OpenEXR
+    libtiff-dev                                               # which TIFF codecs libtiff has
     libtbb-dev                                                # parallelism
     libembree-dev libtinyobjloader-dev libtinygltf-dev libstb-dev
     nlohmann-json3-dev libcli11-dev

@@ -4,6 +4,7 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
+#include <tiffio.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <vector>
 
@@ -383,6 +385,45 @@ bool read_float_texels(OIIO::ImageInput& in, int level, const OIIO::ImageSpec& s
     return true;
 }
 
+// A TIFF compressed by a codec libtiff lacks cannot be decoded, yet OpenImageIO would allocate the
+// level and try every strip.
+std::optional<std::string> tiff_codec_problem(const OIIO::ImageSpec& spec) {
+    const int code = spec.get_int_attribute("tiff:Compression", COMPRESSION_NONE);
+    if (code >= 0 && code <= std::numeric_limits<std::uint16_t>::max() &&
+        TIFFIsCODECConfigured(static_cast<std::uint16_t>(code)))
+        return std::nullopt;
+    return "its compression (TIFF code " + std::to_string(code) + ") is not one libtiff can decode";
+}
+
+// The fewest bytes that can hold `spec`'s texels at the best ratio the file's coding allows, or 0
+// where no useful bound is known.
+std::uint64_t fewest_bytes_for_texels(const OIIO::ImageInput& in, const OIIO::ImageSpec& spec) {
+    const std::uint64_t texels =
+        static_cast<std::uint64_t>(spec.width) * static_cast<std::uint64_t>(spec.height);
+    // Uncompressed texels take at least a bit each (a 1-bit TIFF).
+    if (spec.get_string_attribute("compression") == "none") return texels / 8;
+    // Radiance stores four bytes a texel, or runs of at most 127 of a byte in two bytes for each
+    // of its four channels: 8 bytes per 127 texels at best.
+    if (std::string_view(in.format_name()) == "hdr") return texels / 16;
+    return 0;
+}
+
+// Why the level `spec` describes cannot be read, judged from its header and the file's size
+// before its texels are allocated: a header of a few hundred bytes can claim gigabytes, which
+// would otherwise be allocated and read for seconds before the data runs out.
+std::optional<std::string> undecodable_level(const OIIO::ImageInput& in,
+                                             const OIIO::ImageSpec& spec, const fs::path& file) {
+    if (std::string_view(in.format_name()) == "tiff") {
+        if (auto cause = tiff_codec_problem(spec)) return cause;
+    }
+    std::error_code size_error;
+    const std::uintmax_t file_bytes = fs::file_size(file, size_error);
+    if (size_error || file_bytes >= fewest_bytes_for_texels(in, spec)) return std::nullopt;
+    return "the file is truncated: its header claims " + std::to_string(spec.width) + " x " +
+           std::to_string(spec.height) + " texels, more than its " + std::to_string(file_bytes) +
+           " bytes can hold";
+}
+
 // MIP level `level` of the open file's first subimage, checked, read and decoded; `where` leads
 // the cause in messages ("MIP level 3: ", or nothing for an image's only level).
 Result<Image> read_level(OIIO::ImageInput& in, int level, const fs::path& file,
@@ -410,18 +451,7 @@ Result<Image> read_level(OIIO::ImageInput& in, int level, const fs::path& file,
         return fail("the image is too large (" + std::to_string(spec.width) + " x " +
                     std::to_string(spec.height) + " x " + std::to_string(spec.nchannels) + ")");
     }
-    // Uncompressed texels take at least a bit each: a header of a few hundred bytes that claims
-    // gigabytes would otherwise be allocated and read for seconds before the data runs out.
-    const std::uint64_t texels =
-        static_cast<std::uint64_t>(spec.width) * static_cast<std::uint64_t>(spec.height);
-    std::error_code size_error;
-    const std::uintmax_t file_bytes = fs::file_size(file, size_error);
-    if (spec.get_string_attribute("compression") == "none" && !size_error &&
-        file_bytes < texels / 8) {
-        return fail("the file is truncated: its header claims " + std::to_string(spec.width) +
-                    " x " + std::to_string(spec.height) + " uncompressed texels, more than its " +
-                    std::to_string(file_bytes) + " bytes hold");
-    }
+    if (auto cause = undecodable_level(in, spec, file)) return fail(*cause);
 
     Image image;
     try {

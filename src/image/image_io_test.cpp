@@ -840,8 +840,42 @@ TEST_F(ImageIo, AFileTooShortForItsUncompressedTexelsIsRefusedBeforeReading) {
     const fs::path file = path("claims_gigabytes.exr");
     write_bytes(file, input.substr(1));  // the fuzz input's first byte picks the extension
     expect_load_error(file,
-                      "the file is truncated: its header claims 268435460 x 1 uncompressed "
-                      "texels, more than its 885 bytes hold");
+                      "the file is truncated: its header claims 268435460 x 1 texels, more than "
+                      "its 885 bytes can hold");
+}
+
+TEST_F(ImageIo, ARadianceFileTooShortForItsRunLengthsIsRefusedBeforeReading) {
+    const std::string input = read_bytes(fs::path(FOOTPRINT_TEST_DATA_DIR) / "bad" / "fuzz" /
+                                         "image_load" / "radiance_claims_gigabytes");
+    const fs::path file = path("claims_gigabytes.hdr");
+    write_bytes(file, input.substr(1));
+    expect_load_error(file,
+                      "the file is truncated: its header claims 88888888 x 4 texels, more than "
+                      "its 133 bytes can hold");
+}
+
+TEST_F(ImageIo, ATiffOfACodecLibtiffLacksIsRefusedBeforeReading) {
+    const std::string input = read_bytes(fs::path(FOOTPRINT_TEST_DATA_DIR) / "bad" / "fuzz" /
+                                         "image_load" / "tiff_codec_libtiff_lacks");
+    const fs::path file = path("unknown_codec.tif");
+    write_bytes(file, input.substr(1));
+    expect_load_error(file, "its compression (TIFF code 10248) is not one libtiff can decode");
+}
+
+TEST_F(ImageIo, SmallRunLengthCodedRadianceFilesStillLoad) {
+    // The bound on Radiance files must not refuse the smallest honest ones: a flat image, coded
+    // in the fewest runs Radiance allows. The widest is below a bit a texel, which a bound for
+    // uncompressed files would refuse.
+    for (const int width : {8, 127, 128, 1000}) {
+        Image flat(width, 3, 3);
+        std::fill(flat.pixels.begin(), flat.pixels.end(), 0.5f);
+        const fs::path file = path("flat_" + std::to_string(width) + ".hdr");
+        ASSERT_TRUE(save_image(flat, file).ok());
+        const Result<Image> loaded = load_image(file);
+        ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+        EXPECT_EQ(loaded->pixels, flat.pixels) << width;
+    }
+    EXPECT_LT(fs::file_size(path("flat_1000.hdr")), 1000u * 3 / 8);
 }
 
 TEST_F(ImageIo, BadFilesInTestDataAreErrors) {
