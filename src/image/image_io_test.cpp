@@ -832,33 +832,35 @@ TEST_F(ImageIo, TilesFarLargerThanTheImageAreRefused) {
     }
 }
 
+// Writes the fuzz_image_load input `name` (tests/data/bad/fuzz/image_load) as `file`: the input's
+// first byte picks the extension, which `file` carries instead.
+void write_image_load_input(const std::string& name, const fs::path& file) {
+    const std::string input =
+        read_bytes(fs::path(FOOTPRINT_TEST_DATA_DIR) / "bad" / "fuzz" / "image_load" / name);
+    write_bytes(file, input.substr(1));
+}
+
 // fuzz_image_load found it: an 885-byte uncompressed OpenEXR whose header claims 268435460 × 1
 // RGB texels was allocated (3.2 GB of floats) and read for 88 s before its data ran out.
 TEST_F(ImageIo, AFileTooShortForItsUncompressedTexelsIsRefusedBeforeReading) {
-    const std::string input = read_bytes(fs::path(FOOTPRINT_TEST_DATA_DIR) / "bad" / "fuzz" /
-                                         "image_load" / "uncompressed_exr_claims_gigabytes");
     const fs::path file = path("claims_gigabytes.exr");
-    write_bytes(file, input.substr(1));  // the fuzz input's first byte picks the extension
+    write_image_load_input("uncompressed_exr_claims_gigabytes", file);
     expect_load_error(file,
                       "the file is truncated: its header claims 268435460 x 1 texels, more than "
                       "its 885 bytes can hold");
 }
 
 TEST_F(ImageIo, ARadianceFileTooShortForItsRunLengthsIsRefusedBeforeReading) {
-    const std::string input = read_bytes(fs::path(FOOTPRINT_TEST_DATA_DIR) / "bad" / "fuzz" /
-                                         "image_load" / "radiance_claims_gigabytes");
     const fs::path file = path("claims_gigabytes.hdr");
-    write_bytes(file, input.substr(1));
+    write_image_load_input("radiance_claims_gigabytes", file);
     expect_load_error(file,
                       "the file is truncated: its header claims 88888888 x 4 texels, more than "
                       "its 133 bytes can hold");
 }
 
 TEST_F(ImageIo, ATiffOfACodecLibtiffLacksIsRefusedBeforeReading) {
-    const std::string input = read_bytes(fs::path(FOOTPRINT_TEST_DATA_DIR) / "bad" / "fuzz" /
-                                         "image_load" / "tiff_codec_libtiff_lacks");
     const fs::path file = path("unknown_codec.tif");
-    write_bytes(file, input.substr(1));
+    write_image_load_input("tiff_codec_libtiff_lacks", file);
     expect_load_error(file, "its compression (TIFF code 10248) is not one libtiff can decode");
 }
 
