@@ -353,6 +353,16 @@ int band_rows(const OIIO::ImageSpec& spec) {
     return static_cast<int>(std::min<std::int64_t>(rows, spec.height));
 }
 
+// Whether the open level `spec` is read a row at a time: a TIFF of strips. OpenImageIO 2.4's reader
+// of several rows of strips at once overruns its buffers on some files (a MinIsWhite file of
+// several channels, a deflated strip that fails to read; fixed upstream in 2026, OpenImageIO #5083
+// and #5336); a row at a time it takes its single-row path. Except 64-bit samples, which that
+// path drops (it decodes them into scratch memory it never copies out).
+bool reads_row_by_row(const OIIO::ImageInput& in, const OIIO::ImageSpec& spec) {
+    return std::string_view(in.format_name()) == "tiff" && spec.tile_width <= 0 &&
+           spec.format.size() < 8;
+}
+
 // Level `level` of the open file's first subimage as float texels. OpenImageIO 2.4 converts
 // through a buffer of 64 MiB of scanlines whatever the image's size, even to the file's own type;
 // only a request for the native layout (TypeDesc::UNKNOWN) reads straight into the caller's
@@ -361,11 +371,12 @@ int band_rows(const OIIO::ImageSpec& spec) {
 bool read_float_texels(OIIO::ImageInput& in, int level, const OIIO::ImageSpec& spec,
                        std::vector<float>& texels) {
     const int channels = spec.nchannels;
+    const bool row_by_row = reads_row_by_row(in, spec);
     if (!spec.channelformats.empty())
         return in.read_image(0, level, 0, channels, OIIO::TypeDesc::FLOAT, texels.data());
-    if (spec.format == OIIO::TypeDesc::FLOAT)
+    if (spec.format == OIIO::TypeDesc::FLOAT && !row_by_row)
         return in.read_image(0, level, 0, channels, OIIO::TypeDesc::UNKNOWN, texels.data());
-    const int rows = band_rows(spec);
+    const int rows = row_by_row ? 1 : band_rows(spec);
     std::vector<std::byte> band(static_cast<std::size_t>(rows) * spec.scanline_bytes(true));
     for (int y = 0; y < spec.height; y += rows) {
         const int y_end = std::min(y + rows, spec.height);
@@ -396,15 +407,20 @@ std::optional<std::string> tiff_codec_problem(const OIIO::ImageSpec& spec) {
 }
 
 // The fewest bytes that can hold `spec`'s texels at the best ratio the file's coding allows, or 0
-// where no useful bound is known.
+// where no useful bound is known. (An OpenEXR is bounded when it is opened: exr_size_problem.)
 std::uint64_t fewest_bytes_for_texels(const OIIO::ImageInput& in, const OIIO::ImageSpec& spec) {
     const std::uint64_t texels =
         static_cast<std::uint64_t>(spec.width) * static_cast<std::uint64_t>(spec.height);
-    // Uncompressed texels take at least a bit each (a 1-bit TIFF).
-    if (spec.get_string_attribute("compression") == "none") return texels / 8;
     // Radiance stores four bytes a texel, or runs of at most 127 of a byte in two bytes for each
     // of its four channels: 8 bytes per 127 texels at best.
     if (std::string_view(in.format_name()) == "hdr") return texels / 16;
+    if (std::string_view(in.format_name()) != "tiff") return 0;
+    // A TIFF's texels take at least a bit uncompressed (a 1-bit image or palette index); deflate
+    // codes at most 258 bytes in two bits, packbits 128 bytes in two.
+    const std::string compression = spec.get_string_attribute("compression");
+    if (compression == "none") return texels / 8;
+    if (compression == "zip") return texels / 8 / 1032;
+    if (compression == "packbits") return texels / 8 / 64;
     return 0;
 }
 

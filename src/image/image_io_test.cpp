@@ -3,6 +3,7 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <sys/mount.h>
+#include <tiffio.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -848,6 +849,229 @@ TEST_F(ImageIo, AFileTooShortForItsUncompressedTexelsIsRefusedBeforeReading) {
     expect_load_error(file,
                       "the file is truncated: its header claims 268435460 x 1 texels, more than "
                       "its 885 bytes can hold");
+}
+
+// fuzz_image_load found them: zip-compressed OpenEXRs of 1 436 and 2 156 bytes whose headers
+// claim 16777224 × 1 and 3145729 × 1 half RGB texels, read for 3 s and 0.9 s (200 s and 26 s
+// under AddressSanitizer). Deflate holds at most 1032 bytes in one; the second file would pass at
+// a bit a value, not at its channels' 6 bytes a texel.
+TEST_F(ImageIo, ADeflatedFileTooShortForItsTexelsIsRefusedBeforeReading) {
+    const fs::path file = path("too_short_zip.exr");
+    write_image_load_input("zip_exr_too_short_for_its_texels", file);
+    expect_load_error(file,
+                      "the file is truncated: its header claims 16777224 x 1 texels, more than "
+                      "its 1436 bytes can hold");
+    write_image_load_input("zip_exr_too_short_for_its_half_texels", file);
+    expect_load_error(file,
+                      "the file is truncated: its header claims 3145729 x 1 texels, more than "
+                      "its 2156 bytes can hold");
+}
+
+// A flat half RGB OpenEXR of `width` × `height` texels coded with `compression`.
+void write_flat_exr(const fs::path& file, int width, int height, const std::string& compression) {
+    auto out = OIIO::ImageOutput::create(file.string());
+    ASSERT_TRUE(out) << OIIO::geterror();
+    OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::HALF);
+    spec.attribute("compression", compression);
+    ASSERT_TRUE(out->open(file.string(), spec)) << out->geterror();
+    const std::vector<float> flat(static_cast<std::size_t>(width) * height * 3, 0.5f);
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, flat.data())) << out->geterror();
+    ASSERT_TRUE(out->close()) << out->geterror();
+}
+
+// Sets the last row of the OpenEXR `file`'s data window, as a corrupt header would.
+void set_exr_last_row(const fs::path& file, std::int32_t last_row) {
+    std::string bytes = read_bytes(file);
+    const std::string attribute("dataWindow\0box2i\0", 17);
+    const std::size_t at = bytes.find(attribute);
+    ASSERT_NE(at, std::string::npos);
+    // The attribute's 4-byte size, then xMin, yMin, xMax, yMax (little-endian).
+    std::memcpy(bytes.data() + at + attribute.size() + 4 + 12, &last_row, sizeof last_row);
+    write_bytes(file, bytes);
+}
+
+TEST_F(ImageIo, AnExrTooShortForItsChunksIsRefusedBeforeReading) {
+    // PIZ codes 32 rows a chunk and has no bound on its ratio; ten million rows take 312 500
+    // chunks, each an 8-byte table entry and a header of at least 8 bytes.
+    const fs::path file = path("claims_chunks.exr");
+    write_flat_exr(file, 4, 64, "piz");
+    set_exr_last_row(file, 9'999'999);
+    expect_load_error(file, "the file is truncated: its header claims 4 x 10000000 texels");
+}
+
+TEST_F(ImageIo, SmallDeflatedAndRunLengthCodedExrFilesStillLoad) {
+    // The bounds on compressed OpenEXR files must not refuse the smallest honest ones: flat
+    // images, below a bit a texel where deflated, which a bound for uncompressed files would
+    // refuse.
+    for (const std::string compression : {"zip", "zips", "rle", "pxr24", "piz"}) {
+        const fs::path file = path("flat_" + compression + ".exr");
+        write_flat_exr(file, 1024, 512, compression);
+        const Result<Image> loaded = load_image(file);
+        ASSERT_TRUE(loaded.ok()) << compression << ": " << loaded.error().message;
+        EXPECT_EQ(loaded->pixels, std::vector<float>(1024 * 512 * 3, 0.5f)) << compression;
+    }
+    EXPECT_LT(fs::file_size(path("flat_zip.exr")), 1024u * 512 * 3 / 8);
+}
+
+// fuzz_image_load found it: OpenImageIO 2.4, reading several rows of a deflated MinIsWhite TIFF
+// at once, inverted channels × the strip's values per strip and wrote past the caller's buffer
+// (upstream #5083); the 445-byte file's 4 × 260 texels of four channels corrupted the heap, and
+// the process aborted. Read a row at a time, it is refused: its only strip is short.
+TEST_F(ImageIo, AMinIsWhiteTiffOfSeveralChannelsDoesNotOverrunTheBuffer) {
+    const fs::path file = path("minisWhite_overrun.tif");
+    write_image_load_input("tiff_miniswhite_strips_overrun", file);
+    expect_load_error(file, "the file is truncated or corrupt");
+}
+
+TEST_F(ImageIo, DeflatedMinIsWhiteTiffsOfSeveralStripsLoadInverted) {
+    // Grey and alpha, 8 bits, deflated, 8 rows a strip: the file the overrun above needs, honest.
+    constexpr int kWidth = 5, kHeight = 37, kRowsPerStrip = 8;
+    const fs::path file = path("miniswhite.tif");
+    TIFF* tiff = TIFFOpen(file.c_str(), "w");
+    ASSERT_NE(tiff, nullptr);
+    const std::uint16_t extra[] = {EXTRASAMPLE_UNASSALPHA};
+    TIFFSetField(tiff, TIFFTAG_IMAGEWIDTH, kWidth);
+    TIFFSetField(tiff, TIFFTAG_IMAGELENGTH, kHeight);
+    TIFFSetField(tiff, TIFFTAG_SAMPLESPERPIXEL, 2);
+    TIFFSetField(tiff, TIFFTAG_EXTRASAMPLES, 1, extra);
+    TIFFSetField(tiff, TIFFTAG_BITSPERSAMPLE, 8);
+    TIFFSetField(tiff, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_MINISWHITE);
+    TIFFSetField(tiff, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
+    TIFFSetField(tiff, TIFFTAG_COMPRESSION, COMPRESSION_ADOBE_DEFLATE);
+    TIFFSetField(tiff, TIFFTAG_ROWSPERSTRIP, kRowsPerStrip);
+    const auto stored = [](int x, int y) { return static_cast<std::uint8_t>(x * 40 + y * 3); };
+    for (int y = 0; y < kHeight; ++y) {
+        std::array<std::uint8_t, 2 * kWidth> row{};
+        for (int x = 0; x < kWidth; ++x) row[2 * x] = stored(x, y);
+        ASSERT_EQ(TIFFWriteScanline(tiff, row.data(), y, 0), 1);
+    }
+    TIFFClose(tiff);
+
+    const Result<Image> loaded = load_image(file, {.encoding = ColorEncoding::linear});
+    ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+    ASSERT_EQ(loaded->channels, 2);
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x)
+            ASSERT_FLOAT_EQ(loaded->at(x, y, 0), (255 - stored(x, y)) / 255.0f) << x << ", " << y;
+}
+
+// fuzz_image_load found it: OpenImageIO 2.4 trusted the length inside a JPEG's IPTC block, 20 480
+// bytes in an APP13 block of 106, and read past it (upstream #5081). Its reader also compares the
+// start of each APP1, APP2 and APP13 block with an identifier as a C string, and skips or
+// subtracts the identifier's length, whether or not the block holds it (#5174).
+TEST_F(ImageIo, JpegBlocksOpenImageIOWouldReadPastAreRefused) {
+    const fs::path file = path("iptc.jpg");
+    write_image_load_input("jpeg_iptc_longer_than_its_block", file);
+    expect_load_error(file, "its JPEG IPTC block claims more bytes than its APP13 block holds");
+
+    const fs::path good = path("good.jpg");
+    write_with_oiio(good, 8, 8, 3, OIIO::TypeDesc::UINT8, std::vector<float>(8 * 8 * 3, 0.5f));
+    const std::string jpeg = read_bytes(good);
+    const struct {
+        const char* name;
+        unsigned char code;
+        std::string data;
+        const char* cause;
+    } cases[] = {{"exif", 0xe1, std::string("Exif\0", 5), "APP1 block is cut short"},
+                 {"xmp", 0xe1, "http://ns.adobe.com/xap/1.0/", "APP1 block is cut short"},
+                 {"icc", 0xe2, std::string("ICC_PROFILE\0\1", 13), "APP2 block is cut short"},
+                 {"iptc", 0xed,
+                  std::string("Photoshop 3.0\0"
+                              "8BIM\4\4",
+                              20),
+                  "APP13 block is cut short"},
+                 {"iptc_size", 0xed,
+                  std::string("Photoshop 3.0\0"
+                              "8BIM\4\4\0\0\0\0\0\x10",
+                              26) +
+                      "x",
+                  "its JPEG IPTC block claims more bytes"}};
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.name);
+        const std::size_t length = c.data.size() + 2;
+        const std::string marker = std::string{'\xff', static_cast<char>(c.code)} +
+                                   static_cast<char>(length >> 8) +
+                                   static_cast<char>(length & 0xff) + c.data;
+        const fs::path bad = path(std::string(c.name) + ".jpg");
+        write_bytes(bad, jpeg.substr(0, 2) + marker + jpeg.substr(2));
+        expect_load_error(bad, c.cause);
+    }
+}
+
+TEST_F(ImageIo, JpegsWithExifAndIptcBlocksStillLoad) {
+    const fs::path file = path("tagged.jpg");
+    auto out = OIIO::ImageOutput::create(file.string());
+    ASSERT_TRUE(out) << OIIO::geterror();
+    OIIO::ImageSpec spec(8, 8, 3, OIIO::TypeDesc::UINT8);
+    spec.attribute("IPTC:Caption", "a caption long enough to matter");
+    spec.attribute("Exif:ExposureTime", 0.01f);
+    spec.attribute("ImageDescription", "described");
+    const std::vector<float> grey(8 * 8 * 3, 0.5f);
+    ASSERT_TRUE(out->open(file.string(), spec) &&
+                out->write_image(OIIO::TypeDesc::FLOAT, grey.data()) && out->close())
+        << out->geterror();
+    const std::string bytes = read_bytes(file);
+    ASSERT_NE(bytes.find("Photoshop 3.0"), std::string::npos);
+    ASSERT_NE(bytes.find("Exif"), std::string::npos);
+    const Result<Image> loaded = load_image(file);
+    ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+    EXPECT_EQ(loaded->width, 8);
+}
+
+// A 32 × 32 CMYK TIFF of `bits`-bit samples, in 16² tiles or strips of 8 rows.
+void write_cmyk_tiff(const fs::path& file, int bits, bool tiled) {
+    constexpr int kSize = 32, kTile = 16;
+    TIFF* tiff = TIFFOpen(file.c_str(), "w");
+    ASSERT_NE(tiff, nullptr);
+    TIFFSetField(tiff, TIFFTAG_IMAGEWIDTH, kSize);
+    TIFFSetField(tiff, TIFFTAG_IMAGELENGTH, kSize);
+    TIFFSetField(tiff, TIFFTAG_SAMPLESPERPIXEL, 4);
+    TIFFSetField(tiff, TIFFTAG_BITSPERSAMPLE, bits);
+    TIFFSetField(tiff, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_SEPARATED);
+    TIFFSetField(tiff, TIFFTAG_INKSET, INKSET_CMYK);
+    TIFFSetField(tiff, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
+    std::vector<std::uint8_t> inks(kSize * kSize * 4, 0x40);  // every 8-bit sample 1/4
+    if (tiled) {
+        TIFFSetField(tiff, TIFFTAG_TILEWIDTH, kTile);
+        TIFFSetField(tiff, TIFFTAG_TILELENGTH, kTile);
+        for (int y = 0; y < kSize; y += kTile)
+            for (int x = 0; x < kSize; x += kTile)
+                ASSERT_GT(TIFFWriteTile(tiff, inks.data(), x, y, 0, 0), 0);
+    } else {
+        TIFFSetField(tiff, TIFFTAG_ROWSPERSTRIP, 8);
+        for (int y = 0; y < kSize; ++y) ASSERT_EQ(TIFFWriteScanline(tiff, inks.data(), y, 0), 1);
+    }
+    TIFFClose(tiff);
+}
+
+// OpenImageIO 2.4 converts CMYK to RGB, but reading a tile, or a row of fewer than 8 bits a
+// sample, it writes the file's four channels into room for three (measured: 256 bytes past a
+// 16² tile, 32 past a row of 32); upstream #5082 and #5296.
+TEST_F(ImageIo, CmykTiffsOpenImageIOOverrunsAreRefused) {
+    const struct {
+        const char* name;
+        int bits;
+        bool tiled;
+        const char* cause;
+    } cases[] = {{"cmyk_tiled.tif", 8, true, "it is a CMYK TIFF in tiles"},
+                 {"cmyk_1bit.tif", 1, false, "it is a CMYK TIFF of 1-bit samples"},
+                 {"cmyk_4bit.tif", 4, false, "it is a CMYK TIFF of 4-bit samples"}};
+    for (const auto& c : cases) {
+        const fs::path file = path(c.name);
+        write_cmyk_tiff(file, c.bits, c.tiled);
+        expect_load_error(file, c.cause);
+    }
+}
+
+TEST_F(ImageIo, EightBitCmykTiffsOfStripsLoadAsRgb) {
+    // (1 − C)(1 − K) with C = K = 64/255, the conversion OpenImageIO does.
+    const fs::path file = path("cmyk_strips.tif");
+    write_cmyk_tiff(file, 8, false);
+    const Result<Image> loaded = load_image(file, {.encoding = ColorEncoding::linear});
+    ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+    ASSERT_EQ(loaded->channels, 3);
+    const float ink = 1.0f - 64.0f / 255.0f;
+    for (const float v : loaded->pixels) ASSERT_NEAR(v, ink * ink, 1.0f / 255);
 }
 
 TEST_F(ImageIo, ARadianceFileTooShortForItsRunLengthsIsRefusedBeforeReading) {
