@@ -6,7 +6,8 @@
 // names refuses a file, it hands the file to every other reader it has (DICOM, camera raw, FITS,
 // …), and OpenEXR 3.1's C++ reader allocates whatever a corrupt header's attribute sizes claim
 // (gigabytes, for a 2 KB file). open_image_input() opens with the extension's reader only, and
-// checks a PNG's chunks and an OpenEXR's headers before that reader sees them.
+// checks a PNG's chunks, a JPEG's marker blocks and an OpenEXR's headers before that reader sees
+// them, and every TIFF directory's tiles and colour space after (format_checks.h).
 #pragma once
 
 #include <OpenImageIO/imageio.h>
@@ -22,9 +23,10 @@ namespace footprint::detail {
 // `file` opened by the OpenImageIO reader its extension names, its first subimage current;
 // `config` holds OpenImageIO's configuration hints ("oiio:UnassociatedAlpha", …). The error is
 // "cannot read '<file>': <cause>": no such file, a directory, an empty file, no reader for the
-// extension, a corrupt PNG chunk, a corrupt OpenEXR header (OpenEXR's words), the reader's
-// refusal (OpenImageIO's words), or tiles far larger than their image in any subimage or MIP
-// level (a TIFF directory).
+// extension, a corrupt PNG chunk or JPEG marker block, a corrupt OpenEXR header (OpenEXR's words,
+// or footprint's), a file too short for what its header claims, the reader's refusal
+// (OpenImageIO's words), or, in any subimage or MIP level (a TIFF directory), tiles far larger
+// than their image or CMYK OpenImageIO cannot convert safely.
 Result<std::unique_ptr<OIIO::ImageInput>> open_image_input(
     const std::filesystem::path& file, const OIIO::ImageSpec& config = OIIO::ImageSpec());
 

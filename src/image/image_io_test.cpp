@@ -890,6 +890,32 @@ void set_exr_last_row(const fs::path& file, std::int32_t last_row) {
     write_bytes(file, bytes);
 }
 
+// OpenImageIO reads OpenEXR files with OpenEXR's C++ reader, which walks a header its own way (a
+// channel list up to its empty name, whatever size it states); the core library, which checks
+// headers first, walks by the stated sizes. fuzz_image_load found a header the C++ reader walked
+// into an attribute of 1.7 GB, which it allocated (10 s under AddressSanitizer); a header the two
+// walk differently is refused, whatever it holds.
+TEST_F(ImageIo, AnExrHeaderOpenExrsTwoReadersWalkDifferentlyIsRefused) {
+    const fs::path file = path("oversized.exr");
+    write_image_load_input("exr_attribute_longer_than_the_file_to_the_cxx_reader", file);
+    expect_load_error(file, "its attribute 'screenWindowWi' claims more bytes than the file holds");
+
+    // A channel list whose stated size leaves out its closing empty name, as in the fuzz input:
+    // the core library ends the list at that size and reads the empty name as the end of the
+    // header; the C++ reader ends the list at the empty name and reads on.
+    const fs::path ghost = path("short_channel_list.exr");
+    write_flat_exr(ghost, 4, 4, "zip");
+    std::string bytes = read_bytes(ghost);
+    const std::string chlist("channels\0chlist\0", 16);
+    const std::size_t size_at = bytes.find(chlist) + chlist.size();
+    std::uint32_t size = 0;
+    std::memcpy(&size, bytes.data() + size_at, sizeof size);
+    --size;
+    std::memcpy(bytes.data() + size_at, &size, sizeof size);
+    write_bytes(ghost, bytes);
+    expect_load_error(ghost, "OpenEXR's two readers read it differently");
+}
+
 TEST_F(ImageIo, AnExrTooShortForItsChunksIsRefusedBeforeReading) {
     // PIZ codes 32 rows a chunk and has no bound on its ratio; ten million rows take 312 500
     // chunks, each an 8-byte table entry and a header of at least 8 bytes.

@@ -1,0 +1,355 @@
+// image/exr_checks.cpp — the checks of an OpenEXR file's headers (format_checks.h), through
+// OpenEXR's core library and a walk of the headers as OpenEXR's C++ reader makes it.
+#include <openexr.h>
+
+#include <algorithm>
+#include <array>
+#include <fstream>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "core/result.h"
+#include "image/format_checks.h"
+
+namespace footprint::detail {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The message of the first error OpenEXR's core library reports while exr_start_read() runs on
+// this thread. Its error callback gets no pointer of ours (the context's user_data belongs to
+// the default file reader), so the destination is a thread-local.
+thread_local std::string* exr_first_error = nullptr;
+
+void keep_first_exr_error(exr_const_context_t, exr_result_t, const char* message) {
+    if (exr_first_error != nullptr && exr_first_error->empty()) *exr_first_error = message;
+}
+
+// The first part of an open OpenEXR file whose tiles tile_problem() refuses, and why.
+std::optional<std::string> exr_tile_problem(exr_const_context_t context) {
+    int parts = 0;
+    if (exr_get_count(context, &parts) != EXR_ERR_SUCCESS) return std::nullopt;
+    for (int part = 0; part < parts; ++part) {
+        exr_storage_t storage{};
+        std::uint32_t tile_width = 0, tile_height = 0;
+        exr_tile_level_mode_t levels{};
+        exr_tile_round_mode_t rounding{};
+        exr_attr_box2i_t window{};
+        if (exr_get_storage(context, part, &storage) != EXR_ERR_SUCCESS ||
+            (storage != EXR_STORAGE_TILED && storage != EXR_STORAGE_DEEP_TILED) ||
+            exr_get_tile_descriptor(context, part, &tile_width, &tile_height, &levels, &rounding) !=
+                EXR_ERR_SUCCESS ||
+            exr_get_data_window(context, part, &window) != EXR_ERR_SUCCESS) {
+            continue;
+        }
+        const auto extent = [](int min, int max) {
+            return static_cast<std::uint64_t>(std::int64_t{max} - min + 1);
+        };
+        if (auto cause = tile_problem(tile_width, tile_height, extent(window.min.x, window.max.x),
+                                      extent(window.min.y, window.max.y))) {
+            return "part " + std::to_string(part) + ": " + *cause;
+        }
+    }
+    return std::nullopt;
+}
+
+// The most uncompressed bytes one byte of an OpenEXR part's compression can hold: deflate (zip,
+// zips, and pxr24 after its rounding) codes at most 258 bytes in two bits, run lengths (rle) 128
+// bytes in two; 0 where no useful bound is known (PIZ, B44, DWA).
+std::uint64_t exr_best_ratio(exr_compression_t compression) {
+    switch (compression) {
+        case EXR_COMPRESSION_NONE:
+            return 1;
+        case EXR_COMPRESSION_RLE:
+            return 64;
+        case EXR_COMPRESSION_ZIPS:
+        case EXR_COMPRESSION_ZIP:
+        case EXR_COMPRESSION_PXR24:
+            return 1032;
+        default:
+            return 0;
+    }
+}
+
+// The fewest bytes part `part` of an open OpenEXR file takes: each chunk (a block of rows or a
+// tile) an 8-byte entry in the chunk table and a header of at least 8 bytes, and its texels'
+// channels at least 2 bytes each (half; OpenImageIO reads no subsampled channels) at the best
+// ratio its compression allows.
+std::uint64_t exr_fewest_bytes(exr_const_context_t context, int part) {
+    constexpr std::uint64_t kFewestBytesPerChunk = 16, kFewestBytesPerValue = 2;
+    std::int32_t chunks = 0;
+    exr_compression_t compression{};
+    exr_attr_box2i_t window{};
+    const exr_attr_chlist_t* channels = nullptr;
+    if (exr_get_chunk_count(context, part, &chunks) != EXR_ERR_SUCCESS || chunks < 0 ||
+        exr_get_compression(context, part, &compression) != EXR_ERR_SUCCESS ||
+        exr_get_data_window(context, part, &window) != EXR_ERR_SUCCESS ||
+        exr_get_channels(context, part, &channels) != EXR_ERR_SUCCESS || channels == nullptr)
+        return 0;
+    const std::uint64_t table = static_cast<std::uint64_t>(chunks) * kFewestBytesPerChunk;
+    const std::uint64_t ratio = exr_best_ratio(compression);
+    if (ratio == 0) return table;
+    const auto extent = [](int min, int max) {
+        return static_cast<std::uint64_t>(std::max<std::int64_t>(std::int64_t{max} - min + 1, 0));
+    };
+    const std::uint64_t values = extent(window.min.x, window.max.x) *
+                                 extent(window.min.y, window.max.y) *
+                                 static_cast<std::uint64_t>(std::max(channels->num_channels, 0));
+    return std::max(table, values * kFewestBytesPerValue / ratio);
+}
+
+// Why the open OpenEXR file of `file_bytes` bytes cannot hold what its headers claim, if it
+// cannot. A few hundred bytes of header can claim gigabytes, for which OpenEXR's reader allocates
+// line buffers as it opens the file, and footprint the image, before the data runs out.
+std::optional<std::string> exr_size_problem(exr_const_context_t context,
+                                            std::uintmax_t file_bytes) {
+    int parts = 0;
+    if (exr_get_count(context, &parts) != EXR_ERR_SUCCESS) return std::nullopt;
+    for (int part = 0; part < parts; ++part) {
+        exr_attr_box2i_t window{};
+        if (exr_fewest_bytes(context, part) <= file_bytes ||
+            exr_get_data_window(context, part, &window) != EXR_ERR_SUCCESS)
+            continue;
+        return std::string(parts > 1 ? "part " + std::to_string(part) + ": " : "") +
+               "the file is truncated: its header claims " +
+               std::to_string(std::int64_t{window.max.x} - window.min.x + 1) + " x " +
+               std::to_string(std::int64_t{window.max.y} - window.min.y + 1) +
+               " texels, more than its " + std::to_string(file_bytes) + " bytes can hold";
+    }
+    return std::nullopt;
+}
+
+// A NUL-terminated name of at most 255 characters from `in`, as OpenEXR's C++ reader reads one;
+// nothing if the file ends first or the name is longer (that reader then fails by itself).
+std::optional<std::string> read_exr_name(std::istream& in) {
+    std::string name;
+    for (int c = in.get(); c != 0; c = in.get()) {
+        if (c == EOF || name.size() == 255) return std::nullopt;
+        name += static_cast<char>(c);
+    }
+    return name;
+}
+
+std::optional<std::uint32_t> read_u32_le(std::istream& in) {
+    std::array<unsigned char, 4> b{};
+    if (!in.read(reinterpret_cast<char*>(b.data()), b.size())) return std::nullopt;
+    return std::uint32_t{b[0]} | (std::uint32_t{b[1]} << 8) | (std::uint32_t{b[2]} << 16) |
+           (std::uint32_t{b[3]} << 24);
+}
+
+// The bytes OpenEXR 3.1's C++ reader reads for the value of an attribute of type `type` whatever
+// the size the file states for it, or nothing for the types it reads by that size (strings,
+// vectors, unknown types) or by their contents (chlist, preview).
+std::optional<std::uint64_t> exr_fixed_value_bytes(std::string_view type) {
+    static constexpr std::array<std::pair<std::string_view, std::uint64_t>, 24> kBytes{
+        {{"box2i", 16},
+         {"box2f", 16},
+         {"chromaticities", 32},
+         {"compression", 1},
+         {"deepImageState", 1},
+         {"double", 8},
+         {"envmap", 1},
+         {"float", 4},
+         {"int", 4},
+         {"keycode", 28},
+         {"lineOrder", 1},
+         {"m33d", 72},
+         {"m33f", 36},
+         {"m44d", 128},
+         {"m44f", 64},
+         {"rational", 8},
+         {"tiledesc", 9},
+         {"timecode", 8},
+         {"v2d", 16},
+         {"v2f", 8},
+         {"v2i", 8},
+         {"v3d", 24},
+         {"v3f", 12},
+         {"v3i", 12}}};
+    for (const auto& [name, bytes] : kBytes)
+        if (name == type) return bytes;
+    return std::nullopt;
+}
+
+// The bytes OpenEXR 3.1's C++ reader reads for the value of the attribute of `type` and stated
+// `size` that starts where `in` is, leaving `in` there; nothing if the file ends first.
+std::optional<std::uint64_t> exr_value_bytes(std::istream& in, std::string_view type,
+                                             std::uint32_t size) {
+    if (const auto fixed = exr_fixed_value_bytes(type)) return fixed;
+    const std::streampos start = in.tellg();
+    std::optional<std::uint64_t> bytes = size;
+    if (type == "chlist") {  // channels up to an empty name, each its name and 16 bytes
+        for (std::optional<std::string> name; (name = read_exr_name(in)) && !name->empty();)
+            in.seekg(16, std::ios::cur);
+        bytes = in ? std::optional<std::uint64_t>(in.tellg() - start) : std::nullopt;
+    } else if (type == "preview") {  // its width and height, then width × height RGBA bytes
+        const std::optional<std::uint32_t> width = read_u32_le(in), height = read_u32_le(in);
+        bytes = width && height
+                    ? std::optional<std::uint64_t>(8 + std::uint64_t{4} * *width * *height)
+                    : std::nullopt;
+    }
+    in.clear();
+    in.seekg(start);
+    return bytes;
+}
+
+// An attribute as OpenEXR 3.1's C++ reader reads it: its name, type and the bytes of its value.
+struct ExrCxxAttribute {
+    std::string name, type, value;
+};
+
+// The attributes of each header of the OpenEXR file `file` (of `file_bytes` bytes) as OpenEXR
+// 3.1's C++ reader, which OpenImageIO 2.4 reads with, walks them: names of up to 255 characters in
+// any file, and each value read by its type (see exr_value_bytes), so that on a corrupt file its
+// walk can part from the core library's; or why that reader would allocate more for a value than
+// the file holds.
+Result<std::vector<std::vector<ExrCxxAttribute>>> exr_cxx_headers(const fs::path& file,
+                                                                  std::uintmax_t file_bytes) {
+    constexpr std::uint32_t kMultiPart = 0x1000;
+    constexpr std::uint64_t kKeptValueBytes = 1024;  // enough for every value compared below
+    std::ifstream in(file, std::ios::binary);
+    in.seekg(4);  // after the magic number
+    const std::optional<std::uint32_t> version = read_u32_le(in);
+    std::vector<std::vector<ExrCxxAttribute>> headers;
+    if (!version) return headers;
+    do {
+        std::vector<ExrCxxAttribute>& header = headers.emplace_back();
+        for (std::optional<std::string> name; (name = read_exr_name(in)) && !name->empty();) {
+            const std::optional<std::string> type = read_exr_name(in);
+            const std::optional<std::uint32_t> size = type ? read_u32_le(in) : std::nullopt;
+            if (!size || *size > 0x7fffffffu) return headers;  // the reader fails by itself
+            const std::optional<std::uint64_t> bytes = exr_value_bytes(in, *type, *size);
+            const auto at = static_cast<std::uint64_t>(in.tellg());
+            if (!bytes || at + *bytes > file_bytes) {
+                return Error{"the OpenEXR header is corrupt (its attribute '" + *name +
+                             "' claims more bytes than the file holds)"};
+            }
+            std::string value(std::min(*bytes, kKeptValueBytes), '\0');
+            in.read(value.data(), static_cast<std::streamsize>(value.size()));
+            header.push_back({*name, *type, std::move(value)});
+            in.seekg(static_cast<std::streamoff>(at + *bytes));
+        }
+    } while ((*version & kMultiPart) && in && in.peek() != 0 && in.peek() != EOF);
+    return headers;
+}
+
+std::int32_t i32_le(std::string_view bytes, std::size_t at) {
+    std::uint32_t v = 0;
+    for (std::size_t i = 0; i < 4; ++i)
+        v |= std::uint32_t{static_cast<unsigned char>(bytes[at + i])} << (8 * i);
+    return static_cast<std::int32_t>(v);
+}
+
+// Whether `attribute`, as the C++ reader read it, has the value the core library read for part
+// `part`, for the attributes that size what OpenImageIO reads and footprint's checks bound.
+bool exr_value_agrees(exr_const_context_t context, int part, const ExrCxxAttribute& attribute) {
+    const std::string_view v = attribute.value;
+    if (attribute.name == "dataWindow" && v.size() == 16) {
+        exr_attr_box2i_t window{};
+        return exr_get_data_window(context, part, &window) == EXR_ERR_SUCCESS &&
+               window.min.x == i32_le(v, 0) && window.min.y == i32_le(v, 4) &&
+               window.max.x == i32_le(v, 8) && window.max.y == i32_le(v, 12);
+    }
+    if (attribute.name == "compression" && v.size() == 1) {
+        exr_compression_t compression{};
+        return exr_get_compression(context, part, &compression) == EXR_ERR_SUCCESS &&
+               static_cast<int>(compression) == static_cast<unsigned char>(v[0]);
+    }
+    if (attribute.name == "tiles" && v.size() == 9) {
+        std::uint32_t width = 0, height = 0;
+        exr_tile_level_mode_t levels{};
+        exr_tile_round_mode_t rounding{};
+        return exr_get_tile_descriptor(context, part, &width, &height, &levels, &rounding) ==
+                   EXR_ERR_SUCCESS &&
+               width == static_cast<std::uint32_t>(i32_le(v, 0)) &&
+               height == static_cast<std::uint32_t>(i32_le(v, 4)) &&
+               static_cast<int>(levels) == (static_cast<unsigned char>(v[8]) & 0xf) &&
+               static_cast<int>(rounding) == (static_cast<unsigned char>(v[8]) >> 4);
+    }
+    if (attribute.name == "channels") {  // names, each followed by 16 bytes, up to an empty one
+        const exr_attr_chlist_t* channels = nullptr;
+        if (exr_get_channels(context, part, &channels) != EXR_ERR_SUCCESS || channels == nullptr)
+            return false;
+        std::size_t at = 0;
+        for (int c = 0; c < channels->num_channels; ++c) {
+            const std::string_view name(channels->entries[c].name.str,
+                                        static_cast<std::size_t>(channels->entries[c].name.length));
+            if (v.substr(at, name.size() + 1) != std::string(name) + '\0') return false;
+            at += name.size() + 1 + 16;
+        }
+        return v.substr(at) == std::string_view("\0", 1);
+    }
+    return true;
+}
+
+// Why OpenImageIO 2.4 would read the open OpenEXR file `file` (of `file_bytes` bytes) otherwise
+// than the core library's checks saw it, if it would: footprint's checks of sizes, tiles and
+// chunks hold for what OpenImageIO reads only if OpenEXR's C++ reader finds the same attributes,
+// and the same values for those that size the image.
+std::optional<std::string> exr_reader_agreement_problem(exr_const_context_t context,
+                                                        const fs::path& file,
+                                                        std::uintmax_t file_bytes) {
+    const Result<std::vector<std::vector<ExrCxxAttribute>>> cxx = exr_cxx_headers(file, file_bytes);
+    if (!cxx) return cxx.error().message;
+    int parts = 0;
+    if (exr_get_count(context, &parts) != EXR_ERR_SUCCESS) return std::nullopt;
+    // The core library lists a header's attributes in the file's order, then the required ones
+    // the file lacks, with their defaults (as the C++ reader's defaults stand in for them).
+    constexpr std::array<std::string_view, 8> kRequired{
+        "channels",  "compression",      "dataWindow",         "displayWindow",
+        "lineOrder", "pixelAspectRatio", "screenWindowCenter", "screenWindowWidth"};
+    bool agree = cxx->size() == static_cast<std::size_t>(parts);
+    for (int part = 0; agree && part < parts; ++part) {
+        int count = 0;
+        const std::vector<ExrCxxAttribute>& header = (*cxx)[static_cast<std::size_t>(part)];
+        agree = exr_get_attribute_count(context, part, &count) == EXR_ERR_SUCCESS &&
+                static_cast<std::size_t>(count) >= header.size();
+        for (int i = 0; agree && i < count; ++i) {
+            const exr_attribute_t* core = nullptr;
+            const auto at = static_cast<std::size_t>(i);
+            agree =
+                exr_get_attribute_by_index(context, part, EXR_ATTR_LIST_FILE_ORDER, i, &core) ==
+                    EXR_ERR_SUCCESS &&
+                core != nullptr &&
+                (at < header.size()
+                     ? header[at].name == core->name && exr_value_agrees(context, part, header[at])
+                     : std::find(kRequired.begin(), kRequired.end(),
+                                 std::string_view(core->name)) != kRequired.end());
+        }
+    }
+    if (agree) return std::nullopt;
+    return std::string("the OpenEXR header is corrupt (OpenEXR's two readers read it differently)");
+}
+
+}  // namespace
+
+// The first problem OpenEXR's core library finds in the headers of the OpenEXR file `file`.
+// OpenEXRCore checks every attribute against the format's rules and the file's length before it
+// allocates; OpenEXR 3.1's C++ reader, which OpenImageIO 2.4 reads with, allocates what a corrupt
+// size claims.
+std::optional<std::string> exr_header_problem(const fs::path& file) {
+    std::string first_error;
+    exr_first_error = &first_error;
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.error_handler_fn = keep_first_exr_error;
+    exr_context_t context = nullptr;
+    const exr_result_t result = exr_start_read(&context, file.c_str(), &init);
+    exr_first_error = nullptr;
+    std::optional<std::string> layout;
+    if (result == EXR_ERR_SUCCESS) {
+        std::error_code size_error;
+        const std::uintmax_t file_bytes = fs::file_size(file, size_error);
+        if (!size_error) layout = exr_reader_agreement_problem(context, file, file_bytes);
+        if (!layout) layout = exr_tile_problem(context);
+        if (!layout && !size_error) layout = exr_size_problem(context, file_bytes);
+        exr_finish(&context);
+    }
+    // The core library's lenient parse skips an attribute it finds corrupt, reports it and
+    // succeeds; OpenEXR's C++ reader would still read that attribute. So any report refuses.
+    if (result == EXR_ERR_SUCCESS && first_error.empty()) return layout;
+    if (first_error.empty()) first_error = exr_get_default_error_message(result);
+    return "the OpenEXR header is corrupt (OpenEXR: " + first_error + ")";
+}
+
+}  // namespace footprint::detail

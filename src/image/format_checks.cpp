@@ -1,0 +1,164 @@
+// image/format_checks.cpp — the checks of PNG and JPEG blocks, tiles and TIFF directories
+// (format_checks.h).
+#include "image/format_checks.h"
+
+#include <algorithm>
+#include <array>
+#include <string_view>
+#include <vector>
+
+namespace footprint::detail {
+namespace {
+
+// CRC-32 as PNG uses it (ISO 3309, polynomial 0xEDB88320), updated over `size` bytes.
+std::uint32_t crc32_update(std::uint32_t crc, const unsigned char* data, std::size_t size) {
+    static const std::array<std::uint32_t, 256> table = [] {
+        std::array<std::uint32_t, 256> t{};
+        for (std::uint32_t n = 0; n < 256; ++n) {
+            std::uint32_t c = n;
+            for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+            t[n] = c;
+        }
+        return t;
+    }();
+    for (std::size_t i = 0; i < size; ++i) crc = table[(crc ^ data[i]) & 0xffu] ^ (crc >> 8);
+    return crc;
+}
+
+// Whether the `declared` bytes of a JPEG marker's data, of which `data` is what the file holds,
+// are a proper prefix of `id`: a block that starts like one OpenImageIO 2.4 parses, cut short.
+bool cut_short(std::string_view data, std::size_t declared, std::string_view id) {
+    return declared < id.size() && id.substr(0, data.size()) == data;
+}
+
+// Why OpenImageIO 2.4's JPEG reader would read past the data of the marker `code` (`data`, the
+// `declared` bytes or as many as the file holds), if it would: it compares each block's start with
+// the identifiers of Exif, XMP, ICC and IPTC blocks as C strings and trusts the lengths inside
+// (fixed upstream in 2026, OpenImageIO #5081 and #5174).
+std::optional<std::string> jpeg_marker_problem(int code, std::string_view data,
+                                               std::size_t declared) {
+    using namespace std::string_view_literals;
+    constexpr int kApp1 = 0xe1, kApp2 = 0xe2, kApp13 = 0xed;
+    // "Photoshop 3.0", its NUL, "8BIM", resource 1028 (IPTC); 4 bytes later, the IPTC length.
+    constexpr std::string_view kIptc =
+        "Photoshop 3.0\0"
+        "8BIM\x04\x04"sv;
+    constexpr std::size_t kIptcData = kIptc.size() + 6;
+    const bool short_block =
+        (code == kApp1 && (cut_short(data, declared, "Exif\0\0"sv) ||
+                           cut_short(data, declared, "http://ns.adobe.com/xap/1.0/\0"sv))) ||
+        (code == kApp2 && cut_short(data.substr(0, 12), declared, "ICC_PROFILE\0\0\0"sv)) ||
+        (code == kApp13 && cut_short(data.substr(0, kIptc.size()), declared,
+                                     std::string(kIptc) + std::string(6, '\0')));
+    if (short_block) {
+        return "the file is corrupt (its JPEG APP" + std::to_string(code - 0xe0) +
+               " block is cut short)";
+    }
+    if (code == kApp13 && declared >= kIptcData && data.size() >= kIptcData &&
+        data.substr(0, kIptc.size()) == kIptc) {
+        const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(data[i]); };
+        const std::size_t iptc_bytes =
+            (std::size_t{byte(kIptcData - 2)} << 8) | byte(kIptcData - 1);
+        if (kIptcData + iptc_bytes > declared)
+            return std::string(
+                "the file is corrupt (its JPEG IPTC block claims more bytes than "
+                "its APP13 block holds)");
+    }
+    return std::nullopt;
+}
+
+// A tile may hold as many texels as its image, or 1024² where the image is smaller. A corrupt
+// header can claim tiles of millions of rows for a few texels, and readers allocate a whole tile
+// for every tile they read.
+constexpr std::uint64_t kSmallImageTileTexels = std::uint64_t{1} << 20;
+
+}  // namespace
+
+// Walks the chunks of a PNG file (`in` just after its signature) and returns the cause if it is
+// truncated or a critical chunk is corrupt. libpng reports these itself, but it also prints them
+// to stderr and OpenImageIO 2.4 leaks memory on that path, so they are caught here first.
+std::optional<std::string> png_problem(std::istream& in) {
+    std::vector<unsigned char> buffer(1 << 16);
+    bool first = true;
+    for (;;) {
+        std::array<unsigned char, 8> header{};
+        if (!in.read(reinterpret_cast<char*>(header.data()), header.size())) {
+            return std::string("the file is truncated (the PNG ends before its IEND chunk)");
+        }
+        const std::uint32_t length = (std::uint32_t{header[0]} << 24) |
+                                     (std::uint32_t{header[1]} << 16) |
+                                     (std::uint32_t{header[2]} << 8) | std::uint32_t{header[3]};
+        const std::string type(reinterpret_cast<const char*>(header.data()) + 4, 4);
+        const bool letters = std::all_of(type.begin(), type.end(), [](char c) {
+            return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
+        });
+        if (length > 0x7fffffffu || !letters || (first && type != "IHDR")) {
+            return std::string("the file is corrupt (invalid PNG chunk header)");
+        }
+        first = false;
+        const bool critical = type[0] >= 'A' && type[0] <= 'Z';
+        std::uint32_t crc = crc32_update(0xffffffffu, header.data() + 4, 4);
+        std::uint32_t left = length;
+        while (left > 0) {
+            const std::size_t n = std::min<std::size_t>(left, buffer.size());
+            if (!in.read(reinterpret_cast<char*>(buffer.data()), static_cast<std::streamsize>(n))) {
+                return "the file is truncated (PNG chunk '" + type + "' is cut off)";
+            }
+            if (critical) crc = crc32_update(crc, buffer.data(), n);
+            left -= static_cast<std::uint32_t>(n);
+        }
+        std::array<unsigned char, 4> stored{};
+        if (!in.read(reinterpret_cast<char*>(stored.data()), stored.size())) {
+            return "the file is truncated (PNG chunk '" + type + "' is cut off)";
+        }
+        const std::uint32_t expected = (std::uint32_t{stored[0]} << 24) |
+                                       (std::uint32_t{stored[1]} << 16) |
+                                       (std::uint32_t{stored[2]} << 8) | std::uint32_t{stored[3]};
+        if (critical && (crc ^ 0xffffffffu) != expected) {
+            return "the file is corrupt (checksum mismatch in PNG chunk '" + type + "')";
+        }
+        if (type == "IEND") return std::nullopt;
+    }
+}
+
+// Walks the marker segments of a JPEG file (`in` just after its SOI) up to its first scan, as
+// libjpeg does, and returns why OpenImageIO 2.4's reader would read past one of them, if it would.
+// A file cut short is left to libjpeg to report.
+std::optional<std::string> jpeg_problem(std::istream& in) {
+    for (;;) {
+        int code = in.get();
+        while (code != EOF && code != 0xff) code = in.get();  // libjpeg skips stray bytes
+        while (code == 0xff) code = in.get();                 // and fill bytes
+        if (code == EOF || code == 0xda || code == 0xd9) return std::nullopt;  // SOS, EOI
+        if (code == 0x01 || (code >= 0xd0 && code <= 0xd8)) continue;          // no length
+        const int high = in.get(), low = in.get();
+        if (low == EOF || ((high << 8) | low) < 2) return std::nullopt;
+        const std::size_t declared = static_cast<std::size_t>((high << 8) | low) - 2;
+        std::string data(declared, '\0');
+        in.read(data.data(), static_cast<std::streamsize>(declared));
+        data.resize(static_cast<std::size_t>(in.gcount()));
+        if (auto cause = jpeg_marker_problem(code, data, declared)) return cause;
+        if (data.size() < declared) return std::nullopt;
+    }
+}
+std::optional<std::string> tile_problem(std::uint64_t tile_width, std::uint64_t tile_height,
+                                        std::uint64_t width, std::uint64_t height) {
+    const std::uint64_t limit = std::max(width * height, kSmallImageTileTexels);
+    if (tile_height == 0 || tile_width <= limit / tile_height) return std::nullopt;
+    return "its tiles (" + std::to_string(tile_width) + " x " + std::to_string(tile_height) +
+           " texels) are larger than the image (" + std::to_string(width) + " x " +
+           std::to_string(height) + ") and than 1024 x 1024: the header is corrupt";
+}
+// CMYK that OpenImageIO converts to RGB writes four channels into room for three when the file
+// is tiled, or of fewer than 8 bits a sample (fixed upstream in 2026, OpenImageIO #5082, #5296).
+std::optional<std::string> tiff_cmyk_problem(const OIIO::ImageSpec& spec) {
+    if (spec.get_string_attribute("tiff:ColorSpace") != "CMYK" || spec.nchannels != 3)
+        return std::nullopt;
+    const int bits = spec.get_int_attribute("oiio:BitsPerSample", 8);
+    if (spec.tile_width <= 0 && bits >= 8) return std::nullopt;
+    return std::string("it is a CMYK TIFF ") +
+           (spec.tile_width > 0 ? "in tiles" : "of " + std::to_string(bits) + "-bit samples") +
+           ", which OpenImageIO 2.4 overruns its buffers converting to RGB: convert it to RGB";
+}
+
+}  // namespace footprint::detail

@@ -1,0 +1,40 @@
+// image/format_checks.h — the checks of an image file's own structure that run before
+// OpenImageIO's reader sees it (private to the image module; open_image_input() runs them).
+//
+// Each answers why the file is refused, or nothing. They guard against what OpenImageIO 2.4.7 and
+// OpenEXR 3.1, Debian 12's, would do with a corrupt file: allocate what a header claims, or read
+// and write past their buffers (each check names the upstream fix it stands in for).
+#pragma once
+
+#include <OpenImageIO/imageio.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <istream>
+#include <optional>
+#include <string>
+
+namespace footprint::detail {
+
+// A PNG's chunks (`in` just after its signature): truncated, or a critical chunk corrupt.
+std::optional<std::string> png_problem(std::istream& in);
+
+// A JPEG's marker blocks up to its first scan (`in` just after its SOI): an Exif, XMP, ICC or IPTC
+// block cut short, or an IPTC block longer than its APP13 block.
+std::optional<std::string> jpeg_problem(std::istream& in);
+
+// The headers of the OpenEXR file `file`: what OpenEXR's core library reports, a header its C++
+// reader (OpenImageIO's) reads otherwise, tiles tile_problem() refuses, or a file too short for
+// the chunks and texels it claims.
+std::optional<std::string> exr_header_problem(const std::filesystem::path& file);
+
+// Tiles of `tile_width` × `tile_height` texels for an image of `width` × `height`: larger than the
+// image and than 1024².
+std::optional<std::string> tile_problem(std::uint64_t tile_width, std::uint64_t tile_height,
+                                        std::uint64_t width, std::uint64_t height);
+
+// A TIFF directory, as OpenImageIO describes it, that OpenImageIO 2.4 overruns its buffers
+// reading: CMYK it converts to RGB, in tiles or of fewer than 8 bits a sample.
+std::optional<std::string> tiff_cmyk_problem(const OIIO::ImageSpec& spec);
+
+}  // namespace footprint::detail
