@@ -140,7 +140,8 @@ std::optional<std::uint32_t> read_u32_le(std::istream& in) {
 
 // The bytes OpenEXR 3.1's C++ reader reads for the value of an attribute of type `type` whatever
 // the size the file states for it, or nothing for the types it reads by that size (strings,
-// vectors, unknown types) or by their contents (chlist, preview).
+// vectors, previews, whose size it checks against their width and height, unknown types) or by
+// their contents (chlist).
 std::optional<std::uint64_t> exr_fixed_value_bytes(std::string_view type) {
     static constexpr std::array<std::pair<std::string_view, std::uint64_t>, 24> kBytes{
         {{"box2i", 16},
@@ -177,18 +178,13 @@ std::optional<std::uint64_t> exr_fixed_value_bytes(std::string_view type) {
 std::optional<std::uint64_t> exr_value_bytes(std::istream& in, std::string_view type,
                                              std::uint32_t size) {
     if (const auto fixed = exr_fixed_value_bytes(type)) return fixed;
+    if (type != "chlist") return size;
+    // Channels up to an empty name, each its name and 16 bytes.
     const std::streampos start = in.tellg();
-    std::optional<std::uint64_t> bytes = size;
-    if (type == "chlist") {  // channels up to an empty name, each its name and 16 bytes
-        for (std::optional<std::string> name; (name = read_exr_name(in)) && !name->empty();)
-            in.seekg(16, std::ios::cur);
-        bytes = in ? std::optional<std::uint64_t>(in.tellg() - start) : std::nullopt;
-    } else if (type == "preview") {  // its width and height, then width × height RGBA bytes
-        const std::optional<std::uint32_t> width = read_u32_le(in), height = read_u32_le(in);
-        bytes = width && height
-                    ? std::optional<std::uint64_t>(8 + std::uint64_t{4} * *width * *height)
-                    : std::nullopt;
-    }
+    for (std::optional<std::string> name; (name = read_exr_name(in)) && !name->empty();)
+        in.seekg(16, std::ios::cur);
+    const std::optional<std::uint64_t> bytes =
+        in ? std::optional<std::uint64_t>(in.tellg() - start) : std::nullopt;
     in.clear();
     in.seekg(start);
     return bytes;
