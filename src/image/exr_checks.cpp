@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <fstream>
+#include <limits>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -93,10 +94,16 @@ std::uint64_t exr_fewest_bytes(exr_const_context_t context, int part) {
     const auto extent = [](int min, int max) {
         return static_cast<std::uint64_t>(std::max<std::int64_t>(std::int64_t{max} - min + 1, 0));
     };
-    const std::uint64_t values = extent(window.min.x, window.max.x) *
-                                 extent(window.min.y, window.max.y) *
-                                 static_cast<std::uint64_t>(std::max(channels->num_channels, 0));
-    return std::max(table, values * kFewestBytesPerValue / ratio);
+    // Saturating: a corrupt window's extents, times the channels, can pass 2^64.
+    const auto product = [](std::uint64_t a, std::uint64_t b) {
+        return b != 0 && a > std::numeric_limits<std::uint64_t>::max() / b
+                   ? std::numeric_limits<std::uint64_t>::max()
+                   : a * b;
+    };
+    const std::uint64_t values =
+        product(product(extent(window.min.x, window.max.x), extent(window.min.y, window.max.y)),
+                static_cast<std::uint64_t>(std::max(channels->num_channels, 0)));
+    return std::max(table, product(values / ratio, kFewestBytesPerValue));
 }
 
 // Why the open OpenEXR file of `file_bytes` bytes cannot hold what its headers claim, if it
