@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <string_view>
 #include <vector>
 
@@ -31,6 +32,65 @@ bool cut_short(std::string_view data, std::size_t declared, std::string_view id)
     return declared < id.size() && id.substr(0, data.size()) == data;
 }
 
+// Why OpenImageIO 2.4's Exif decoder would read past the Exif block `exif` (the TIFF header and
+// directories after "Exif\0\0"), if it would. It reads the 8-byte header whatever the block's
+// size; reads the entry count of a sub-directory (Exif, GPS, interoperability) whose offset lies
+// in the block's last byte; and sizes an entry's data by a table of types 0 to 13, taking any
+// other type as 2^64 − 1 bytes, which wraps its bounds check (fixed upstream in 2026, OpenImageIO
+// #5322 and #5399). Directories are walked as it walks them, a Canon maker note among them.
+std::optional<std::string> exif_problem(std::string_view exif) {
+    constexpr std::uint16_t kExifIfd = 0x8769, kGpsIfd = 0x8825, kInteropIfd = 0xa005,
+                            kMake = 0x010f, kMakerNote = 0x927c, kLargestType = 13;
+    if (exif.size() < 8) return std::string("its Exif block is cut short");
+    const bool little = exif.substr(0, 2) == "II";
+    if (!little && exif.substr(0, 2) != "MM") return std::nullopt;  // not decoded
+    const auto u = [&](std::size_t at, int bytes) {
+        std::uint32_t v = 0;
+        for (int i = 0; i < bytes; ++i) {
+            const auto b = static_cast<unsigned char>(exif[at + static_cast<std::size_t>(i)]);
+            v |= std::uint32_t{b} << (8 * (little ? i : bytes - 1 - i));
+        }
+        return v;
+    };
+    std::vector<std::uint32_t> todo{u(4, 4)};  // IFD0; sub-directories join as they are found
+    std::vector<std::uint32_t> seen;
+    std::uint32_t maker_note = 0;
+    bool canon = false;
+    for (std::size_t next = 0; next < todo.size(); ++next) {
+        const std::size_t ifd = todo[next];
+        if (ifd + 2 > exif.size()) {
+            if (next == 0) return std::nullopt;  // IFD0's bounds are checked
+            return std::string("its Exif block is corrupt (a directory at its last byte)");
+        }
+        const std::size_t entries = u(ifd, 2);
+        for (std::size_t e = 0; e < entries && ifd + 2 + 12 * (e + 1) < exif.size(); ++e) {
+            const std::size_t at = ifd + 2 + 12 * e;
+            const std::uint32_t tag = u(at, 2), type = u(at + 2, 2), value = u(at + 8, 4);
+            if (type > kLargestType)
+                return "its Exif block is corrupt (an entry of type " + std::to_string(type) + ")";
+            if (tag == kMake && value < exif.size()) {  // "Canon" and its NUL: past the entry
+                std::string make(exif.substr(value, 5));
+                for (char& c : make)
+                    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+                canon = make == "canon";
+            }
+            if (tag == kMakerNote) maker_note = value;
+            const bool sub = tag == kExifIfd || tag == kGpsIfd || tag == kInteropIfd;
+            if (sub && value < exif.size() &&
+                std::find(seen.begin(), seen.end(), value) == seen.end() &&
+                !(tag == kGpsIfd && value + 2 <= exif.size() && u(value, 2) > 32)) {
+                seen.push_back(value);
+                todo.push_back(value);
+            }
+        }
+        if (next + 1 == todo.size() && canon && maker_note > 0 && maker_note + 2 <= exif.size()) {
+            todo.push_back(maker_note);  // decoded as a directory, with its bounds checked
+            canon = false;
+        }
+    }
+    return std::nullopt;
+}
+
 // Why OpenImageIO 2.4's JPEG reader would read past the data of the marker `code` (`data`, the
 // `declared` bytes or as many as the file holds), if it would: it compares each block's start with
 // the identifiers of Exif, XMP, ICC and IPTC blocks as C strings and trusts the lengths inside
@@ -53,6 +113,13 @@ std::optional<std::string> jpeg_marker_problem(int code, std::string_view data,
     if (short_block) {
         return "the file is corrupt (its JPEG APP" + std::to_string(code - 0xe0) +
                " block is cut short)";
+    }
+    if (code == kApp1 && data.substr(0, 6) == "Exif\0\0"sv) {
+        // libjpeg pads a block the file cuts short with end-of-image markers.
+        std::string block(data);
+        for (std::size_t i = 0; block.size() < declared; ++i) block += i % 2 ? '\xd9' : '\xff';
+        if (auto cause = exif_problem(std::string_view(block).substr(6)))
+            return "the file is corrupt (" + *cause + ")";
     }
     if (code == kApp13 && declared >= kIptcData && data.size() >= kIptcData &&
         data.substr(0, kIptc.size()) == kIptc) {

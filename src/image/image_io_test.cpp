@@ -1024,6 +1024,52 @@ TEST_F(ImageIo, JpegBlocksOpenImageIOWouldReadPastAreRefused) {
     }
 }
 
+// OpenImageIO 2.4's Exif decoder reads an 8-byte header whatever the block's size, the entry
+// count of a sub-directory whose offset is the block's last byte, and an entry of a type beyond
+// its table (Exif 3.0's UTF-8, 129) as 2^64 − 1 bytes, which wraps its bounds check (upstream
+// #5322, #5399).
+TEST_F(ImageIo, ExifBlocksOpenImageIOWouldReadPastAreRefused) {
+    const fs::path good = path("good.jpg");
+    write_with_oiio(good, 8, 8, 3, OIIO::TypeDesc::UINT8, std::vector<float>(8 * 8 * 3, 0.5f));
+    const std::string jpeg = read_bytes(good);
+    // A little-endian TIFF header, IFD0 at 8, and IFD0's `entries` (12 bytes each, then 4).
+    const auto exif = [](const std::string& entries) {
+        const char count = static_cast<char>(entries.size() / 12);
+        return std::string("Exif\0\0II*\0\x08\0\0\0", 14) + count + '\0' + entries +
+               std::string(4, '\0');
+    };
+    const auto entry = [](std::uint16_t tag, std::uint16_t type, std::uint32_t value) {
+        std::string e(12, '\0');
+        std::memcpy(e.data(), &tag, 2);
+        std::memcpy(e.data() + 2, &type, 2);
+        e[4] = 1;  // count
+        std::memcpy(e.data() + 8, &value, 4);
+        return e;
+    };
+    const std::string two_entries = exif(entry(0x0112, 3, 1) + entry(0x8769, 4, 0));
+    const struct {
+        const char* name;
+        std::string block;
+        const char* cause;
+    } cases[] = {
+        {"short", std::string("Exif\0\0II*\0", 10), "its Exif block is cut short"},
+        {"utf8", exif(entry(0x010e, 129, 0x41)), "an entry of type 129"},
+        // The Exif directory's offset: the block's last byte (its length less the "Exif\0\0").
+        {"last_byte",
+         exif(entry(0x0112, 3, 1) +
+              entry(0x8769, 4, static_cast<std::uint32_t>(two_entries.size() - 6 - 1))),
+         "a directory at its last byte"}};
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.name);
+        const std::size_t length = c.block.size() + 2;
+        const std::string marker = std::string{'\xff', '\xe1'} + static_cast<char>(length >> 8) +
+                                   static_cast<char>(length & 0xff) + c.block;
+        const fs::path bad = path(std::string(c.name) + ".jpg");
+        write_bytes(bad, jpeg.substr(0, 2) + marker + jpeg.substr(2));
+        expect_load_error(bad, c.cause);
+    }
+}
+
 TEST_F(ImageIo, JpegsWithExifAndIptcBlocksStillLoad) {
     const fs::path file = path("tagged.jpg");
     auto out = OIIO::ImageOutput::create(file.string());
