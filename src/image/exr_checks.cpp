@@ -55,10 +55,10 @@ std::optional<std::string> exr_tile_problem(exr_const_context_t context) {
     return std::nullopt;
 }
 
-// The most uncompressed bytes one byte of an OpenEXR part's compression can hold: deflate (zip,
-// zips, and pxr24 after its rounding) codes at most 258 bytes in two bits, run lengths (rle) 128
-// bytes in two; 0 where no useful bound is known (PIZ, B44, DWA).
-std::uint64_t exr_best_ratio(exr_compression_t compression) {
+// The most uncompressed bytes one byte of an OpenEXR part's compression (its attribute's byte)
+// can hold: deflate (zip, zips, and pxr24 after its rounding) codes at most 258 bytes in two bits,
+// run lengths (rle) 128 bytes in two; 0 where no useful bound is known (PIZ, B44, DWA).
+std::uint64_t exr_best_ratio(std::uint8_t compression) {
     switch (compression) {
         case EXR_COMPRESSION_NONE:
             return 1;
@@ -80,16 +80,17 @@ std::uint64_t exr_best_ratio(exr_compression_t compression) {
 std::uint64_t exr_fewest_bytes(exr_const_context_t context, int part) {
     constexpr std::uint64_t kFewestBytesPerChunk = 16, kFewestBytesPerValue = 2;
     std::int32_t chunks = 0;
-    exr_compression_t compression{};
+    const exr_attribute_t* compression = nullptr;
     exr_attr_box2i_t window{};
     const exr_attr_chlist_t* channels = nullptr;
     if (exr_get_chunk_count(context, part, &chunks) != EXR_ERR_SUCCESS || chunks < 0 ||
-        exr_get_compression(context, part, &compression) != EXR_ERR_SUCCESS ||
+        exr_get_attribute_by_name(context, part, "compression", &compression) != EXR_ERR_SUCCESS ||
+        compression == nullptr || compression->type != EXR_ATTR_COMPRESSION ||
         exr_get_data_window(context, part, &window) != EXR_ERR_SUCCESS ||
         exr_get_channels(context, part, &channels) != EXR_ERR_SUCCESS || channels == nullptr)
         return 0;
     const std::uint64_t table = static_cast<std::uint64_t>(chunks) * kFewestBytesPerChunk;
-    const std::uint64_t ratio = exr_best_ratio(compression);
+    const std::uint64_t ratio = exr_best_ratio(compression->uc);
     if (ratio == 0) return table;
     const auto extent = [](int min, int max) {
         return static_cast<std::uint64_t>(std::max<std::int64_t>(std::int64_t{max} - min + 1, 0));
@@ -244,46 +245,40 @@ std::int32_t i32_le(std::string_view bytes, std::size_t at) {
     return static_cast<std::int32_t>(v);
 }
 
-// Whether `attribute`, as the C++ reader read it, has the value the core library read for part
-// `part`, for the attributes that size what OpenImageIO reads and footprint's checks bound.
-bool exr_value_agrees(exr_const_context_t context, int part, const ExrCxxAttribute& attribute) {
-    const std::string_view v = attribute.value;
-    if (attribute.name == "dataWindow" && v.size() == 16) {
-        exr_attr_box2i_t window{};
-        return exr_get_data_window(context, part, &window) == EXR_ERR_SUCCESS &&
-               window.min.x == i32_le(v, 0) && window.min.y == i32_le(v, 4) &&
-               window.max.x == i32_le(v, 8) && window.max.y == i32_le(v, 12);
-    }
-    if (attribute.name == "compression" && v.size() == 1) {
-        exr_compression_t compression{};
-        return exr_get_compression(context, part, &compression) == EXR_ERR_SUCCESS &&
-               static_cast<int>(compression) == static_cast<unsigned char>(v[0]);
-    }
-    if (attribute.name == "tiles" && v.size() == 9) {
-        std::uint32_t width = 0, height = 0;
-        exr_tile_level_mode_t levels{};
-        exr_tile_round_mode_t rounding{};
-        return exr_get_tile_descriptor(context, part, &width, &height, &levels, &rounding) ==
-                   EXR_ERR_SUCCESS &&
-               width == static_cast<std::uint32_t>(i32_le(v, 0)) &&
-               height == static_cast<std::uint32_t>(i32_le(v, 4)) &&
-               static_cast<int>(levels) == (static_cast<unsigned char>(v[8]) & 0xf) &&
-               static_cast<int>(rounding) == (static_cast<unsigned char>(v[8]) >> 4);
-    }
-    if (attribute.name == "channels") {  // names, each followed by 16 bytes, up to an empty one
-        const exr_attr_chlist_t* channels = nullptr;
-        if (exr_get_channels(context, part, &channels) != EXR_ERR_SUCCESS || channels == nullptr)
-            return false;
-        std::size_t at = 0;
-        for (int c = 0; c < channels->num_channels; ++c) {
-            const std::string_view name(channels->entries[c].name.str,
-                                        static_cast<std::size_t>(channels->entries[c].name.length));
-            if (v.substr(at, name.size() + 1) != std::string(name) + '\0') return false;
-            at += name.size() + 1 + 16;
+// Whether the attribute `cxx`, as the C++ reader read it, has the type and the value of `core`,
+// the same as the core library read it, for the types that size what OpenImageIO reads (channel
+// lists, compression, windows, tiles). Raw bytes, never enums: a corrupt file's rounding mode can
+// be 7.
+bool exr_value_agrees(const exr_attribute_t& core, const ExrCxxAttribute& cxx) {
+    const std::string_view v = cxx.value;
+    const auto byte = [&](std::size_t at) { return static_cast<unsigned char>(v[at]); };
+    if (cxx.type != core.type_name) return false;
+    switch (core.type) {
+        case EXR_ATTR_BOX2I:
+            return v.size() == 16 && core.box2i->min.x == i32_le(v, 0) &&
+                   core.box2i->min.y == i32_le(v, 4) && core.box2i->max.x == i32_le(v, 8) &&
+                   core.box2i->max.y == i32_le(v, 12);
+        case EXR_ATTR_COMPRESSION:
+            return v.size() == 1 && core.uc == byte(0);
+        case EXR_ATTR_TILEDESC:
+            return v.size() == 9 &&
+                   core.tiledesc->x_size == static_cast<std::uint32_t>(i32_le(v, 0)) &&
+                   core.tiledesc->y_size == static_cast<std::uint32_t>(i32_le(v, 4)) &&
+                   core.tiledesc->level_and_round == byte(8);
+        case EXR_ATTR_CHLIST: {  // names, each followed by 16 bytes, up to an empty one
+            std::size_t at = 0;
+            for (int c = 0; c < core.chlist->num_channels; ++c) {
+                const exr_attr_string_t& name = core.chlist->entries[c].name;
+                const std::string entry =
+                    std::string(name.str, static_cast<std::size_t>(name.length)) + '\0';
+                if (v.substr(at, entry.size()) != entry) return false;
+                at += entry.size() + 16;
+            }
+            return v.substr(at) == std::string_view("\0", 1);
         }
-        return v.substr(at) == std::string_view("\0", 1);
+        default:
+            return true;
     }
-    return true;
 }
 
 // Why OpenImageIO 2.4 would read the open OpenEXR file `file` (of `file_bytes` bytes) otherwise
@@ -311,14 +306,13 @@ std::optional<std::string> exr_reader_agreement_problem(exr_const_context_t cont
         for (int i = 0; agree && i < count; ++i) {
             const exr_attribute_t* core = nullptr;
             const auto at = static_cast<std::size_t>(i);
-            agree =
-                exr_get_attribute_by_index(context, part, EXR_ATTR_LIST_FILE_ORDER, i, &core) ==
-                    EXR_ERR_SUCCESS &&
-                core != nullptr &&
-                (at < header.size()
-                     ? header[at].name == core->name && exr_value_agrees(context, part, header[at])
-                     : std::find(kRequired.begin(), kRequired.end(),
-                                 std::string_view(core->name)) != kRequired.end());
+            agree = exr_get_attribute_by_index(context, part, EXR_ATTR_LIST_FILE_ORDER, i, &core) ==
+                        EXR_ERR_SUCCESS &&
+                    core != nullptr &&
+                    (at < header.size()
+                         ? header[at].name == core->name && exr_value_agrees(*core, header[at])
+                         : std::find(kRequired.begin(), kRequired.end(),
+                                     std::string_view(core->name)) != kRequired.end());
         }
     }
     if (agree) return std::nullopt;
