@@ -981,6 +981,17 @@ TEST_F(ImageIo, DeflatedMinIsWhiteTiffsOfSeveralStripsLoadInverted) {
             ASSERT_FLOAT_EQ(loaded->at(x, y, 0), (255 - stored(x, y)) / 255.0f) << x << ", " << y;
 }
 
+// The bytes of an 8 × 8 grey JPEG OpenImageIO writes (at `file`), with a marker block of `code`
+// holding `data` inserted after its SOI.
+std::string jpeg_with_block(const fs::path& file, unsigned char code, const std::string& data) {
+    write_with_oiio(file, 8, 8, 3, OIIO::TypeDesc::UINT8, std::vector<float>(8 * 8 * 3, 0.5f));
+    const std::string jpeg = read_bytes(file);
+    const std::size_t length = data.size() + 2;
+    return jpeg.substr(0, 2) + std::string{'\xff', static_cast<char>(code)} +
+           static_cast<char>(length >> 8) + static_cast<char>(length & 0xff) + data +
+           jpeg.substr(2);
+}
+
 // fuzz_image_load found it: OpenImageIO 2.4 trusted the length inside a JPEG's IPTC block, 20 480
 // bytes in an APP13 block of 106, and read past it (upstream #5081). Its reader also compares the
 // start of each APP1, APP2 and APP13 block with an identifier as a C string, and skips or
@@ -990,9 +1001,6 @@ TEST_F(ImageIo, JpegBlocksOpenImageIOWouldReadPastAreRefused) {
     write_image_load_input("jpeg_iptc_longer_than_its_block", file);
     expect_load_error(file, "its JPEG IPTC block claims more bytes than its APP13 block holds");
 
-    const fs::path good = path("good.jpg");
-    write_with_oiio(good, 8, 8, 3, OIIO::TypeDesc::UINT8, std::vector<float>(8 * 8 * 3, 0.5f));
-    const std::string jpeg = read_bytes(good);
     const struct {
         const char* name;
         unsigned char code;
@@ -1014,12 +1022,8 @@ TEST_F(ImageIo, JpegBlocksOpenImageIOWouldReadPastAreRefused) {
                   "its JPEG IPTC block claims more bytes"}};
     for (const auto& c : cases) {
         SCOPED_TRACE(c.name);
-        const std::size_t length = c.data.size() + 2;
-        const std::string marker = std::string{'\xff', static_cast<char>(c.code)} +
-                                   static_cast<char>(length >> 8) +
-                                   static_cast<char>(length & 0xff) + c.data;
         const fs::path bad = path(std::string(c.name) + ".jpg");
-        write_bytes(bad, jpeg.substr(0, 2) + marker + jpeg.substr(2));
+        write_bytes(bad, jpeg_with_block(bad, c.code, c.data));
         expect_load_error(bad, c.cause);
     }
 }
@@ -1029,9 +1033,6 @@ TEST_F(ImageIo, JpegBlocksOpenImageIOWouldReadPastAreRefused) {
 // its table (Exif 3.0's UTF-8, 129) as 2^64 − 1 bytes, which wraps its bounds check (upstream
 // #5322, #5399).
 TEST_F(ImageIo, ExifBlocksOpenImageIOWouldReadPastAreRefused) {
-    const fs::path good = path("good.jpg");
-    write_with_oiio(good, 8, 8, 3, OIIO::TypeDesc::UINT8, std::vector<float>(8 * 8 * 3, 0.5f));
-    const std::string jpeg = read_bytes(good);
     // A little-endian TIFF header, IFD0 at 8, and IFD0's `entries` (12 bytes each, then 4).
     const auto exif = [](const std::string& entries) {
         const char count = static_cast<char>(entries.size() / 12);
@@ -1061,11 +1062,8 @@ TEST_F(ImageIo, ExifBlocksOpenImageIOWouldReadPastAreRefused) {
          "a directory at its last byte"}};
     for (const auto& c : cases) {
         SCOPED_TRACE(c.name);
-        const std::size_t length = c.block.size() + 2;
-        const std::string marker = std::string{'\xff', '\xe1'} + static_cast<char>(length >> 8) +
-                                   static_cast<char>(length & 0xff) + c.block;
         const fs::path bad = path(std::string(c.name) + ".jpg");
-        write_bytes(bad, jpeg.substr(0, 2) + marker + jpeg.substr(2));
+        write_bytes(bad, jpeg_with_block(bad, 0xe1, c.block));
         expect_load_error(bad, c.cause);
     }
 }
