@@ -11,6 +11,12 @@
 namespace footprint::detail {
 namespace {
 
+std::string lowercase(std::string_view text) {
+    std::string lower(text);
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return lower;
+}
+
 // CRC-32 as PNG uses it (ISO 3309, polynomial 0xEDB88320), updated over `size` bytes.
 std::uint32_t crc32_update(std::uint32_t crc, const unsigned char* data, std::size_t size) {
     static const std::array<std::uint32_t, 256> table = [] {
@@ -68,12 +74,8 @@ std::optional<std::string> exif_problem(std::string_view exif) {
             const std::uint32_t tag = u(at, 2), type = u(at + 2, 2), value = u(at + 8, 4);
             if (type > kLargestType)
                 return "its Exif block is corrupt (an entry of type " + std::to_string(type) + ")";
-            if (tag == kMake && value < exif.size()) {  // "Canon" and its NUL: past the entry
-                std::string make(exif.substr(value, 5));
-                for (char& c : make)
-                    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-                canon = make == "canon";
-            }
+            if (tag == kMake && value < exif.size())  // "Canon" and its NUL: past the entry
+                canon = lowercase(exif.substr(value, 5)) == "canon";
             if (tag == kMakerNote) maker_note = value;
             const bool sub = tag == kExifIfd || tag == kGpsIfd || tag == kInteropIfd;
             if (sub && value < exif.size() &&
@@ -88,6 +90,59 @@ std::optional<std::string> exif_problem(std::string_view exif) {
             canon = false;
         }
     }
+    return std::nullopt;
+}
+
+// The Exif block in the text of a PNG's "Raw profile type exif" (ImageMagick's): "exif", a
+// length, then hex digits; decoded as OpenImageIO 2.4 decodes it (any other character skipped).
+std::string decode_raw_exif_profile(std::string_view text) {
+    const auto skip_space = [&] {
+        while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front())))
+            text.remove_prefix(1);
+    };
+    skip_space();
+    if (text.substr(0, 4) != "exif") return {};
+    text.remove_prefix(4);
+    skip_space();
+    if (!text.empty() && (text.front() == '-' || text.front() == '+')) text.remove_prefix(1);
+    const std::size_t digits = text.find_first_not_of("0123456789");
+    if (digits == 0 || text.substr(0, digits).find_first_not_of('0') == std::string_view::npos)
+        return {};  // no length, or 0
+    text.remove_prefix(std::min(digits, text.size()));
+    skip_space();
+    const auto nibble = [](char c) {
+        return c <= '9' ? c - '0' : std::tolower(static_cast<unsigned char>(c)) - 'a' + 10;
+    };
+    std::string decoded;
+    while (text.size() >= 2) {
+        if (!std::isxdigit(static_cast<unsigned char>(text.front()))) {
+            text.remove_prefix(1);
+            continue;
+        }
+        decoded += static_cast<char>((nibble(text[0]) << 4) | nibble(text[1]));
+        text.remove_prefix(2);
+    }
+    return decoded;
+}
+
+// Why OpenImageIO 2.4's Exif decoder (exif_problem) would read past the Exif block of the PNG
+// chunk `type` holding `data`, if it would: an eXIf chunk, or the "Raw profile type exif" of a
+// tEXt chunk. (The same profile in a compressed zTXt or iTXt chunk is not checked.)
+std::optional<std::string> png_exif_problem(const std::string& type, std::string_view data) {
+    std::string exif;
+    if (type == "eXIf") {
+        exif = data;
+    } else {
+        const std::size_t end = data.find('\0');
+        if (end == std::string_view::npos ||
+            lowercase(data.substr(0, end)) != "raw profile type exif")
+            return std::nullopt;
+        exif = decode_raw_exif_profile(data.substr(end + 1));
+        if (lowercase(std::string_view(exif).substr(0, 4)) != "exif")
+            return std::nullopt;  // OpenImageIO decodes only these
+    }
+    if (exif.compare(0, 6, std::string("Exif\0\0", 6)) == 0) exif.erase(0, 6);
+    if (auto cause = exif_problem(exif)) return "the file is corrupt (" + *cause + ")";
     return std::nullopt;
 }
 
@@ -145,6 +200,9 @@ constexpr std::uint64_t kSmallImageTileTexels = std::uint64_t{1} << 20;
 // truncated or a critical chunk is corrupt. libpng reports these itself, but it also prints them
 // to stderr and OpenImageIO 2.4 leaks memory on that path, so they are caught here first.
 std::optional<std::string> png_problem(std::istream& in) {
+    // eXIf and tEXt chunks up to this size are kept for png_exif_problem (libpng's default limit
+    // on an ancillary chunk is 8 MiB: it drops larger ones).
+    constexpr std::uint32_t kKeptChunkBytes = 8u << 20;
     std::vector<unsigned char> buffer(1 << 16);
     bool first = true;
     for (;;) {
@@ -164,6 +222,8 @@ std::optional<std::string> png_problem(std::istream& in) {
         }
         first = false;
         const bool critical = type[0] >= 'A' && type[0] <= 'Z';
+        const bool kept = (type == "eXIf" || type == "tEXt") && length <= kKeptChunkBytes;
+        std::string data;
         std::uint32_t crc = crc32_update(0xffffffffu, header.data() + 4, 4);
         std::uint32_t left = length;
         while (left > 0) {
@@ -171,7 +231,8 @@ std::optional<std::string> png_problem(std::istream& in) {
             if (!in.read(reinterpret_cast<char*>(buffer.data()), static_cast<std::streamsize>(n))) {
                 return "the file is truncated (PNG chunk '" + type + "' is cut off)";
             }
-            if (critical) crc = crc32_update(crc, buffer.data(), n);
+            if (critical || kept) crc = crc32_update(crc, buffer.data(), n);
+            if (kept) data.append(reinterpret_cast<const char*>(buffer.data()), n);
             left -= static_cast<std::uint32_t>(n);
         }
         std::array<unsigned char, 4> stored{};
@@ -183,6 +244,9 @@ std::optional<std::string> png_problem(std::istream& in) {
                                        (std::uint32_t{stored[2]} << 8) | std::uint32_t{stored[3]};
         if (critical && (crc ^ 0xffffffffu) != expected) {
             return "the file is corrupt (checksum mismatch in PNG chunk '" + type + "')";
+        }
+        if (kept && (crc ^ 0xffffffffu) == expected) {  // libpng drops it otherwise
+            if (auto cause = png_exif_problem(type, data)) return cause;
         }
         if (type == "IEND") return std::nullopt;
     }

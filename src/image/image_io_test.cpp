@@ -1032,21 +1032,25 @@ TEST_F(ImageIo, JpegBlocksOpenImageIOWouldReadPastAreRefused) {
 // count of a sub-directory whose offset is the block's last byte, and an entry of a type beyond
 // its table (Exif 3.0's UTF-8, 129) as 2^64 − 1 bytes, which wraps its bounds check (upstream
 // #5322, #5399).
+// An Exif block: "Exif\0\0", a little-endian TIFF header, IFD0 at 8 holding `entries` (12 bytes
+// each), and no next directory.
+std::string exif(const std::string& entries) {
+    const char count = static_cast<char>(entries.size() / 12);
+    return std::string("Exif\0\0II*\0\x08\0\0\0", 14) + count + '\0' + entries +
+           std::string(4, '\0');
+}
+
+// An Exif directory entry of one value (little-endian).
+std::string entry(std::uint16_t tag, std::uint16_t type, std::uint32_t value) {
+    std::string e(12, '\0');
+    std::memcpy(e.data(), &tag, 2);
+    std::memcpy(e.data() + 2, &type, 2);
+    e[4] = 1;  // count
+    std::memcpy(e.data() + 8, &value, 4);
+    return e;
+}
+
 TEST_F(ImageIo, ExifBlocksOpenImageIOWouldReadPastAreRefused) {
-    // A little-endian TIFF header, IFD0 at 8, and IFD0's `entries` (12 bytes each, then 4).
-    const auto exif = [](const std::string& entries) {
-        const char count = static_cast<char>(entries.size() / 12);
-        return std::string("Exif\0\0II*\0\x08\0\0\0", 14) + count + '\0' + entries +
-               std::string(4, '\0');
-    };
-    const auto entry = [](std::uint16_t tag, std::uint16_t type, std::uint32_t value) {
-        std::string e(12, '\0');
-        std::memcpy(e.data(), &tag, 2);
-        std::memcpy(e.data() + 2, &type, 2);
-        e[4] = 1;  // count
-        std::memcpy(e.data() + 8, &value, 4);
-        return e;
-    };
     const std::string two_entries = exif(entry(0x0112, 3, 1) + entry(0x8769, 4, 0));
     const struct {
         const char* name;
@@ -1066,6 +1070,46 @@ TEST_F(ImageIo, ExifBlocksOpenImageIOWouldReadPastAreRefused) {
         write_bytes(bad, jpeg_with_block(bad, 0xe1, c.block));
         expect_load_error(bad, c.cause);
     }
+}
+
+// A PNG OpenImageIO writes (at `file`), with a chunk of `type` holding `data` after its IHDR.
+std::string png_with_chunk(const fs::path& file, const std::string& type, const std::string& data) {
+    write_with_oiio(file, 8, 8, 3, OIIO::TypeDesc::UINT8, std::vector<float>(8 * 8 * 3, 0.5f));
+    const std::string png = read_bytes(file);
+    const auto big_endian = [](std::uint32_t v) {
+        return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16),
+                           static_cast<char>(v >> 8), static_cast<char>(v)};
+    };
+    std::uint32_t crc = 0xffffffffu;  // CRC-32 of the type and data, bit by bit
+    for (const char byte : type + data) {
+        crc ^= static_cast<unsigned char>(byte);
+        for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+    }
+    const std::size_t after_ihdr = 8 + 8 + 13 + 4;
+    return png.substr(0, after_ihdr) + big_endian(static_cast<std::uint32_t>(data.size())) + type +
+           data + big_endian(~crc) + png.substr(after_ihdr);
+}
+
+// OpenImageIO 2.4 hands a PNG's eXIf chunk, and the hex digits of a tEXt "Raw profile type exif"
+// (ImageMagick's), to the same Exif decoder.
+TEST_F(ImageIo, PngExifOpenImageIOWouldReadPastIsRefused) {
+    std::string hex = "\nexif\n      30\n";
+    for (const char byte : exif(entry(0x010e, 129, 0x41))) {
+        constexpr char kDigits[] = "0123456789abcdef";
+        hex += kDigits[static_cast<unsigned char>(byte) >> 4];
+        hex += kDigits[static_cast<unsigned char>(byte) & 15];
+    }
+    const fs::path file = path("exif.png");
+    write_bytes(file, png_with_chunk(file, "eXIf", exif(entry(0x010e, 129, 0x41)).substr(6)));
+    expect_load_error(file, "an entry of type 129");
+    write_bytes(file,
+                png_with_chunk(file, "tEXt", std::string("Raw profile type exif\0", 22) + hex));
+    expect_load_error(file, "an entry of type 129");
+
+    // The same blocks of an honest entry load.
+    write_bytes(file, png_with_chunk(file, "eXIf", exif(entry(0x0112, 3, 1)).substr(6)));
+    const Result<Image> loaded = load_image(file);
+    ASSERT_TRUE(loaded.ok()) << loaded.error().message;
 }
 
 TEST_F(ImageIo, JpegsWithExifAndIptcBlocksStillLoad) {
