@@ -8,6 +8,7 @@ packages=(
     libopenimageio-dev openimageio-tools libopencv-core-dev   # image I/O + benchmark peer
     libopenexr-dev                                            # multi-part MIP-mapped OpenEXR
     libtiff-dev                                               # which TIFF codecs libtiff has
+    zlib1g-dev                                                # a PNG's compressed text chunks
     libtbb-dev                                                # parallelism
     libembree-dev libtinyobjloader-dev libtinygltf-dev libstb-dev
     nlohmann-json3-dev libcli11-dev

@@ -2,10 +2,13 @@
 // (format_checks.h).
 #include "image/format_checks.h"
 
+#include <zlib.h>
+
 #include <algorithm>
 #include <array>
 #include <cctype>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace footprint::detail {
@@ -125,19 +128,71 @@ std::string decode_raw_exif_profile(std::string_view text) {
     return decoded;
 }
 
+// What the zlib stream `compressed` inflates to, or nothing if it is corrupt, cut short or
+// inflates past `limit` bytes (libpng drops such a chunk).
+std::optional<std::string> inflated(std::string_view compressed, std::size_t limit) {
+    z_stream z{};
+    if (inflateInit(&z) != Z_OK) return std::nullopt;
+    z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(compressed.data()));
+    z.avail_in = static_cast<uInt>(compressed.size());
+    std::string out;
+    std::array<char, 1 << 16> buffer{};
+    int result = Z_OK;
+    while (result == Z_OK && out.size() <= limit) {
+        z.next_out = reinterpret_cast<Bytef*>(buffer.data());
+        z.avail_out = static_cast<uInt>(buffer.size());
+        result = inflate(&z, Z_NO_FLUSH);
+        out.append(buffer.data(), buffer.size() - z.avail_out);
+    }
+    inflateEnd(&z);
+    if (result != Z_STREAM_END || out.size() > limit) return std::nullopt;
+    return out;
+}
+
+// The keyword and text of the PNG text chunk `type` holding `data` (tEXt; zTXt and iTXt
+// inflated, up to `limit` bytes), as libpng hands them to OpenImageIO; nothing if it is not one
+// or libpng would drop it.
+std::optional<std::pair<std::string, std::string>> png_text(const std::string& type,
+                                                            std::string_view data,
+                                                            std::size_t limit) {
+    const std::size_t end = data.find('\0');
+    if (end == std::string_view::npos) return std::nullopt;
+    const std::string keyword(data.substr(0, end));
+    std::string_view rest = data.substr(end + 1);
+    if (type == "tEXt") return std::pair{keyword, std::string(rest)};
+    if (type == "zTXt") {  // a compression method (0: zlib), the stream
+        if (rest.empty() || rest[0] != 0) return std::nullopt;
+        std::optional<std::string> text = inflated(rest.substr(1), limit);
+        if (!text) return std::nullopt;
+        return std::pair{keyword, std::move(*text)};
+    }
+    // iTXt: a compression flag and method, a language tag and a translated keyword, the text.
+    if (rest.size() < 2) return std::nullopt;
+    const bool compressed = rest[0] != 0;
+    rest.remove_prefix(2);
+    for (int field = 0; field < 2; ++field) {
+        const std::size_t nul = rest.find('\0');
+        if (nul == std::string_view::npos) return std::nullopt;
+        rest.remove_prefix(nul + 1);
+    }
+    if (!compressed) return std::pair{keyword, std::string(rest)};
+    std::optional<std::string> text = inflated(rest, limit);
+    if (!text) return std::nullopt;
+    return std::pair{keyword, std::move(*text)};
+}
+
 // Why OpenImageIO 2.4's Exif decoder (exif_problem) would read past the Exif block of the PNG
 // chunk `type` holding `data`, if it would: an eXIf chunk, or the "Raw profile type exif" of a
-// tEXt chunk. (The same profile in a compressed zTXt or iTXt chunk is not checked.)
-std::optional<std::string> png_exif_problem(const std::string& type, std::string_view data) {
+// text chunk (inflated up to `limit` bytes).
+std::optional<std::string> png_exif_problem(const std::string& type, std::string_view data,
+                                            std::size_t limit) {
     std::string exif;
     if (type == "eXIf") {
         exif = data;
     } else {
-        const std::size_t end = data.find('\0');
-        if (end == std::string_view::npos ||
-            lowercase(data.substr(0, end)) != "raw profile type exif")
-            return std::nullopt;
-        exif = decode_raw_exif_profile(data.substr(end + 1));
+        const auto text = png_text(type, data, limit);
+        if (!text || lowercase(text->first) != "raw profile type exif") return std::nullopt;
+        exif = decode_raw_exif_profile(text->second);
         if (lowercase(std::string_view(exif).substr(0, 4)) != "exif")
             return std::nullopt;  // OpenImageIO decodes only these
     }
@@ -200,8 +255,8 @@ constexpr std::uint64_t kSmallImageTileTexels = std::uint64_t{1} << 20;
 // truncated or a critical chunk is corrupt. libpng reports these itself, but it also prints them
 // to stderr and OpenImageIO 2.4 leaks memory on that path, so they are caught here first.
 std::optional<std::string> png_problem(std::istream& in) {
-    // eXIf and tEXt chunks up to this size are kept for png_exif_problem (libpng's default limit
-    // on an ancillary chunk is 8 MiB: it drops larger ones).
+    // Exif and text chunks up to this size, inflated or not, are kept for png_exif_problem
+    // (libpng's default limit on an ancillary chunk is 8 MiB: it drops larger ones).
     constexpr std::uint32_t kKeptChunkBytes = 8u << 20;
     std::vector<unsigned char> buffer(1 << 16);
     bool first = true;
@@ -222,7 +277,8 @@ std::optional<std::string> png_problem(std::istream& in) {
         }
         first = false;
         const bool critical = type[0] >= 'A' && type[0] <= 'Z';
-        const bool kept = (type == "eXIf" || type == "tEXt") && length <= kKeptChunkBytes;
+        const bool kept = (type == "eXIf" || type == "tEXt" || type == "zTXt" || type == "iTXt") &&
+                          length <= kKeptChunkBytes;
         std::string data;
         std::uint32_t crc = crc32_update(0xffffffffu, header.data() + 4, 4);
         std::uint32_t left = length;
@@ -246,7 +302,7 @@ std::optional<std::string> png_problem(std::istream& in) {
             return "the file is corrupt (checksum mismatch in PNG chunk '" + type + "')";
         }
         if (kept && (crc ^ 0xffffffffu) == expected) {  // libpng drops it otherwise
-            if (auto cause = png_exif_problem(type, data)) return cause;
+            if (auto cause = png_exif_problem(type, data, kKeptChunkBytes)) return cause;
         }
         if (type == "IEND") return std::nullopt;
     }

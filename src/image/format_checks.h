@@ -17,7 +17,7 @@
 namespace footprint::detail {
 
 // A PNG's chunks (`in` just after its signature): truncated, a critical chunk corrupt, or Exif
-// (an eXIf chunk, a tEXt "Raw profile type exif") OpenImageIO's decoder would read past.
+// (an eXIf chunk, a "Raw profile type exif" text) OpenImageIO's decoder would read past.
 std::optional<std::string> png_problem(std::istream& in);
 
 // A JPEG's marker blocks up to its first scan (`in` just after its SOI): an Exif, XMP, ICC or IPTC

@@ -5,6 +5,7 @@
 #include <sys/mount.h>
 #include <tiffio.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -1090,8 +1091,8 @@ std::string png_with_chunk(const fs::path& file, const std::string& type, const 
            data + big_endian(~crc) + png.substr(after_ihdr);
 }
 
-// OpenImageIO 2.4 hands a PNG's eXIf chunk, and the hex digits of a tEXt "Raw profile type exif"
-// (ImageMagick's), to the same Exif decoder.
+// OpenImageIO 2.4 hands a PNG's eXIf chunk, and the hex digits of a "Raw profile type exif" text
+// (ImageMagick's; libpng inflates zTXt and iTXt), to the same Exif decoder.
 TEST_F(ImageIo, PngExifOpenImageIOWouldReadPastIsRefused) {
     std::string hex = "\nexif\n      30\n";
     for (const char byte : exif(entry(0x010e, 129, 0x41))) {
@@ -1102,8 +1103,21 @@ TEST_F(ImageIo, PngExifOpenImageIOWouldReadPastIsRefused) {
     const fs::path file = path("exif.png");
     write_bytes(file, png_with_chunk(file, "eXIf", exif(entry(0x010e, 129, 0x41)).substr(6)));
     expect_load_error(file, "an entry of type 129");
+    const std::string keyword("Raw profile type exif\0", 22);
+    write_bytes(file, png_with_chunk(file, "tEXt", keyword + hex));
+    expect_load_error(file, "an entry of type 129");
+    // Compressed, as ImageMagick writes it: zTXt (method 0, a zlib stream), iTXt (flag 1, method
+    // 0, no language or translated keyword).
+    std::string deflated(compressBound(static_cast<uLong>(hex.size())), '\0');
+    uLongf deflated_size = static_cast<uLongf>(deflated.size());
+    ASSERT_EQ(compress(reinterpret_cast<Bytef*>(deflated.data()), &deflated_size,
+                       reinterpret_cast<const Bytef*>(hex.data()), static_cast<uLong>(hex.size())),
+              Z_OK);
+    deflated.resize(deflated_size);
+    write_bytes(file, png_with_chunk(file, "zTXt", keyword + '\0' + deflated));
+    expect_load_error(file, "an entry of type 129");
     write_bytes(file,
-                png_with_chunk(file, "tEXt", std::string("Raw profile type exif\0", 22) + hex));
+                png_with_chunk(file, "iTXt", keyword + std::string("\1\0\0\0", 4) + deflated));
     expect_load_error(file, "an entry of type 129");
 
     // The same blocks of an honest entry load.
