@@ -149,22 +149,15 @@ std::optional<std::string> inflated(std::string_view compressed, std::size_t lim
     return out;
 }
 
-// The keyword and text of the PNG text chunk `type` holding `data` (tEXt; zTXt and iTXt
-// inflated, up to `limit` bytes), as libpng hands them to OpenImageIO; nothing if it is not one
-// or libpng would drop it.
-std::optional<std::pair<std::string, std::string>> png_text(const std::string& type,
-                                                            std::string_view data,
-                                                            std::size_t limit) {
-    const std::size_t end = data.find('\0');
-    if (end == std::string_view::npos) return std::nullopt;
-    const std::string keyword(data.substr(0, end));
-    std::string_view rest = data.substr(end + 1);
-    if (type == "tEXt") return std::pair{keyword, std::string(rest)};
+// The text of the PNG text chunk `type` (tEXt, zTXt or iTXt) whose data after its keyword is
+// `rest`, as libpng hands it to OpenImageIO (inflated, up to `limit` bytes); nothing if libpng
+// would drop the chunk.
+std::optional<std::string> png_text(const std::string& type, std::string_view rest,
+                                    std::size_t limit) {
+    if (type == "tEXt") return std::string(rest);
     if (type == "zTXt") {  // a compression method (0: zlib), the stream
         if (rest.empty() || rest[0] != 0) return std::nullopt;
-        std::optional<std::string> text = inflated(rest.substr(1), limit);
-        if (!text) return std::nullopt;
-        return std::pair{keyword, std::move(*text)};
+        return inflated(rest.substr(1), limit);
     }
     // iTXt: a compression flag and method, a language tag and a translated keyword, the text.
     if (rest.size() < 2) return std::nullopt;
@@ -175,10 +168,7 @@ std::optional<std::pair<std::string, std::string>> png_text(const std::string& t
         if (nul == std::string_view::npos) return std::nullopt;
         rest.remove_prefix(nul + 1);
     }
-    if (!compressed) return std::pair{keyword, std::string(rest)};
-    std::optional<std::string> text = inflated(rest, limit);
-    if (!text) return std::nullopt;
-    return std::pair{keyword, std::move(*text)};
+    return compressed ? inflated(rest, limit) : std::string(rest);
 }
 
 // Why OpenImageIO 2.4's Exif decoder (exif_problem) would read past the Exif block of the PNG
@@ -190,9 +180,13 @@ std::optional<std::string> png_exif_problem(const std::string& type, std::string
     if (type == "eXIf") {
         exif = data;
     } else {
-        const auto text = png_text(type, data, limit);
-        if (!text || lowercase(text->first) != "raw profile type exif") return std::nullopt;
-        exif = decode_raw_exif_profile(text->second);
+        const std::size_t end = data.find('\0');  // the keyword's
+        if (end == std::string_view::npos ||
+            lowercase(data.substr(0, end)) != "raw profile type exif")
+            return std::nullopt;
+        const std::optional<std::string> text = png_text(type, data.substr(end + 1), limit);
+        if (!text) return std::nullopt;
+        exif = decode_raw_exif_profile(*text);
         if (lowercase(std::string_view(exif).substr(0, 4)) != "exif")
             return std::nullopt;  // OpenImageIO decodes only these
     }
