@@ -8,7 +8,6 @@
 #include <array>
 #include <cctype>
 #include <string_view>
-#include <utility>
 #include <vector>
 
 namespace footprint::detail {
