@@ -19,21 +19,6 @@ std::string lowercase(std::string_view text) {
     return lower;
 }
 
-// CRC-32 as PNG uses it (ISO 3309, polynomial 0xEDB88320), updated over `size` bytes.
-std::uint32_t crc32_update(std::uint32_t crc, const unsigned char* data, std::size_t size) {
-    static const std::array<std::uint32_t, 256> table = [] {
-        std::array<std::uint32_t, 256> t{};
-        for (std::uint32_t n = 0; n < 256; ++n) {
-            std::uint32_t c = n;
-            for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-            t[n] = c;
-        }
-        return t;
-    }();
-    for (std::size_t i = 0; i < size; ++i) crc = table[(crc ^ data[i]) & 0xffu] ^ (crc >> 8);
-    return crc;
-}
-
 // Whether the `declared` bytes of a JPEG marker's data, of which `data` is what the file holds,
 // are a proper prefix of `id`: a block that starts like one OpenImageIO 2.4 parses, cut short.
 bool cut_short(std::string_view data, std::size_t declared, std::string_view id) {
@@ -273,14 +258,14 @@ std::optional<std::string> png_problem(std::istream& in) {
         const bool kept = (type == "eXIf" || type == "tEXt" || type == "zTXt" || type == "iTXt") &&
                           length <= kKeptChunkBytes;
         std::string data;
-        std::uint32_t crc = crc32_update(0xffffffffu, header.data() + 4, 4);
+        uLong crc = crc32(0, header.data() + 4, 4);  // zlib's CRC-32, PNG's
         std::uint32_t left = length;
         while (left > 0) {
             const std::size_t n = std::min<std::size_t>(left, buffer.size());
             if (!in.read(reinterpret_cast<char*>(buffer.data()), static_cast<std::streamsize>(n))) {
                 return "the file is truncated (PNG chunk '" + type + "' is cut off)";
             }
-            if (critical || kept) crc = crc32_update(crc, buffer.data(), n);
+            if (critical || kept) crc = crc32(crc, buffer.data(), static_cast<uInt>(n));
             if (kept) data.append(reinterpret_cast<const char*>(buffer.data()), n);
             left -= static_cast<std::uint32_t>(n);
         }
@@ -291,10 +276,10 @@ std::optional<std::string> png_problem(std::istream& in) {
         const std::uint32_t expected = (std::uint32_t{stored[0]} << 24) |
                                        (std::uint32_t{stored[1]} << 16) |
                                        (std::uint32_t{stored[2]} << 8) | std::uint32_t{stored[3]};
-        if (critical && (crc ^ 0xffffffffu) != expected) {
+        if (critical && crc != expected) {
             return "the file is corrupt (checksum mismatch in PNG chunk '" + type + "')";
         }
-        if (kept && (crc ^ 0xffffffffu) == expected) {  // libpng drops it otherwise
+        if (kept && crc == expected) {  // libpng drops it otherwise
             if (auto cause = png_exif_problem(type, data, kKeptChunkBytes)) return cause;
         }
         if (type == "IEND") return std::nullopt;

@@ -1081,14 +1081,12 @@ std::string png_with_chunk(const fs::path& file, const std::string& type, const 
         return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16),
                            static_cast<char>(v >> 8), static_cast<char>(v)};
     };
-    std::uint32_t crc = 0xffffffffu;  // CRC-32 of the type and data, bit by bit
-    for (const char byte : type + data) {
-        crc ^= static_cast<unsigned char>(byte);
-        for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
-    }
+    const std::string checked = type + data;
+    const auto crc = static_cast<std::uint32_t>(crc32(
+        0, reinterpret_cast<const Bytef*>(checked.data()), static_cast<uInt>(checked.size())));
     const std::size_t after_ihdr = 8 + 8 + 13 + 4;
     return png.substr(0, after_ihdr) + big_endian(static_cast<std::uint32_t>(data.size())) + type +
-           data + big_endian(~crc) + png.substr(after_ihdr);
+           data + big_endian(crc) + png.substr(after_ihdr);
 }
 
 // OpenImageIO 2.4 hands a PNG's eXIf chunk, and the hex digits of a "Raw profile type exif" text
