@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "bump/bump_pyramid_file_detail.h"
 #include "image/image_input.h"
 #include "image/image_io.h"
 
@@ -20,8 +21,9 @@ Error cannot_read(const std::filesystem::path& file, const std::string& why) {
     return Error{"cannot read '" + file.string() + "': " + why};
 }
 
-// The slope offset a header holds, if it is a bump pyramid's.
-std::optional<Vec2> slope_offset(const OIIO::ImageSpec& spec) {
+}  // namespace
+
+std::optional<Vec2> detail::slope_offset(const OIIO::ImageSpec& spec) {
     const OIIO::ParamValue* p = spec.find_attribute(kOffsetAttribute);
     if (!p || p->type().basetype != OIIO::TypeDesc::FLOAT ||
         p->type().numelements() * p->type().aggregate != 2)
@@ -29,8 +31,6 @@ std::optional<Vec2> slope_offset(const OIIO::ImageSpec& spec) {
     const float* v = static_cast<const float*>(p->data());
     return Vec2{v[0], v[1]};
 }
-
-}  // namespace
 
 Status save_bump_pyramid(const BumpPyramid& pyramid, const std::filesystem::path& file,
                          int tile_size) {
@@ -50,7 +50,7 @@ Result<BumpPyramid> load_bump_pyramid(const std::filesystem::path& file) {
     Result<std::unique_ptr<OIIO::ImageInput>> opened = detail::open_image_input(file);
     if (!opened) return opened.error();
     std::unique_ptr<OIIO::ImageInput> in = std::move(*opened);
-    const std::optional<Vec2> offset = slope_offset(in->spec());
+    const std::optional<Vec2> offset = detail::slope_offset(in->spec());
     if (!offset || in->spec().channelnames != kChannelNames)
         return cannot_read(file, "it is not a bump pyramid (footprint maketx --bump writes them)");
     const WrapModes wraps = parse_oiio_wrap_modes(in->spec().get_string_attribute("wrapmodes"));
@@ -73,7 +73,7 @@ Result<BumpPyramid> load_bump_pyramid(const std::filesystem::path& file) {
 std::optional<Vec2> bump_pyramid_file_offset(const std::filesystem::path& file) {
     Result<std::unique_ptr<OIIO::ImageInput>> in = detail::open_image_input(file);
     if (!in) return std::nullopt;
-    return slope_offset((*in)->spec());
+    return detail::slope_offset((*in)->spec());
 }
 
 }  // namespace footprint

@@ -30,6 +30,10 @@ namespace footprint::detail {
 Result<std::unique_ptr<OIIO::ImageInput>> open_image_input(
     const std::filesystem::path& file, const OIIO::ImageSpec& config = OIIO::ImageSpec());
 
+// Whether load_image with ColorEncoding::automatic decodes a file whose header is `spec` from sRGB
+// (is_srgb_encoded(), image_io.h, on a file already open).
+bool automatic_decodes_srgb(const OIIO::ImageSpec& spec);
+
 // "cannot read '<file>': <cause>", the error every reader gives.
 Error read_error(const std::filesystem::path& file, const std::string& cause);
 

@@ -71,13 +71,6 @@ bool says_linear(const std::string& color_space) {
     return s == "linear" || s == "lin_srgb" || s == "lin_rec709" || s == "scene_linear";
 }
 
-// ColorEncoding::automatic's rule: integer samples are sRGB-encoded unless the metadata says
-// linear.
-bool automatic_decodes_srgb(const OIIO::ImageSpec& spec) {
-    return !spec.format.is_floating_point() &&
-           !says_linear(spec.get_string_attribute("oiio:ColorSpace"));
-}
-
 void decode_srgb(Image& image, const OIIO::TypeDesc& format, int alpha_channel) {
     // 8- and 16-bit files hold exact codes k / (2^bits − 1): decode them through a table.
     std::vector<float> table;
@@ -327,9 +320,16 @@ bool is_supported_image_extension(const fs::path& file) {
     return kind_of(file) != FileKind::unknown;
 }
 
+// ColorEncoding::automatic's rule: integer samples are sRGB-encoded unless the metadata says
+// linear.
+bool detail::automatic_decodes_srgb(const OIIO::ImageSpec& spec) {
+    return !spec.format.is_floating_point() &&
+           !says_linear(spec.get_string_attribute("oiio:ColorSpace"));
+}
+
 bool is_srgb_encoded(const fs::path& file) {
     Result<std::unique_ptr<OIIO::ImageInput>> in = detail::open_image_input(file);
-    return in && automatic_decodes_srgb((*in)->spec());
+    return in && detail::automatic_decodes_srgb((*in)->spec());
 }
 
 namespace {
@@ -491,7 +491,7 @@ Result<Image> read_level(OIIO::ImageInput& in, int level, const fs::path& file,
             decode = false;
             break;
         case ColorEncoding::automatic:
-            decode = automatic_decodes_srgb(spec);
+            decode = detail::automatic_decodes_srgb(spec);
             break;
     }
     if (decode) {

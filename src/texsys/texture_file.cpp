@@ -8,7 +8,7 @@
 #include <sstream>
 #include <vector>
 
-#include "bump/bump_pyramid_file.h"
+#include "bump/bump_pyramid_file_detail.h"
 #include "image/color.h"
 #include "image/image_input.h"
 #include "image/image_io.h"
@@ -140,8 +140,8 @@ void TextureHandle::open_stored(const std::string& file, std::unique_ptr<OIIO::I
     file_tile_width_ = spec.tile_width;
     file_tile_height_ = spec.tile_height;
     alpha_ = spec.nchannels == 2 || spec.nchannels == 4 ? spec.nchannels - 1 : -1;
-    srgb_ = is_srgb_encoded(file);
-    slope_offset = bump_pyramid_file_offset(file);
+    srgb_ = detail::automatic_decodes_srgb(spec);
+    slope_offset = detail::slope_offset(spec);
     std::vector<int> widths, heights;
     for (int w = spec.width, h = spec.height;; w = std::max(1, w / 2), h = std::max(1, h / 2)) {
         widths.push_back(w);
