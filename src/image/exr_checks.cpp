@@ -27,6 +27,17 @@ void keep_first_exr_error(exr_const_context_t, exr_result_t, const char* message
     if (exr_first_error != nullptr && exr_first_error->empty()) *exr_first_error = message;
 }
 
+// A data window's width and height in texels; 0 for an inverted (corrupt) one.
+struct WindowExtent {
+    std::uint64_t width = 0, height = 0;
+};
+WindowExtent extent_of(const exr_attr_box2i_t& window) {
+    const auto extent = [](int min, int max) {
+        return static_cast<std::uint64_t>(std::max<std::int64_t>(std::int64_t{max} - min + 1, 0));
+    };
+    return {extent(window.min.x, window.max.x), extent(window.min.y, window.max.y)};
+}
+
 // The first part of an open OpenEXR file whose tiles tile_problem() refuses, and why.
 std::optional<std::string> exr_tile_problem(exr_const_context_t context) {
     int parts = 0;
@@ -44,11 +55,8 @@ std::optional<std::string> exr_tile_problem(exr_const_context_t context) {
             exr_get_data_window(context, part, &window) != EXR_ERR_SUCCESS) {
             continue;
         }
-        const auto extent = [](int min, int max) {
-            return static_cast<std::uint64_t>(std::int64_t{max} - min + 1);
-        };
-        if (auto cause = tile_problem(tile_width, tile_height, extent(window.min.x, window.max.x),
-                                      extent(window.min.y, window.max.y))) {
+        const WindowExtent extent = extent_of(window);
+        if (auto cause = tile_problem(tile_width, tile_height, extent.width, extent.height)) {
             return "part " + std::to_string(part) + ": " + *cause;
         }
     }
@@ -92,17 +100,15 @@ std::uint64_t exr_fewest_bytes(exr_const_context_t context, int part) {
     const std::uint64_t table = static_cast<std::uint64_t>(chunks) * kFewestBytesPerChunk;
     const std::uint64_t ratio = exr_best_ratio(compression->uc);
     if (ratio == 0) return table;
-    const auto extent = [](int min, int max) {
-        return static_cast<std::uint64_t>(std::max<std::int64_t>(std::int64_t{max} - min + 1, 0));
-    };
     // Saturating: a corrupt window's extents, times the channels, can pass 2^64.
     const auto product = [](std::uint64_t a, std::uint64_t b) {
         return b != 0 && a > std::numeric_limits<std::uint64_t>::max() / b
                    ? std::numeric_limits<std::uint64_t>::max()
                    : a * b;
     };
+    const WindowExtent extent = extent_of(window);
     const std::uint64_t values =
-        product(product(extent(window.min.x, window.max.x), extent(window.min.y, window.max.y)),
+        product(product(extent.width, extent.height),
                 static_cast<std::uint64_t>(std::max(channels->num_channels, 0)));
     return std::max(table, product(values / ratio, kFewestBytesPerValue));
 }
@@ -119,11 +125,11 @@ std::optional<std::string> exr_size_problem(exr_const_context_t context,
         if (exr_fewest_bytes(context, part) <= file_bytes ||
             exr_get_data_window(context, part, &window) != EXR_ERR_SUCCESS)
             continue;
+        const WindowExtent extent = extent_of(window);
         return std::string(parts > 1 ? "part " + std::to_string(part) + ": " : "") +
-               "the file is truncated: its header claims " +
-               std::to_string(std::int64_t{window.max.x} - window.min.x + 1) + " x " +
-               std::to_string(std::int64_t{window.max.y} - window.min.y + 1) +
-               " texels, more than its " + std::to_string(file_bytes) + " bytes can hold";
+               "the file is truncated: its header claims " + std::to_string(extent.width) + " x " +
+               std::to_string(extent.height) + " texels, more than its " +
+               std::to_string(file_bytes) + " bytes can hold";
     }
     return std::nullopt;
 }
