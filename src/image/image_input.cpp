@@ -103,8 +103,7 @@ std::string one_line(const std::string& message) {
     return out;
 }
 
-Result<std::unique_ptr<OIIO::ImageInput>> open_image_input(const fs::path& file,
-                                                           const OIIO::ImageSpec& config) {
+Result<std::unique_ptr<OIIO::ImageInput>> open_image_input(const fs::path& file) {
     std::ifstream in;
     const Result<Signature> signature = open_checked(file, in);
     if (!signature) return signature.error();
@@ -127,7 +126,8 @@ Result<std::unique_ptr<OIIO::ImageInput>> open_image_input(const fs::path& file,
         (void)OIIO::geterror();
         return read_error(file, "OpenImageIO has no reader for ." + extension + " files");
     }
-    OIIO::ImageSpec spec;
+    OIIO::ImageSpec config, spec;
+    config.attribute("oiio:UnassociatedAlpha", 1);  // keep straight alpha as stored
     if (!input->open(file.string(), spec, config)) {
         std::string cause = std::string("OpenImageIO's ") + input->format_name() +
                             " reader cannot read it: it is corrupt, truncated or of another format";

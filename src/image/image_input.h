@@ -20,15 +20,15 @@
 
 namespace footprint::detail {
 
-// `file` opened by the OpenImageIO reader its extension names, its first subimage current;
-// `config` holds OpenImageIO's configuration hints ("oiio:UnassociatedAlpha", …). The error is
+// `file` opened by the OpenImageIO reader its extension names, its first subimage current, its
+// texels to be read as stored: unassociated (straight) alpha is not multiplied into the colour, as
+// OpenImageIO's TIFF and PNG readers otherwise do. The error is
 // "cannot read '<file>': <cause>": no such file, a directory, an empty file, no reader for the
 // extension, a corrupt PNG chunk or JPEG marker block, a corrupt OpenEXR header (OpenEXR's words,
 // or footprint's), a file too short for what its header claims, the reader's refusal
 // (OpenImageIO's words), or, in any subimage or MIP level (a TIFF directory), tiles far larger
 // than their image or CMYK OpenImageIO cannot convert safely.
-Result<std::unique_ptr<OIIO::ImageInput>> open_image_input(
-    const std::filesystem::path& file, const OIIO::ImageSpec& config = OIIO::ImageSpec());
+Result<std::unique_ptr<OIIO::ImageInput>> open_image_input(const std::filesystem::path& file);
 
 // Whether load_image with ColorEncoding::automatic decodes a file whose header is `spec` from sRGB
 // (is_srgb_encoded(), image_io.h, on a file already open).

@@ -334,13 +334,6 @@ bool is_srgb_encoded(const fs::path& file) {
 
 namespace {
 
-// `file` opened for reading, its first subimage current; the error names the file.
-Result<std::unique_ptr<OIIO::ImageInput>> open_image(const fs::path& file) {
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);  // keep straight alpha as stored
-    return detail::open_image_input(file, config);
-}
-
 // Bytes of the file's own texels read_float_texels() converts at a time.
 constexpr std::size_t kBandBytes = std::size_t{4} << 20;
 
@@ -507,7 +500,7 @@ Result<Image> read_level(OIIO::ImageInput& in, int level, const fs::path& file,
 }  // namespace
 
 Result<Image> load_image(const fs::path& file, const ImageLoadOptions& options) {
-    Result<std::unique_ptr<OIIO::ImageInput>> in = open_image(file);
+    Result<std::unique_ptr<OIIO::ImageInput>> in = detail::open_image_input(file);
     if (!in) return in.error();
     Result<Image> image = read_level(**in, 0, file, options, "");
     (*in)->close();
@@ -515,7 +508,7 @@ Result<Image> load_image(const fs::path& file, const ImageLoadOptions& options) 
 }
 
 Result<ImageBand> load_image_band(const fs::path& file) {
-    Result<std::unique_ptr<OIIO::ImageInput>> in = open_image(file);
+    Result<std::unique_ptr<OIIO::ImageInput>> in = detail::open_image_input(file);
     if (!in) return in.error();
     const OIIO::ImageSpec spec = (*in)->spec();
     (*in)->close();
@@ -531,7 +524,7 @@ Result<ImageBand> load_image_band(const fs::path& file) {
 
 Result<std::vector<Image>> load_image_levels(const fs::path& file,
                                              const ImageLoadOptions& options) {
-    Result<std::unique_ptr<OIIO::ImageInput>> in = open_image(file);
+    Result<std::unique_ptr<OIIO::ImageInput>> in = detail::open_image_input(file);
     if (!in) return in.error();
     std::vector<Image> levels;
     for (int level = 0; level == 0 || (*in)->seek_subimage(0, level); ++level) {

@@ -143,6 +143,45 @@ TEST(TextureSystem, OpenImageIOsMaketxFilesAreReadAsStored) {
     expect_lookups_of_pyramid(*ts, tx, pyramid, lookups(200, 13), kSrgbDecodeTolerance);
 }
 
+// A tiled MIP-mapped TIFF whose alpha is unassociated (straight, as PNG's is): read tile by tile
+// with its colour as stored, as load_image_levels() reads it, not multiplied by alpha on the way.
+TEST(TextureSystem, StoredStraightAlphaIsReadAsStored) {
+    constexpr float kSrgbDecodeTolerance = 2e-6f;  // as in OpenImageIOsMaketxFilesAreReadAsStored
+    test::TempDir dir;
+    const std::string tif = (dir / "straight.tif").string();
+    {
+        std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(tif);
+        ASSERT_TRUE(out);
+        OIIO::ImageSpec spec(64, 32, 4, OIIO::TypeDesc::UINT8);
+        spec.tile_width = spec.tile_height = 16;
+        spec.attribute("oiio:UnassociatedAlpha", 1);
+        spec.attribute("textureformat", "Plain Texture");  // its subimages are MIP levels
+        auto mode = OIIO::ImageOutput::Create;
+        for (unsigned level = 0; spec.width >= 1; ++level) {
+            ASSERT_TRUE(out->open(tif, spec, mode)) << out->geterror();
+            const Image texels = random_image(spec.width, spec.height, 4, 40 + level);
+            ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, texels.pixels.data()));
+            if (spec.width == 1 && spec.height == 1) break;
+            spec.width = std::max(1, spec.width / 2);
+            spec.height = std::max(1, spec.height / 2);
+            spec.full_width = spec.width;
+            spec.full_height = spec.height;
+            mode = OIIO::ImageOutput::AppendSubimage;
+        }
+        ASSERT_TRUE(out->close());
+    }
+    Result<std::vector<Image>> levels = load_image_levels(tif);
+    ASSERT_TRUE(levels) << levels.error().message;
+    const MipPyramid pyramid = MipPyramid::from_levels(*levels).value();
+
+    auto ts = make_system();
+    Result<TextureInfo> info = ts->info(tif);
+    ASSERT_TRUE(info) << info.error().message;
+    ASSERT_TRUE(info->tiled);
+    ASSERT_EQ(info->channels, 4);
+    expect_lookups_of_pyramid(*ts, tif, pyramid, lookups(200, 41), kSrgbDecodeTolerance);
+}
+
 // Textures four times the cache: evicted and read again, with the same results as a cache that
 // holds them all, and resident texels within the limit plus the pinned tiles.
 TEST(TextureSystem, ASmallCacheKeepsItsBoundAndGivesTheUnboundedResults) {
