@@ -15,6 +15,7 @@
 #include "eval_command.h"
 #include "eval_report.h"
 #include "image/image_io.h"
+#include "metrics/test_rmse.h"
 #include "render/error_budget.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
@@ -24,6 +25,7 @@ namespace footprint {
 namespace {
 
 namespace fs = std::filesystem;
+using test::rmse;
 
 class EvalCommandTest : public ::testing::Test {
   protected:
@@ -242,15 +244,6 @@ fs::path write_checker_scene(const fs::path& dir) {
           {"shape": "plane", "normal": [0, 1, 0], "size": "infinite", "uv_scale": 4,
            "material": {"base_color": "checker.png"}}]})";
     return scene;
-}
-
-double rmse(const Image& a, const Image& b) {
-    double sum = 0;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-        const double e = double(a.pixels[i]) - double(b.pixels[i]);
-        sum += e * e;
-    }
-    return std::sqrt(sum / static_cast<double>(a.pixels.size()));
 }
 
 // Defect: supersampling rendered with the reference's seed took a prefix of the reference's own

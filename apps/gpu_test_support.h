@@ -8,7 +8,7 @@
 #include <optional>
 
 #include "gpu/gpu_renderer.h"
-#include "metrics/image_metrics.h"
+#include "metrics/test_rmse.h"
 #include "render/renderer.h"
 
 namespace footprint::test {
@@ -49,15 +49,6 @@ inline Image gpu_render(GpuRenderer& renderer, GpuFilter filter) {
     Result<Image> image = renderer.render(options);
     EXPECT_TRUE(image) << image.error().message;
     return image ? *image : Image{};
-}
-
-// RMSE in linear light, over the pixels where `mask` (if any) is nonzero.
-inline double rmse(const Image& a, const Image& b, const Image* mask = nullptr) {
-    MetricsOptions options;
-    options.mask = mask;
-    Result<ImageComparison> d = compare_images(a, b, options);
-    EXPECT_TRUE(d) << d.error().message;
-    return d ? d->rmse : INFINITY;
 }
 
 }  // namespace footprint::test

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 
+#include "metrics/test_rmse.h"
 #include "render/camera.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
@@ -16,6 +17,7 @@ namespace {
 
 using detail::metallic_roughness_texels;
 using detail::resampled;
+using test::rmse;
 
 // Texel arithmetic in float: a few ulps.
 constexpr float kTexel = 1e-6f;
@@ -199,13 +201,6 @@ TEST(MaterialModel, WithoutRoughnessModesTheHighlightKeepsTheMaterialsAlpha) {
         for (std::size_t i = 0; i < plain.pixels.size(); ++i)
             ASSERT_NEAR(plain.pixels[i], rough.pixels[i], 1e-4f * peak) << filter_mode_name(mode);
     }
-}
-
-double rmse(const Image& a, const Image& b) {
-    double sum = 0;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i)
-        sum += (a.pixels[i] - b.pixels[i]) * double(a.pixels[i] - b.pixels[i]);
-    return std::sqrt(sum / static_cast<double>(a.pixels.size()));
 }
 
 // A lat-long sky with stripes, so that the mirror's roughness shows.

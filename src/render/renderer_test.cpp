@@ -14,12 +14,14 @@
 
 #include "envmap/env_layout.h"
 #include "math/sample_patterns.h"
-#include "metrics/image_metrics.h"
+#include "metrics/test_rmse.h"
 #include "render/camera.h"
 #include "render/render_scene.h"
 
 namespace footprint {
 namespace {
+
+using test::rmse;
 
 std::shared_ptr<const Image> constant_image(int w, int h, float r, float g, float b) {
     auto image = std::make_shared<Image>(w, h, 3);
@@ -540,23 +542,6 @@ TEST(Renderer, TheSeedChoosesTheSamples) {
         differ += first.pixels[i] != second.pixels[i];
     constexpr double kVaryingFraction = 0.5;  // of this scene's values; about 3/4 vary
     EXPECT_GT(differ, kVaryingFraction * first.pixels.size()) << differ;
-}
-
-double rmse(const Image& a, const Image& b) {
-    double sum = 0;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-        sum += (a.pixels[i] - b.pixels[i]) * double(a.pixels[i] - b.pixels[i]);
-    }
-    return std::sqrt(sum / a.pixels.size());
-}
-
-// Over the pixels where `mask` is set (metrics/image_metrics.h, as eval measures the interior).
-double rmse(const Image& a, const Image& b, const Image* mask) {
-    MetricsOptions options;
-    options.mask = mask;
-    const Result<ImageComparison> d = compare_images(a, b, options);
-    EXPECT_TRUE(d) << d.error().message;
-    return d ? d->rmse : INFINITY;
 }
 
 // The point of the project: one filtered sample per pixel lands much closer to the ground truth
