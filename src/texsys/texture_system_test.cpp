@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <fstream>
 #include <random>
+#include <span>
 #include <thread>
 #include <vector>
 
@@ -55,7 +56,7 @@ std::uint32_t bits(float v) {
 }
 
 // Every filter's lookups of `file` through `ts` against texture_lookup() of `pyramid` on the
-// same coordinates (RGB): bit for bit where tolerance is 0, else within it.
+// same coordinates (every channel): bit for bit where tolerance is 0, else within it.
 void expect_lookups_of_pyramid(TextureSystem& ts, const std::string& file,
                                const MipPyramid& pyramid, const std::vector<TextureCoords>& coords,
                                float tolerance = 0) {
@@ -64,10 +65,10 @@ void expect_lookups_of_pyramid(TextureSystem& ts, const std::string& file,
         LookupOptions lookup;
         lookup.filter = filter;
         for (const TextureCoords& c : coords) {
-            float want[3], got[3];
+            float want[MipPyramid::kMaxChannels], got[MipPyramid::kMaxChannels];
             texture_lookup(pyramid, c, lookup, want);
-            ASSERT_TRUE(ts.texture(handle, c, lookup, got));
-            for (int k = 0; k < 3; ++k) {
+            ASSERT_TRUE(ts.texture(handle, c, lookup, std::span(got, pyramid.channels())));
+            for (int k = 0; k < pyramid.channels(); ++k) {
                 if (tolerance == 0) {
                     ASSERT_EQ(bits(got[k]), bits(want[k]))
                         << to_string(filter) << " at (" << c.s << ", " << c.t << "): " << got[k]
