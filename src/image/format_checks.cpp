@@ -294,6 +294,7 @@ std::optional<std::string> jpeg_problem(std::istream& in) {
         int code = in.get();
         while (code != EOF && code != 0xff) code = in.get();  // libjpeg skips stray bytes
         while (code == 0xff) code = in.get();                 // and fill bytes
+        if (code == 0x00) continue;  // a stuffed zero (FF 00) is stray bytes too, not a marker
         if (code == EOF || code == 0xda || code == 0xd9) return std::nullopt;  // SOS, EOI
         if (code == 0x01 || (code >= 0xd0 && code <= 0xd8)) continue;          // no length
         const int high = in.get(), low = in.get();

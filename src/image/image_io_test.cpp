@@ -1002,6 +1002,12 @@ TEST_F(ImageIo, JpegBlocksOpenImageIOWouldReadPastAreRefused) {
     write_image_load_input("jpeg_iptc_longer_than_its_block", file);
     expect_load_error(file, "its JPEG IPTC block claims more bytes than its APP13 block holds");
 
+    // An IPTC block of 16 bytes in room for 1.
+    const std::string iptc_too_long = std::string(
+                                          "Photoshop 3.0\0"
+                                          "8BIM\4\4\0\0\0\0\0\x10",
+                                          26) +
+                                      "x";
     const struct {
         const char* name;
         unsigned char code;
@@ -1015,18 +1021,23 @@ TEST_F(ImageIo, JpegBlocksOpenImageIOWouldReadPastAreRefused) {
                               "8BIM\4\4",
                               20),
                   "APP13 block is cut short"},
-                 {"iptc_size", 0xed,
-                  std::string("Photoshop 3.0\0"
-                              "8BIM\4\4\0\0\0\0\0\x10",
-                              26) +
-                      "x",
-                  "its JPEG IPTC block claims more bytes"}};
+                 {"iptc_size", 0xed, iptc_too_long, "its JPEG IPTC block claims more bytes"}};
     for (const auto& c : cases) {
         SCOPED_TRACE(c.name);
         const fs::path bad = path(std::string(c.name) + ".jpg");
         write_bytes(bad, jpeg_with_block(bad, c.code, c.data));
         expect_load_error(bad, c.cause);
     }
+
+    // fuzz_image_load found it (run 7g): the bytes FF 00 before such a block, which libjpeg skips
+    // as stray bytes, were taken for a marker with a length, and the walk stepped over the block.
+    write_image_load_input("jpeg_iptc_after_a_stuffed_zero", file);
+    expect_load_error(file, "its JPEG IPTC block claims more bytes than its APP13 block holds");
+    const fs::path stuffed = path("stuffed.jpg");
+    std::string bytes = jpeg_with_block(stuffed, 0xed, iptc_too_long);
+    bytes.insert(2, "\xff\x00", 2);
+    write_bytes(stuffed, bytes);
+    expect_load_error(stuffed, "its JPEG IPTC block claims more bytes than its APP13 block holds");
 }
 
 // OpenImageIO 2.4's Exif decoder reads an 8-byte header whatever the block's size, the entry
