@@ -24,8 +24,9 @@
 //   rebuilt), dropped from memory, and read tile by tile like a stored file: later runs open the
 //   cached file without building. Without it the pyramid stays in memory (stats().bytes_in_memory).
 //   Colour: integer files are sRGB-decoded as load_image() decodes them (image/image_io.h), float
-//   files are linear; alpha is read as stored, straight or premultiplied, as load_image() reads it. Wrap modes come from the file's "wrapmodes" attribute (maketx's; "black" is
-//   read as clamp), else options.default_wrap.
+//   files are linear; alpha is read as stored, straight or premultiplied, as load_image() reads
+//   it. Wrap modes come from the file's "wrapmodes" attribute (maketx's; "black" is read as
+//   clamp), else options.default_wrap.
 //
 // Bounded memory
 //   Stored and cached files' texels live in tiles of options.tile_size² texels, per MIP level,
