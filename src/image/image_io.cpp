@@ -356,18 +356,39 @@ bool reads_row_by_row(const OIIO::ImageInput& in, const OIIO::ImageSpec& spec) {
            spec.format.size() < 8;
 }
 
+// Converts `rows` rows of the file's own texels (`spec`'s native layout) to float texels: all
+// channels at once, or, where the channels differ in type, one channel at a time.
+bool convert_band(const OIIO::ImageSpec& spec, int rows, const std::byte* band, float* out) {
+    const int channels = spec.nchannels;
+    if (spec.channelformats.empty())
+        return OIIO::convert_image(channels, spec.width, rows, 1, band, spec.format,
+                                   OIIO::AutoStride, OIIO::AutoStride, OIIO::AutoStride, out,
+                                   OIIO::TypeDesc::FLOAT, OIIO::AutoStride, OIIO::AutoStride,
+                                   OIIO::AutoStride);
+    const auto from_pixel = static_cast<OIIO::stride_t>(spec.pixel_bytes(/*native=*/true));
+    const auto to_pixel = static_cast<OIIO::stride_t>(sizeof(float) * channels);
+    std::size_t offset = 0;
+    for (int c = 0; c < channels; ++c) {
+        const OIIO::TypeDesc type = spec.channelformats[c];
+        if (!OIIO::convert_image(1, spec.width, rows, 1, band + offset, type, from_pixel,
+                                 from_pixel * spec.width, OIIO::AutoStride, out + c,
+                                 OIIO::TypeDesc::FLOAT, to_pixel, to_pixel * spec.width,
+                                 OIIO::AutoStride))
+            return false;
+        offset += type.size();
+    }
+    return true;
+}
+
 // Level `level` of the open file's first subimage as float texels. OpenImageIO 2.4 converts
 // through a buffer of 64 MiB of scanlines whatever the image's size, even to the file's own type;
 // only a request for the native layout (TypeDesc::UNKNOWN) reads straight into the caller's
-// memory. So float files are read as they are, and other types a band at a time and converted
-// here; OpenImageIO converts only files whose channels differ in type.
+// memory. So float files are read as they are, and others a band at a time and converted here.
 bool read_float_texels(OIIO::ImageInput& in, int level, const OIIO::ImageSpec& spec,
                        std::vector<float>& texels) {
     const int channels = spec.nchannels;
     const bool row_by_row = reads_row_by_row(in, spec);
-    if (!spec.channelformats.empty())
-        return in.read_image(0, level, 0, channels, OIIO::TypeDesc::FLOAT, texels.data());
-    if (spec.format == OIIO::TypeDesc::FLOAT && !row_by_row)
+    if (spec.format == OIIO::TypeDesc::FLOAT && spec.channelformats.empty() && !row_by_row)
         return in.read_image(0, level, 0, channels, OIIO::TypeDesc::UNKNOWN, texels.data());
     const int rows = row_by_row ? 1 : band_rows(spec);
     std::vector<std::byte> band(static_cast<std::size_t>(rows) * spec.scanline_bytes(true));
@@ -380,11 +401,7 @@ bool read_float_texels(OIIO::ImageInput& in, int level, const OIIO::ImageSpec& s
                               : in.read_scanlines(0, level, spec.y + y, spec.y + y_end, spec.z, 0,
                                                   channels, OIIO::TypeDesc::UNKNOWN, band.data());
         float* out = texels.data() + static_cast<std::size_t>(y) * spec.width * channels;
-        if (!read || !OIIO::convert_image(channels, spec.width, y_end - y, 1, band.data(),
-                                          spec.format, OIIO::AutoStride, OIIO::AutoStride,
-                                          OIIO::AutoStride, out, OIIO::TypeDesc::FLOAT,
-                                          OIIO::AutoStride, OIIO::AutoStride, OIIO::AutoStride))
-            return false;
+        if (!read || !convert_band(spec, y_end - y, band.data(), out)) return false;
     }
     return true;
 }

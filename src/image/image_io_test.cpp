@@ -310,6 +310,9 @@ TEST_F(ImageIo, EveryTexelTypeReadsAsOpenImageIOConvertsIt) {
         {"float.exr", T::FLOAT},
         {"half_tiled.exr", T::HALF, 16},
         {"mixed.exr", T::FLOAT, 0, {T::HALF, T::FLOAT, T::HALF}},
+        {"mixed_uint.exr", T::FLOAT, 0, {T::UINT32, T::HALF, T::FLOAT}},
+        {"mixed_tiled.exr", T::FLOAT, 16, {T::FLOAT, T::HALF, T::HALF}},
+        {"mixed_bands.exr", T::FLOAT, 0, {T::HALF, T::FLOAT, T::HALF}, 2048, 700},
         {"u16_bands.tif", T::UINT16, 0, {}, 2048, 700},
         {"u16_tiled_bands.tif", T::UINT16, 64, {}, 2048, 700},
     };
