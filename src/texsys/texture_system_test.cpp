@@ -158,7 +158,7 @@ TEST(TextureSystem, StoredStraightAlphaIsReadAsStored) {
         spec.attribute("oiio:UnassociatedAlpha", 1);
         spec.attribute("textureformat", "Plain Texture");  // its subimages are MIP levels
         auto mode = OIIO::ImageOutput::Create;
-        for (unsigned level = 0; spec.width >= 1; ++level) {
+        for (unsigned level = 0;; ++level) {
             ASSERT_TRUE(out->open(tif, spec, mode)) << out->geterror();
             const Image texels = random_image(spec.width, spec.height, 4, 40 + level);
             ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, texels.pixels.data()));
