@@ -14,6 +14,7 @@
 
 #include "math/footprint_ellipse.h"
 #include "shading/fresnel.h"
+#include "shading/test_extreme_values.h"
 
 namespace footprint {
 namespace {
@@ -424,19 +425,8 @@ TEST(Microfacet, DegenerateInput) {
     }
     // Random and extreme input: finite and ≥ 0.
     std::mt19937 rng(9);
-    std::uniform_real_distribution<float> u(-1, 1), scale_exp(-30, 30);
-    auto pick = [&](float x) {
-        switch (rng() % 4) {
-            case 0:
-                return 0.0f;
-            case 1:
-                return x;
-            case 2:
-                return x * std::pow(10.0f, scale_exp(rng));
-            default:
-                return x * 1e-3f;
-        }
-    };
+    std::uniform_real_distribution<float> u(-1, 1);
+    auto pick = [&](float x) { return test::extreme_scale(rng, x); };
     for (int i = 0; i < 20000; ++i) {
         const MicrofacetModel model = i % 2 ? MicrofacetModel::ggx : MicrofacetModel::beckmann;
         const Sym2 k{pick(u(rng)), pick(u(rng)), pick(u(rng))};
