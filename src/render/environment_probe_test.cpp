@@ -12,6 +12,7 @@
 #include "render/camera.h"
 #include "render/renderer.h"
 #include "render/sample_shader.h"
+#include "render/test_scene_parts.h"
 
 namespace footprint {
 namespace {
@@ -30,17 +31,11 @@ EnvironmentDesc smooth_environment() {
             p[1] = static_cast<float>(0.5 + 0.4 * std::cos(theta));
             p[2] = static_cast<float>(0.5 + 0.4 * std::sin(phi) * std::sin(theta));
         }
-    EnvironmentDesc env;
-    env.layout = EnvLayout::latlong;
-    env.images.push_back(ImageSource{{}, std::move(image), "smooth environment"});
-    return env;
+    return test::latlong_environment(std::move(image), "smooth environment");
 }
 
 MaterialDesc probed_mirror(Vec3d centre) {
-    MaterialDesc m;
-    m.diffuse = 0;
-    m.mirror = 1;
-    m.fresnel_f0 = 1;
+    MaterialDesc m = test::mirror_material(1);
     m.environment_probe = EnvironmentProbeDesc{centre, 64};
     return m;
 }

@@ -9,6 +9,7 @@
 
 #include "envmap/env_reference.h"
 #include "render/render_scene.h"
+#include "render/test_scene_parts.h"
 
 namespace footprint {
 namespace {
@@ -40,15 +41,6 @@ SceneDesc plane_scene(const MaterialDesc& material) {
     plane.uv_scale = 3;
     scene.objects.push_back({"plane", plane, material});
     return scene;
-}
-
-// A mirror of F0 = 1: the environment times one.
-MaterialDesc perfect_mirror() {
-    MaterialDesc material;
-    material.diffuse = 0;
-    material.mirror = 1;
-    material.fresnel_f0 = 1;
-    return material;
 }
 
 ErrorBudgetImages budget_of(const SceneDesc& desc, RenderScene& scene) {
@@ -143,11 +135,8 @@ TEST(ErrorBudget, OnALitTexturedPlaneTheTextureCarriesAllTheError) {
 // the samples, so its hybrid is the reference; the exact Gaussian of the mode's own footprint is
 // environment_reference() of that footprint.
 TEST(ErrorBudget, OnAPerfectMirrorTheReflectionCarriesAllTheError) {
-    SceneDesc desc = plane_scene(perfect_mirror());
-    EnvironmentDesc env;
-    env.layout = EnvLayout::latlong;
-    env.images.push_back(ImageSource{{}, stripes(128, 64), "striped sky"});
-    desc.environment = env;
+    SceneDesc desc = plane_scene(test::mirror_material(1));
+    desc.environment = test::latlong_environment(stripes(128, 64), "striped sky");
     RenderScene scene;
     const ErrorBudgetImages budget = budget_of(desc, scene);
     const Image mask = interior_mask(scene);
@@ -176,15 +165,12 @@ TEST(ErrorBudget, OnAPerfectMirrorTheReflectionCarriesAllTheError) {
 // taken over the map the pixel reflects, not the scene's. With uniform maps every Gaussian's
 // integral is that map's colour, which the filtered pixel shows too.
 TEST(ErrorBudget, TheExactReflectionReadsTheLocalMapThePixelReflects) {
-    SceneDesc desc = plane_scene(perfect_mirror());
+    SceneDesc desc = plane_scene(test::mirror_material(1));
     auto uniform = [](float r, float g, float b) {
         auto image = std::make_shared<Image>(16, 8, 3);
         for (std::size_t i = 0; i < image->pixel_count(); ++i)
             image->pixels[3 * i] = r, image->pixels[3 * i + 1] = g, image->pixels[3 * i + 2] = b;
-        EnvironmentDesc env;
-        env.layout = EnvLayout::latlong;
-        env.images.push_back(ImageSource{{}, image, "uniform"});
-        return env;
+        return test::latlong_environment(image, "uniform");
     };
     desc.environment = uniform(0, 1, 0);
     desc.local_environments = {uniform(1, 0.5f, 0)};

@@ -11,6 +11,7 @@
 #include "render/camera.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
+#include "render/test_scene_parts.h"
 
 namespace footprint {
 namespace {
@@ -104,10 +105,7 @@ SceneDesc plane_scene(const MaterialDesc& material) {
 }
 
 EnvironmentDesc constant_environment(Vec3 colour) {
-    EnvironmentDesc env;
-    env.layout = EnvLayout::latlong;
-    env.images.push_back(ImageSource{{}, constant_image(64, 32, colour), "constant"});
-    return env;
+    return test::latlong_environment(constant_image(64, 32, colour), "constant");
 }
 
 const FilterMode kModes[] = {FilterMode::bilinear,  FilterMode::trilinear, FilterMode::fa,
@@ -233,10 +231,7 @@ TEST(MaterialModel, PerTexelRoughnessIsFilteredTowardsTheReference) {
     MaterialDesc material = metallic_roughness({0.95f, 0.64f, 0.54f}, 1, 1);
     material.metallic_roughness_map = ImageSource{{}, texture, "striped roughness"};
     SceneDesc desc = plane_scene(material);
-    EnvironmentDesc env;
-    env.layout = EnvLayout::latlong;
-    env.images.push_back(ImageSource{{}, striped_sky(), "striped sky"});
-    desc.environment = env;
+    desc.environment = test::latlong_environment(striped_sky(), "striped sky");
     LightDesc lamp;
     lamp.type = LightType::point;
     lamp.position = {0.5, 1.5, -1};

@@ -17,6 +17,7 @@
 #include "metrics/test_rmse.h"
 #include "render/camera.h"
 #include "render/render_scene.h"
+#include "render/test_scene_parts.h"
 
 namespace footprint {
 namespace {
@@ -45,20 +46,8 @@ std::shared_ptr<const Image> striped_latlong() {
     return image;
 }
 
-EnvironmentDesc latlong_environment(std::shared_ptr<const Image> image) {
-    EnvironmentDesc env;
-    env.layout = EnvLayout::latlong;
-    env.images.push_back(ImageSource{{}, std::move(image), "test environment"});
-    return env;
-}
-
-MaterialDesc mirror_material(float f0) {
-    MaterialDesc m;
-    m.diffuse = 0;
-    m.mirror = 1;
-    m.fresnel_f0 = f0;
-    return m;
-}
+using test::latlong_environment;
+using test::mirror_material;
 
 // A mirror plane y = 0 seen from above at an angle, in a constant environment.
 SceneDesc mirror_plane_scene(float f0) {

@@ -19,6 +19,7 @@
 #include "image/test_images.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
+#include "render/test_scene_parts.h"
 #include "texture/mip_pyramid.h"
 #include "texture_system.h"
 
@@ -137,11 +138,8 @@ SceneDesc textured_scene(const std::string& color_file) {
     scene.width = 48, scene.height = 32;
     scene.camera.position = {0, 1.2, 4};
     scene.camera.look_at = {0, 0.3, 0};
-    EnvironmentDesc sky;
-    sky.images.push_back(
-        ImageSource{{}, std::make_shared<Image>(random_image(128, 64, 3, 9)), "sky"});
-    sky.layout = EnvLayout::latlong;
-    scene.environment = sky;
+    scene.environment =
+        test::latlong_environment(std::make_shared<Image>(random_image(128, 64, 3, 9)), "sky");
     scene.lights.push_back({LightType::directional, {-1, -1, -0.5}, {}, {1, 0.9f, 0.8f}});
     MaterialDesc bumpy;
     bumpy.diffuse = 0.2f;
