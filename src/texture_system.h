@@ -35,8 +35,9 @@
 //   (a micro-cache of kMicroCacheTiles tiles, without locks) and pins the tiles of the lookup it is
 //   in until that lookup returns. So the texels resident at any time are at most max_memory_mb
 //   plus, per thread, the micro-cache and the tiles of one lookup; plus about 150 bytes of
-//   bookkeeping per cached tile. stats() reports them (bytes_resident, peak_bytes). Results do not
-//   depend on what the cache holds: a lookup returns the same bits with any max_memory_mb.
+//   bookkeeping per cached tile. stats() reports them (bytes_resident, peak_bytes). The threads'
+//   micro-caches belong to the system and are freed with it. Results do not depend on what the
+//   cache holds: a lookup returns the same bits with any max_memory_mb.
 //   Bump maps are read the same way: a bump pyramid file (`footprint maketx --bump`) is read tile
 //   by tile as a texture of 5 moment channels, a normal map has its pyramid built (in memory, or
 //   into cache_dir and then read tile by tile). So are environment maps, per face (and per polar

@@ -153,8 +153,6 @@ class FileTable {
     std::unordered_map<std::string, std::unique_ptr<Entry>> entries_;
 };
 
-std::atomic<std::uint64_t> next_system_id{1};
-
 constexpr std::string_view kUdim = "<UDIM>";
 
 class TextureSystemImpl final : public TextureSystem {
@@ -202,7 +200,7 @@ class TextureSystemImpl final : public TextureSystem {
         if (file->pyramid) {
             texture_lookup(*file->pyramid, c, options, result);
         } else {
-            texsys::ThreadTiles& thread = texsys::thread_tiles(id_);
+            texsys::ThreadTiles& thread = thread_tiles_.local();
             const LookupTiles tiles(cache_, thread, *file);
             const detail::TiledTexels texels(file->shape, tiles, tiles.slots());
             detail::texture_lookup(texels, c, options, result);
@@ -397,7 +395,7 @@ class TextureSystemImpl final : public TextureSystem {
             lookup(*env->value, result);
         } else {
             {
-                const EnvLookupTiles tiles(cache_, texsys::thread_tiles(id_), *env);
+                const EnvLookupTiles tiles(cache_, thread_tiles_.local(), *env);
                 lookup(detail::TiledEnvironment(env->shape, tiles.sources()), result);
             }
             if (std::optional<Error> failed = env->read_error())
@@ -567,8 +565,8 @@ class TextureSystemImpl final : public TextureSystem {
     }
 
     const TextureSystemOptions options_;
-    const std::uint64_t id_ = next_system_id++;
     texsys::TileCache cache_;
+    texsys::PerThreadTiles thread_tiles_;
     std::atomic<std::uint32_t> next_file_id_{0};
     std::atomic<std::size_t> bytes_in_memory_{0};
     FileTable<TextureHandle> files_;

@@ -4,10 +4,13 @@
 
 #include <OpenImageIO/imagebufalgo.h>
 
+#include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <memory>
 #include <random>
 #include <span>
 #include <thread>
@@ -20,6 +23,7 @@
 #include "envmap/env_pyramid_file.h"
 #include "image/image_io.h"
 #include "image/test_images.h"
+#include "texsys/tile_cache.h"
 #include "texture/texture_lookup.h"
 
 namespace footprint {
@@ -606,6 +610,41 @@ TEST(TextureSystem, ATruncatedEnvironmentPyramidIsAnErrorNamingIt) {
     EXPECT_GT(failed, 0);
     EXPECT_GT(pink_results, 0);
     EXPECT_EQ(ts->take_errors().size(), 1u);
+}
+
+// Tiles pinned by threads of a texture system, then let go by the cache (a budget of one tile):
+// freed with the system, the pins of the thread that frees it and of threads still running
+// alike; a system made after starts with no tiles, whichever address it gets.
+TEST(TileCache, EachThreadsPinsAreFreedWithTheirSystem) {
+    static constexpr std::size_t kFloats = 64, kTileBytes = kFloats * sizeof(float);
+    texsys::TileCache cache(kTileBytes);
+    const std::shared_ptr<texsys::Accounting> accounting = cache.accounting();
+    auto pin = [&](texsys::PerThreadTiles& system, std::uint32_t file) {
+        const texsys::TileKey key{file, 0, 0, 0};
+        system.local().recent.emplace_back(key, cache.get(key, kFloats, [](float* texels) {
+            std::fill_n(texels, kFloats, 1.0f);
+        }));
+    };
+    {
+        auto system = std::make_unique<texsys::PerThreadTiles>();
+        pin(*system, 1);
+        std::atomic<bool> pinned = false, freed = false;
+        std::thread other([&] {
+            pin(*system, 2);
+            pinned = true;
+            while (!freed) std::this_thread::yield();
+        });
+        while (!pinned) std::this_thread::yield();
+        pin(*system, 3);
+        EXPECT_EQ(accounting->resident, 3 * kTileBytes);  // two evicted but pinned, one cached
+        system.reset();
+        EXPECT_EQ(accounting->resident, kTileBytes);  // the cache's newest only
+        freed = true;
+        other.join();
+    }
+    texsys::PerThreadTiles later;
+    EXPECT_TRUE(later.local().recent.empty());
+    EXPECT_EQ(accounting->resident, kTileBytes);
 }
 
 TEST(TextureSystem, RefusesOptionsItCannotHonour) {

@@ -60,15 +60,21 @@ void TileCache::evict_beyond_budget() {
     }
 }
 
-ThreadTiles& thread_tiles(std::uint64_t system) {
-    // A thread that used several systems keeps a few; the oldest is dropped (its pins released).
-    constexpr std::size_t kSystemsPerThread = 4;
-    thread_local std::vector<std::pair<std::uint64_t, std::unique_ptr<ThreadTiles>>> systems;
-    for (auto& [id, tiles] : systems)
-        if (id == system) return *tiles;
-    if (systems.size() == kSystemsPerThread) systems.erase(systems.begin());
-    systems.emplace_back(system, std::make_unique<ThreadTiles>());
-    return *systems.back().second;
+namespace {
+std::atomic<std::uint64_t> next_per_thread_tiles_id{1};
+}  // namespace
+
+PerThreadTiles::PerThreadTiles() : id_(next_per_thread_tiles_id++) {}
+
+ThreadTiles& PerThreadTiles::local() {
+    // The thread's set is found in tiles_ once per change of system; most lookups follow one on
+    // the same system. A note that names this id names this object: ids are never reused.
+    thread_local struct {
+        std::uint64_t id = 0;
+        ThreadTiles* tiles = nullptr;
+    } last;
+    if (last.id != id_) last = {id_, &tiles_.local()};
+    return *last.tiles;
 }
 
 }  // namespace footprint::texsys

@@ -19,6 +19,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include <tbb/enumerable_thread_specific.h>
+
 #include "texture/tiled_texels.h"
 
 namespace footprint::texsys {
@@ -128,8 +130,18 @@ struct ThreadTiles {
     std::uint64_t generation_ = 1;
 };
 
-// The calling thread's ThreadTiles for the texture system numbered `system` (a number never
-// reused, so a new system at a freed one's address starts empty).
-ThreadTiles& thread_tiles(std::uint64_t system);
+// Each thread's ThreadTiles of one texture system, owned by the system: they, and the tiles they
+// pin, are freed with it, whichever threads made them. A thread's set stays until then (it is
+// a cache: a later thread may be given a finished one's).
+class PerThreadTiles {
+  public:
+    PerThreadTiles();
+    // The calling thread's.
+    ThreadTiles& local();
+
+  private:
+    const std::uint64_t id_;  // never reused (see local())
+    tbb::enumerable_thread_specific<ThreadTiles> tiles_;
+};
 
 }  // namespace footprint::texsys
