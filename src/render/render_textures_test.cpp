@@ -3,8 +3,6 @@
 // made from, whatever the cache holds; a tile that cannot be read is an error naming the file.
 #include <gtest/gtest.h>
 
-#include <bit>
-#include <cstdint>
 #include <filesystem>
 
 #include "bump/bump_pyramid_file.h"
@@ -17,6 +15,7 @@
 #include "metrics/image_metrics.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
+#include "render/test_expect.h"
 #include "texture/mip_pyramid.h"
 
 namespace footprint {
@@ -70,14 +69,6 @@ Image render_with(const SceneDesc& desc, std::shared_ptr<TextureSystem> textures
     return image;
 }
 
-void expect_bit_identical(const Image& a, const Image& b, const char* what) {
-    ASSERT_EQ(a.pixels.size(), b.pixels.size());
-    for (std::size_t i = 0; i < a.pixels.size(); ++i)
-        ASSERT_EQ(std::bit_cast<std::uint32_t>(a.pixels[i]),
-                  std::bit_cast<std::uint32_t>(b.pixels[i]))
-            << what << ": value " << i << " is " << a.pixels[i] << " against " << b.pixels[i];
-}
-
 TEST(RenderTextures, StoredLevelsRenderAsTheImageTheyWereMadeFromWithAnyCache) {
     test::TempDir dir;
     const Image image = random_image(256, 128, 3, 7);
@@ -88,11 +79,11 @@ TEST(RenderTextures, StoredLevelsRenderAsTheImageTheyWereMadeFromWithAnyCache) {
     for (FilterMode mode : {FilterMode::trilinear, FilterMode::fa_rough, FilterMode::ewa_rough,
                             FilterMode::reference}) {
         const Image want = render_with(plain, nullptr, mode);
-        expect_bit_identical(render_with(stored, texture_system(1024), mode), want,
-                             filter_mode_name(mode));
+        test::expect_bit_identical(render_with(stored, texture_system(1024), mode), want,
+                                   filter_mode_name(mode));
         // 1 MiB of 16² tiles holds a quarter of level 0: tiles are evicted and read again.
         const std::shared_ptr<TextureSystem> small = texture_system(1, 16);
-        expect_bit_identical(render_with(stored, small, mode), want, filter_mode_name(mode));
+        test::expect_bit_identical(render_with(stored, small, mode), want, filter_mode_name(mode));
         const TextureSystemStats stats = small->stats();
         EXPECT_GT(stats.tiles_loaded, 0u) << "the stored file was not read through tiles";
         EXPECT_EQ(stats.bytes_in_memory, 0u) << "the stored file was read whole";
@@ -191,7 +182,7 @@ TEST(RenderTextures, AnEnvironmentPyramidFileRendersAsItsSource) {
                 render_with(desc, images.empty() ? nullptr : small, FilterMode::fa_rough));
         }
         if (intensity == 1) {
-            expect_bit_identical(images[1], images[0], "intensity 1");
+            test::expect_bit_identical(images[1], images[0], "intensity 1");
             EXPECT_GT(small->stats().tiles_loaded, 0u);
             EXPECT_EQ(small->stats().bytes_in_memory, 0u) << "the file was read whole";
         } else {

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <map>
 #include <memory>
@@ -17,6 +16,7 @@
 #include "metrics/test_rmse.h"
 #include "render/camera.h"
 #include "render/render_scene.h"
+#include "render/test_expect.h"
 #include "render/test_scene_parts.h"
 
 namespace footprint {
@@ -443,11 +443,7 @@ TEST(Renderer, OneAndTwoThreadsAreBitIdentical) {
         options.threads = 1;
         const Image one = render(*scene, options);
         options.threads = 2;
-        const Image two = render(*scene, options);
-        ASSERT_EQ(one.pixels.size(), two.pixels.size());
-        EXPECT_EQ(
-            0, std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(float)))
-            << filter_mode_name(mode);
+        test::expect_bit_identical(one, render(*scene, options), filter_mode_name(mode));
     }
 }
 
@@ -755,11 +751,7 @@ TEST(Renderer, PeersRenderFiniteAndDeterministic) {
         const Image one = render(*scene, options, &stats);
         EXPECT_EQ(stats.non_finite_samples, 0u) << filter_mode_name(mode);
         options.threads = 2;
-        const Image two = render(*scene, options);
-        ASSERT_EQ(one.pixels.size(), two.pixels.size());
-        EXPECT_EQ(
-            0, std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(float)))
-            << filter_mode_name(mode);
+        test::expect_bit_identical(one, render(*scene, options), filter_mode_name(mode));
     }
 }
 

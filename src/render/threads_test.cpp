@@ -8,7 +8,6 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <random>
 #include <string>
 #include <thread>
@@ -19,6 +18,7 @@
 #include "image/test_images.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
+#include "render/test_expect.h"
 #include "render/test_scene_parts.h"
 #include "texture/mip_pyramid.h"
 #include "texture_system.h"
@@ -176,11 +176,8 @@ TEST(Threads, ARenderOnEightThreadsThroughASmallCacheIsTheOneThreadRender) {
         const Image one = render(*alone, options);
         options.threads = 8;
         const Image eight = render(*shared, options);
-        ASSERT_EQ(one.pixels.size(), eight.pixels.size());
         for (float v : eight.pixels) ASSERT_TRUE(std::isfinite(v)) << filter_mode_name(mode);
-        EXPECT_EQ(0, std::memcmp(one.pixels.data(), eight.pixels.data(),
-                                 one.pixels.size() * sizeof(float)))
-            << filter_mode_name(mode);
+        test::expect_bit_identical(one, eight, filter_mode_name(mode));
     }
 }
 
