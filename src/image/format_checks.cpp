@@ -222,6 +222,56 @@ std::optional<std::string> jpeg_marker_problem(int code, std::string_view data,
     return std::nullopt;
 }
 
+// A Huffman-coded JPEG frame: its size, and the fewest bits its scans take. Every 8 × 8 block of
+// every component has its DC coefficient coded in at least one bit (a code of one bit and no bits
+// of difference), sequential or progressive.
+struct HuffmanFrame {
+    std::uint64_t width = 0, height = 0, fewest_scan_bits = 0;
+};
+
+// The frame whose SOF marker holds `data`; nothing where it says nothing usable (a height left to
+// a DNL marker, which libjpeg refuses anyway).
+std::optional<HuffmanFrame> huffman_frame(std::string_view data) {
+    const auto byte = [&](std::size_t i) {
+        return static_cast<std::uint64_t>(static_cast<unsigned char>(data[i]));
+    };
+    if (data.size() < 6) return std::nullopt;
+    HuffmanFrame frame{(byte(3) << 8) | byte(4), (byte(1) << 8) | byte(2)};
+    const std::size_t components = byte(5);
+    if (data.size() < 6 + 3 * components) return std::nullopt;
+    const auto h = [&](std::size_t c) { return byte(7 + 3 * c) >> 4; };
+    const auto v = [&](std::size_t c) { return byte(7 + 3 * c) & 15; };
+    std::uint64_t h_max = 0, v_max = 0;
+    for (std::size_t c = 0; c < components; ++c) {
+        h_max = std::max(h_max, h(c));
+        v_max = std::max(v_max, v(c));
+    }
+    if (frame.height == 0 || h_max == 0 || v_max == 0) return std::nullopt;
+    // A component sampled at factor/max of the image's size covers that many texels, in blocks.
+    const auto blocks = [](std::uint64_t size, std::uint64_t factor, std::uint64_t max) {
+        return ((size * factor + max - 1) / max + 7) / 8;
+    };
+    for (std::size_t c = 0; c < components; ++c)
+        frame.fewest_scan_bits +=
+            blocks(frame.width, h(c), h_max) * blocks(frame.height, v(c), v_max);
+    return frame;
+}
+
+// Why the scans of a JPEG (`in` at its first scan) cannot all be there: the rest of the file is
+// shorter than `frame` needs at the least. libjpeg would fill the missing blocks with grey, after
+// OpenImageIO allocated the image and read every row.
+std::optional<std::string> jpeg_scans_problem(std::istream& in, const HuffmanFrame& frame) {
+    const std::streampos scans = in.tellg();
+    in.seekg(0, std::ios::end);
+    const std::streampos end = in.tellg();
+    if (scans < 0 || end < scans) return std::nullopt;
+    const auto bytes = static_cast<std::uint64_t>(end - scans);
+    if (bytes >= (frame.fewest_scan_bits + 7) / 8) return std::nullopt;
+    return "the file is truncated: its header claims " + std::to_string(frame.width) + " x " +
+           std::to_string(frame.height) + " texels, more than its " + std::to_string(bytes) +
+           " bytes of scans can hold";
+}
+
 // A tile may hold as many texels as its image, or 1024² where the image is smaller. A corrupt
 // header can claim tiles of millions of rows for a few texels, and readers allocate a whole tile
 // for every tile they read.
@@ -287,16 +337,19 @@ std::optional<std::string> png_problem(std::istream& in) {
 }
 
 // Walks the marker segments of a JPEG file (`in` just after its SOI) up to its first scan, as
-// libjpeg does, and returns why OpenImageIO 2.4's reader would read past one of them, if it would.
-// A file cut short is left to libjpeg to report.
+// libjpeg does, and returns why OpenImageIO 2.4's reader would read past one of them, if it would,
+// or why the scans cannot hold the texels the frame claims. Another file cut short is left to
+// libjpeg to report.
 std::optional<std::string> jpeg_problem(std::istream& in) {
+    std::optional<HuffmanFrame> frame;
     for (;;) {
         int code = in.get();
         while (code != EOF && code != 0xff) code = in.get();  // libjpeg skips stray bytes
         while (code == 0xff) code = in.get();                 // and fill bytes
         if (code == 0x00) continue;  // a stuffed zero (FF 00) is stray bytes too, not a marker
-        if (code == EOF || code == 0xda || code == 0xd9) return std::nullopt;  // SOS, EOI
-        if (code == 0x01 || (code >= 0xd0 && code <= 0xd8)) continue;          // no length
+        if (code == 0xda) return frame ? jpeg_scans_problem(in, *frame) : std::nullopt;  // SOS
+        if (code == EOF || code == 0xd9) return std::nullopt;                            // EOI
+        if (code == 0x01 || (code >= 0xd0 && code <= 0xd8)) continue;  // no length
         const int high = in.get(), low = in.get();
         if (low == EOF || ((high << 8) | low) < 2) return std::nullopt;
         const std::size_t declared = static_cast<std::size_t>((high << 8) | low) - 2;
@@ -305,6 +358,9 @@ std::optional<std::string> jpeg_problem(std::istream& in) {
         data.resize(static_cast<std::size_t>(in.gcount()));
         if (auto cause = jpeg_marker_problem(code, data, declared)) return cause;
         if (data.size() < declared) return std::nullopt;
+        // SOF0–SOF7 but DHT: Huffman-coded frames. Arithmetic coding (SOF9 and up) can take a
+        // fraction of a bit a block, and gives no bound.
+        if (code >= 0xc0 && code <= 0xc7 && code != 0xc4 && !frame) frame = huffman_frame(data);
     }
 }
 std::optional<std::string> tile_problem(std::uint64_t tile_width, std::uint64_t tile_height,

@@ -22,7 +22,8 @@ std::optional<std::string> png_problem(std::istream& in);
 
 // A JPEG's marker blocks up to its first scan (`in` just after its SOI): an Exif, XMP, ICC or IPTC
 // block cut short, an IPTC block longer than its APP13 block, or an Exif block OpenImageIO's
-// decoder would read past.
+// decoder would read past; or scans too short for the blocks of the texels a Huffman-coded frame
+// claims.
 std::optional<std::string> jpeg_problem(std::istream& in);
 
 // The headers of the OpenEXR file `file`: what OpenEXR's core library reports, a header its C++

@@ -871,6 +871,50 @@ TEST_F(ImageIo, ADeflatedFileTooShortForItsTexelsIsRefusedBeforeReading) {
                       "its 2156 bytes can hold");
 }
 
+// fuzz_image_load found it: a 785-byte baseline JPEG whose frame claims 25959 × 27248 grey texels
+// in scans of 14 bytes. Its float image was allocated (2.8 GB) and read for 50 s in Release, the
+// rows libjpeg filled with grey; `footprint metrics` on it was killed at 23 GB. Each 8 × 8 block
+// takes at least a bit of Huffman-coded scan.
+TEST_F(ImageIo, AJpegTooShortForItsBlocksIsRefusedBeforeReading) {
+    const fs::path file = path("claims_gigabytes.jpg");
+    write_image_load_input("jpeg_claims_gigabytes", file);
+    expect_load_error(file,
+                      "the file is truncated: its header claims 25959 x 27248 texels, more than "
+                      "its 14 bytes of scans can hold");
+    // A JPEG written here whose frame is made to claim 8192² texels: 128 KB of blocks at least.
+    const fs::path grown = path("grown.jpg");
+    ASSERT_TRUE(save_image(make_image(64, 64, 3, 0.0f, 1.0f), grown).ok());
+    std::string bytes = read_bytes(grown);
+    const std::size_t frame = bytes.find("\xff\xc0");
+    ASSERT_NE(frame, std::string::npos);
+    bytes.replace(frame + 5, 4, std::string("\x20\x00\x20\x00", 4));  // height and width 8192
+    write_bytes(grown, bytes);
+    expect_load_error(grown, "its header claims 8192 x 8192 texels");
+}
+
+// A flat image is the fewest bytes a JPEG's blocks take (the smallest Huffman codes for them):
+// flat JPEGs load, baseline and progressive, grey and subsampled colour.
+TEST_F(ImageIo, FlatJpegsStillLoad) {
+    for (const int channels : {1, 3}) {
+        for (const bool progressive : {false, true}) {
+            const fs::path file = path("flat.jpg");
+            auto out = OIIO::ImageOutput::create(file.string());
+            ASSERT_TRUE(out) << OIIO::geterror();
+            OIIO::ImageSpec spec(2048, 2048, channels, OIIO::TypeDesc::UINT8);
+            spec.attribute("jpeg:progressive", progressive ? 1 : 0);
+            ASSERT_TRUE(out->open(file.string(), spec)) << out->geterror();
+            const std::vector<std::uint8_t> flat(std::size_t{2048} * 2048 * channels, 128);
+            ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, flat.data())) << out->geterror();
+            ASSERT_TRUE(out->close()) << out->geterror();
+            const Result<Image> loaded = load_image(file);
+            ASSERT_TRUE(loaded) << loaded.error().message << " (" << fs::file_size(file)
+                                << " bytes, progressive " << progressive << ")";
+            EXPECT_EQ(loaded->width, 2048);
+            EXPECT_EQ(loaded->channels, channels);
+        }
+    }
+}
+
 // A flat half RGB OpenEXR of `width` × `height` texels coded with `compression`.
 void write_flat_exr(const fs::path& file, int width, int height, const std::string& compression) {
     auto out = OIIO::ImageOutput::create(file.string());
