@@ -127,9 +127,7 @@ std::optional<std::string> exr_size_problem(exr_const_context_t context,
             continue;
         const WindowExtent extent = extent_of(window);
         return std::string(parts > 1 ? "part " + std::to_string(part) + ": " : "") +
-               "the file is truncated: its header claims " + std::to_string(extent.width) + " x " +
-               std::to_string(extent.height) + " texels, more than its " +
-               std::to_string(file_bytes) + " bytes can hold";
+               claims_more_texels_than_bytes(extent.width, extent.height, file_bytes);
     }
     return std::nullopt;
 }

@@ -267,9 +267,7 @@ std::optional<std::string> jpeg_scans_problem(std::istream& in, const HuffmanFra
     if (scans < 0 || end < scans) return std::nullopt;
     const auto bytes = static_cast<std::uint64_t>(end - scans);
     if (bytes >= (frame.fewest_scan_bits + 7) / 8) return std::nullopt;
-    return "the file is truncated: its header claims " + std::to_string(frame.width) + " x " +
-           std::to_string(frame.height) + " texels, more than its " + std::to_string(bytes) +
-           " bytes of scans can hold";
+    return claims_more_texels_than_bytes(frame.width, frame.height, bytes, "bytes of scans");
 }
 
 // A tile may hold as many texels as its image, or 1024² where the image is smaller. A corrupt
@@ -370,6 +368,12 @@ std::optional<std::string> tile_problem(std::uint64_t tile_width, std::uint64_t 
     return "its tiles (" + std::to_string(tile_width) + " x " + std::to_string(tile_height) +
            " texels) are larger than the image (" + std::to_string(width) + " x " +
            std::to_string(height) + ") and than 1024 x 1024: the header is corrupt";
+}
+std::string claims_more_texels_than_bytes(std::uint64_t width, std::uint64_t height,
+                                          std::uint64_t bytes, std::string_view counted) {
+    return "the file is truncated: its header claims " + std::to_string(width) + " x " +
+           std::to_string(height) + " texels, more than its " + std::to_string(bytes) + " " +
+           std::string(counted) + " can hold";
 }
 // CMYK that OpenImageIO converts to RGB writes four channels into room for three when the file
 // is tiled, or of fewer than 8 bits a sample (fixed upstream in 2026, OpenImageIO #5082, #5296).

@@ -13,6 +13,7 @@
 #include <istream>
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace footprint::detail {
 
@@ -35,6 +36,12 @@ std::optional<std::string> exr_header_problem(const std::filesystem::path& file)
 // image and than 1024².
 std::optional<std::string> tile_problem(std::uint64_t tile_width, std::uint64_t tile_height,
                                         std::uint64_t width, std::uint64_t height);
+
+// "the file is truncated: its header claims W x H texels, more than its N bytes can hold": why
+// each check that bounds a file's size refuses it. `counted` names the bytes counted where they
+// are not the whole file's ("bytes of scans").
+std::string claims_more_texels_than_bytes(std::uint64_t width, std::uint64_t height,
+                                          std::uint64_t bytes, std::string_view counted = "bytes");
 
 // A TIFF directory, as OpenImageIO describes it, that OpenImageIO 2.4 overruns its buffers
 // reading: CMYK it converts to RGB, in tiles or of fewer than 8 bits a sample.

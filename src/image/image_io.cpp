@@ -25,6 +25,7 @@
 
 #include "image/color.h"
 #include "image/exr_parts.h"
+#include "image/format_checks.h"
 #include "image/image_input.h"
 #include "image/image_io_detail.h"
 
@@ -445,9 +446,9 @@ std::optional<std::string> undecodable_level(const OIIO::ImageInput& in,
     std::error_code size_error;
     const std::uintmax_t file_bytes = fs::file_size(file, size_error);
     if (size_error || file_bytes >= fewest_bytes_for_texels(in, spec)) return std::nullopt;
-    return "the file is truncated: its header claims " + std::to_string(spec.width) + " x " +
-           std::to_string(spec.height) + " texels, more than its " + std::to_string(file_bytes) +
-           " bytes can hold";
+    return detail::claims_more_texels_than_bytes(static_cast<std::uint64_t>(spec.width),
+                                                 static_cast<std::uint64_t>(spec.height),
+                                                 file_bytes);
 }
 
 // MIP level `level` of the open file's first subimage, checked, read and decoded; `where` leads
