@@ -63,9 +63,20 @@ std::optional<std::string> exr_tile_problem(exr_const_context_t context) {
     return std::nullopt;
 }
 
+// a × b, or the largest value where it would pass 2^64: a corrupt window's extents, times the
+// channels, can.
+std::uint64_t saturating_product(std::uint64_t a, std::uint64_t b) {
+    return b != 0 && a > std::numeric_limits<std::uint64_t>::max() / b
+               ? std::numeric_limits<std::uint64_t>::max()
+               : a * b;
+}
+
 // The most uncompressed bytes one byte of an OpenEXR part's compression (its attribute's byte)
 // can hold: deflate (zip, zips, and pxr24 after its rounding) codes at most 258 bytes in two bits,
-// run lengths (rle) 128 bytes in two; 0 where no useful bound is known (PIZ, B44, DWA).
+// run lengths (rle) 128 bytes in two, and PIZ's Huffman coder at most 255 of its 16-bit words in 9
+// bits (a code of a bit that repeats the last word, and its 8-bit count), 453⅓ bytes in one; 0
+// where no useful bound is known (DWA) or where it depends on the channels' types (B44:
+// b44_fewest_bytes).
 std::uint64_t exr_best_ratio(std::uint8_t compression) {
     switch (compression) {
         case EXR_COMPRESSION_NONE:
@@ -76,15 +87,33 @@ std::uint64_t exr_best_ratio(std::uint8_t compression) {
         case EXR_COMPRESSION_ZIP:
         case EXR_COMPRESSION_PXR24:
             return 1032;
+        case EXR_COMPRESSION_PIZ:
+            return 454;
         default:
             return 0;
     }
 }
 
+// The fewest bytes B44 codes `texels` texels of `channels` in: 14 bytes a 4 × 4 block of a half
+// channel, or in B44A (`flat_blocks`) 3 for a block of one value; float and uint channels it
+// leaves as they are, 4 bytes a value.
+std::uint64_t b44_fewest_bytes(const exr_attr_chlist_t& channels, std::uint64_t texels,
+                               bool flat_blocks) {
+    const std::uint64_t half_block_bytes = flat_blocks ? 3 : 14;
+    std::uint64_t bytes = 0;
+    for (int c = 0; c < channels.num_channels; ++c) {
+        const std::uint64_t channel = channels.entries[c].pixel_type == EXR_PIXEL_HALF
+                                          ? saturating_product(texels / 16, half_block_bytes)
+                                          : saturating_product(texels, 4);
+        bytes = std::min(bytes, std::numeric_limits<std::uint64_t>::max() - channel) + channel;
+    }
+    return bytes;
+}
+
 // The fewest bytes part `part` of an open OpenEXR file takes: each chunk (a block of rows or a
 // tile) an 8-byte entry in the chunk table and a header of at least 8 bytes, and its texels'
 // channels at least 2 bytes each (half; OpenImageIO reads no subsampled channels) at the best
-// ratio its compression allows.
+// ratio its compression allows, or as B44 codes them.
 std::uint64_t exr_fewest_bytes(exr_const_context_t context, int part) {
     constexpr std::uint64_t kFewestBytesPerChunk = 16, kFewestBytesPerValue = 2;
     std::int32_t chunks = 0;
@@ -98,19 +127,16 @@ std::uint64_t exr_fewest_bytes(exr_const_context_t context, int part) {
         exr_get_channels(context, part, &channels) != EXR_ERR_SUCCESS || channels == nullptr)
         return 0;
     const std::uint64_t table = static_cast<std::uint64_t>(chunks) * kFewestBytesPerChunk;
-    const std::uint64_t ratio = exr_best_ratio(compression->uc);
-    if (ratio == 0) return table;
-    // Saturating: a corrupt window's extents, times the channels, can pass 2^64.
-    const auto product = [](std::uint64_t a, std::uint64_t b) {
-        return b != 0 && a > std::numeric_limits<std::uint64_t>::max() / b
-                   ? std::numeric_limits<std::uint64_t>::max()
-                   : a * b;
-    };
     const WindowExtent extent = extent_of(window);
+    const std::uint64_t texels = saturating_product(extent.width, extent.height);
+    const std::uint8_t codec = compression->uc;
+    if (codec == EXR_COMPRESSION_B44 || codec == EXR_COMPRESSION_B44A)
+        return std::max(table, b44_fewest_bytes(*channels, texels, codec == EXR_COMPRESSION_B44A));
+    const std::uint64_t ratio = exr_best_ratio(codec);
+    if (ratio == 0) return table;
     const std::uint64_t values =
-        product(product(extent.width, extent.height),
-                static_cast<std::uint64_t>(std::max(channels->num_channels, 0)));
-    return std::max(table, product(values / ratio, kFewestBytesPerValue));
+        saturating_product(texels, static_cast<std::uint64_t>(std::max(channels->num_channels, 0)));
+    return std::max(table, saturating_product(values / ratio, kFewestBytesPerValue));
 }
 
 // Why the open OpenEXR file of `file_bytes` bytes cannot hold what its headers claim, if it

@@ -837,12 +837,15 @@ TEST_F(ImageIo, TilesFarLargerThanTheImageAreRefused) {
     }
 }
 
-// Writes the fuzz_image_load input `name` (tests/data/bad/fuzz/image_load) as `file`: the input's
-// first byte picks the extension, which `file` carries instead.
-void write_image_load_input(const std::string& name, const fs::path& file) {
+// Writes the input `name` of the fuzz target `target` (tests/data/bad/fuzz/<target>) as `file`:
+// the input's first byte picks the extension, which `file` carries instead.
+void write_fuzz_input(const std::string& target, const std::string& name, const fs::path& file) {
     const std::string input =
-        read_bytes(fs::path(FOOTPRINT_TEST_DATA_DIR) / "bad" / "fuzz" / "image_load" / name);
+        read_bytes(fs::path(FOOTPRINT_TEST_DATA_DIR) / "bad" / "fuzz" / target / name);
     write_bytes(file, input.substr(1));
+}
+void write_image_load_input(const std::string& name, const fs::path& file) {
+    write_fuzz_input("image_load", name, file);
 }
 
 // fuzz_image_load found it: an 885-byte uncompressed OpenEXR whose header claims 268435460 × 1
@@ -916,25 +919,29 @@ TEST_F(ImageIo, FlatJpegsStillLoad) {
 }
 
 // A flat half RGB OpenEXR of `width` × `height` texels coded with `compression`.
-void write_flat_exr(const fs::path& file, int width, int height, const std::string& compression) {
+void write_flat_exr(const fs::path& file, int width, int height, const std::string& compression,
+                    OIIO::TypeDesc last_channel = OIIO::TypeDesc::HALF, float value = 0.5f) {
     auto out = OIIO::ImageOutput::create(file.string());
     ASSERT_TRUE(out) << OIIO::geterror();
     OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::HALF);
+    spec.channelformats = {OIIO::TypeDesc::HALF, OIIO::TypeDesc::HALF, last_channel};
     spec.attribute("compression", compression);
     ASSERT_TRUE(out->open(file.string(), spec)) << out->geterror();
-    const std::vector<float> flat(static_cast<std::size_t>(width) * height * 3, 0.5f);
+    const std::vector<float> flat(static_cast<std::size_t>(width) * height * 3, value);
     ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, flat.data())) << out->geterror();
     ASSERT_TRUE(out->close()) << out->geterror();
 }
 
-// Sets the last row of the OpenEXR `file`'s data window, as a corrupt header would.
-void set_exr_last_row(const fs::path& file, std::int32_t last_row) {
+// Sets the last column or row of the OpenEXR `file`'s data window, as a corrupt header would.
+enum class WindowEnd { last_column = 8, last_row = 12 };  // where in the box2i value
+void set_exr_window_end(const fs::path& file, WindowEnd end, std::int32_t value) {
     std::string bytes = read_bytes(file);
     const std::string attribute("dataWindow\0box2i\0", 17);
     const std::size_t at = bytes.find(attribute);
     ASSERT_NE(at, std::string::npos);
     // The attribute's 4-byte size, then xMin, yMin, xMax, yMax (little-endian).
-    std::memcpy(bytes.data() + at + attribute.size() + 4 + 12, &last_row, sizeof last_row);
+    std::memcpy(bytes.data() + at + attribute.size() + 4 + static_cast<std::size_t>(end), &value,
+                sizeof value);
     write_bytes(file, bytes);
 }
 
@@ -969,22 +976,54 @@ TEST_F(ImageIo, AnExrTooShortForItsChunksIsRefusedBeforeReading) {
     // chunks, each an 8-byte table entry and a header of at least 8 bytes.
     const fs::path file = path("claims_chunks.exr");
     write_flat_exr(file, 4, 64, "piz");
-    set_exr_last_row(file, 9'999'999);
+    set_exr_window_end(file, WindowEnd::last_row, 9'999'999);
     expect_load_error(file, "the file is truncated: its header claims 4 x 10000000 texels");
 }
 
-TEST_F(ImageIo, SmallDeflatedAndRunLengthCodedExrFilesStillLoad) {
+// fuzz_texture_file found it (run 4a): a 451-byte B44A OpenEXR whose header claims 3080193 × 1
+// texels of two half channels and a uint channel was allocated and read before its only chunk
+// failed: 1.6 s and 210 MB for the fuzz input's opens in Release, 159 s under AddressSanitizer. B44
+// codes a 4 × 4 block of a half channel in 3 bytes at the fewest (B44A's flat block) and leaves
+// uint and float channels as they are; PIZ, at most 255 of its 16-bit words in 9 bits.
+TEST_F(ImageIo, AB44OrPizFileTooShortForItsTexelsIsRefusedBeforeReading) {
+    const fs::path file = path("too_short_b44a.exr");
+    write_fuzz_input("texture_file", "b44a_exr_too_short_for_its_texels", file);
+    expect_load_error(file,
+                      "the file is truncated: its header claims 3080193 x 1 texels, more than "
+                      "its 451 bytes can hold");
+    // Half channels only, in one chunk: 100 000 × 1 texels take 56 KB of B44's flat blocks, 1.3 KB
+    // of PIZ's runs.
+    for (const std::string compression : {"b44", "b44a", "piz"}) {
+        write_flat_exr(file, 64, 1, compression);
+        set_exr_window_end(file, WindowEnd::last_column, 99'999);
+        expect_load_error(file, "the file is truncated: its header claims 100000 x 1 texels");
+    }
+}
+
+TEST_F(ImageIo, SmallCompressedExrFilesStillLoad) {
     // The bounds on compressed OpenEXR files must not refuse the smallest honest ones: flat
     // images, below a bit a texel where deflated, which a bound for uncompressed files would
-    // refuse.
-    for (const std::string compression : {"zip", "zips", "rle", "pxr24", "piz"}) {
-        const fs::path file = path("flat_" + compression + ".exr");
-        write_flat_exr(file, 1024, 512, compression);
-        const Result<Image> loaded = load_image(file);
-        ASSERT_TRUE(loaded.ok()) << compression << ": " << loaded.error().message;
-        EXPECT_EQ(loaded->pixels, std::vector<float>(1024 * 512 * 3, 0.5f)) << compression;
+    // refuse; B44's flat blocks, next to a float channel it leaves as it is.
+    for (const std::string compression : {"zip", "zips", "rle", "pxr24", "piz", "b44", "b44a"}) {
+        for (const OIIO::TypeDesc last_channel : {OIIO::TypeDesc::HALF, OIIO::TypeDesc::FLOAT}) {
+            const fs::path file = path("flat_" + compression + ".exr");
+            write_flat_exr(file, 1024, 512, compression, last_channel);
+            const Result<Image> loaded = load_image(file);
+            ASSERT_TRUE(loaded.ok()) << compression << ": " << loaded.error().message;
+            EXPECT_EQ(loaded->pixels, std::vector<float>(1024 * 512 * 3, 0.5f)) << compression;
+        }
     }
+    write_flat_exr(path("flat_zip.exr"), 1024, 512, "zip");
     EXPECT_LT(fs::file_size(path("flat_zip.exr")), 1024u * 512 * 3 / 8);
+    // 3 bytes a 4 × 4 block of each channel: the fewest B44A allows.
+    write_flat_exr(path("flat_b44a.exr"), 1024, 512, "b44a");
+    EXPECT_LT(fs::file_size(path("flat_b44a.exr")), 1024u * 512 * 3 * 3 / 16 + 4096);
+    // PIZ codes zeros best, in runs of 255 words: within a fifth of the fewest bytes it allows.
+    write_flat_exr(path("zero_piz.exr"), 4096, 512, "piz", OIIO::TypeDesc::HALF, 0.0f);
+    EXPECT_LT(fs::file_size(path("zero_piz.exr")), 4096u * 512 * 3 * 2 / 454 * 120 / 100);
+    const Result<Image> zeros = load_image(path("zero_piz.exr"));
+    ASSERT_TRUE(zeros.ok()) << zeros.error().message;
+    EXPECT_EQ(zeros->pixels, std::vector<float>(4096 * 512 * 3, 0.0f));
 }
 
 // fuzz_image_load found it: OpenImageIO 2.4, reading several rows of a deflated MinIsWhite TIFF
