@@ -22,6 +22,16 @@ Sym2 ewa_gaussian_covariance(const FootprintEllipse& footprint, float prefilter_
     return outer(footprint.major_axis, major) + outer(footprint.minor_axis(), minor);
 }
 
+Sym2 ewa_squeeze_thin_level(Sym2 sigma, int width, int height) {
+    // Scaling one axis by k (ξ → diag(1, k)·ξ) scales the Gaussian's spread that way and keeps its
+    // marginal along the other, which is all that a level one texel thick sees.
+    const float cap = kEwaThinLevelSigma * kEwaThinLevelSigma;
+    if (height == 1 && sigma.yy > cap)
+        sigma = {sigma.xx, std::sqrt(cap / sigma.yy) * sigma.xy, cap};
+    if (width == 1 && sigma.xx > cap) sigma = {cap, std::sqrt(cap / sigma.xx) * sigma.xy, sigma.yy};
+    return sigma;
+}
+
 namespace detail {
 
 namespace {
@@ -37,8 +47,9 @@ void accumulate_ewa_level(const Texels& pyramid, int l, float s, float t,
     Sym2 sigma = ewa_gaussian_covariance(footprint, std::max(pv.x, pv.y), std::max(tx, ty));
     // To this level's texel units, enlarged so that the 3σ-truncated Gaussian keeps covariance Σ.
     const float enlarge = 1.0f / ewa_truncation_variance();
-    sigma = {enlarge * sigma.xx / (tx * tx), enlarge * sigma.xy / (tx * ty),
-             enlarge * sigma.yy / (ty * ty)};
+    sigma = ewa_squeeze_thin_level({enlarge * sigma.xx / (tx * tx), enlarge * sigma.xy / (tx * ty),
+                                    enlarge * sigma.yy / (ty * ty)},
+                                   level.width, level.height);
     const float det = sigma.determinant();
     const Sym2 q = {sigma.yy / det, -sigma.xy / det, sigma.xx / det};  // Σ'⁻¹
     const float cutoff = kEwaTruncationSigmas * kEwaTruncationSigmas;

@@ -17,6 +17,9 @@
 //               pbrt's), Σ' = Σ / ewa_truncation_variance() so that the truncated kernel has
 //               covariance Σ; texels are visited row by row over the exact span of the truncation
 //               ellipse, with the pyramid's wrap modes.
+//   thin levels a level one texel high (wide) reads the same row (column) at every y (x), so the
+//               Gaussian's spread that way is squeezed to kEwaThinLevelSigma: the rows visited
+//               would otherwise grow with the texture's aspect ratio (ewa_squeeze_thin_level).
 #pragma once
 
 #include <cmath>
@@ -30,6 +33,10 @@ constexpr float kEwaTruncationSigmas = 3.0f;
 // Smallest Gaussian σ in texels of the level summed. A sampled Gaussian reproduces a linear ramp
 // up to its aliasing term ≈ 4πσ²·e^{−2π²σ²}: 4e−3 texel at σ = 0.6.
 constexpr float kEwaMinSigma = 0.6f;
+// Largest σ, in texels of the level summed, across a level one texel thick. Rows of a sampled
+// Gaussian this wide sum to its continuous marginal to float rounding, so squeezing a wider one
+// to it leaves the weights along the level as they were.
+constexpr float kEwaThinLevelSigma = 4.0f;
 // The variance the truncated, shifted 2-D Gaussian w(r) = e^{−r²/2} − c (r < R, c = e^{−R²/2})
 // keeps relative to the untruncated one:
 //   E[r²]/2 = (2 − (R² + 2)c − cR⁴/4) / (2((1 − c) − cR²/2)) = 0.88020 for R = 3.
@@ -44,5 +51,11 @@ inline float ewa_truncation_variance() {
 // Exposed so that tests can rebuild the exact weights by brute force.
 Sym2 ewa_gaussian_covariance(const FootprintEllipse& footprint, float prefilter_variance,
                              float texel_size);
+
+// Σ' (the level's texels²) with its spread across a level one texel high (or wide) scaled down to
+// kEwaThinLevelSigma, the covariance along the level kept; unchanged on any other level. Every
+// wrap mode maps all rows of a one-texel level to its one row, so only the number of rows summed
+// changes: on the coarse levels of a W × 1 texture it would otherwise grow with W.
+Sym2 ewa_squeeze_thin_level(Sym2 sigma, int width, int height);
 
 }  // namespace footprint

@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
+#include <tuple>
 
 #include "image/test_images.h"
 #include "texture/kernel_moments.h"
@@ -105,6 +107,103 @@ TEST(Ewa, KernelCovarianceIsQuarterK) {
             << "footprint " << i << ": λ = (" << major << ", " << minor << ")";
         EXPECT_NEAR(m.mean.x, ox, 0.01f * std::max(1.0f, major));
         EXPECT_NEAR(m.mean.y, oy, 0.01f * std::max(1.0f, major));
+    }
+}
+
+// Squeezing keeps the correlation (a scale of one axis) and the other axis' variance exactly, to
+// float rounding of a square root.
+constexpr float kSqueezeRelTolerance = 1e-6f;
+// On a level one texel thick the squeezed sum must equal the sum over the whole Gaussian, to float
+// rounding as at level 0 (the residuals are about 1e−6).
+constexpr float kThinLevelRelTolerance = 1e-5f;
+
+float correlation(const Sym2& m) {
+    return m.xy / std::sqrt(m.xx * m.yy);
+}
+
+TEST(Ewa, ThinLevelSqueezeBoundsTheSpreadAcrossIt) {
+    const Sym2 sigma{9.0f, 300.0f, 40000.0f};  // σ = 3 along a 16 × 1 level, 200 across it
+    const float cap = kEwaThinLevelSigma * kEwaThinLevelSigma;
+
+    const Sym2 high = ewa_squeeze_thin_level(sigma, 16, 1);
+    EXPECT_EQ(high.xx, sigma.xx);
+    EXPECT_NEAR(high.yy, cap, kSqueezeRelTolerance * cap);
+    EXPECT_NEAR(correlation(high), correlation(sigma), kSqueezeRelTolerance);
+
+    const Sym2 wide = ewa_squeeze_thin_level({sigma.yy, -sigma.xy, sigma.xx}, 1, 16);
+    EXPECT_NEAR(wide.xx, cap, kSqueezeRelTolerance * cap);
+    EXPECT_EQ(wide.yy, sigma.xx);
+    EXPECT_NEAR(correlation(wide), correlation(sigma) * -1, kSqueezeRelTolerance);
+
+    // A level two texels thick, or a Gaussian already within the cap, is summed as it is.
+    for (const auto& [m, w, h] : {std::tuple{sigma, 16, 2}, std::tuple{Sym2{9, 2, 4}, 16, 1}}) {
+        const Sym2 same = ewa_squeeze_thin_level(m, w, h);
+        EXPECT_EQ(same.xx, m.xx);
+        EXPECT_EQ(same.xy, m.xy);
+        EXPECT_EQ(same.yy, m.yy);
+    }
+}
+
+// Brute force over level l of the whole, unsqueezed Gaussian EWA sums there.
+std::array<double, 3> brute_force_level(const MipPyramid& pyramid, int l, float s, float t,
+                                        const FootprintEllipse& e) {
+    const MipPyramid::LevelView& level = pyramid.level(l);
+    const double tx = double(pyramid.width(0)) / level.width,
+                 ty = double(pyramid.height(0)) / level.height;
+    const Vec2 pv = pyramid.prefilter_variance(l);
+    const Sym2 g = ewa_gaussian_covariance(e, std::max(pv.x, pv.y), float(std::max(tx, ty)));
+    const double enlarge = 1.0 / ewa_truncation_variance();
+    const double xx = enlarge * g.xx / (tx * tx), xy = enlarge * g.xy / (tx * ty),
+                 yy = enlarge * g.yy / (ty * ty), det = xx * yy - xy * xy;
+    const double cx = double(s) * level.width - 0.5, cy = double(t) * level.height - 0.5;
+    const int rx = int(3 * std::sqrt(xx)) + 2, ry = int(3 * std::sqrt(yy)) + 2;
+    std::array<double, 3> sum{};
+    double wsum = 0;
+    for (int y = int(cy) - ry; y <= int(cy) + ry; ++y)
+        for (int x = int(cx) - rx; x <= int(cx) + rx; ++x) {
+            const double dx = x - cx, dy = y - cy;
+            const double r2 = (yy * dx * dx - 2 * xy * dx * dy + xx * dy * dy) / det;
+            if (r2 >= 9) continue;
+            const double w = std::exp(-0.5 * r2) - std::exp(-4.5);
+            const float* texel = pyramid.texel(l, wrap_index(x, level.width, pyramid.wrap_s()),
+                                               wrap_index(y, level.height, pyramid.wrap_t()));
+            for (int c = 0; c < 3; ++c) sum[c] += w * texel[c];
+            wsum += w;
+        }
+    for (double& v : sum) v /= wsum;
+    return sum;
+}
+
+TEST(Ewa, EqualsBruteForceOnLevelsOneTexelHigh) {
+    // A 4096 × 1 texture: from level 0 on, its levels are one texel high, and a footprint's spread
+    // across them is hundreds of rows of the same texels.
+    const Image image = random_image(4096, 1, 3, 7);
+    for (const WrapMode wrap : {WrapMode::repeat, WrapMode::clamp, WrapMode::mirror}) {
+        MipPyramidOptions po;
+        po.wrap_s = po.wrap_t = wrap;
+        const MipPyramid pyramid = MipPyramid::build(image, po);
+        LookupOptions options;
+        options.filter = TextureFilter::ewa;
+        std::mt19937 rng(5);
+        std::uniform_real_distribution<float> u(0, 1);
+        for (int i = 0; i < 6; ++i) {
+            // lod = log2 λ2 − 1.5 = 8.25: levels 8 (16 × 1) and 9 (8 × 1), weighted ¾ and ¼;
+            // anisotropy 4, under the clamp.
+            const int l = 8;
+            const float lod_fraction = 0.25f, minor = std::exp2(float(l) + lod_fraction + 1.5f);
+            const FootprintEllipse e =
+                make_footprint_ellipse(4 * minor, minor, u(rng) * float(M_PI));
+            const float s = u(rng), t = u(rng);
+            float got[3];
+            texture_lookup(pyramid, s, t, e, options, got);
+            const std::array<double, 3> fine = brute_force_level(pyramid, l, s, t, e),
+                                        coarse = brute_force_level(pyramid, l + 1, s, t, e);
+            for (int c = 0; c < 3; ++c) {
+                const double want = (1 - lod_fraction) * fine[c] + lod_fraction * coarse[c];
+                EXPECT_NEAR(got[c], want, kThinLevelRelTolerance * std::abs(want))
+                    << "wrap " << int(wrap) << " footprint " << i << " channel " << c;
+            }
+        }
     }
 }
 
