@@ -34,6 +34,37 @@ TEST(Ewa, TruncationVarianceConstant) {
     EXPECT_NEAR(ewa_truncation_variance(), 0.88020, 1e-5);
 }
 
+// Brute force over level l of the whole Gaussian EWA sums there (unsqueezed on a thin level): every
+// texel of the wrap-extended level within its 3σ bounding box.
+std::array<double, 3> brute_force_level(const MipPyramid& pyramid, int l, float s, float t,
+                                        const FootprintEllipse& e) {
+    const MipPyramid::LevelView& level = pyramid.level(l);
+    const double tx = double(pyramid.width(0)) / level.width,
+                 ty = double(pyramid.height(0)) / level.height;
+    const Vec2 pv = pyramid.prefilter_variance(l);
+    const Sym2 g = ewa_gaussian_covariance(e, std::max(pv.x, pv.y), float(std::max(tx, ty)));
+    const double enlarge = 1.0 / ewa_truncation_variance();
+    const double xx = enlarge * g.xx / (tx * tx), xy = enlarge * g.xy / (tx * ty),
+                 yy = enlarge * g.yy / (ty * ty), det = xx * yy - xy * xy;
+    const double cx = double(s) * level.width - 0.5, cy = double(t) * level.height - 0.5;
+    const int rx = int(3 * std::sqrt(xx)) + 2, ry = int(3 * std::sqrt(yy)) + 2;
+    std::array<double, 3> sum{};
+    double wsum = 0;
+    for (int y = int(cy) - ry; y <= int(cy) + ry; ++y)
+        for (int x = int(cx) - rx; x <= int(cx) + rx; ++x) {
+            const double dx = x - cx, dy = y - cy;
+            const double r2 = (yy * dx * dx - 2 * xy * dx * dy + xx * dy * dy) / det;
+            if (r2 >= 9) continue;
+            const double w = std::exp(-0.5 * r2) - std::exp(-4.5);
+            const float* texel = pyramid.texel(l, wrap_index(x, level.width, pyramid.wrap_s()),
+                                               wrap_index(y, level.height, pyramid.wrap_t()));
+            for (int c = 0; c < 3; ++c) sum[c] += w * texel[c];
+            wsum += w;
+        }
+    for (double& v : sum) v /= wsum;
+    return sum;
+}
+
 TEST(Ewa, EqualsBruteForceGaussianSumAtLevel0) {
     const int size = 64;
     const Image image = random_image(size, size, 3, 5);
@@ -56,26 +87,9 @@ TEST(Ewa, EqualsBruteForceGaussianSumAtLevel0) {
         float got[3];
         texture_lookup(pyramid, s, t, e, options, got);
 
-        // Brute force: every level-0 texel of the wrap-extended image within reach.
-        const Sym2 sigma =
-            (1.0f / ewa_truncation_variance()) * ewa_gaussian_covariance(e, 0.0f, 1.0f);
-        const double det = double(sigma.xx) * sigma.yy - double(sigma.xy) * sigma.xy;
-        const double cx = double(s) * size - 0.5, cy = double(t) * size - 0.5;
-        double sum[3] = {}, wsum = 0;
-        for (int y = int(cy) - 100; y <= int(cy) + 100; ++y)
-            for (int x = int(cx) - 100; x <= int(cx) + 100; ++x) {
-                const double dx = x - cx, dy = y - cy;
-                const double r2 =
-                    (sigma.yy * dx * dx - 2 * sigma.xy * dx * dy + sigma.xx * dy * dy) / det;
-                if (r2 >= 9) continue;
-                const double w = std::exp(-0.5 * r2) - std::exp(-4.5);
-                const float* texel = image.at(wrap_index(x, size, WrapMode::repeat),
-                                              wrap_index(y, size, WrapMode::mirror));
-                for (int c = 0; c < 3; ++c) sum[c] += w * texel[c];
-                wsum += w;
-            }
+        const std::array<double, 3> want = brute_force_level(pyramid, 0, s, t, e);
         for (int c = 0; c < 3; ++c)
-            EXPECT_NEAR(got[c], sum[c] / wsum, kLevel0RelTolerance)
+            EXPECT_NEAR(got[c], want[c], kLevel0RelTolerance)
                 << "footprint " << i << " channel " << c;
     }
 }
@@ -142,36 +156,6 @@ TEST(Ewa, ThinLevelSqueezeBoundsTheSpreadAcrossIt) {
         EXPECT_EQ(same.xy, m.xy);
         EXPECT_EQ(same.yy, m.yy);
     }
-}
-
-// Brute force over level l of the whole, unsqueezed Gaussian EWA sums there.
-std::array<double, 3> brute_force_level(const MipPyramid& pyramid, int l, float s, float t,
-                                        const FootprintEllipse& e) {
-    const MipPyramid::LevelView& level = pyramid.level(l);
-    const double tx = double(pyramid.width(0)) / level.width,
-                 ty = double(pyramid.height(0)) / level.height;
-    const Vec2 pv = pyramid.prefilter_variance(l);
-    const Sym2 g = ewa_gaussian_covariance(e, std::max(pv.x, pv.y), float(std::max(tx, ty)));
-    const double enlarge = 1.0 / ewa_truncation_variance();
-    const double xx = enlarge * g.xx / (tx * tx), xy = enlarge * g.xy / (tx * ty),
-                 yy = enlarge * g.yy / (ty * ty), det = xx * yy - xy * xy;
-    const double cx = double(s) * level.width - 0.5, cy = double(t) * level.height - 0.5;
-    const int rx = int(3 * std::sqrt(xx)) + 2, ry = int(3 * std::sqrt(yy)) + 2;
-    std::array<double, 3> sum{};
-    double wsum = 0;
-    for (int y = int(cy) - ry; y <= int(cy) + ry; ++y)
-        for (int x = int(cx) - rx; x <= int(cx) + rx; ++x) {
-            const double dx = x - cx, dy = y - cy;
-            const double r2 = (yy * dx * dx - 2 * xy * dx * dy + xx * dy * dy) / det;
-            if (r2 >= 9) continue;
-            const double w = std::exp(-0.5 * r2) - std::exp(-4.5);
-            const float* texel = pyramid.texel(l, wrap_index(x, level.width, pyramid.wrap_s()),
-                                               wrap_index(y, level.height, pyramid.wrap_t()));
-            for (int c = 0; c < 3; ++c) sum[c] += w * texel[c];
-            wsum += w;
-        }
-    for (double& v : sum) v /= wsum;
-    return sum;
 }
 
 TEST(Ewa, EqualsBruteForceOnLevelsOneTexelHigh) {
