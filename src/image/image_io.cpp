@@ -272,6 +272,7 @@ Result<std::vector<unsigned char>> encode_with_oiio(const fs::path& file, FileKi
     if (!out->close()) {
         return Error{with_oiio_message("finishing the encoding failed", out->geterror())};
     }
+    out.reset();  // its last writes, before the bytes move (see encode_levels())
     if (bytes.empty()) return Error{"OpenImageIO encoded nothing"};
     return bytes;
 }
@@ -839,7 +840,9 @@ OIIO::ImageSpec level_spec(int width, int height, int channels, const LevelsSave
 Result<std::vector<unsigned char>> encode_levels(const std::vector<Image>& levels,
                                                  const fs::path& file,
                                                  const LevelsSaveOptions& options) {
-    // The memory outlives the writer, whose OpenEXR file may still reach it when destroyed.
+    // OpenImageIO's OpenEXR writer writes a tiled file's chunk tables as it is destroyed, not as
+    // it closes: the memory outlives it, and it is destroyed before the bytes move out, or every
+    // entry of the tables stays 0 (which OpenEXR's readers take for a file whose writer stopped).
     std::vector<unsigned char> bytes;
     OIIO::Filesystem::IOVecOutput memory(bytes);
     auto out = OIIO::ImageOutput::create("levels.exr");
@@ -861,6 +864,7 @@ Result<std::vector<unsigned char>> encode_levels(const std::vector<Image>& level
     }
     if (!out->close())
         return Error{with_oiio_message("finishing the encoding failed", out->geterror())};
+    out.reset();
     return bytes;
 }
 

@@ -1025,6 +1025,46 @@ TEST_F(ImageIo, SmallCompressedExrFilesStillLoad) {
     EXPECT_EQ(zeros->pixels, std::vector<float>(4096 * 512 * 3, 0.0f));
 }
 
+// OpenEXR writes a file's chunk tables last: an 8-byte entry for each chunk (a block of rows or a
+// tile), its place in the file. The places the tables of the OpenEXR `bytes`, `chunks` entries,
+// hold; nothing if there are none. OpenEXR writes the chunks just after the tables, so the first
+// entry holds the place just past them.
+std::vector<std::uint64_t> exr_tables(const std::string& bytes, std::size_t chunks) {
+    for (std::size_t at = 0; at + 8 * chunks <= bytes.size(); ++at) {
+        std::uint64_t first = 0;
+        std::memcpy(&first, bytes.data() + at, sizeof first);
+        if (first != at + 8 * chunks) continue;
+        std::vector<std::uint64_t> places(chunks);
+        std::memcpy(places.data(), bytes.data() + at, 8 * chunks);
+        return places;
+    }
+    return {};
+}
+
+// OpenImageIO's writer, which save_image_levels() calls, writes a tiled file's tables as it is
+// destroyed; destroyed after its bytes had moved out, it left them 0, and each reader had to find
+// the tiles by walking them. Each entry is the place of a tile: in the file, after the tables,
+// each further than the last.
+TEST_F(ImageIo, MipLevelsAreWrittenWithTheirChunkTables) {
+    // 37 × 20 texels in tiles of 16²: 6 + 2 + 1 + 1 + 1 + 1 tiles over its six levels; 16 × 16
+    // texels, one tile on each of five levels.
+    LevelsSaveOptions options;
+    options.tile_size = 16;
+    const fs::path one = path("one.exr"), two = path("two.exr");
+    ASSERT_TRUE(save_image_levels(mip_chain(37, 20, 3), one, options).ok());
+    ASSERT_TRUE(save_image_level_chains({{"a", mip_chain(37, 20, 3)}, {"b", mip_chain(16, 16, 1)}},
+                                        two, options)
+                    .ok());
+    for (const auto& [file, chunks] : {std::pair{one, 12u}, std::pair{two, 12u + 5u}}) {
+        const std::string bytes = read_bytes(file);
+        const std::vector<std::uint64_t> places = exr_tables(bytes, chunks);
+        ASSERT_EQ(places.size(), chunks) << file << " has no chunk tables";
+        EXPECT_TRUE(std::is_sorted(places.begin(), places.end())) << file;
+        EXPECT_EQ(std::adjacent_find(places.begin(), places.end()), places.end()) << file;
+        EXPECT_LT(places.back(), bytes.size()) << file;
+    }
+}
+
 // fuzz_image_load found it: OpenImageIO 2.4, reading several rows of a deflated MinIsWhite TIFF
 // at once, inverted channels × the strip's values per strip and wrote past the caller's buffer
 // (upstream #5083); the 445-byte file's 4 × 260 texels of four channels corrupted the heap, and
