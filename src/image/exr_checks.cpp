@@ -158,6 +158,82 @@ std::optional<std::string> exr_size_problem(exr_const_context_t context,
     return std::nullopt;
 }
 
+// Whether OpenEXR's core library reads the leader of each chunk of the tiled part `part`: tile by
+// tile, level by level (mipmaps l × l, ripmaps every lx × ly).
+bool exr_tiles_readable(exr_const_context_t context, int part) {
+    exr_tile_level_mode_t mode{};
+    exr_tile_round_mode_t rounding{};
+    std::int32_t levels_x = 0, levels_y = 0;
+    if (exr_get_tile_descriptor(context, part, nullptr, nullptr, &mode, &rounding) !=
+            EXR_ERR_SUCCESS ||
+        exr_get_tile_levels(context, part, &levels_x, &levels_y) != EXR_ERR_SUCCESS)
+        return false;
+    for (int ly = 0; ly < levels_y; ++ly) {
+        for (int lx = 0; lx < levels_x; ++lx) {
+            if (mode != EXR_TILE_RIPMAP_LEVELS && lx != ly) continue;
+            std::int32_t width = 0, height = 0, tile_width = 0, tile_height = 0;
+            if (exr_get_level_sizes(context, part, lx, ly, &width, &height) != EXR_ERR_SUCCESS ||
+                exr_get_tile_sizes(context, part, lx, ly, &tile_width, &tile_height) !=
+                    EXR_ERR_SUCCESS ||
+                tile_width <= 0 || tile_height <= 0)
+                return false;
+            for (int ty = 0; ty * tile_height < height; ++ty) {
+                for (int tx = 0; tx * tile_width < width; ++tx) {
+                    exr_chunk_info_t chunk{};
+                    if (exr_read_tile_chunk_info(context, part, tx, ty, lx, ly, &chunk) !=
+                        EXR_ERR_SUCCESS)
+                        return false;
+                }
+            }
+        }
+    }
+    return true;
+}
+
+// Whether OpenEXR's core library reads the leader of each chunk (block of rows) of the part
+// `part`, which is stored in scanlines.
+bool exr_scanlines_readable(exr_const_context_t context, int part) {
+    exr_attr_box2i_t window{};
+    std::int32_t rows_per_chunk = 0;
+    if (exr_get_data_window(context, part, &window) != EXR_ERR_SUCCESS ||
+        exr_get_scanlines_per_chunk(context, part, &rows_per_chunk) != EXR_ERR_SUCCESS ||
+        rows_per_chunk <= 0)
+        return false;
+    for (std::int64_t y = window.min.y; y <= window.max.y; y += rows_per_chunk) {
+        exr_chunk_info_t chunk{};
+        if (exr_read_scanline_chunk_info(context, part, static_cast<int>(y), &chunk) !=
+            EXR_ERR_SUCCESS)
+            return false;
+    }
+    return true;
+}
+
+// The first part of the open OpenEXR file with a chunk whose place in the chunk table or whose
+// leader (its coordinates and size) OpenEXR's core library finds corrupt. OpenEXR 3.1's C++
+// reader, OpenImageIO's, rebuilds a table with missing entries by walking the chunks, and can then
+// read a part as zeros without an error: a silent black image. The core library, which rebuilds
+// the table the same way, checks each chunk it finds.
+std::optional<std::string> exr_chunk_problem(exr_const_context_t context) {
+    int parts = 0;
+    if (exr_get_count(context, &parts) != EXR_ERR_SUCCESS) return std::nullopt;
+    for (int part = 0; part < parts; ++part) {
+        exr_storage_t storage{};
+        if (exr_get_storage(context, part, &storage) != EXR_ERR_SUCCESS) continue;
+        const bool tiled = storage == EXR_STORAGE_TILED || storage == EXR_STORAGE_DEEP_TILED;
+        std::string report;
+        exr_first_error = &report;
+        const bool readable =
+            tiled ? exr_tiles_readable(context, part) : exr_scanlines_readable(context, part);
+        exr_first_error = nullptr;
+        if (readable) continue;
+        return "the OpenEXR file is corrupt (" +
+               (parts > 1 ? "part " + std::to_string(part) + ": " : std::string()) +
+               "a chunk of texels is missing or corrupt" +
+               (report.empty() ? "" : "; OpenEXR: " + report) + ")";
+    }
+    return std::nullopt;
+}
+
 // A NUL-terminated name of at most 255 characters from `in`, as OpenEXR's C++ reader reads one;
 // nothing if the file ends first or the name is longer (that reader then fails by itself).
 std::optional<std::string> read_exr_name(std::istream& in) {
@@ -233,23 +309,31 @@ struct ExrCxxAttribute {
     std::string name, type, value;
 };
 
-// The attributes of each header of the OpenEXR file `file` (of `file_bytes` bytes) as OpenEXR
-// 3.1's C++ reader, which OpenImageIO 2.4 reads with, walks them: names of up to 255 characters in
-// any file, and each value read by its type (see exr_value_bytes), so that on a corrupt file its
-// walk can part from the core library's; or why that reader would allocate more for a value than
-// the file holds.
-Result<std::vector<std::vector<ExrCxxAttribute>>> exr_cxx_headers(const fs::path& file,
-                                                                  std::uintmax_t file_bytes) {
+// The headers of an OpenEXR file as OpenEXR 3.1's C++ reader reads them: each part's attributes,
+// and where the chunk tables that follow them start, unless that reader fails before it gets
+// there.
+struct ExrCxxHeaders {
+    std::vector<std::vector<ExrCxxAttribute>> parts;
+    std::optional<std::uint64_t> tables_at;
+};
+
+// The headers of the OpenEXR file `file` (of `file_bytes` bytes) as OpenEXR 3.1's C++ reader,
+// which OpenImageIO 2.4 reads with, walks them: names of up to 255 characters in any file, and
+// each value read by its type (see exr_value_bytes), so that on a corrupt file its walk can part
+// from the core library's; or why that reader would allocate more for a value than the file
+// holds.
+Result<ExrCxxHeaders> exr_cxx_headers(const fs::path& file, std::uintmax_t file_bytes) {
     constexpr std::uint32_t kMultiPart = 0x1000;
     constexpr std::uint64_t kKeptValueBytes = 1024;  // enough for every value compared below
     std::ifstream in(file, std::ios::binary);
     in.seekg(4);  // after the magic number
     const std::optional<std::uint32_t> version = read_u32_le(in);
-    std::vector<std::vector<ExrCxxAttribute>> headers;
+    ExrCxxHeaders headers;
     if (!version) return headers;
     do {
-        std::vector<ExrCxxAttribute>& header = headers.emplace_back();
-        for (std::optional<std::string> name; (name = read_exr_name(in)) && !name->empty();) {
+        std::vector<ExrCxxAttribute>& header = headers.parts.emplace_back();
+        std::optional<std::string> name;
+        while ((name = read_exr_name(in)) && !name->empty()) {
             const std::optional<std::string> type = read_exr_name(in);
             const std::optional<std::uint32_t> size = type ? read_u32_le(in) : std::nullopt;
             if (!size || *size > 0x7fffffffu) return headers;  // the reader fails by itself
@@ -264,8 +348,42 @@ Result<std::vector<std::vector<ExrCxxAttribute>>> exr_cxx_headers(const fs::path
             header.push_back({*name, *type, std::move(value)});
             in.seekg(static_cast<std::streamoff>(at + *bytes));
         }
-    } while ((*version & kMultiPart) && in && in.peek() != 0 && in.peek() != EOF);
+        if (!name) return headers;  // the reader fails by itself
+    } while ((*version & kMultiPart) && in.peek() != 0 && in.peek() != EOF);
+    // A multi-part file's headers end with an empty one.
+    if ((*version & kMultiPart) && in.get() != 0) return headers;
+    headers.tables_at = static_cast<std::uint64_t>(in.tellg());
     return headers;
+}
+
+// The chunks of all parts of the open OpenEXR file: its chunk tables' entries.
+std::uint64_t exr_chunks(exr_const_context_t context) {
+    int parts = 0;
+    std::uint64_t chunks = 0;
+    if (exr_get_count(context, &parts) != EXR_ERR_SUCCESS) return 0;
+    for (int part = 0; part < parts; ++part) {
+        std::int32_t count = 0;
+        if (exr_get_chunk_count(context, part, &count) == EXR_ERR_SUCCESS && count > 0)
+            chunks += static_cast<std::uint64_t>(count);
+    }
+    return chunks;
+}
+
+// Whether the chunk tables of an OpenEXR file, `chunks` offsets of 8 bytes from `tables_at`, miss
+// an entry: one ≤ 0 as a signed offset, or the file ends first. OpenEXR writes the tables last,
+// and its C++ reader takes such a table for one whose writer stopped, and walks the chunks to find
+// their places instead.
+bool exr_tables_incomplete(const fs::path& file, std::uint64_t tables_at, std::uint64_t chunks) {
+    std::ifstream in(file, std::ios::binary);
+    in.seekg(static_cast<std::streamoff>(tables_at));
+    for (std::uint64_t i = 0; i < chunks; ++i) {
+        std::array<unsigned char, 8> b{};
+        if (!in.read(reinterpret_cast<char*>(b.data()), b.size())) return true;
+        std::uint64_t offset = 0;
+        for (std::size_t k = 0; k < b.size(); ++k) offset |= std::uint64_t{b[k]} << (8 * k);
+        if (static_cast<std::int64_t>(offset) <= 0) return true;
+    }
+    return false;
 }
 
 std::int32_t i32_le(std::string_view bytes, std::size_t at) {
@@ -311,15 +429,12 @@ bool exr_value_agrees(const exr_attribute_t& core, const ExrCxxAttribute& cxx) {
     }
 }
 
-// Why OpenImageIO 2.4 would read the open OpenEXR file `file` (of `file_bytes` bytes) otherwise
-// than the core library's checks saw it, if it would: footprint's checks of sizes, tiles and
-// chunks hold for what OpenImageIO reads only if OpenEXR's C++ reader finds the same attributes,
-// and the same values for those that size the image.
-std::optional<std::string> exr_reader_agreement_problem(exr_const_context_t context,
-                                                        const fs::path& file,
-                                                        std::uintmax_t file_bytes) {
-    const Result<std::vector<std::vector<ExrCxxAttribute>>> cxx = exr_cxx_headers(file, file_bytes);
-    if (!cxx) return cxx.error().message;
+// Why OpenImageIO 2.4 would read the headers of the open OpenEXR file, `cxx` as OpenEXR's C++
+// reader reads them, otherwise than the core library's checks saw them, if it would: footprint's
+// checks of sizes, tiles and chunks hold for what OpenImageIO reads only if that reader finds the
+// same attributes, and the same values for those that size the image.
+std::optional<std::string> exr_reader_agreement_problem(
+    exr_const_context_t context, const std::vector<std::vector<ExrCxxAttribute>>& cxx) {
     int parts = 0;
     if (exr_get_count(context, &parts) != EXR_ERR_SUCCESS) return std::nullopt;
     // The core library lists a header's attributes in the file's order, then the required ones
@@ -327,10 +442,10 @@ std::optional<std::string> exr_reader_agreement_problem(exr_const_context_t cont
     constexpr std::array<std::string_view, 8> kRequired{
         "channels",  "compression",      "dataWindow",         "displayWindow",
         "lineOrder", "pixelAspectRatio", "screenWindowCenter", "screenWindowWidth"};
-    bool agree = cxx->size() == static_cast<std::size_t>(parts);
+    bool agree = cxx.size() == static_cast<std::size_t>(parts);
     for (int part = 0; agree && part < parts; ++part) {
         int count = 0;
-        const std::vector<ExrCxxAttribute>& header = (*cxx)[static_cast<std::size_t>(part)];
+        const std::vector<ExrCxxAttribute>& header = cxx[static_cast<std::size_t>(part)];
         agree = exr_get_attribute_count(context, part, &count) == EXR_ERR_SUCCESS &&
                 static_cast<std::size_t>(count) >= header.size();
         for (int i = 0; agree && i < count; ++i) {
@@ -349,13 +464,32 @@ std::optional<std::string> exr_reader_agreement_problem(exr_const_context_t cont
     return std::string("the OpenEXR header is corrupt (OpenEXR's two readers read it differently)");
 }
 
+// The first problem of the open OpenEXR file `file` that the core library does not report as it
+// opens it.
+std::optional<std::string> exr_layout_problem(exr_const_context_t context, const fs::path& file) {
+    std::error_code size_error;
+    const std::uintmax_t file_bytes = fs::file_size(file, size_error);
+    if (size_error) return "its size cannot be read (" + size_error.message() + ")";
+    const Result<ExrCxxHeaders> cxx = exr_cxx_headers(file, file_bytes);
+    if (!cxx) return cxx.error().message;
+    if (auto cause = exr_reader_agreement_problem(context, cxx->parts)) return cause;
+    if (auto cause = exr_tile_problem(context)) return cause;
+    if (auto cause = exr_size_problem(context, file_bytes)) return cause;
+    // Reading the chunks' leaders costs a read a chunk (thousands for a large tiled pyramid), so
+    // they are read only where OpenEXR's C++ reader would not find the chunks from the tables.
+    if (cxx->tables_at && !exr_tables_incomplete(file, *cxx->tables_at, exr_chunks(context)))
+        return std::nullopt;
+    return exr_chunk_problem(context);
+}
+
 }  // namespace
 
-// The first problem OpenEXR's core library finds in the headers of the OpenEXR file `file`.
-// OpenEXRCore checks every attribute against the format's rules and the file's length before it
-// allocates; OpenEXR 3.1's C++ reader, which OpenImageIO 2.4 reads with, allocates what a corrupt
-// size claims.
-std::optional<std::string> exr_header_problem(const fs::path& file) {
+// The first problem OpenEXR's core library finds in the OpenEXR file `file`, in its headers or
+// its chunks. OpenEXRCore checks every attribute against the format's rules and the file's length
+// before it allocates, and each chunk's place and leader; OpenEXR 3.1's C++ reader, which
+// OpenImageIO 2.4 reads with, allocates what a corrupt size claims, and reads some missing chunks
+// as zeros.
+std::optional<std::string> exr_problem(const fs::path& file) {
     std::string first_error;
     exr_first_error = &first_error;
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
@@ -365,11 +499,7 @@ std::optional<std::string> exr_header_problem(const fs::path& file) {
     exr_first_error = nullptr;
     std::optional<std::string> layout;
     if (result == EXR_ERR_SUCCESS) {
-        std::error_code size_error;
-        const std::uintmax_t file_bytes = fs::file_size(file, size_error);
-        if (!size_error) layout = exr_reader_agreement_problem(context, file, file_bytes);
-        if (!layout) layout = exr_tile_problem(context);
-        if (!layout && !size_error) layout = exr_size_problem(context, file_bytes);
+        if (first_error.empty()) layout = exr_layout_problem(context, file);
         exr_finish(&context);
     }
     // The core library's lenient parse skips an attribute it finds corrupt, reports it and

@@ -19,6 +19,7 @@
 #include <random>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -1041,6 +1042,16 @@ std::vector<std::uint64_t> exr_tables(const std::string& bytes, std::size_t chun
     return {};
 }
 
+// Sets every entry of the tables of `bytes` to 0, as a writer that stopped before it wrote them
+// leaves them; returns the places they held.
+std::vector<std::uint64_t> zero_exr_tables(std::string& bytes, std::size_t chunks) {
+    const std::vector<std::uint64_t> places = exr_tables(bytes, chunks);
+    if (places.empty()) return places;
+    const std::size_t at = places[0] - 8 * chunks;
+    std::fill_n(bytes.begin() + static_cast<std::ptrdiff_t>(at), 8 * chunks, '\0');
+    return places;
+}
+
 // OpenImageIO's writer, which save_image_levels() calls, writes a tiled file's tables as it is
 // destroyed; destroyed after its bytes had moved out, it left them 0, and each reader had to find
 // the tiles by walking them. Each entry is the place of a tile: in the file, after the tables,
@@ -1063,6 +1074,74 @@ TEST_F(ImageIo, MipLevelsAreWrittenWithTheirChunkTables) {
         EXPECT_EQ(std::adjacent_find(places.begin(), places.end()), places.end()) << file;
         EXPECT_LT(places.back(), bytes.size()) << file;
     }
+}
+
+// Sets the 4-byte value `at` bytes into the chunk at `place` in `bytes`.
+void set_chunk_leader(std::string& bytes, std::uint64_t place, std::size_t at,
+                      std::uint32_t value) {
+    std::memcpy(bytes.data() + place + at, &value, sizeof value);
+}
+
+// fuzz_texture_file found it (run 4j, the input of fix 13): a zip OpenEXR of 524 328 × 1 texels
+// whose chunk table's one entry is 0 and whose one chunk holds no bytes. OpenEXR's C++ reader,
+// OpenImageIO's, takes a table with an entry of 0 for one whose writer stopped and finds the chunks
+// by walking them; it read the empty chunk as zeros without an error, and footprint loaded a black
+// image.
+TEST_F(ImageIo, AChunkMissingFromItsExrTableAndEmptyIsRefusedNotReadAsZeros) {
+    const fs::path fuzz = path("half_million_by_one.exr");
+    write_fuzz_input("texture_file", "exr_half_million_by_one_texels", fuzz);
+    expect_load_error(fuzz,
+                      "a chunk of texels is missing or corrupt; OpenEXR: Invalid packed size");
+
+    // 64 × 64 texels of 0.5 in four chunks of 16 rows. With no tables, OpenEXR finds the chunks by
+    // walking them and the file loads whole; with the last chunk emptied as well (its leader: its
+    // first row, then its size), its rows read as zeros.
+    const fs::path file = path("no_tables.exr");
+    write_flat_exr(file, 64, 64, "zip");
+    std::string bytes = read_bytes(file);
+    const std::vector<std::uint64_t> places = zero_exr_tables(bytes, 4);
+    ASSERT_EQ(places.size(), 4u);
+    write_bytes(file, bytes);
+    const Result<Image> loaded = load_image(file);
+    ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+    EXPECT_EQ(loaded->pixels, std::vector<float>(64 * 64 * 3, 0.5f));
+    set_chunk_leader(bytes, places.back(), 4, 0);
+    write_bytes(file, bytes);
+    expect_load_error(file,
+                      "a chunk of texels is missing or corrupt; OpenEXR: Invalid packed size");
+}
+
+// The same for tiles, level by level, and for each part of a file of several.
+TEST_F(ImageIo, ATileMissingFromItsExrTableAndEmptyIsRefused) {
+    // As in MipLevelsAreWrittenWithTheirChunkTables.
+    const std::vector<Image> levels = mip_chain(37, 20, 3), small = mip_chain(16, 16, 3);
+    LevelsSaveOptions options;
+    options.tile_size = 16;
+    const fs::path one = path("no_tables_tiled.exr"), two = path("no_tables_parts.exr");
+    ASSERT_TRUE(save_image_levels(levels, one, options).ok());
+    ASSERT_TRUE(save_image_level_chains({{"a", levels}, {"b", small}}, two, options).ok());
+    // A tile's leader: its column, row and levels (4 bytes each), then its size; in a file of
+    // several parts, after the part's number.
+    for (const auto& [file, chunks, size_at] :
+         {std::tuple{one, 12, 16}, std::tuple{two, 12 + 5, 20}}) {
+        std::string bytes = read_bytes(file);
+        const std::vector<std::uint64_t> places =
+            zero_exr_tables(bytes, static_cast<std::size_t>(chunks));
+        ASSERT_EQ(places.size(), static_cast<std::size_t>(chunks)) << file;
+        write_bytes(file, bytes);
+        const Result<std::vector<Image>> loaded = load_image_levels(file);
+        ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+        ASSERT_EQ(loaded->size(), levels.size());
+        for (std::size_t l = 0; l < levels.size(); ++l)
+            EXPECT_EQ((*loaded)[l].pixels, levels[l].pixels) << file << ", level " << l;
+        set_chunk_leader(bytes, places.back(), static_cast<std::size_t>(size_at), 0);
+        write_bytes(file, bytes);
+        expect_load_error(file, "a chunk of texels is missing or corrupt");
+    }
+    const Result<Image> parts = load_image(two);
+    ASSERT_FALSE(parts.ok());
+    EXPECT_NE(parts.error().message.find("(part 1: a chunk"), std::string::npos)
+        << parts.error().message;
 }
 
 // fuzz_image_load found it: OpenImageIO 2.4, reading several rows of a deflated MinIsWhite TIFF
