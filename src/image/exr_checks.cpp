@@ -110,12 +110,32 @@ std::uint64_t b44_fewest_bytes(const exr_attr_chlist_t& channels, std::uint64_t 
     return bytes;
 }
 
+// The bytes a texel of `channels` takes before a lossless codec packs it: 2 a half value, 4 a
+// float or uint value, but 3 a float value where PXR24 (`pxr24`) rounds it to 24 bits first.
+std::uint64_t exr_texel_bytes(const exr_attr_chlist_t& channels, bool pxr24) {
+    std::uint64_t bytes = 0;
+    for (int c = 0; c < channels.num_channels; ++c) {
+        switch (channels.entries[c].pixel_type) {
+            case EXR_PIXEL_HALF:
+                bytes += 2;
+                break;
+            case EXR_PIXEL_FLOAT:
+                bytes += pxr24 ? 3 : 4;
+                break;
+            default:
+                bytes += 4;
+                break;
+        }
+    }
+    return bytes;
+}
+
 // The fewest bytes part `part` of an open OpenEXR file takes: each chunk (a block of rows or a
-// tile) an 8-byte entry in the chunk table and a header of at least 8 bytes, and its texels'
-// channels at least 2 bytes each (half; OpenImageIO reads no subsampled channels) at the best
-// ratio its compression allows, or as B44 codes them.
+// tile) an 8-byte entry in the chunk table and a header of at least 8 bytes, and its texels
+// (OpenImageIO reads no subsampled channels) at the best ratio its compression allows, or as B44
+// codes them.
 std::uint64_t exr_fewest_bytes(exr_const_context_t context, int part) {
-    constexpr std::uint64_t kFewestBytesPerChunk = 16, kFewestBytesPerValue = 2;
+    constexpr std::uint64_t kFewestBytesPerChunk = 16;
     std::int32_t chunks = 0;
     const exr_attribute_t* compression = nullptr;
     exr_attr_box2i_t window{};
@@ -134,9 +154,8 @@ std::uint64_t exr_fewest_bytes(exr_const_context_t context, int part) {
         return std::max(table, b44_fewest_bytes(*channels, texels, codec == EXR_COMPRESSION_B44A));
     const std::uint64_t ratio = exr_best_ratio(codec);
     if (ratio == 0) return table;
-    const std::uint64_t values =
-        saturating_product(texels, static_cast<std::uint64_t>(std::max(channels->num_channels, 0)));
-    return std::max(table, saturating_product(values / ratio, kFewestBytesPerValue));
+    const std::uint64_t texel_bytes = exr_texel_bytes(*channels, codec == EXR_COMPRESSION_PXR24);
+    return std::max(table, saturating_product(texels, texel_bytes) / ratio);
 }
 
 // Why the open OpenEXR file of `file_bytes` bytes cannot hold what its headers claim, if it

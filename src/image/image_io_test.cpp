@@ -1002,6 +1002,27 @@ TEST_F(ImageIo, AB44OrPizFileTooShortForItsTexelsIsRefusedBeforeReading) {
     }
 }
 
+// An OpenEXR's float and uint values take 4 bytes each before a lossless codec packs them, PXR24's
+// floats 3; counted as halves, a file could claim twice the texels its bytes hold.
+// fuzz_texture_file found one (run 4j, the input of fix 13): a 3 406-byte zip file of 524 328 × 1
+// texels, which 2 bytes a value let through.
+TEST_F(ImageIo, AnExrIsHeldToTheBytesOfItsChannelsTypes) {
+    const fs::path fuzz = path("half_million_by_one.exr");
+    write_fuzz_input("texture_file", "exr_half_million_by_one_texels", fuzz);
+    expect_load_error(fuzz,
+                      "the file is truncated: its header claims 524328 x 1 texels, more than its "
+                      "3406 bytes can hold");
+    // Two half channels and a float one, a row made wide enough for a file of halves but not for
+    // the float: 8 bytes a texel (7 in PXR24) where halves would take 6.
+    for (const auto& [compression, bytes] : {std::pair{"zip", 7.0}, std::pair{"pxr24", 6.5}}) {
+        const fs::path file = path(std::string("float_") + compression + ".exr");
+        write_flat_exr(file, 64, 1, compression, OIIO::TypeDesc::FLOAT);
+        const auto width = static_cast<std::int32_t>(fs::file_size(file) * 1032 / bytes);
+        set_exr_window_end(file, WindowEnd::last_column, width - 1);
+        expect_load_error(file, "its header claims " + std::to_string(width) + " x 1 texels");
+    }
+}
+
 TEST_F(ImageIo, SmallCompressedExrFilesStillLoad) {
     // The bounds on compressed OpenEXR files must not refuse the smallest honest ones: flat
     // images, below a bit a texel where deflated, which a bound for uncompressed files would
@@ -1082,17 +1103,11 @@ void set_chunk_leader(std::string& bytes, std::uint64_t place, std::size_t at,
     std::memcpy(bytes.data() + place + at, &value, sizeof value);
 }
 
-// fuzz_texture_file found it (run 4j, the input of fix 13): a zip OpenEXR of 524 328 × 1 texels
-// whose chunk table's one entry is 0 and whose one chunk holds no bytes. OpenEXR's C++ reader,
-// OpenImageIO's, takes a table with an entry of 0 for one whose writer stopped and finds the chunks
-// by walking them; it read the empty chunk as zeros without an error, and footprint loaded a black
-// image.
+// As fuzz_texture_file's input of fix 13 was: a file whose chunk table misses an entry, and whose
+// chunk there holds no bytes. OpenEXR's C++ reader, OpenImageIO's, takes a table with an entry of 0
+// for one whose writer stopped and finds the chunks by walking them; it read the empty chunk as
+// zeros without an error, and footprint loaded a black image.
 TEST_F(ImageIo, AChunkMissingFromItsExrTableAndEmptyIsRefusedNotReadAsZeros) {
-    const fs::path fuzz = path("half_million_by_one.exr");
-    write_fuzz_input("texture_file", "exr_half_million_by_one_texels", fuzz);
-    expect_load_error(fuzz,
-                      "a chunk of texels is missing or corrupt; OpenEXR: Invalid packed size");
-
     // 64 × 64 texels of 0.5 in four chunks of 16 rows. With no tables, OpenEXR finds the chunks by
     // walking them and the file loads whole; with the last chunk emptied as well (its leader: its
     // first row, then its size), its rows read as zeros.
