@@ -4,7 +4,7 @@
 
 #include <algorithm>
 #include <array>
-#include <fstream>
+#include <istream>
 #include <limits>
 #include <string_view>
 #include <utility>
@@ -181,9 +181,8 @@ std::optional<std::string> exr_size_problem(exr_const_context_t context,
 // tile, level by level (mipmaps l × l, ripmaps every lx × ly).
 bool exr_tiles_readable(exr_const_context_t context, int part) {
     exr_tile_level_mode_t mode{};
-    exr_tile_round_mode_t rounding{};
     std::int32_t levels_x = 0, levels_y = 0;
-    if (exr_get_tile_descriptor(context, part, nullptr, nullptr, &mode, &rounding) !=
+    if (exr_get_tile_descriptor(context, part, nullptr, nullptr, &mode, nullptr) !=
             EXR_ERR_SUCCESS ||
         exr_get_tile_levels(context, part, &levels_x, &levels_y) != EXR_ERR_SUCCESS)
         return false;
@@ -336,15 +335,15 @@ struct ExrCxxHeaders {
     std::optional<std::uint64_t> tables_at;
 };
 
-// The headers of the OpenEXR file `file` (of `file_bytes` bytes) as OpenEXR 3.1's C++ reader,
+// The headers of the OpenEXR file `in` (of `file_bytes` bytes) as OpenEXR 3.1's C++ reader,
 // which OpenImageIO 2.4 reads with, walks them: names of up to 255 characters in any file, and
 // each value read by its type (see exr_value_bytes), so that on a corrupt file its walk can part
 // from the core library's; or why that reader would allocate more for a value than the file
 // holds.
-Result<ExrCxxHeaders> exr_cxx_headers(const fs::path& file, std::uintmax_t file_bytes) {
+Result<ExrCxxHeaders> exr_cxx_headers(std::istream& in, std::uintmax_t file_bytes) {
     constexpr std::uint32_t kMultiPart = 0x1000;
     constexpr std::uint64_t kKeptValueBytes = 1024;  // enough for every value compared below
-    std::ifstream in(file, std::ios::binary);
+    in.clear();
     in.seekg(4);  // after the magic number
     const std::optional<std::uint32_t> version = read_u32_le(in);
     ExrCxxHeaders headers;
@@ -388,12 +387,12 @@ std::uint64_t exr_chunks(exr_const_context_t context) {
     return chunks;
 }
 
-// Whether the chunk tables of an OpenEXR file, `chunks` offsets of 8 bytes from `tables_at`, miss
-// an entry: one ≤ 0 as a signed offset, or the file ends first. OpenEXR writes the tables last,
-// and its C++ reader takes such a table for one whose writer stopped, and walks the chunks to find
-// their places instead.
-bool exr_tables_incomplete(const fs::path& file, std::uint64_t tables_at, std::uint64_t chunks) {
-    std::ifstream in(file, std::ios::binary);
+// Whether the chunk tables of the OpenEXR file `in`, `chunks` offsets of 8 bytes from `tables_at`,
+// miss an entry: one ≤ 0 as a signed offset, or the file ends first. OpenEXR writes the tables
+// last, and its C++ reader takes such a table for one whose writer stopped, and walks the chunks to
+// find their places instead.
+bool exr_tables_incomplete(std::istream& in, std::uint64_t tables_at, std::uint64_t chunks) {
+    in.clear();
     in.seekg(static_cast<std::streamoff>(tables_at));
     for (std::uint64_t i = 0; i < chunks; ++i) {
         std::array<unsigned char, 8> b{};
@@ -483,32 +482,33 @@ std::optional<std::string> exr_reader_agreement_problem(
     return std::string("the OpenEXR header is corrupt (OpenEXR's two readers read it differently)");
 }
 
-// The first problem of the open OpenEXR file `file` that the core library does not report as it
-// opens it.
-std::optional<std::string> exr_layout_problem(exr_const_context_t context, const fs::path& file) {
+// The first problem of the OpenEXR file `file`, open as `context` and as `in`, that the core
+// library does not report as it opens it.
+std::optional<std::string> exr_layout_problem(exr_const_context_t context, const fs::path& file,
+                                              std::istream& in) {
     std::error_code size_error;
     const std::uintmax_t file_bytes = fs::file_size(file, size_error);
     if (size_error) return "its size cannot be read (" + size_error.message() + ")";
-    const Result<ExrCxxHeaders> cxx = exr_cxx_headers(file, file_bytes);
+    const Result<ExrCxxHeaders> cxx = exr_cxx_headers(in, file_bytes);
     if (!cxx) return cxx.error().message;
     if (auto cause = exr_reader_agreement_problem(context, cxx->parts)) return cause;
     if (auto cause = exr_tile_problem(context)) return cause;
     if (auto cause = exr_size_problem(context, file_bytes)) return cause;
     // Reading the chunks' leaders costs a read a chunk (thousands for a large tiled pyramid), so
     // they are read only where OpenEXR's C++ reader would not find the chunks from the tables.
-    if (cxx->tables_at && !exr_tables_incomplete(file, *cxx->tables_at, exr_chunks(context)))
+    if (cxx->tables_at && !exr_tables_incomplete(in, *cxx->tables_at, exr_chunks(context)))
         return std::nullopt;
     return exr_chunk_problem(context);
 }
 
 }  // namespace
 
-// The first problem OpenEXR's core library finds in the OpenEXR file `file`, in its headers or
-// its chunks. OpenEXRCore checks every attribute against the format's rules and the file's length
-// before it allocates, and each chunk's place and leader; OpenEXR 3.1's C++ reader, which
-// OpenImageIO 2.4 reads with, allocates what a corrupt size claims, and reads some missing chunks
-// as zeros.
-std::optional<std::string> exr_problem(const fs::path& file) {
+// The first problem OpenEXR's core library finds in the OpenEXR file `file` (open as `in`), in its
+// headers or its chunks. OpenEXRCore checks every attribute against the format's rules and the
+// file's length before it allocates, and each chunk's place and leader; OpenEXR 3.1's C++ reader,
+// which OpenImageIO 2.4 reads with, allocates what a corrupt size claims, and reads some missing
+// chunks as zeros.
+std::optional<std::string> exr_problem(const fs::path& file, std::istream& in) {
     std::string first_error;
     exr_first_error = &first_error;
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
@@ -518,7 +518,7 @@ std::optional<std::string> exr_problem(const fs::path& file) {
     exr_first_error = nullptr;
     std::optional<std::string> layout;
     if (result == EXR_ERR_SUCCESS) {
-        if (first_error.empty()) layout = exr_layout_problem(context, file);
+        if (first_error.empty()) layout = exr_layout_problem(context, file, in);
         exr_finish(&context);
     }
     // The core library's lenient parse skips an attribute it finds corrupt, reports it and

@@ -27,10 +27,11 @@ std::optional<std::string> png_problem(std::istream& in);
 // claims.
 std::optional<std::string> jpeg_problem(std::istream& in);
 
-// The OpenEXR file `file`: what OpenEXR's core library reports of its headers, a header its C++
-// reader (OpenImageIO's) reads otherwise, tiles tile_problem() refuses, a file too short for the
-// chunks and texels it claims, or a chunk missing from its place or with a corrupt leader.
-std::optional<std::string> exr_problem(const std::filesystem::path& file);
+// The OpenEXR file `file`, also open as `in` (which the checks move about in): what OpenEXR's
+// core library reports of its headers, a header its C++ reader (OpenImageIO's) reads otherwise,
+// tiles tile_problem() refuses, a file too short for the chunks and texels it claims, or a chunk
+// missing from its place or with a corrupt leader.
+std::optional<std::string> exr_problem(const std::filesystem::path& file, std::istream& in);
 
 // Tiles of `tile_width` × `tile_height` texels for an image of `width` × `height`: larger than the
 // image and than 1024².

@@ -113,7 +113,7 @@ Result<std::unique_ptr<OIIO::ImageInput>> open_image_input(const fs::path& file)
         if (auto cause = jpeg_problem(in)) return read_error(file, *cause);
     // An OpenEXR is vetted whatever its extension: any reader handed it would trust its header.
     if (*signature == Signature::exr)
-        if (auto cause = exr_problem(file)) return read_error(file, *cause);
+        if (auto cause = exr_problem(file, in)) return read_error(file, *cause);
     in.close();
     // Created from the extension alone ("exr", not the file's name), the reader is the only one
     // that sees the file.
