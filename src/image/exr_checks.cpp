@@ -482,13 +482,14 @@ std::optional<std::string> exr_reader_agreement_problem(
     return std::string("the OpenEXR header is corrupt (OpenEXR's two readers read it differently)");
 }
 
-// The first problem of the OpenEXR file `file`, open as `context` and as `in`, that the core
-// library does not report as it opens it.
-std::optional<std::string> exr_layout_problem(exr_const_context_t context, const fs::path& file,
-                                              std::istream& in) {
-    std::error_code size_error;
-    const std::uintmax_t file_bytes = fs::file_size(file, size_error);
-    if (size_error) return "its size cannot be read (" + size_error.message() + ")";
+// The first problem of an OpenEXR file, open as `context` and as `in`, that the core library
+// does not report as it opens it.
+std::optional<std::string> exr_layout_problem(exr_const_context_t context, std::istream& in) {
+    in.clear();
+    in.seekg(0, std::ios::end);
+    const std::streampos end = in.tellg();
+    if (end < 0) return std::string("its size cannot be read");
+    const auto file_bytes = static_cast<std::uintmax_t>(end);
     const Result<ExrCxxHeaders> cxx = exr_cxx_headers(in, file_bytes);
     if (!cxx) return cxx.error().message;
     if (auto cause = exr_reader_agreement_problem(context, cxx->parts)) return cause;
@@ -518,7 +519,7 @@ std::optional<std::string> exr_problem(const fs::path& file, std::istream& in) {
     exr_first_error = nullptr;
     std::optional<std::string> layout;
     if (result == EXR_ERR_SUCCESS) {
-        if (first_error.empty()) layout = exr_layout_problem(context, file, in);
+        if (first_error.empty()) layout = exr_layout_problem(context, in);
         exr_finish(&context);
     }
     // The core library's lenient parse skips an attribute it finds corrupt, reports it and
