@@ -24,9 +24,10 @@
 //   rebuilt), dropped from memory, and read tile by tile like a stored file: later runs open the
 //   cached file without building. Without it the pyramid stays in memory (stats().bytes_in_memory).
 //   Colour: integer files are sRGB-decoded as load_image() decodes them (image/image_io.h), float
-//   files are linear; alpha is read as stored, straight or premultiplied, as load_image() reads
-//   it. Wrap modes come from the file's "wrapmodes" attribute (maketx's; "black" is read as
-//   clamp), else options.default_wrap.
+//   files are linear (options.color = ColorEncoding::linear: every file's values as stored, as
+//   OpenImageIO's TextureSystem returns them); alpha is read as stored, straight or
+//   premultiplied, as load_image() reads it. Wrap modes come from the file's "wrapmodes" attribute
+//   (maketx's; "black" is read as clamp), else options.default_wrap.
 //
 // Bounded memory
 //   Stored and cached files' texels live in tiles of options.tile_size² texels, per MIP level,
@@ -90,6 +91,7 @@
 #include <footprint/core/result.h>
 #include <footprint/envmap/env_footprint.h>
 #include <footprint/envmap/environment_map.h>
+#include <footprint/image/image_io.h>
 #include <footprint/texture/texture_lookup.h>
 #include <footprint/texture/wrap.h>
 
@@ -103,6 +105,9 @@ struct TextureSystemOptions {
     std::filesystem::path cache_dir;
     DownsampleFilter downsample = DownsampleFilter::box;  // of pyramids built here
     WrapMode default_wrap = WrapMode::repeat;             // for files that do not say how they wrap
+    // How integer files' colour channels are decoded (load_image()'s choice, image/image_io.h):
+    // automatic decodes sRGB where load_image() would; linear returns values as stored.
+    ColorEncoding color = ColorEncoding::automatic;
 };
 
 struct TextureSystemStats {

@@ -36,29 +36,50 @@ fs::path cached_pyramid_file(const fs::path& file, const TextureSystemOptions& o
     std::ostringstream key;
     key << absolute.string() << '|' << size << '|' << modified << '|' << options.tile_size << '|'
         << static_cast<int>(options.downsample) << '|' << static_cast<int>(wrap_s) << '|'
-        << static_cast<int>(wrap_t) << '|' << kind;
+        << static_cast<int>(wrap_t) << '|' << kind << '|' << static_cast<int>(options.color);
     std::ostringstream name;
     name << file.stem().string() << '-' << kind << '-' << std::hex
          << std::hash<std::string>{}(key.str()) << ".exr";
     return options.cache_dir / name.str();
 }
 
-void TextureHandle::open(const TextureSystemOptions& options) {
+bool decodes_srgb(const TextureSystemOptions& options, const OIIO::ImageSpec& spec) {
+    switch (options.color) {
+        case ColorEncoding::automatic:
+            return detail::automatic_decodes_srgb(spec);
+        case ColorEncoding::srgb:
+            return true;
+        case ColorEncoding::linear:
+            return false;
+    }
+    return false;
+}
+
+void TextureHandle::open(const TextureSystemOptions& options, const detail::OpenAs& as) {
     Result<std::unique_ptr<OIIO::ImageInput>> opened = detail::open_image_input(name);
     if (!opened) {
         error = opened.error();
         return;
     }
     std::unique_ptr<OIIO::ImageInput> in = std::move(*opened);
+    subimage_ = as.subimage;
+    if (!in->seek_subimage(subimage_, 0)) {
+        error = detail::read_error(name, "it has no subimage " + std::to_string(subimage_));
+        return;
+    }
     const OIIO::ImageSpec spec = in->spec();
     read_wrap_modes(spec, options.default_wrap, info);
+    info.wrap_s = as.wrap_s.value_or(info.wrap_s);
+    info.wrap_t = as.wrap_t.value_or(info.wrap_t);
+    wraps_given_ = as.wrap_s || as.wrap_t;
     int levels = 1;
-    while (in->seek_subimage(0, levels)) ++levels;
+    while (in->seek_subimage(subimage_, levels)) ++levels;
     // Stored levels: tiled, and every level MipPyramid's size, down to 1×1.
     bool stored =
         spec.tile_width > 0 && spec.nchannels >= 1 && spec.nchannels <= MipPyramid::kMaxChannels;
     for (int l = 0; stored && l < levels; ++l) {
-        stored = in->seek_subimage(0, l) && in->spec().width == std::max(1, spec.width >> l) &&
+        stored = in->seek_subimage(subimage_, l) &&
+                 in->spec().width == std::max(1, spec.width >> l) &&
                  in->spec().height == std::max(1, spec.height >> l);
     }
     stored = stored && std::max(spec.width >> (levels - 1), spec.height >> (levels - 1)) == 1;
@@ -67,6 +88,12 @@ void TextureHandle::open(const TextureSystemOptions& options) {
         return;
     }
     in.reset();
+    if (subimage_ != 0) {
+        error = detail::read_error(name, "subimage " + std::to_string(subimage_) +
+                                             " is not a tiled MIP pyramid (other subimages are "
+                                             "read only from tiled MIP-mapped files)");
+        return;
+    }
     // A pyramid built in an earlier run (or by another system) is opened, not built again.
     const fs::path cached =
         options.cache_dir.empty()
@@ -77,7 +104,9 @@ void TextureHandle::open(const TextureSystemOptions& options) {
         open_stored(cached.string(), options);
         return;
     }
-    Result<Image> image = load_image(name);
+    ImageLoadOptions load;
+    load.encoding = options.color;
+    Result<Image> image = load_image(name, load);
     if (!image) {
         error = image.error();
         return;
@@ -130,9 +159,11 @@ void TextureHandle::open_stored(const std::string& file, std::unique_ptr<OIIO::I
         return;
     }
     const OIIO::ImageSpec& spec = input_->spec();
+    // The wrap modes open() chose (the source's for a cached file, or the ones asked for); a part
+    // of an environment pyramid file is given its own by open_part().
     const WrapMode wrap_s = info.wrap_s, wrap_t = info.wrap_t;
     read_wrap_modes(spec, options.default_wrap, info);
-    if (file != name) info.wrap_s = wrap_s, info.wrap_t = wrap_t;  // the cache's are the source's
+    if (file != name || wraps_given_) info.wrap_s = wrap_s, info.wrap_t = wrap_t;
     info.width = spec.width;
     info.height = spec.height;
     info.channels = spec.nchannels;
@@ -140,7 +171,7 @@ void TextureHandle::open_stored(const std::string& file, std::unique_ptr<OIIO::I
     file_tile_width_ = spec.tile_width;
     file_tile_height_ = spec.tile_height;
     alpha_ = spec.nchannels == 2 || spec.nchannels == 4 ? spec.nchannels - 1 : -1;
-    srgb_ = detail::automatic_decodes_srgb(spec);
+    srgb_ = decodes_srgb(options, spec);
     slope_offset = detail::slope_offset(spec);
     std::vector<int> widths, heights;
     for (int w = spec.width, h = spec.height;; w = std::max(1, w / 2), h = std::max(1, h / 2)) {

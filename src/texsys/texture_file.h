@@ -14,6 +14,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "core/result.h"
+#include "texsys/texel_access.h"
 #include "texture/mip_pyramid.h"
 #include "texture/tiled_texels.h"
 #include "texture_system.h"
@@ -25,8 +26,9 @@ class TextureHandle {
     TextureHandle(std::string name, std::uint32_t id) : name(std::move(name)), id(id) {}
 
     // Opens the file: its header for stored levels, else the image, whose pyramid is built (and,
-    // with options.cache_dir, written there and opened as stored). Sets `error` on failure.
-    void open(const TextureSystemOptions& options);
+    // with options.cache_dir, written there and opened as stored), as `as` says (subimage, wrap
+    // modes). Sets `error` on failure.
+    void open(const TextureSystemOptions& options, const detail::OpenAs& as = {});
 
     // Opens part `part` of the file (an environment pyramid file's face or polar cap,
     // envmap/tiled_environment.h) to be read tile by tile as `part_shape`, which its headers gave.
@@ -78,7 +80,8 @@ class TextureHandle {
 
     std::mutex read_mutex_;  // one read at a time through input_
     std::unique_ptr<OIIO::ImageInput> input_;
-    int subimage_ = 0;  // the part (OpenImageIO subimage) read
+    int subimage_ = 0;          // the part (OpenImageIO subimage) read
+    bool wraps_given_ = false;  // open() was given wrap modes: the file's own do not apply
     int file_tile_width_ = 0, file_tile_height_ = 0;
     bool srgb_ = false;  // decode the colour channels (not alpha) from sRGB
     int alpha_ = -1;     // the alpha channel, or −1
@@ -90,5 +93,9 @@ class TextureHandle {
 std::filesystem::path cached_pyramid_file(const std::filesystem::path& file,
                                           const TextureSystemOptions& options, WrapMode wrap_s,
                                           WrapMode wrap_t, std::string_view kind);
+
+// Whether integer files' colour channels are decoded from sRGB (TextureSystemOptions::color) for a
+// file whose header is `spec`.
+bool decodes_srgb(const TextureSystemOptions& options, const OIIO::ImageSpec& spec);
 
 }  // namespace footprint

@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <shared_mutex>
 #include <unordered_map>
@@ -126,6 +127,32 @@ class EnvLookupTiles {
     std::array<detail::TiledEnvironment::Part, kParts> sources_{};
 };
 
+// The texels of a pyramid held whole, and of one read tile by tile, for read_texels().
+class PyramidTexels final : public detail::TexelReader {
+  public:
+    explicit PyramidTexels(const MipPyramid& pyramid) : pyramid_(pyramid) {}
+    int level_count() const override { return pyramid_.level_count(); }
+    int width(int l) const override { return pyramid_.width(l); }
+    int height(int l) const override { return pyramid_.height(l); }
+    int channels() const override { return pyramid_.channels(); }
+    const float* texel(int l, int x, int y) const override { return pyramid_.texel(l, x, y); }
+
+  private:
+    const MipPyramid& pyramid_;
+};
+class TiledTexelReader final : public detail::TexelReader {
+  public:
+    explicit TiledTexelReader(const detail::TiledTexels& texels) : texels_(texels) {}
+    int level_count() const override { return texels_.level_count(); }
+    int width(int l) const override { return texels_.width(l); }
+    int height(int l) const override { return texels_.height(l); }
+    int channels() const override { return texels_.channels(); }
+    const float* texel(int l, int x, int y) const override { return texels_.texel(l, x, y); }
+
+  private:
+    const detail::TiledTexels& texels_;
+};
+
 // A name → entry table that many threads read and a few add to.
 template <class Entry>
 class FileTable {
@@ -160,8 +187,19 @@ class TextureSystemImpl final : public TextureSystem {
     explicit TextureSystemImpl(const TextureSystemOptions& options)
         : options_(options), cache_(options.max_memory_mb << 20) {}
 
-    TextureHandle* handle(std::string_view name) override {
-        const auto found = files_.find_or_add(name, [&] {
+    TextureHandle* handle(std::string_view name) override { return handle(name, {}); }
+
+    // The entry of `name` read as `as` (texsys/texel_access.h): a default `as` is the file's own
+    // entry, any other an entry of its own, keyed by the name and what `as` says.
+    TextureHandle* handle(std::string_view name, const detail::OpenAs& as) {
+        std::string key(name);
+        if (!(as == detail::OpenAs{})) {
+            key += '\0';  // no file name holds a NUL
+            key += std::to_string(as.subimage) + ',' +
+                   (as.wrap_s ? to_string(*as.wrap_s) : "file") + ',' +
+                   (as.wrap_t ? to_string(*as.wrap_t) : "file");
+        }
+        const auto found = files_.find_or_add(key, [&] {
             return std::make_unique<TextureHandle>(std::string(name), next_file_id_++);
         });
         TextureHandle* file = found.first;  // (clang 14 cannot capture a structured binding)
@@ -169,11 +207,31 @@ class TextureSystemImpl final : public TextureSystem {
             if (name.find(kUdim) != std::string_view::npos) {
                 file->udim = true;
             } else {
-                file->open(options_);
+                file->open(options_, as);
                 if (file->pyramid) bytes_in_memory_ += pyramid_bytes(*file->pyramid);
             }
         });
         return file;
+    }
+
+    // texsys/texel_access.h's read_texels().
+    Status read_texels(TextureHandle* file,
+                       const std::function<void(const detail::TexelReader&)>& read) {
+        if (file->udim) return Error{"'" + file->name + "' is a UDIM set, not one texture"};
+        if (file->error) return *file->error;
+        if (file->pyramid) {
+            read(PyramidTexels(*file->pyramid));
+        } else {
+            texsys::ThreadTiles& thread = thread_tiles_.local();
+            const LookupTiles tiles(cache_, thread, *file);
+            const detail::TiledTexels texels(file->shape, tiles, tiles.slots());
+            read(TiledTexelReader(texels));
+        }
+        if (file->read_failed) {
+            std::lock_guard lock(file->read_error_mutex);
+            return *file->read_error;
+        }
+        return {};
     }
 
     Result<TextureInfo> info(TextureHandle* file) override {
@@ -417,7 +475,9 @@ class TextureSystemImpl final : public TextureSystem {
         std::error_code ec;
         if (!cached.empty() && fs::exists(cached, ec))
             return open_stored_environment(entry, cached.string());
-        Result<EnvironmentMap> map = load_environment({fs::path(name)});
+        EnvImageOptions load;
+        load.image.encoding = options_.color;
+        Result<EnvironmentMap> map = load_environment({fs::path(name)}, load);
         if (!map) return void(entry.error = map.error());
         if (cached.empty()) {
             entry.value = std::make_shared<const EnvironmentMap>(std::move(*map));
@@ -577,6 +637,16 @@ class TextureSystemImpl final : public TextureSystem {
 };
 
 }  // namespace
+
+TextureHandle* detail::texture_handle(TextureSystem& system, std::string_view name,
+                                      const OpenAs& as) {
+    return static_cast<TextureSystemImpl&>(system).handle(name, as);
+}
+
+Status detail::read_texels(TextureSystem& system, TextureHandle* file,
+                           const std::function<void(const TexelReader&)>& read) {
+    return static_cast<TextureSystemImpl&>(system).read_texels(file, read);
+}
 
 Result<std::unique_ptr<TextureSystem>> TextureSystem::create(const TextureSystemOptions& options) {
     if (options.max_memory_mb < 1)
