@@ -1,0 +1,483 @@
+#include "oiio/oiio_lookups.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "texsys/texel_access.h"
+
+namespace footprint::oiio::detail {
+
+namespace {
+
+using footprint::detail::OpenAs;
+using footprint::detail::TexelReader;
+using OIIO::TextureOpt;
+
+constexpr int kMaxChannels = MipPyramid::kMaxChannels;
+
+// ---- OpenImageIO's wrap rules on a texel index (valid: false means a black texel).
+bool wrap_index(TextureOpt::Wrap wrap, int& i, int n) {
+    switch (wrap) {
+        case TextureOpt::WrapClamp:
+            i = std::clamp(i, 0, n - 1);
+            return true;
+        case TextureOpt::WrapPeriodic:
+        case TextureOpt::WrapPeriodicPow2:
+            i %= n;
+            if (i < 0) i += n;
+            return true;
+        case TextureOpt::WrapMirror: {
+            if (i < 0) i = -1 - i;
+            const int iteration = i / n;
+            i -= iteration * n;
+            if (iteration & 1) i = n - 1 - i;
+            return true;
+        }
+        case TextureOpt::WrapPeriodicSharedBorder: {
+            // As OpenImageIO 2.4 computes it, the first and last columns being one position.
+            const int period = std::max(n, 2) - 1;
+            i %= period;
+            if (i < 0) i += std::max(n, 2);
+            return true;
+        }
+        default:  // black
+            return i >= 0 && i < n;
+    }
+}
+
+TextureOpt::Wrap resolved(TextureOpt::Wrap asked, TextureOpt::Wrap file) {
+    const TextureOpt::Wrap w = asked == TextureOpt::WrapDefault ? file : asked;
+    return w == TextureOpt::WrapPeriodicPow2 ? TextureOpt::WrapPeriodic : w;
+}
+
+std::optional<WrapMode> footprint_wrap(TextureOpt::Wrap wrap) {
+    switch (wrap) {
+        case TextureOpt::WrapClamp:
+            return WrapMode::clamp;
+        case TextureOpt::WrapPeriodic:
+        case TextureOpt::WrapPeriodicPow2:
+            return WrapMode::repeat;
+        case TextureOpt::WrapMirror:
+            return WrapMode::mirror;
+        default:
+            return std::nullopt;  // black, periodic with a shared border: not footprint's
+    }
+}
+
+// ---- OpenImageIO's rules for the mip modes whose value it fixes (texture_lookup_nomip and
+// texture_lookup_trilinear_mipmap in its texturesys.cpp), on footprint's texels.
+
+// One level's sample: the channels from `first`, the derivatives ∂/∂s, ∂/∂t, and the weight of
+// the taps that fell inside (for the fill of channels the file lacks, as OpenImageIO weighs it).
+struct LevelSample {
+    std::array<float, kMaxChannels> value{}, ds{}, dt{};
+    float coverage = 0;
+};
+
+LevelSample sample_closest(const TexelReader& texels, int level, float s, float t,
+                           TextureOpt::Wrap ws, TextureOpt::Wrap wt, int first, int count) {
+    const int w = texels.width(level), h = texels.height(level);
+    const float x = s * static_cast<float>(w) - 0.5f, y = t * static_cast<float>(h) - 0.5f;
+    int i = static_cast<int>(std::floor(x)), j = static_cast<int>(std::floor(y));
+    if (x - std::floor(x) > 0.5f) ++i;
+    if (y - std::floor(y) > 0.5f) ++j;
+    LevelSample out;
+    if (!(wrap_index(ws, i, w) & wrap_index(wt, j, h))) return out;
+    const float* texel = texels.texel(level, i, j);
+    for (int c = 0; c < count; ++c) out.value[c] = texel[first + c];
+    out.coverage = 1;
+    return out;
+}
+
+LevelSample sample_bilinear(const TexelReader& texels, int level, float s, float t,
+                            TextureOpt::Wrap ws, TextureOpt::Wrap wt, int first, int count) {
+    const int w = texels.width(level), h = texels.height(level);
+    const float x = s * static_cast<float>(w) - 0.5f, y = t * static_cast<float>(h) - 0.5f;
+    const float fx = x - std::floor(x), fy = y - std::floor(y);
+    int i[2] = {static_cast<int>(std::floor(x)), 0}, j[2] = {static_cast<int>(std::floor(y)), 0};
+    i[1] = i[0] + 1;
+    j[1] = j[0] + 1;
+    bool valid_i[2], valid_j[2];
+    for (int k = 0; k < 2; ++k) {
+        valid_i[k] = wrap_index(ws, i[k], w);
+        valid_j[k] = wrap_index(wt, j[k], h);
+    }
+    // The four taps, a b above, c d below; a black tap is 0.
+    static const std::array<float, kMaxChannels> kBlack{};
+    const float* tap[2][2];
+    for (int b = 0; b < 2; ++b)
+        for (int a = 0; a < 2; ++a)
+            tap[b][a] =
+                valid_i[a] && valid_j[b] ? texels.texel(level, i[a], j[b]) + first : kBlack.data();
+    LevelSample out;
+    for (int c = 0; c < count; ++c) {
+        const float a = tap[0][0][c], b = tap[0][1][c], cc = tap[1][0][c], d = tap[1][1][c];
+        const float upper = a + fx * (b - a), lower = cc + fx * (d - cc);
+        out.value[c] = upper + fy * (lower - upper);
+        out.ds[c] = static_cast<float>(w) * ((b - a) + fy * ((d - cc) - (b - a)));
+        out.dt[c] = static_cast<float>(h) * ((cc - a) + fx * ((d - b) - (cc - a)));
+    }
+    const auto inside = [&](int a, int b) { return valid_i[a] && valid_j[b] ? 1.0f : 0.0f; };
+    const float upper = inside(0, 0) + fx * (inside(1, 0) - inside(0, 0));
+    const float lower = inside(0, 1) + fx * (inside(1, 1) - inside(0, 1));
+    out.coverage = upper + fy * (lower - upper);
+    return out;
+}
+
+// OpenImageIO's adjust_width: derivatives scaled by the widths, degenerate ones made tiny.
+void adjust_width(TexCoords& c, float swidth, float twidth) {
+    c.dsdx *= swidth;
+    c.dtdx *= twidth;
+    c.dsdy *= swidth;
+    c.dtdy *= twidth;
+    constexpr float eps = 1.0e-8f, eps2 = eps * eps;
+    const float dx2 = c.dsdx * c.dsdx + c.dtdx * c.dtdx, dy2 = c.dsdy * c.dsdy + c.dtdy * c.dtdy;
+    if (dx2 < eps2) {
+        if (dy2 < eps2) {
+            c.dsdx = eps, c.dtdx = 0, c.dsdy = 0, c.dtdy = eps;
+        } else {
+            const float scale = eps / std::sqrt(dy2);
+            c.dsdx = c.dtdy * scale;
+            c.dtdx = -c.dsdy * scale;
+        }
+    } else if (dy2 < eps2) {
+        const float scale = eps / std::sqrt(dx2);
+        c.dsdy = -c.dtdx * scale;
+        c.dtdy = c.dsdx * scale;
+    }
+}
+
+struct LevelChoice {
+    int level[2] = {0, 0};
+    float weight[2] = {1, 0};
+};
+
+// compute_miplevels: the level where the filter's width falls to a texel, blended with the one
+// before it by 2·width − 1 (not the GL rule's fraction of the log).
+LevelChoice oiio_levels(const TexelReader& texels, const TextureOpt& options, float filtwidth) {
+    LevelChoice choice;
+    const int levels = texels.level_count();
+    int found = -1;
+    float blend = 0;
+    for (int m = 0; m < levels; ++m) {
+        const float width =
+            filtwidth * static_cast<float>(std::min(texels.width(m), texels.height(m)));
+        if (width <= 1.0f) {
+            found = m;
+            blend = std::clamp(2.0f * width - 1.0f, 0.0f, 1.0f);
+            break;
+        }
+    }
+    if (found < 0) {  // wider than the coarsest level
+        choice.level[0] = choice.level[1] = levels - 1;
+    } else if (found == 0 || options.mipmode == TextureOpt::MipModeNoMIP) {
+        choice.level[0] = choice.level[1] = 0;  // finer than level 0
+    } else if (options.mipmode == TextureOpt::MipModeOneLevel) {
+        choice.level[0] = choice.level[1] = found;
+    } else {
+        choice.level[0] = found - 1;
+        choice.level[1] = found;
+        choice.weight[0] = 1.0f - blend;
+        choice.weight[1] = blend;
+    }
+    return choice;
+}
+
+// The value of a no-MIP, one-level or trilinear lookup: OpenImageIO's levels and weights,
+// closest or bilinear samples (its smart bicubic is bilinear in these modes).
+LevelSample oiio_rule_lookup(const TexelReader& texels, const TextureOpt& options, TexCoords c,
+                             TextureOpt::Wrap ws, TextureOpt::Wrap wt, int first, int count) {
+    LevelChoice choice;
+    if (options.mipmode != TextureOpt::MipModeNoMIP) {
+        adjust_width(c, options.swidth, options.twidth);
+        const float sfilt = std::max(std::fabs(c.dsdx), std::fabs(c.dsdy));
+        const float tfilt = std::max(std::fabs(c.dtdx), std::fabs(c.dtdy));
+        float filtwidth =
+            options.conservative_filter ? std::max(sfilt, tfilt) : std::min(sfilt, tfilt);
+        filtwidth += std::max(options.sblur, options.tblur);
+        choice = oiio_levels(texels, options, filtwidth);
+    }
+    LevelSample sum;
+    for (int k = 0; k < 2; ++k) {
+        if (choice.weight[k] == 0) continue;
+        const LevelSample one =
+            options.interpmode == TextureOpt::InterpClosest
+                ? sample_closest(texels, choice.level[k], c.s, c.t, ws, wt, first, count)
+                : sample_bilinear(texels, choice.level[k], c.s, c.t, ws, wt, first, count);
+        const float w = choice.weight[k];
+        for (int ch = 0; ch < count; ++ch) {
+            sum.value[ch] += w * one.value[ch];
+            sum.ds[ch] += w * one.ds[ch];
+            sum.dt[ch] += w * one.dt[ch];
+        }
+        sum.coverage += w * one.coverage;
+    }
+    return sum;
+}
+
+// ---- footprint assembly for the anisotropic mode.
+
+// The footprint in level-0 texels, K = D Dᵀ with D = diag(W, H)·∂(s,t)/∂(x,y) (docs/method.md
+// §1), the blur's Gaussian added to it: blur b (a fraction of the texture) widens the kernel as a
+// pixel derivative of length b would, and kernels convolve by adding their covariances.
+struct Covariance {
+    double a = 0, b = 0, c = 0;  // [[a b] [b c]]
+};
+Covariance footprint_covariance(const TexCoords& c, float w, float h, float sblur, float tblur) {
+    const double xs = c.dsdx * w, xt = c.dtdx * h, ys = c.dsdy * w, yt = c.dtdy * h;
+    return {xs * xs + ys * ys + sblur * sblur * w * w, xs * xt + ys * yt,
+            xt * xt + yt * yt + tblur * tblur * h * h};
+}
+double major_axis(const Covariance& k) {  // √ of K's largest eigenvalue: texels
+    const double mean = 0.5 * (k.a + k.c), d = std::hypot(0.5 * (k.a - k.c), k.b);
+    return std::sqrt(mean + d);
+}
+// Derivatives whose footprint is K: the symmetric square root of K, back in normalised units.
+TexCoords derivatives_of(const Covariance& k, float s, float t, float w, float h) {
+    const double root_det = std::sqrt(std::max(0.0, k.a * k.c - k.b * k.b));
+    const double scale = std::sqrt(std::max(1e-30, k.a + k.c + 2 * root_det));
+    const double d00 = (k.a + root_det) / scale, d01 = k.b / scale, d11 = (k.c + root_det) / scale;
+    return {s,
+            t,
+            static_cast<float>(d00 / w),
+            static_cast<float>(d01 / h),
+            static_cast<float>(d01 / w),
+            static_cast<float>(d11 / h)};
+}
+
+// Where a footprint lies against the texture's edges: the wrap modes matter only for a footprint
+// whose texels reach beyond them. Its reach: the ellipse's extent, a wide margin for the probes'
+// spread along the major axis and their bilinear taps at a coarser level.
+enum class Reach { inside, straddles, outside };
+Reach reach(double centre, double extent, double margin, int size) {
+    const double r = 4 * extent + 2 * margin + 2;
+    if (centre - r >= 0 && centre + r <= size) return Reach::inside;
+    if (centre + r < 0 || centre - r > size) return Reach::outside;
+    return Reach::straddles;
+}
+
+void write_result(const LevelSample& v, int actual, int nchannels, const TextureOpt& options,
+                  const FileFacts& facts, const Settings& settings, float* result, float* dresultds,
+                  float* dresultdt) {
+    for (int c = 0; c < nchannels; ++c) {
+        result[c] = c < actual ? v.value[c] : options.fill * v.coverage;
+        if (dresultds) {
+            dresultds[c] = c < actual ? v.ds[c] : 0.0f;
+            dresultdt[c] = c < actual ? v.dt[c] * (settings.flip_t ? -1.0f : 1.0f) : 0.0f;
+        }
+    }
+    // gray_to_rgb (OpenImageIO's fill_gray_channels): one channel to RGB, two (R, A) to RRRA.
+    if (actual < nchannels && options.firstchannel == 0 && settings.gray_to_rgb) {
+        const int channels = facts.spec.nchannels;
+        const auto shuffle = [&](float* v) {
+            if (!v) return;
+            if (channels == 1 && nchannels >= 3) {
+                v[1] = v[2] = v[0];
+            } else if (channels == 2 && nchannels == 4 && facts.spec.alpha_channel == 1) {
+                const float alpha = v[1];
+                v[1] = v[2] = v[0];
+                v[3] = alpha;
+            }
+        };
+        shuffle(result);
+        shuffle(dresultds);
+        shuffle(dresultdt);
+    }
+}
+
+}  // namespace
+
+std::optional<bool> footprint_texture(footprint::TextureSystem& system, const std::string& file,
+                                      const FileFacts& facts, const Settings& settings,
+                                      const TextureOpt& options, TexCoords c, int nchannels,
+                                      float* result, float* dresultds, float* dresultdt,
+                                      std::string& error) {
+    // What footprint does not answer: files OpenImageIO cannot open (it reports them), named
+    // subimages, cropped or overscanned files, bicubic and stochastic modes.
+    if (!facts.good || !options.subimagename.empty() || !facts.full_pixel_range ||
+        facts.sample_border || options.interpmode == TextureOpt::InterpBicubic ||
+        options.mipmode == TextureOpt::MipModeStochasticTrilinear ||
+        options.mipmode == TextureOpt::MipModeStochasticAniso)
+        return std::nullopt;
+    const int first = options.firstchannel;
+    const int actual = std::clamp(facts.spec.nchannels - first, 0, nchannels);
+    if (first + actual > kMaxChannels) return std::nullopt;
+    const TextureOpt::Wrap ws = resolved(options.swrap, facts.swrap);
+    const TextureOpt::Wrap wt = resolved(options.twrap, facts.twrap);
+    if (settings.flip_t) {
+        c.t = 1.0f - c.t;
+        c.dtdx = -c.dtdx;
+        c.dtdy = -c.dtdy;
+    }
+    const OpenAs subimage{options.subimage, std::nullopt, std::nullopt};
+    const float w = static_cast<float>(facts.spec.width), h = static_cast<float>(facts.spec.height);
+    LevelSample value;
+
+    const bool aniso = options.mipmode == TextureOpt::MipModeDefault ||
+                       options.mipmode == TextureOpt::MipModeAniso;
+    if (!aniso) {
+        TextureHandle* entry = footprint::detail::texture_handle(system, file, subimage);
+        if (!system.info(entry)) return std::nullopt;  // a file footprint does not read: OIIO's
+        const Status read =
+            footprint::detail::read_texels(system, entry, [&](const TexelReader& texels) {
+                value = oiio_rule_lookup(texels, options, c, ws, wt, first, actual);
+            });
+        if (!read) {
+            error = read.error().message;
+            return false;
+        }
+        write_result(value, actual, nchannels, options, facts, settings, result, dresultds,
+                     dresultdt);
+        return true;
+    }
+
+    // Footprint assembly. Closest probes and magnified smart-bicubic lookups (OpenImageIO's
+    // default interpolation is bicubic where level 0 is magnified) stay OpenImageIO's.
+    if (options.interpmode == TextureOpt::InterpClosest) return std::nullopt;
+    TexCoords scaled = c;
+    scaled.dsdx *= options.swidth, scaled.dsdy *= options.swidth;
+    scaled.dtdx *= options.twidth, scaled.dtdy *= options.twidth;
+    const Covariance k = footprint_covariance(scaled, w, h, options.sblur, options.tblur);
+    const double major = major_axis(k);
+    if (options.interpmode == TextureOpt::InterpSmartBicubic && major < 1.0) return std::nullopt;
+    const Reach reach_s = reach(c.s * w, std::sqrt(k.a), major, facts.spec.width);
+    const Reach reach_t = reach(c.t * h, std::sqrt(k.c), major, facts.spec.height);
+    OpenAs as = subimage;
+    if (reach_s != Reach::inside || reach_t != Reach::inside) {
+        const bool black_s = ws == TextureOpt::WrapBlack, black_t = wt == TextureOpt::WrapBlack;
+        if ((black_s && reach_s == Reach::outside) || (black_t && reach_t == Reach::outside)) {
+            write_result(value, actual, nchannels, options, facts, settings, result, dresultds,
+                         dresultdt);  // all black, as OpenImageIO's every tap is
+            return true;
+        }
+        if (!footprint_wrap(ws) || !footprint_wrap(wt)) return std::nullopt;
+        as.wrap_s = footprint_wrap(ws);
+        as.wrap_t = footprint_wrap(wt);
+    }
+    TextureHandle* entry = footprint::detail::texture_handle(system, file, as);
+    if (!system.info(entry)) return std::nullopt;  // a file footprint does not read: OIIO's
+    LookupOptions lookup;
+    lookup.filter = TextureFilter::footprint_assembly;
+    lookup.max_probes = std::clamp(options.anisotropic, 1, 1024);
+    const TexCoords d = derivatives_of(k, c.s, c.t, w, h);
+    const auto filtered = [&](float s, float t, float* out) {
+        std::array<float, kMaxChannels> all{};
+        const Status status = system.texture(entry, {s, t, d.dsdx, d.dtdx, d.dsdy, d.dtdy}, lookup,
+                                             std::span<float>(all.data(), first + actual));
+        std::copy_n(all.data() + first, actual, out);
+        return status;
+    };
+    if (Status s = filtered(c.s, c.t, value.value.data()); !s) {
+        error = s.error().message;
+        return false;
+    }
+    value.coverage = 1;
+    if (dresultds) {
+        // The filtered result's derivatives by central differences over half the footprint
+        // (at least half a texel): the slope of what the filter returns, as OpenImageIO's are
+        // of what its probes return.
+        const float hs = 0.5f * std::max(static_cast<float>(std::sqrt(k.a)), 1.0f) / w;
+        const float ht = 0.5f * std::max(static_cast<float>(std::sqrt(k.c)), 1.0f) / h;
+        std::array<float, kMaxChannels> lo{}, hi{};
+        (void)filtered(c.s - hs, c.t, lo.data());
+        (void)filtered(c.s + hs, c.t, hi.data());
+        for (int ch = 0; ch < actual; ++ch) value.ds[ch] = (hi[ch] - lo[ch]) / (2 * hs);
+        (void)filtered(c.s, c.t - ht, lo.data());
+        (void)filtered(c.s, c.t + ht, hi.data());
+        for (int ch = 0; ch < actual; ++ch) value.dt[ch] = (hi[ch] - lo[ch]) / (2 * ht);
+    }
+    write_result(value, actual, nchannels, options, facts, settings, result, dresultds, dresultdt);
+    return true;
+}
+
+std::optional<bool> footprint_environment(footprint::TextureSystem& system, const std::string& file,
+                                          const FileFacts& facts, const TextureOpt& options,
+                                          Imath::V3f R, Imath::V3f dRdx, Imath::V3f dRdy,
+                                          int nchannels, float* result, float* dresultds,
+                                          float* dresultdt, std::string& error) {
+    // footprint answers the anisotropic modes of plain lat-long maps (2:1, one subimage, no
+    // sample border), without blur or result derivatives.
+    const bool aniso = options.mipmode == TextureOpt::MipModeDefault ||
+                       options.mipmode == TextureOpt::MipModeAniso;
+    if (!facts.good || facts.cube || facts.sample_border || !facts.full_pixel_range || !aniso ||
+        options.subimage != 0 || !options.subimagename.empty() || dresultds || dresultdt ||
+        options.sblur != 0 || options.tblur != 0 ||
+        options.interpmode == TextureOpt::InterpClosest ||
+        options.interpmode == TextureOpt::InterpBicubic ||
+        facts.spec.width != 2 * facts.spec.height)
+        return std::nullopt;
+    const int first = options.firstchannel;
+    const int actual = std::clamp(facts.spec.nchannels - first, 0, nchannels);
+    if (first + actual > kMaxChannels) return std::nullopt;
+    // OpenImageIO's smart bicubic where the map is magnified (a pixel's angle below a texel's).
+    const Imath::V3f unit = R.normalized();
+    const float angle = std::min((R + dRdx).normalized().cross(unit).length(),
+                                 (R + dRdy).normalized().cross(unit).length());
+    if (options.interpmode == TextureOpt::InterpSmartBicubic &&
+        angle * static_cast<float>(facts.spec.height) < static_cast<float>(M_PI))
+        return std::nullopt;
+    // OpenImageIO's lat-long convention in footprint's (docs/library.md): y up, s = 0.5 at −z,
+    // which is footprint's direction (−x, y, −z); z up turns (x, y, z) into y-up's (−y, z, x).
+    const auto to_footprint = [&](const Imath::V3f& v) {
+        const Imath::V3f up = facts.y_up ? v : Imath::V3f(-v.y, v.z, v.x);
+        return Vec3{-up.x, up.y, -up.z};
+    };
+    EnvironmentHandle* entry = system.environment_handle(file);
+    const Result<TextureSystem::EnvironmentShape> shape = system.environment_shape(entry);
+    if (!shape || shape->layout != EnvLayout::latlong) return std::nullopt;
+    EnvLookupOptions lookup;
+    lookup.filter = TextureFilter::footprint_assembly;
+    lookup.max_probes = std::clamp(options.anisotropic, 1, 1024);
+    std::array<float, kMaxChannels> all{};
+    const Status status = system.environment(
+        entry, to_footprint(R), to_footprint(dRdx * options.swidth),
+        to_footprint(dRdy * options.twidth), lookup, std::span<float>(all.data(), first + actual));
+    if (!status) {
+        error = status.error().message;
+        return false;
+    }
+    for (int c = 0; c < nchannels; ++c) result[c] = c < actual ? all[first + c] : options.fill;
+    return true;
+}
+
+std::string check_options(const TextureOpt& options, int subimages) {
+    const char* names[] = {"sblur", "tblur", "swidth", "twidth", "fill"};
+    const float values[] = {options.sblur, options.tblur, options.swidth, options.twidth,
+                            options.fill};
+    if (std::string why = check_values(names, values, 5); !why.empty()) return why;
+    for (int k = 0; k < 4; ++k)
+        if (values[k] < 0)
+            return std::string(names[k]) + " = " + std::to_string(values[k]) + " is negative";
+    if (options.firstchannel < 0)
+        return "firstchannel = " + std::to_string(options.firstchannel) + " is negative";
+    if (options.subimagename.empty() && (options.subimage < 0 || options.subimage >= subimages))
+        return "subimage " + std::to_string(options.subimage) + " is out of range (the file has " +
+               std::to_string(subimages) + ")";
+    if (options.anisotropic < 1)
+        return "anisotropic = " + std::to_string(options.anisotropic) + " is below 1";
+    const auto wrap_ok = [](int w) {
+        return w >= TextureOpt::WrapDefault && w < TextureOpt::WrapLast;
+    };
+    if (!wrap_ok(options.swrap) || !wrap_ok(options.twrap))
+        return "a wrap mode is not one of OpenImageIO's";
+    if (options.mipmode < TextureOpt::MipModeDefault ||
+        options.mipmode > TextureOpt::MipModeStochasticAniso)
+        return "mipmode " + std::to_string(options.mipmode) + " is not one of OpenImageIO's";
+    if (options.interpmode < TextureOpt::InterpClosest ||
+        options.interpmode > TextureOpt::InterpSmartBicubic)
+        return "interpmode " + std::to_string(options.interpmode) + " is not one of OpenImageIO's";
+    return {};
+}
+
+std::string check_values(const char* const* names, const float* values, int count) {
+    for (int k = 0; k < count; ++k) {
+        if (!std::isfinite(values[k]))
+            return std::string(names[k]) + " = " + std::to_string(values[k]) + " is not finite";
+        if (std::fabs(values[k]) > 1e15f)
+            return std::string(names[k]) + " = " + std::to_string(values[k]) + " is too large";
+    }
+    return {};
+}
+
+}  // namespace footprint::oiio::detail

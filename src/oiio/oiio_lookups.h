@@ -1,0 +1,66 @@
+// oiio/oiio_lookups.h — which lookups of OpenImageIO's interface footprint answers, and how
+// (private to oiio/).
+//
+// A texture() call keeps OpenImageIO's meaning: its (s, t) and derivatives, wrap modes, fill,
+// firstchannel and gray_to_rgb rules, and — for the mip modes whose value OpenImageIO fixes
+// (none, one level, trilinear) — its own choice of levels and weights, read from footprint's
+// texels. The default (anisotropic) mode is footprint assembly (docs/method.md §2.8 in place of
+// OpenImageIO's probes along the major axis). Anything else is routed to the delegate.
+#pragma once
+
+#include <Imath/ImathVec.h>  // before texture.h
+#include <OpenImageIO/texture.h>
+
+#include <optional>
+#include <string>
+
+#include "texture_system.h"
+
+namespace footprint::oiio::detail {
+
+// OpenImageIO's view of one file, read once through the delegate (so both read it alike).
+struct FileFacts {
+    bool good = false;  // opened by OpenImageIO
+    int subimages = 1;
+    OIIO::ImageSpec spec;          // subimage 0, level 0
+    bool full_pixel_range = true;  // data window = display window (no crop, no overscan)
+    OIIO::TextureOpt::Wrap swrap = OIIO::TextureOpt::WrapBlack;  // "wrapmodes", else black
+    OIIO::TextureOpt::Wrap twrap = OIIO::TextureOpt::WrapBlack;
+    bool latlong = false;        // textureformat "LatLong Environment"
+    bool cube = false;           // textureformat "CubeFace Environment"
+    bool y_up = true;            // a lat-long map's up axis ("oiio:updirection", else latlong_up)
+    bool sample_border = false;  // "oiio:sampleborder": maketx's OpenEXR lat-long maps
+};
+
+// The system-wide settings that shape results (OpenImageIO attributes of the same names).
+struct Settings {
+    bool gray_to_rgb = false;
+    bool flip_t = false;
+};
+
+struct TexCoords {
+    float s, t, dsdx, dtdx, dsdy, dtdy;
+};
+
+// A lookup footprint answers, or nullopt: the delegate's. Writes nchannels results (and the
+// derivatives, where given) as OpenImageIO's texture() writes them. `error` receives why a
+// lookup footprint took failed (a tile that cannot be read), and the call returns false then.
+std::optional<bool> footprint_texture(footprint::TextureSystem& system, const std::string& file,
+                                      const FileFacts& facts, const Settings& settings,
+                                      const OIIO::TextureOpt& options, TexCoords c, int nchannels,
+                                      float* result, float* dresultds, float* dresultdt,
+                                      std::string& error);
+
+// The same for environment(): lat-long maps (OpenImageIO 2.4 reads every environment map as
+// lat-long), direction R with ray differentials dRdx, dRdy in OpenImageIO's convention.
+std::optional<bool> footprint_environment(footprint::TextureSystem& system, const std::string& file,
+                                          const FileFacts& facts, const OIIO::TextureOpt& options,
+                                          Imath::V3f R, Imath::V3f dRdx, Imath::V3f dRdy,
+                                          int nchannels, float* result, float* dresultds,
+                                          float* dresultdt, std::string& error);
+
+// Why a call's arguments cannot be looked up ("sblur = nan is not finite"), or empty.
+std::string check_options(const OIIO::TextureOpt& options, int subimages);
+std::string check_values(const char* const* names, const float* values, int count);
+
+}  // namespace footprint::oiio::detail
