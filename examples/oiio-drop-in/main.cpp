@@ -84,8 +84,7 @@ int main(int argc, char** argv) {
                 const auto hit = [&](const Imath::V3f& r) { return r * (eye_y / -r.y); };
                 const Imath::V3f p = hit(d), px1 = hit(d + dx), py1 = hit(d + dy);
                 ok &= ts->texture(plane, thread, options, p.x / 4, p.z / 4, (px1.x - p.x) / 4,
-                                  (px1.z - p.z) / 4, (py1.x - p.x) / 4, (py1.z - p.z) / 4, 3,
-                                  rgb);
+                                  (px1.z - p.z) / 4, (py1.x - p.x) / 4, (py1.z - p.z) / 4, 3, rgb);
             } else {
                 ok &= ts->environment(env, thread, options, d, dx, dy, 3, rgb);
             }
