@@ -17,6 +17,7 @@
 #include <string>
 
 #include "core/result.h"
+#include "image/image_io.h"
 
 namespace footprint::detail {
 
@@ -33,6 +34,8 @@ Result<std::unique_ptr<OIIO::ImageInput>> open_image_input(const std::filesystem
 // Whether load_image with ColorEncoding::automatic decodes a file whose header is `spec` from sRGB
 // (is_srgb_encoded(), image_io.h, on a file already open).
 bool automatic_decodes_srgb(const OIIO::ImageSpec& spec);
+// Whether load_image with `encoding` decodes a file whose header is `spec` from sRGB.
+bool decodes_srgb(ColorEncoding encoding, const OIIO::ImageSpec& spec);
 
 // "cannot read '<file>': <cause>", the error every reader gives.
 Error read_error(const std::filesystem::path& file, const std::string& cause);

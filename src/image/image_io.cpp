@@ -324,6 +324,18 @@ bool is_supported_image_extension(const fs::path& file) {
 
 // ColorEncoding::automatic's rule: integer samples are sRGB-encoded unless the metadata says
 // linear.
+bool detail::decodes_srgb(ColorEncoding encoding, const OIIO::ImageSpec& spec) {
+    switch (encoding) {
+        case ColorEncoding::srgb:
+            return true;
+        case ColorEncoding::linear:
+            return false;
+        case ColorEncoding::automatic:
+            return automatic_decodes_srgb(spec);
+    }
+    return false;
+}
+
 bool detail::automatic_decodes_srgb(const OIIO::ImageSpec& spec) {
     return !spec.format.is_floating_point() &&
            !says_linear(spec.get_string_attribute("oiio:ColorSpace"));
@@ -494,19 +506,7 @@ Result<Image> read_level(OIIO::ImageInput& in, int level, const fs::path& file,
     }
     if (auto error = handle_non_finite(image, file, options)) return *error;
 
-    bool decode = false;
-    switch (options.encoding) {
-        case ColorEncoding::srgb:
-            decode = true;
-            break;
-        case ColorEncoding::linear:
-            decode = false;
-            break;
-        case ColorEncoding::automatic:
-            decode = detail::automatic_decodes_srgb(spec);
-            break;
-    }
-    if (decode) {
+    if (detail::decodes_srgb(options.encoding, spec)) {
         int alpha = spec.alpha_channel;
         if (alpha < 0 || alpha >= spec.nchannels) {
             alpha = (spec.nchannels == 2 || spec.nchannels == 4) ? spec.nchannels - 1 : -1;

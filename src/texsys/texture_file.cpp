@@ -43,18 +43,6 @@ fs::path cached_pyramid_file(const fs::path& file, const TextureSystemOptions& o
     return options.cache_dir / name.str();
 }
 
-bool decodes_srgb(const TextureSystemOptions& options, const OIIO::ImageSpec& spec) {
-    switch (options.color) {
-        case ColorEncoding::automatic:
-            return detail::automatic_decodes_srgb(spec);
-        case ColorEncoding::srgb:
-            return true;
-        case ColorEncoding::linear:
-            return false;
-    }
-    return false;
-}
-
 void TextureHandle::open(const TextureSystemOptions& options, const detail::OpenAs& as) {
     Result<std::unique_ptr<OIIO::ImageInput>> opened = detail::open_image_input(name);
     if (!opened) {
@@ -171,7 +159,7 @@ void TextureHandle::open_stored(const std::string& file, std::unique_ptr<OIIO::I
     file_tile_width_ = spec.tile_width;
     file_tile_height_ = spec.tile_height;
     alpha_ = spec.nchannels == 2 || spec.nchannels == 4 ? spec.nchannels - 1 : -1;
-    srgb_ = decodes_srgb(options, spec);
+    srgb_ = detail::decodes_srgb(options.color, spec);
     slope_offset = detail::slope_offset(spec);
     std::vector<int> widths, heights;
     for (int w = spec.width, h = spec.height;; w = std::max(1, w / 2), h = std::max(1, h / 2)) {

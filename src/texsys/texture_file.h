@@ -94,8 +94,4 @@ std::filesystem::path cached_pyramid_file(const std::filesystem::path& file,
                                           const TextureSystemOptions& options, WrapMode wrap_s,
                                           WrapMode wrap_t, std::string_view kind);
 
-// Whether integer files' colour channels are decoded from sRGB (TextureSystemOptions::color) for a
-// file whose header is `spec`.
-bool decodes_srgb(const TextureSystemOptions& options, const OIIO::ImageSpec& spec);
-
 }  // namespace footprint
