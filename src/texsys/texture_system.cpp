@@ -127,22 +127,12 @@ class EnvLookupTiles {
     std::array<detail::TiledEnvironment::Part, kParts> sources_{};
 };
 
-// The texels of a pyramid held whole, and of one read tile by tile, for read_texels().
-class PyramidTexels final : public detail::TexelReader {
+// The texels of a pyramid held whole (MipPyramid) or read tile by tile (TiledTexels), which name
+// their members alike, for read_texels().
+template <class Texels>
+class TexelsReader final : public detail::TexelReader {
   public:
-    explicit PyramidTexels(const MipPyramid& pyramid) : pyramid_(pyramid) {}
-    int level_count() const override { return pyramid_.level_count(); }
-    int width(int l) const override { return pyramid_.width(l); }
-    int height(int l) const override { return pyramid_.height(l); }
-    int channels() const override { return pyramid_.channels(); }
-    const float* texel(int l, int x, int y) const override { return pyramid_.texel(l, x, y); }
-
-  private:
-    const MipPyramid& pyramid_;
-};
-class TiledTexelReader final : public detail::TexelReader {
-  public:
-    explicit TiledTexelReader(const detail::TiledTexels& texels) : texels_(texels) {}
+    explicit TexelsReader(const Texels& texels) : texels_(texels) {}
     int level_count() const override { return texels_.level_count(); }
     int width(int l) const override { return texels_.width(l); }
     int height(int l) const override { return texels_.height(l); }
@@ -150,7 +140,7 @@ class TiledTexelReader final : public detail::TexelReader {
     const float* texel(int l, int x, int y) const override { return texels_.texel(l, x, y); }
 
   private:
-    const detail::TiledTexels& texels_;
+    const Texels& texels_;
 };
 
 // A name → entry table that many threads read and a few add to.
@@ -219,14 +209,7 @@ class TextureSystemImpl final : public TextureSystem {
                        const std::function<void(const detail::TexelReader&)>& read) {
         if (file->udim) return Error{"'" + file->name + "' is a UDIM set, not one texture"};
         if (file->error) return *file->error;
-        if (file->pyramid) {
-            read(PyramidTexels(*file->pyramid));
-        } else {
-            texsys::ThreadTiles& thread = thread_tiles_.local();
-            const LookupTiles tiles(cache_, thread, *file);
-            const detail::TiledTexels texels(file->shape, tiles, tiles.slots());
-            read(TiledTexelReader(texels));
-        }
+        on_texels(file, [&](const auto& texels) { read(TexelsReader(texels)); });
         if (file->read_failed) {
             std::lock_guard lock(file->read_error_mutex);
             return *file->read_error;
@@ -255,14 +238,7 @@ class TextureSystemImpl final : public TextureSystem {
         }
         if (file->error) return missing_or(*file->error, file->error_reported, out, missing);
         float result[MipPyramid::kMaxChannels];
-        if (file->pyramid) {
-            texture_lookup(*file->pyramid, c, options, result);
-        } else {
-            texsys::ThreadTiles& thread = thread_tiles_.local();
-            const LookupTiles tiles(cache_, thread, *file);
-            const detail::TiledTexels texels(file->shape, tiles, tiles.slots());
-            detail::texture_lookup(texels, c, options, result);
-        }
+        on_texels(file, [&](const auto& texels) { texture_lookup(texels, c, options, result); });
         if (file->read_failed) {
             std::lock_guard lock(file->read_error_mutex);
             return missing_or(*file->read_error, file->error_reported, out, missing);
@@ -430,6 +406,15 @@ class TextureSystemImpl final : public TextureSystem {
     }
 
   private:
+    // Calls read(texels) with an opened file's texels: its pyramid in memory (a MipPyramid), or its
+    // tiles through the cache (a TiledTexels), pinned until read() returns.
+    template <class Read>
+    void on_texels(TextureHandle* file, const Read& read) {
+        if (file->pyramid) return read(*file->pyramid);
+        const LookupTiles tiles(cache_, thread_tiles_.local(), *file);
+        read(detail::TiledTexels(file->shape, tiles, tiles.slots()));
+    }
+
     // The file of UDIM tile `number` of the set `set`.
     TextureHandle* udim_tile(TextureHandle* set, int number) {
         std::lock_guard lock(set->udim_mutex);
