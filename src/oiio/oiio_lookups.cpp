@@ -16,41 +16,7 @@ using OIIO::TextureOpt;
 
 constexpr int kMaxChannels = MipPyramid::kMaxChannels;
 
-// ---- OpenImageIO's wrap rules on a texel index (valid: false means a black texel).
-bool wrap_index(TextureOpt::Wrap wrap, int& i, int n) {
-    switch (wrap) {
-        case TextureOpt::WrapClamp:
-            i = std::clamp(i, 0, n - 1);
-            return true;
-        case TextureOpt::WrapPeriodic:
-        case TextureOpt::WrapPeriodicPow2:
-            i %= n;
-            if (i < 0) i += n;
-            return true;
-        case TextureOpt::WrapMirror: {
-            if (i < 0) i = -1 - i;
-            const int iteration = i / n;
-            i -= iteration * n;
-            if (iteration & 1) i = n - 1 - i;
-            return true;
-        }
-        case TextureOpt::WrapPeriodicSharedBorder: {
-            // As OpenImageIO 2.4 computes it, the first and last columns being one position.
-            const int period = std::max(n, 2) - 1;
-            i %= period;
-            if (i < 0) i += std::max(n, 2);
-            return true;
-        }
-        default:  // black
-            return i >= 0 && i < n;
-    }
-}
-
-TextureOpt::Wrap resolved(TextureOpt::Wrap asked, TextureOpt::Wrap file) {
-    const TextureOpt::Wrap w = asked == TextureOpt::WrapDefault ? file : asked;
-    return w == TextureOpt::WrapPeriodicPow2 ? TextureOpt::WrapPeriodic : w;
-}
-
+// OpenImageIO's wrap modes that footprint has too (its periodic_pow2 is periodic).
 std::optional<WrapMode> footprint_wrap(TextureOpt::Wrap wrap) {
     switch (wrap) {
         case TextureOpt::WrapClamp:
@@ -63,6 +29,28 @@ std::optional<WrapMode> footprint_wrap(TextureOpt::Wrap wrap) {
         default:
             return std::nullopt;  // black, periodic with a shared border: not footprint's
     }
+}
+
+// OpenImageIO's wrap rules on a texel index (valid: false means a black texel). Clamp, periodic
+// and mirror are footprint's own (texture/wrap.h); black and the shared border are OpenImageIO's.
+bool wrap_index(TextureOpt::Wrap wrap, int& i, int n) {
+    if (const std::optional<WrapMode> mode = footprint_wrap(wrap)) {
+        i = footprint::wrap_index(i, n, *mode);
+        return true;
+    }
+    if (wrap == TextureOpt::WrapPeriodicSharedBorder) {
+        // As OpenImageIO 2.4 computes it, the first and last columns being one position.
+        const int period = std::max(n, 2) - 1;
+        i %= period;
+        if (i < 0) i += std::max(n, 2);
+        return true;
+    }
+    return i >= 0 && i < n;  // black
+}
+
+TextureOpt::Wrap resolved(TextureOpt::Wrap asked, TextureOpt::Wrap file) {
+    const TextureOpt::Wrap w = asked == TextureOpt::WrapDefault ? file : asked;
+    return w == TextureOpt::WrapPeriodicPow2 ? TextureOpt::WrapPeriodic : w;
 }
 
 // ---- OpenImageIO's rules for the mip modes whose value it fixes (texture_lookup_nomip and
