@@ -194,32 +194,15 @@ class Adapter final : public OIIO::TextureSystem {
                        dsdx, dtdx, dsdy, dtdy, nchannels, result, dresultds, dresultdt);
     }
 
-    // A batch is its lanes' single lookups (OpenImageIO 2.4's own batch does the same), results
-    // laid out channel by channel, Tex::BatchWidth lanes each.
     bool texture(Handle* handle, Perthread* thread_info, TextureOptBatch& options,
                  Tex::RunMask mask, const float* s, const float* t, const float* dsdx,
                  const float* dtdx, const float* dsdy, const float* dtdy, int nchannels,
                  float* result, float* dresultds, float* dresultdt) override {
-        if (nchannels < 0 || nchannels > kMaxResultChannels)
-            return refuse(
-                "texture(): nchannels = " + std::to_string(nchannels) + " is out of range", 0,
-                nullptr, nullptr, nullptr);
-        bool ok = true;
-        for (int i = 0; i < Tex::BatchWidth; ++i) {
-            if (!(mask & (Tex::RunMask(1) << i))) continue;
-            TextureOpt opt = lane_options(options, i);
-            float r[kMaxResultChannels], ds[kMaxResultChannels], dt[kMaxResultChannels];
-            ok &= texture(handle, thread_info, opt, s[i], t[i], dsdx[i], dtdx[i], dsdy[i], dtdy[i],
-                          nchannels, r, dresultds ? ds : nullptr, dresultds ? dt : nullptr);
-            for (int c = 0; c < nchannels; ++c) {
-                result[c * Tex::BatchWidth + i] = r[c];
-                if (dresultds) {
-                    dresultds[c * Tex::BatchWidth + i] = ds[c];
-                    dresultdt[c * Tex::BatchWidth + i] = dt[c];
-                }
-            }
-        }
-        return ok;
+        return each_lane("texture", options, mask, nchannels, result, dresultds, dresultdt,
+                         [&](int i, TextureOpt& opt, float* r, float* ds, float* dt) {
+                             return texture(handle, thread_info, opt, s[i], t[i], dsdx[i], dtdx[i],
+                                            dsdy[i], dtdy[i], nchannels, r, ds, dt);
+                         });
     }
 
     // The multi-point calls OpenImageIO deprecated in 1.8: their points one by one.
@@ -306,30 +289,15 @@ class Adapter final : public OIIO::TextureSystem {
     bool environment(Handle* handle, Perthread* thread_info, TextureOptBatch& options,
                      Tex::RunMask mask, const float* R, const float* dRdx, const float* dRdy,
                      int nchannels, float* result, float* dresultds, float* dresultdt) override {
-        if (nchannels < 0 || nchannels > kMaxResultChannels)
-            return refuse(
-                "environment(): nchannels = " + std::to_string(nchannels) + " is out of range", 0,
-                nullptr, nullptr, nullptr);
         constexpr int W = Tex::BatchWidth;
-        bool ok = true;
-        for (int i = 0; i < W; ++i) {
-            if (!(mask & (Tex::RunMask(1) << i))) continue;
-            TextureOpt opt = lane_options(options, i);
-            const auto lane = [&](const float* v) {
-                return Imath::V3f(v[i], v[i + W], v[i + 2 * W]);
-            };
-            float r[kMaxResultChannels], ds[kMaxResultChannels], dt[kMaxResultChannels];
-            ok &= environment(handle, thread_info, opt, lane(R), lane(dRdx), lane(dRdy), nchannels,
-                              r, dresultds ? ds : nullptr, dresultds ? dt : nullptr);
-            for (int c = 0; c < nchannels; ++c) {
-                result[c * W + i] = r[c];
-                if (dresultds) {
-                    dresultds[c * W + i] = ds[c];
-                    dresultdt[c * W + i] = dt[c];
-                }
-            }
-        }
-        return ok;
+        return each_lane("environment", options, mask, nchannels, result, dresultds, dresultdt,
+                         [&](int i, TextureOpt& opt, float* r, float* ds, float* dt) {
+                             const auto lane = [&](const float* v) {
+                                 return Imath::V3f(v[i], v[i + W], v[i + 2 * W]);
+                             };
+                             return environment(handle, thread_info, opt, lane(R), lane(dRdx),
+                                                lane(dRdy), nchannels, r, ds, dt);
+                         });
     }
 
     bool environment(ustring filename, OIIO::TextureOptions& options, OIIO::Runflag* runflags,
@@ -741,6 +709,34 @@ class Adapter final : public OIIO::TextureSystem {
     static std::unordered_map<const Adapter*, std::string>& thread_errors() {
         thread_local std::unordered_map<const Adapter*, std::string> errors;
         return errors;
+    }
+
+    // A batch as its lanes' single lookups (OpenImageIO 2.4's own batch does the same):
+    // lookup(i, lane i's options, results, derivatives or null) for each lane in `mask`, the
+    // results laid out channel by channel, Tex::BatchWidth lanes each.
+    template <class Lookup>
+    bool each_lane(const char* call, const TextureOptBatch& options, Tex::RunMask mask,
+                   int nchannels, float* result, float* dresultds, float* dresultdt,
+                   const Lookup& lookup) {
+        if (nchannels < 0 || nchannels > kMaxResultChannels)
+            return refuse(std::string(call) + "(): nchannels = " + std::to_string(nchannels) +
+                          " is out of range");
+        constexpr int W = Tex::BatchWidth;
+        bool ok = true;
+        for (int i = 0; i < W; ++i) {
+            if (!(mask & (Tex::RunMask(1) << i))) continue;
+            TextureOpt opt = lane_options(options, i);
+            float r[kMaxResultChannels], ds[kMaxResultChannels], dt[kMaxResultChannels];
+            ok &= lookup(i, opt, r, dresultds ? ds : nullptr, dresultds ? dt : nullptr);
+            for (int c = 0; c < nchannels; ++c) {
+                result[c * W + i] = r[c];
+                if (dresultds) {
+                    dresultds[c * W + i] = ds[c];
+                    dresultdt[c * W + i] = dt[c];
+                }
+            }
+        }
+        return ok;
     }
 
     static TextureOpt lane_options(const TextureOptBatch& batch, int i) {

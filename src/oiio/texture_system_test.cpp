@@ -251,6 +251,39 @@ TEST(OiioAdapter, LatLongEnvironmentComesOutInOpenImageIOsOrientation) {
     EXPECT_GT(compared, 200);
 }
 
+TEST(OiioAdapter, BatchesGiveTheirLanesSingleLookups) {
+    test::TempDir dir;
+    Systems systems;
+    const std::string file = make_tx(dir, "noise.tx", TypeDesc::FLOAT, "periodic");
+    constexpr int W = OIIO::Tex::BatchWidth;
+    std::mt19937 random(4);
+    float s[W], t[W], dsdx[W], dtdx[W], dsdy[W], dtdy[W];
+    for (int i = 0; i < W; ++i) {
+        s[i] = random_in(random, 0, 1), t[i] = random_in(random, 0, 1);
+        dsdx[i] = random_in(random, 0.001f, 0.05f), dtdy[i] = random_in(random, 0.001f, 0.05f);
+        dtdx[i] = dsdy[i] = 0;
+    }
+    OIIO::TextureOptBatch batch;
+    for (int i = 0; i < W; ++i)
+        batch.sblur[i] = batch.tblur[i] = 0, batch.swidth[i] = batch.twidth[i] = 1;
+    const OIIO::Tex::RunMask mask = 0x5555 & ((OIIO::Tex::RunMask(1) << W) - 1);
+    float result[3 * W] = {}, ds[3 * W] = {}, dt[3 * W] = {};
+    ASSERT_TRUE(systems.ours->texture(ustring(file), batch, mask, s, t, dsdx, dtdx, dsdy, dtdy, 3,
+                                      result, ds, dt));
+    for (int i = 0; i < W; ++i) {
+        if (!(mask & (OIIO::Tex::RunMask(1) << i))) continue;
+        TextureOpt options;
+        float one[3], one_ds[3], one_dt[3];
+        ASSERT_TRUE(systems.ours->texture(ustring(file), options, s[i], t[i], dsdx[i], dtdx[i],
+                                          dsdy[i], dtdy[i], 3, one, one_ds, one_dt));
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_EQ(result[c * W + i], one[c]) << "lane " << i;
+            EXPECT_EQ(ds[c * W + i], one_ds[c]) << "lane " << i;
+            EXPECT_EQ(dt[c * W + i], one_dt[c]) << "lane " << i;
+        }
+    }
+}
+
 TEST(OiioAdapter, HostileArgumentsReturnFalseWithAMessageNeverACrash) {
     test::TempDir dir;
     Systems systems;
