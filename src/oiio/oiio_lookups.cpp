@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 
-#include "texsys/texel_access.h"
 
 namespace footprint::oiio::detail {
 
@@ -276,7 +275,26 @@ void write_result(const LevelSample& v, int actual, int nchannels, const Texture
 
 }  // namespace
 
-std::optional<bool> footprint_texture(footprint::TextureSystem& system, const std::string& file,
+TextureHandle* Entries::texture(footprint::TextureSystem& system, const OpenAs& as) {
+    const auto opened = [&] {
+        TextureHandle* entry = footprint::detail::texture_handle(system, file_, as);
+        return system.info(entry) ? entry : nullptr;
+    };
+    if (!(as == OpenAs{})) return opened();
+    std::call_once(texture_opened_, [&] { texture_ = opened(); });
+    return texture_;
+}
+
+EnvironmentHandle* Entries::latlong(footprint::TextureSystem& system) {
+    std::call_once(latlong_opened_, [&] {
+        EnvironmentHandle* entry = system.environment_handle(file_);
+        const Result<TextureSystem::EnvironmentShape> shape = system.environment_shape(entry);
+        if (shape && shape->layout == EnvLayout::latlong) latlong_ = entry;
+    });
+    return latlong_;
+}
+
+std::optional<bool> footprint_texture(footprint::TextureSystem& system, Entries& file,
                                       const FileFacts& facts, const Settings& settings,
                                       const TextureOpt& options, TexCoords c, int nchannels,
                                       float* result, float* dresultds, float* dresultdt,
@@ -305,8 +323,8 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, const st
     const bool aniso = options.mipmode == TextureOpt::MipModeDefault ||
                        options.mipmode == TextureOpt::MipModeAniso;
     if (!aniso) {
-        TextureHandle* entry = footprint::detail::texture_handle(system, file, subimage);
-        if (!system.info(entry)) return std::nullopt;  // a file footprint does not read: OIIO's
+        TextureHandle* entry = file.texture(system, subimage);
+        if (!entry) return std::nullopt;
         const Status read =
             footprint::detail::read_texels(system, entry, [&](const TexelReader& texels) {
                 value = oiio_rule_lookup(texels, options, c, ws, wt, first, actual);
@@ -343,8 +361,8 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, const st
         as.wrap_s = footprint_wrap(ws);
         as.wrap_t = footprint_wrap(wt);
     }
-    TextureHandle* entry = footprint::detail::texture_handle(system, file, as);
-    if (!system.info(entry)) return std::nullopt;  // a file footprint does not read: OIIO's
+    TextureHandle* entry = file.texture(system, as);
+    if (!entry) return std::nullopt;
     LookupOptions lookup;
     lookup.filter = TextureFilter::footprint_assembly;
     lookup.max_probes = std::clamp(options.anisotropic, 1, 1024);
@@ -379,7 +397,7 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, const st
     return true;
 }
 
-std::optional<bool> footprint_environment(footprint::TextureSystem& system, const std::string& file,
+std::optional<bool> footprint_environment(footprint::TextureSystem& system, Entries& file,
                                           const FileFacts& facts, const TextureOpt& options,
                                           Imath::V3f R, Imath::V3f dRdx, Imath::V3f dRdy,
                                           int nchannels, float* result, float* dresultds,
@@ -411,9 +429,8 @@ std::optional<bool> footprint_environment(footprint::TextureSystem& system, cons
         const Imath::V3f up = facts.y_up ? v : Imath::V3f(-v.y, v.z, v.x);
         return Vec3{-up.x, up.y, -up.z};
     };
-    EnvironmentHandle* entry = system.environment_handle(file);
-    const Result<TextureSystem::EnvironmentShape> shape = system.environment_shape(entry);
-    if (!shape || shape->layout != EnvLayout::latlong) return std::nullopt;
+    EnvironmentHandle* entry = file.latlong(system);
+    if (!entry) return std::nullopt;
     EnvLookupOptions lookup;
     lookup.filter = TextureFilter::footprint_assembly;
     lookup.max_probes = std::clamp(options.anisotropic, 1, 1024);

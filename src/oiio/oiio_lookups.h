@@ -11,9 +11,11 @@
 #include <Imath/ImathVec.h>  // before texture.h
 #include <OpenImageIO/texture.h>
 
+#include <mutex>
 #include <optional>
 #include <string>
 
+#include "texsys/texel_access.h"
 #include "texture_system.h"
 
 namespace footprint::oiio::detail {
@@ -42,10 +44,28 @@ struct TexCoords {
     float s, t, dsdx, dtdx, dsdy, dtdy;
 };
 
+// footprint's entries of one file, opened on first use and kept, so that a lookup by handle makes
+// no lookup by name for the file's own entry. Null where footprint does not read the file (it is
+// then the delegate's).
+class Entries {
+  public:
+    explicit Entries(std::string file) : file_(std::move(file)) {}
+    // The texture entry read as `as`: the file's own, kept, for the default `as`.
+    TextureHandle* texture(footprint::TextureSystem& system, const footprint::detail::OpenAs& as);
+    // The environment entry, where footprint reads the file as a lat-long map.
+    EnvironmentHandle* latlong(footprint::TextureSystem& system);
+
+  private:
+    const std::string file_;
+    std::once_flag texture_opened_, latlong_opened_;
+    TextureHandle* texture_ = nullptr;
+    EnvironmentHandle* latlong_ = nullptr;
+};
+
 // A lookup footprint answers, or nullopt: the delegate's. Writes nchannels results (and the
 // derivatives, where given) as OpenImageIO's texture() writes them. `error` receives why a
 // lookup footprint took failed (a tile that cannot be read), and the call returns false then.
-std::optional<bool> footprint_texture(footprint::TextureSystem& system, const std::string& file,
+std::optional<bool> footprint_texture(footprint::TextureSystem& system, Entries& file,
                                       const FileFacts& facts, const Settings& settings,
                                       const OIIO::TextureOpt& options, TexCoords c, int nchannels,
                                       float* result, float* dresultds, float* dresultdt,
@@ -53,7 +73,7 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, const st
 
 // The same for environment(): lat-long maps (OpenImageIO 2.4 reads every environment map as
 // lat-long), direction R with ray differentials dRdx, dRdy in OpenImageIO's convention.
-std::optional<bool> footprint_environment(footprint::TextureSystem& system, const std::string& file,
+std::optional<bool> footprint_environment(footprint::TextureSystem& system, Entries& file,
                                           const FileFacts& facts, const OIIO::TextureOpt& options,
                                           Imath::V3f R, Imath::V3f dRdx, Imath::V3f dRdy,
                                           int nchannels, float* result, float* dresultds,

@@ -45,6 +45,7 @@ struct File {
     Handle* delegate = nullptr;
     std::once_flag probed;
     detail::FileFacts facts;
+    std::unique_ptr<detail::Entries> entries;  // footprint's entries of the file
 };
 
 class Adapter final : public OIIO::TextureSystem {
@@ -171,7 +172,7 @@ class Adapter final : public OIIO::TextureSystem {
         if (tile) {
             std::string error;
             const std::optional<bool> answered = detail::footprint_texture(
-                footprint(), tile->name.string(), facts(*tile, thread_info), settings(), options,
+                footprint(), *tile->entries, facts(*tile, thread_info), settings(), options,
                 {ts, tt, dsdx, dtdx, dsdy, dtdy}, nchannels, result, dresultds, dresultdt, error);
             if (answered) {
                 ++stats_.texture_answered;
@@ -265,8 +266,8 @@ class Adapter final : public OIIO::TextureSystem {
                           nchannels, result, dresultds, dresultdt);
         std::string error;
         const std::optional<bool> answered = detail::footprint_environment(
-            footprint(), f->name.string(), facts(*f, thread_info), options, r, rx, ry, nchannels,
-            result, dresultds, dresultdt, error);
+            footprint(), *f->entries, facts(*f, thread_info), options, r, rx, ry, nchannels, result,
+            dresultds, dresultdt, error);
         if (answered) {
             ++stats_.environment_answered;
             if (!*answered) append_error(error);
@@ -595,6 +596,7 @@ class Adapter final : public OIIO::TextureSystem {
             entry = std::make_unique<File>();
             entry->name = name;
             entry->delegate = delegate_->get_texture_handle(name, thread_info);
+            entry->entries = std::make_unique<detail::Entries>(name.string());
         }
         return entry.get();
     }
