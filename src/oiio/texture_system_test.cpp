@@ -37,7 +37,7 @@ struct Systems {
         oiio->attribute("automip", 1);
     }
     ~Systems() {
-        OIIO::TextureSystem::destroy(oiio);
+        OIIO::TextureSystem::destroy(oiio, /*teardown_imagecache=*/true);
         footprint::oiio::destroy_texture_system(ours);
     }
 };
