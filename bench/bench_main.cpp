@@ -73,6 +73,9 @@ int main(int argc, char** argv) {
     tsys->add_option("--threads", texsys.thread_counts, "thread counts to measure")
         ->check(CLI::Range(1, 256));
     tsys->add_option("--dir", texsys.dir, "where the texture files are written, kept and reused");
+    tsys->add_option("--api", texsys.api,
+                     "oiio: also footprint behind OpenImageIO's TextureSystem interface")
+        ->check(CLI::IsMember({"native", "oiio"}));
     tsys->add_flag("!--no-oiio", texsys.with_oiio, "skip the OpenImageIO peer");
     tsys->add_flag("--quiet", texsys.quiet, "no progress output");
 

@@ -13,6 +13,11 @@
 // process and the texture system's own peak of texel memory; the RMS error of both against
 // reference_lookup() on a subset of pixels; and whether ours with 1 and 2 threads and with an
 // unbounded cache gave the same image, bit for bit.
+//
+// With api = "oiio" it also renders the same frames through OpenImageIO's TextureSystem interface
+// with footprint behind it (footprint::oiio::create_texture_system(), the same default TextureOpt
+// as OpenImageIO's run, the same cache size): what a renderer that calls OIIO::TextureSystem gets,
+// and what the interface costs against footprint's native API.
 #pragma once
 
 #include <string>
@@ -30,6 +35,7 @@ struct TexsysBenchOptions {
     std::string dir;  // where the files are written (kept, and reused when present); empty: a
                       // temporary folder, removed afterwards
     bool with_oiio = true;
+    std::string api = "native";  // "oiio": also footprint behind OpenImageIO's interface
     std::string json_path;
     bool quiet = false;
 };
