@@ -10,13 +10,16 @@
 
 #include <OpenImageIO/imagecache.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <initializer_list>
 #include <memory>
 #include <mutex>
 #include <shared_mutex>
 #include <sstream>
 #include <unordered_map>
+#include <vector>
 
 #include "oiio/oiio_lookups.h"
 
@@ -58,7 +61,10 @@ class Adapter final : public OIIO::TextureSystem {
         delegate_->attribute("automip", 1);
         delegate_->attribute("max_memory_MB", static_cast<float>(options_.max_memory_mb));
     }
-    ~Adapter() override { OIIO::TextureSystem::destroy(delegate_, /*teardown_imagecache=*/true); }
+    ~Adapter() override {
+        for (Perthread* info : retired_) delegate_->destroy_thread_info(info);
+        OIIO::TextureSystem::destroy(delegate_, /*teardown_imagecache=*/true);
+    }
     Adapter(const Adapter&) = delete;
     Adapter& operator=(const Adapter&) = delete;
     // OpenImageIO's TextureSystem hides its operator delete (its objects are destroyed through
@@ -119,9 +125,26 @@ class Adapter final : public OIIO::TextureSystem {
     Perthread* get_perthread_info(Perthread* thread_info) override {
         return delegate_->get_perthread_info(thread_info);
     }
-    Perthread* create_thread_info() override { return delegate_->create_thread_info(); }
+    // OpenImageIO 2.4.7's destroy_thread_info() leaves a null in its image cache's list of
+    // per-thread infos, which getstats() and reset_stats() then dereference: a crash. So a
+    // destroyed info is kept, handed out again by the next create_thread_info(), and given back
+    // to the delegate with the adapter.
+    Perthread* create_thread_info() override {
+        {
+            std::lock_guard lock(retired_mutex_);
+            if (!retired_.empty()) {
+                Perthread* reused = retired_.back();
+                retired_.pop_back();
+                return reused;
+            }
+        }
+        return delegate_->create_thread_info();
+    }
     void destroy_thread_info(Perthread* thread_info) override {
-        delegate_->destroy_thread_info(thread_info);
+        if (!thread_info) return;
+        std::lock_guard lock(retired_mutex_);
+        if (std::find(retired_.begin(), retired_.end(), thread_info) == retired_.end())
+            retired_.push_back(thread_info);
     }
     Handle* get_texture_handle(ustring filename, Perthread* thread_info) override {
         return reinterpret_cast<Handle*>(file(filename, thread_info));
@@ -199,7 +222,8 @@ class Adapter final : public OIIO::TextureSystem {
                  Tex::RunMask mask, const float* s, const float* t, const float* dsdx,
                  const float* dtdx, const float* dsdy, const float* dtdy, int nchannels,
                  float* result, float* dresultds, float* dresultdt) override {
-        return each_lane("texture", options, mask, nchannels, result, dresultds, dresultdt,
+        return each_lane("texture", handle, {s, t, dsdx, dtdx, dsdy, dtdy}, options, mask,
+                         nchannels, result, dresultds, dresultdt,
                          [&](int i, TextureOpt& opt, float* r, float* ds, float* dt) {
                              return texture(handle, thread_info, opt, s[i], t[i], dsdx[i], dtdx[i],
                                             dsdy[i], dtdy[i], nchannels, r, ds, dt);
@@ -291,7 +315,8 @@ class Adapter final : public OIIO::TextureSystem {
                      Tex::RunMask mask, const float* R, const float* dRdx, const float* dRdy,
                      int nchannels, float* result, float* dresultds, float* dresultdt) override {
         constexpr int W = Tex::BatchWidth;
-        return each_lane("environment", options, mask, nchannels, result, dresultds, dresultdt,
+        return each_lane("environment", handle, {R, dRdx, dRdy}, options, mask, nchannels, result,
+                         dresultds, dresultdt,
                          [&](int i, TextureOpt& opt, float* r, float* ds, float* dt) {
                              const auto lane = [&](const float* v) {
                                  return Imath::V3f(v[i], v[i + W], v[i + 2 * W]);
@@ -452,25 +477,30 @@ class Adapter final : public OIIO::TextureSystem {
     }
     bool get_texture_info(ustring filename, int subimage, ustring dataname, TypeDesc datatype,
                           void* data) override {
+        if (subimage_refused("get_texture_info", filename, subimage)) return false;
         return delegate_->get_texture_info(filename, subimage, dataname, datatype, data);
     }
     bool get_texture_info(Handle* handle, Perthread* thread_info, int subimage, ustring dataname,
                           TypeDesc datatype, void* data) override {
         File* f = from_handle(handle);
         if (!f) return refuse("get_texture_info(): not a texture handle of this system");
+        if (subimage_refused("get_texture_info", *f, thread_info, subimage)) return false;
         return delegate_->get_texture_info(f->delegate, thread_info, subimage, dataname, datatype,
                                            data);
     }
     bool get_imagespec(ustring filename, int subimage, ImageSpec& spec) override {
+        if (subimage_refused("get_imagespec", filename, subimage)) return false;
         return delegate_->get_imagespec(filename, subimage, spec);
     }
     bool get_imagespec(Handle* handle, Perthread* thread_info, int subimage,
                        ImageSpec& spec) override {
         File* f = from_handle(handle);
         if (!f) return refuse("get_imagespec(): not a texture handle of this system");
+        if (subimage_refused("get_imagespec", *f, thread_info, subimage)) return false;
         return delegate_->get_imagespec(f->delegate, thread_info, subimage, spec);
     }
     const ImageSpec* imagespec(ustring filename, int subimage) override {
+        if (subimage_refused("imagespec", filename, subimage)) return nullptr;
         return delegate_->imagespec(filename, subimage);
     }
     const ImageSpec* imagespec(Handle* handle, Perthread* thread_info, int subimage) override {
@@ -479,6 +509,7 @@ class Adapter final : public OIIO::TextureSystem {
             refuse("imagespec(): not a texture handle of this system");
             return nullptr;
         }
+        if (subimage_refused("imagespec", *f, thread_info, subimage)) return nullptr;
         return delegate_->imagespec(f->delegate, thread_info, subimage);
     }
     bool get_texels(ustring filename, TextureOpt& options, int miplevel, int xbegin, int xend,
@@ -493,7 +524,11 @@ class Adapter final : public OIIO::TextureSystem {
                     int chend, TypeDesc format, void* result) override {
         File* f = from_handle(handle);
         if (!f) return refuse("get_texels(): not a texture handle of this system");
-        if (std::string why = check_options(*f, thread_info, options); !why.empty())
+        std::string why = check_options(*f, thread_info, options);
+        if (why.empty())
+            why =
+                check_texel_range(xbegin, xend, ybegin, yend, zbegin, zend, chbegin, chend, result);
+        if (!why.empty())
             return refuse("get_texels(): " + why + " (texture '" + f->name.string() + "')");
         return delegate_->get_texels(f->delegate, thread_info, options, miplevel, xbegin, xend,
                                      ybegin, yend, zbegin, zend, chbegin, chend, format, result);
@@ -680,6 +715,40 @@ class Adapter final : public OIIO::TextureSystem {
         return detail::check_options(options, known.good ? known.subimages : 1 << 30);
     }
 
+    // Why get_texels() cannot read a rectangle, or empty. OpenImageIO 2.4.7 takes a reversed
+    // range's negative size for a huge one (its memset runs past the buffer), reads before the
+    // pixel for a negative chbegin and writes through a null result.
+    static std::string check_texel_range(int xbegin, int xend, int ybegin, int yend, int zbegin,
+                                         int zend, int chbegin, int chend, const void* result) {
+        const int begins[] = {xbegin, ybegin, zbegin, chbegin}, ends[] = {xend, yend, zend, chend};
+        const char* names[] = {"x", "y", "z", "ch"};
+        for (int k = 0; k < 4; ++k)
+            if (ends[k] < begins[k])
+                return std::string(names[k]) + "end = " + std::to_string(ends[k]) + " is below " +
+                       names[k] + "begin = " + std::to_string(begins[k]);
+        if (chbegin < 0) return "chbegin = " + std::to_string(chbegin) + " is negative";
+        const bool empty = xbegin == xend || ybegin == yend || zbegin == zend || chbegin == chend;
+        if (!result && !empty) return "the result pointer is null";
+        return {};
+    }
+
+    // A metadata call's subimage that is not one of the file's: refused with a message naming
+    // the file (OpenImageIO's does not). A file OpenImageIO cannot open is left to it.
+    bool subimage_refused(const char* call, File& f, Perthread* thread_info, int subimage) {
+        if (subimage == 0) return false;
+        const detail::FileFacts& known = facts(f, thread_info);
+        if (!known.good || (subimage >= 0 && subimage < known.subimages)) return false;
+        refuse(std::string(call) + "(): subimage " + std::to_string(subimage) +
+               " is out of range (the file has " + std::to_string(known.subimages) +
+               ") (texture '" + f.name.string() + "')");
+        return true;
+    }
+    bool subimage_refused(const char* call, ustring filename, int subimage) {
+        if (subimage == 0) return false;
+        Perthread* thread_info = get_perthread_info(nullptr);
+        return subimage_refused(call, *file(filename, thread_info), thread_info, subimage);
+    }
+
     // A lookup the delegate failed on a file it could not open: OpenImageIO 2.4's lookups by
     // handle then say nothing, so the adapter names the file.
     void explain_missing(File& f, Perthread* thread_info, const char* call) {
@@ -715,15 +784,29 @@ class Adapter final : public OIIO::TextureSystem {
 
     // A batch as its lanes' single lookups (OpenImageIO 2.4's own batch does the same):
     // lookup(i, lane i's options, results, derivatives or null) for each lane in `mask`, the
-    // results laid out channel by channel, Tex::BatchWidth lanes each.
+    // results laid out channel by channel, Tex::BatchWidth lanes each. The batch's own arguments
+    // (the channel count, the arrays it reads and writes) are checked first.
     template <class Lookup>
-    bool each_lane(const char* call, const TextureOptBatch& options, Tex::RunMask mask,
-                   int nchannels, float* result, float* dresultds, float* dresultdt,
-                   const Lookup& lookup) {
-        if (nchannels < 0 || nchannels > kMaxResultChannels)
-            return refuse(std::string(call) + "(): nchannels = " + std::to_string(nchannels) +
-                          " is out of range");
+    bool each_lane(const char* call, Handle* handle, std::initializer_list<const float*> inputs,
+                   const TextureOptBatch& options, Tex::RunMask mask, int nchannels, float* result,
+                   float* dresultds, float* dresultdt, const Lookup& lookup) {
         constexpr int W = Tex::BatchWidth;
+        std::string why;
+        if (nchannels < 0 || nchannels > kMaxResultChannels)
+            why = "nchannels = " + std::to_string(nchannels) + " is out of range (0 to " +
+                  std::to_string(kMaxResultChannels) + ")";
+        else if (nchannels > 0 && !result)
+            why = "the result pointer is null";
+        else if ((dresultds == nullptr) != (dresultdt == nullptr))
+            why = "dresultds and dresultdt must be given together";
+        else if ((mask & Tex::RunMaskOn) != 0 &&
+                 std::find(inputs.begin(), inputs.end(), nullptr) != inputs.end())
+            why = "an input array is null";
+        if (!why.empty()) {
+            const File* f = from_handle(handle);
+            return refuse(std::string(call) + "(): " + why +
+                          (f ? " ('" + f->name.string() + "')" : std::string()));
+        }
         bool ok = true;
         for (int i = 0; i < W; ++i) {
             if (!(mask & (Tex::RunMask(1) << i))) continue;
@@ -769,6 +852,8 @@ class Adapter final : public OIIO::TextureSystem {
     std::shared_mutex files_mutex_;
     std::unordered_map<ustring, std::unique_ptr<File>> files_;
     std::atomic<bool> gray_to_rgb_{false}, flip_t_{false};
+    std::mutex retired_mutex_;
+    std::vector<Perthread*> retired_;  // destroyed by the host, kept for create_thread_info()
     struct {
         std::atomic<std::uint64_t> texture_calls{0}, texture_answered{0};
         std::atomic<std::uint64_t> environment_calls{0}, environment_answered{0};
