@@ -48,6 +48,14 @@ int floor_power_of_two(int n) {
     return p;
 }
 
+// Λ = √(λ² + 1): a footprint semi-axis with the one texel of the reconstruction the ground truth
+// filters (footprint_assembly.h; docs/method.md, "Footprint assembly"), for any lane type.
+template <class F>
+F reconstructed_axis(F l) {
+    using std::sqrt;
+    return sqrt(l * l + F(1));
+}
+
 // Rule B's arithmetic (footprint_assembly.h), for any lane type: plan_probes() and the batches'
 // short_plans4() share it, and differ only in how they find the count N.
 // √(max(1, 3(λ1/T_p)² − 2)), whose ceiling is Rule B's N.
@@ -128,20 +136,17 @@ namespace {
 template <class F>
 inline F single_probe_lod_lanes(F xx, F xy, F yy, float lod_bias, int max_level,
                                 float isotropic_ratio) {
-    const F zero(0), one(1);
-    const F bias_lod(std::clamp(lod_bias, 0.0f, static_cast<float>(max_level)));
-    // Magnification (λ1² ≤ tr K ≤ 1 = T_min²): one probe at level 0, no eigenvalues needed.
-    const MaskOf<F> magnified = (xx + yy <= one) & (xx >= zero) & (yy >= zero);
-    if (none(!magnified)) return bias_lod;
+    const F one(1);
+    // Λ1² Λ2² = (λ1² + 1)(λ2² + 1) = 1 + tr K + det K; the eigenvalues only decide whether the
+    // footprint is one probe.
     const AxesSquared<F> a = axes_squared(xx, xy, yy);
-    const F tp_sq = max_like_std(a.minor_sq, one);  // T_p² = max(λ2, T_min)²
+    const F major_sq = a.major_sq + one, minor_sq = a.minor_sq + one;  // Λ1², Λ2² = T_p²
     const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
-    const MaskOf<F> one_probe = a.major_sq <= F(ratio * ratio) * tp_sq;
-    // log2 √(λ1·T_p) = ¼ log2(λ1² T_p²), λ1 ≥ T_min.
-    const F lod =
-        clamp_like_std(F(0.25f) * fast_log2(max_like_std(a.major_sq, one) * tp_sq) + F(lod_bias),
-                       zero, F(static_cast<float>(max_level)));
-    return select(magnified, bias_lod, select(one_probe, lod, F(-1)));
+    const MaskOf<F> one_probe = major_sq <= F(ratio * ratio) * minor_sq;
+    // log2 √(Λ1·Λ2) = ¼ log2(Λ1² Λ2²).
+    const F lod = clamp_like_std(F(0.25f) * fast_log2(major_sq * minor_sq) + F(lod_bias), F(0),
+                                 F(static_cast<float>(max_level)));
+    return select(one_probe, lod, F(-1));
 }
 
 }  // namespace
@@ -172,14 +177,15 @@ void short_plans4(Float4 xx, Float4 xy, Float4 yy, ProbeRule rule, int max_probe
         return;
     const Float4 zero(0.0f), one(1.0f);
     const EllipseLanes<Float4> ellipse = footprint_ellipse_lanes(xx, xy, yy);
-    const Float4 l1 = ellipse.major_radius, l2 = ellipse.minor_radius;
     // plan_probes(): more than one probe, N ≤ kShortLineProbes and within the budget; axes beyond
     // kMaxPlannedRadius, or not finite (a NaN λ2 too), go plan_probes()' way (bounded there).
+    Mask4 planned = (ellipse.major_radius <= Float4(kMaxPlannedRadius)) &
+                    (ellipse.minor_radius >= zero) & is_finite(ellipse.major_axis.x) &
+                    is_finite(ellipse.major_axis.y);
+    const Float4 l1 = reconstructed_axis(ellipse.major_radius),  // Λ1
+        tp = reconstructed_axis(ellipse.minor_radius);           // T_p = Λ2
     const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
-    const Float4 tp = max_like_std(l2, one);
-    const Mask4 anisotropic = !(l1 <= tp * Float4(ratio));
-    Mask4 planned = anisotropic & (l1 <= Float4(kMaxPlannedRadius)) & (l2 >= zero) &
-                    is_finite(ellipse.major_axis.x) & is_finite(ellipse.major_axis.y);
+    planned = planned & !(l1 <= tp * Float4(ratio));  // anisotropic
     Int4 n(2);
     Float4 spacing, falloff(0.0f);
     if (rule == ProbeRule::moment_matched) {
@@ -231,7 +237,6 @@ float single_probe_lod(const Sym2& k, const LookupOptions& options, int max_leve
 ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max_probes,
                       int max_level, float lod_bias, float isotropic_ratio) {
     isotropic_ratio = std::max(isotropic_ratio, kIsotropicRatio);
-    constexpr float kMinTexelSize = 1.0f;  // T_min: smaller footprints are magnification
     float l1 = footprint.major_radius, l2 = footprint.minor_radius;
     Vec2 r1 = footprint.major_axis;
     if (!(l1 <= kMaxPlannedRadius) || !is_finite(r1)) {  // also NaN
@@ -242,13 +247,16 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
     if (!(l2 >= 0)) l2 = 0;  // NaN: planned as rank one
     max_probes = std::clamp(max_probes, 1, kMaxProbeCount);
     ProbePlan plan;
+    // Rule B plans the axes Λ = √(λ² + 1) (footprint_assembly.h), the others λ.
+    const float big_l1 = reconstructed_axis(l1), big_l2 = reconstructed_axis(l2);
 
     switch (rule) {
         case ProbeRule::moment_matched: {  // Rule B
-            float tp = std::max(l2, kMinTexelSize);
+            l1 = big_l1;
+            float tp = big_l2;
             int n = 1;
             if (l1 <= tp * isotropic_ratio) {
-                tp = std::sqrt(tp * std::max(l1, kMinTexelSize));  // one probe, √(λ1 T_p)
+                tp = std::sqrt(tp * l1);  // one probe, √(Λ1 Λ2)
             } else {
                 // Bounded as a float: a footprint beyond INT_MAX texels (or a NaN one) holds
                 // more probes than any budget, and no int holds its count.
@@ -269,9 +277,10 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
             break;
         }
         case ProbeRule::gaussian: {
-            float tp = std::max(l2, kMinTexelSize);
+            l1 = big_l1;
+            float tp = big_l2;
             if (l1 <= tp * isotropic_ratio) {
-                plan.texel_size = std::sqrt(tp * std::max(l1, kMinTexelSize));  // one probe
+                plan.texel_size = std::sqrt(tp * l1);  // one probe, √(Λ1 Λ2)
                 break;
             }
             auto spacing_factor = [](int n) { return gaussian_spacing_factor(n); };

@@ -7,14 +7,19 @@
 // construction (below) but weights the probes by a Gaussian cut at ±kGaussianProbeExtent σ, its
 // spacing solved so that the kernel keeps the covariance K/4; the other rules weight each 1/N.
 //
-// Rule B (ProbeRule::moment_matched; spec §2.8). T_min = 1 level-0 texel:
-//     T_p = max(λ2, T_min)
-//     λ1 ≤ T_p:  N = 1
-//     else:      N = ⌈√(3(λ1/T_p)² − 2)⌉                 smallest N with spacing ≤ T_p (no gaps)
-//                N > N_max:  N = N_max,  T_p = max(T_p, λ1·√(3/(N_max² + 2)))  (raises the lod)
-//                Δ = √(3(λ1² − T_p²)/(N² − 1))            spacing, Δ ≤ T_p
+// Rule B (ProbeRule::moment_matched; spec §2.8) on the axes Λ_i = √(λ_i² + 1):
+//     T_p = Λ2
+//     Λ1 ≤ T_p:  N = 1
+//     else:      N = ⌈√(3(Λ1/T_p)² − 2)⌉                 smallest N with spacing ≤ T_p (no gaps)
+//                N > N_max:  N = N_max,  T_p = max(T_p, Λ1·√(3/(N_max² + 2)))  (raises the lod)
+//                Δ = √(3(Λ1² − T_p²)/(N² − 1))            spacing, Δ ≤ T_p
 //     lod = clamp(log2 T_p, 0, L_max)
-//   Kernel covariance ¼(λ1² r1r1ᵀ + max(λ2, T_p)² r2r2ᵀ) = K/4 unless clamped ([FAB] in check.py).
+//   The ground truth filters the bilinear reconstruction f of level 0 with K/4 (texture/
+//   reference_filter.h); a probe of texel size T has the covariance (T² − 1)/4 about f (level 0
+//   is f itself). Planned on Λ, the line's (Λ1² − T_p²)/4 and the probes' (T_p² − 1)/4 add up to
+//   exactly K/4 about f unless clamped; planned on λ with T_p = max(λ2, 1), as
+//   the papers do, a footprint of a few texels falls short by up to ¼ texel² along each axis,
+//   which aliases (docs/method.md). Λ is continuous down to K = 0, where it is one bilinear probe.
 // Rule A (ProbeRule::ext; EXT_texture_filter_anisotropic on the ellipse axes):
 //     N = min(⌈λ1/max(λ2, ε)⌉, N_max),  lod = log2(λ1/N),  o_i = (i/(N+1) − ½)·λ1 r1 (i = 1..N)
 //   It integrates about one pixel step along r1 (σ_major → λ1/√12 instead of λ1/2).
@@ -23,6 +28,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 
 #include <footprint/math/footprint_ellipse.h>
 #include <footprint/texture/texture_lookup.h>
@@ -44,8 +50,8 @@ struct ProbePlan {
     }
 };
 
-// Rule B (both weightings) takes one probe when λ1 ≤ ratio·T_p, T_p = max(λ2, T_min), ratio =
-// LookupOptions::isotropic_ratio (at least kIsotropicRatio), of size √(λ1·T_p) (the geometric mean
+// Rule B (both weightings) takes one probe when Λ1 ≤ ratio·Λ2, ratio =
+// LookupOptions::isotropic_ratio (at least kIsotropicRatio), of size √(Λ1·Λ2) (the geometric mean
 // of the axes: each kernel σ is off by at most √ratio). kIsotropicRatio is the exact rule: an
 // isotropic footprint must not split into two coincident probes over rounding (kernel variance
 // off < 0.2 %).
@@ -71,7 +77,7 @@ float single_probe_lod(const Sym2& k, const LookupOptions& options, int max_leve
 // The most probes a plan holds (max_probes is clamped to it).
 constexpr int kMaxProbeCount = 1024;
 
-// c(N) of N ≥ 2 Gaussian-weighted probes: their spacing is Δ = σ_g·c(N), σ_g = √(λ1² − T_p²)/2
+// c(N) of N ≥ 2 Gaussian-weighted probes: their spacing is Δ = σ_g·c(N), σ_g = √(Λ1² − T_p²)/2
 // (the weights' standard deviation). Counts outside [2, kMaxProbeCount] read the nearest end. (The
 // GPU path uploads it as a table.)
 float gaussian_spacing_factor(int n);
@@ -104,7 +110,8 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
 // Whether `plan`, for footprint `e`, had to raise its probes' level because the line would have
 // needed more than its max_probes (the clamped anisotropy that blurs the minor axis).
 inline bool exceeds_probe_budget(const ProbePlan& plan, const FootprintEllipse& e) {
-    return plan.count > 1 && plan.texel_size > 1.0001f * std::max(e.minor_radius, 1.0f);
+    return plan.count > 1 &&
+           plan.texel_size > 1.0001f * std::sqrt(e.minor_radius * e.minor_radius + 1.0f);  // Λ2
 }
 
 }  // namespace footprint

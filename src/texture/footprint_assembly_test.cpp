@@ -60,14 +60,17 @@ const MomentPyramids& moment_pyramids() {
 }
 
 TEST(FootprintAssembly, RuleBPlansMatchTheSpecExamples) {
-    // The four [FAB] cases of check.py (N_max = 16).
+    // The spec's four Rule B cases (N_max = 16), planned on Λ = √(λ² + 1): a line of 7 probes of
+    // T_p = Λ2; a line beyond the budget, whose T_p rises to Λ1·√(3/258); a nearly round
+    // footprint of two probes; a thin one whose probes read level 0.17 rather than level 0.
     struct Case {
         float l1, l2;
         int n;
         float texel_size;
     };
-    for (const Case c : {Case{14.8f, 4, 7, 4}, Case{4 * std::sqrt(258.0f / 3), 2, 16, 4},
-                         Case{9, 8, 2, 8}, Case{7, 0.6f, 13, 1}}) {
+    for (const Case c :
+         {Case{14.8f, 4, 7, 4.12311f}, Case{4 * std::sqrt(258.0f / 3), 2, 16, 4.00145f},
+          Case{9, 8, 2, 8.06226f}, Case{7, 0.6f, 11, 1.16619f}}) {
         const ProbePlan plan = plan_probes(make_footprint_ellipse(c.l1, c.l2, 0.3f),
                                            ProbeRule::moment_matched, 16, 12);
         EXPECT_EQ(plan.count, c.n) << c.l1 << "," << c.l2;
@@ -121,17 +124,24 @@ TEST(FootprintAssembly, RuleAAndTexramPlans) {
     EXPECT_NEAR(t.offset(0).x, (0.5f / 8 - 0.5f) * 32, 1e-5f);
 }
 
-// The kernel covariance spec §2.8 predicts for Rule B: ¼[(λ1'² − T_p² + T_eff²) r1r1ᵀ + T_eff²
-// r2r2ᵀ], λ1' = max(λ1, T_p). T_eff² is the probes' own variance ×4: T_p² with the variance-matched
-// level blend, 4^L(1 + 3w) for GL's linear blend at lod L + w ([FAT]). With the remap and no
-// clamping this is exactly K/4 (K/4 with λ's below T_min = 1 raised to 1: magnification reads
-// level-0 bilinear).
+// Λ = √(λ² + 1), the axes Rule B plans (footprint_assembly.h).
+float big_lambda(float l) {
+    return std::sqrt(l * l + 1);
+}
+
+// The kernel covariance spec §2.8 predicts for Rule B, in the moments' measure (kernel_moments.h:
+// texel-centre covariance + I/12, where a probe of texel size T measures T²/4):
+// ¼[(Λ1'² − T_p² + T_eff²) r1r1ᵀ + T_eff² r2r2ᵀ], Λ1' = max(Λ1, T_p). T_eff² is the probes' own
+// variance ×4: T_p² with the variance-matched level blend, 4^L(1 + 3w) for GL's linear blend at
+// lod L + w ([FAT]). With the remap and no clamping this is exactly (K + I)/4: the ground truth's
+// kernel in this measure, K/4 about the bilinear reconstruction f, whose tent adds I/6 to the
+// texel-centre covariance, and the measure's I/12.
 Sym2 predicted_kernel(const FootprintEllipse& e, const ProbePlan& plan, LodBlend blend) {
     const float tp = plan.texel_size;
     const float level = std::floor(plan.lod), w = plan.lod - level;
     const float t_eff_sq =
         blend == LodBlend::variance_matched ? tp * tp : std::exp2(2 * level) * (1 + 3 * w);
-    const float major = std::max(e.major_radius, tp);
+    const float major = std::max(big_lambda(e.major_radius), tp);
     return outer(e.major_axis, 0.25f * (major * major - tp * tp + t_eff_sq)) +
            outer(e.minor_axis(), 0.25f * t_eff_sq);
 }
@@ -176,7 +186,7 @@ TEST(FootprintAssembly, GaussianPlansKeepRuleBsMomentsAndSpacing) {
             ASSERT_LE(plan.count, max_probes);
             // No gaps: spacing ≤ T_p.
             EXPECT_LE(length(plan.step), plan.texel_size * (1 + 1e-4f));
-            // Σw o² / Σw + T_p²/4 = λ1²/4 along r1 (the weights as filter_footprint_assembly makes
+            // Σw o² / Σw + T_p²/4 = Λ1²/4 along r1 (the weights as filter_footprint_assembly makes
             // them).
             double sw = 0, swo = 0;
             for (int i = 0; i < plan.count; ++i) {
@@ -185,7 +195,7 @@ TEST(FootprintAssembly, GaussianPlansKeepRuleBsMomentsAndSpacing) {
                 sw += w;
                 swo += w * std::pow(k * length(plan.step), 2);
             }
-            const double major = std::max(l1, plan.texel_size);
+            const double major = std::max(big_lambda(l1), plan.texel_size);
             EXPECT_NEAR(swo / sw + plan.texel_size * plan.texel_size / 4, major * major / 4,
                         1e-3 * major * major)
                 << "λ1 = " << l1 << ", N_max = " << max_probes;
@@ -215,7 +225,8 @@ TEST(FootprintAssembly, GaussianPlansTakeTheFewestProbes) {
         const ProbePlan plan = plan_probes(e, ProbeRule::gaussian, kMaxProbeCount, 12);
         if (plan.count == 1) continue;
         ++lines;
-        const double tp = plan.texel_size, sigma = 0.5 * std::sqrt(double{l1} * l1 - tp * tp);
+        const double tp = plan.texel_size, big_l1 = big_lambda(l1),
+                     sigma = 0.5 * std::sqrt(big_l1 * big_l1 - tp * tp);
         for (int n = 2; n < plan.count; ++n)
             EXPECT_GT(sigma * spacing_factor_by_definition(n), tp * (1 - 1e-5))
                 << "λ1 = " << l1 << ": " << n << " probes would do, the plan takes " << plan.count;
@@ -223,7 +234,7 @@ TEST(FootprintAssembly, GaussianPlansTakeTheFewestProbes) {
     EXPECT_GT(lines, 300);
     EXPECT_EQ(
         plan_probes(make_footprint_ellipse(2.8f, 2.0f, 0.4f), ProbeRule::gaussian, 30, 12).count,
-        2);  // λ1/T_p = 1.4
+        2);  // Λ1/T_p = 1.33
 }
 
 TEST(FootprintAssembly, KernelCovarianceIsQuarterK) {
@@ -251,9 +262,9 @@ TEST(FootprintAssembly, KernelCovarianceIsQuarterK) {
                 EXPECT_LT(mean_error, kKernelMeanTolerance * std::max(1.0f, e.major_radius))
                     << "footprint " << i;
                 if (blend == LodBlend::variance_matched) {
-                    // ... which is K/4 itself (λ's raised to T_min = 1).
-                    const float major = std::max(e.major_radius, 1.0f),
-                                minor = std::max(e.minor_radius, 1.0f);
+                    // ... which is (K + I)/4 itself: the ground truth's kernel.
+                    const float major = big_lambda(e.major_radius),
+                                minor = big_lambda(e.minor_radius);
                     const Sym2 quarter_k = outer(e.major_axis, 0.25f * major * major) +
                                            outer(e.minor_axis(), 0.25f * minor * minor);
                     EXPECT_LT(relative_error(m.covariance, quarter_k), kKernelCovarianceTolerance)
@@ -264,9 +275,9 @@ TEST(FootprintAssembly, KernelCovarianceIsQuarterK) {
 }
 
 TEST(FootprintAssembly, IsotropicRatioTakesOneProbeOfTheGeometricMean) {
-    // LookupOptions::isotropic_ratio = 1.25: footprints with λ1 ≤ 1.25·max(λ2, 1) take one probe
-    // of T_p = √(λ1·max(λ2, 1)), whose measured kernel is T_p²/4·I (each σ within √1.25 of K/4's);
-    // longer ones keep Rule B's probe lines and K/4.
+    // LookupOptions::isotropic_ratio = 1.25: footprints with Λ1 ≤ 1.25·Λ2 take one probe of
+    // T_p = √(Λ1·Λ2), whose measured kernel is T_p²/4·I (each σ within √1.25 of (K + I)/4's);
+    // longer ones keep Rule B's probe lines and (K + I)/4.
     const MomentPyramids& moments = moment_pyramids();
     for (ProbeRule rule : {ProbeRule::moment_matched, ProbeRule::gaussian}) {
         LookupOptions options;
@@ -278,8 +289,7 @@ TEST(FootprintAssembly, IsotropicRatioTakesOneProbeOfTheGeometricMean) {
             const FootprintEllipse e = random_footprint(rng, 0.5f, 200, 1.6f);
             const ProbePlan plan =
                 plan_probes(e, rule, options.max_probes, moments.first().max_level(), 0.0f, 1.25f);
-            const float major = std::max(e.major_radius, 1.0f),
-                        minor = std::max(e.minor_radius, 1.0f);
+            const float major = big_lambda(e.major_radius), minor = big_lambda(e.minor_radius);
             float mean_error = 0;
             const KernelMoments m = averaged_fa_moments(moments, e, options, &mean_error);
             EXPECT_LT(mean_error, kKernelMeanTolerance * major) << "footprint " << i;
@@ -429,7 +439,7 @@ TEST(FootprintAssembly, FourShortPlansAreTheScalarOnesBitForBit) {
 }
 
 TEST(FootprintAssembly, ClampedProbeBudgetRaisesTheMinorAxisOnly) {
-    // With N_max = 16 the spec's kernel is ¼(λ1² r1r1ᵀ + max(λ2, T_p)² r2r2ᵀ): the major axis keeps
+    // With N_max = 16 the spec's kernel is ¼(Λ1² r1r1ᵀ + max(Λ2, T_p)² r2r2ᵀ): the major axis keeps
     // its full length, the minor one grows to the raised probe size T_p.
     const MomentPyramids& moments = moment_pyramids();
     for (ProbeRule rule : {ProbeRule::moment_matched, ProbeRule::gaussian}) {
@@ -444,8 +454,8 @@ TEST(FootprintAssembly, ClampedProbeBudgetRaisesTheMinorAxisOnly) {
                 plan_probes(e, options.probe_rule, options.max_probes, moments.first().max_level());
             float mean_error = 0;
             const KernelMoments m = averaged_fa_moments(moments, e, options, &mean_error);
-            const float minor = std::max(e.minor_radius, plan.texel_size);
-            const float major = std::max(e.major_radius, plan.texel_size);
+            const float minor = std::max(big_lambda(e.minor_radius), plan.texel_size);
+            const float major = std::max(big_lambda(e.major_radius), plan.texel_size);
             const Sym2 expected = outer(e.major_axis, 0.25f * major * major) +
                                   outer(e.minor_axis(), 0.25f * minor * minor);
             EXPECT_LT(relative_error(m.covariance, expected), kKernelCovarianceTolerance)

@@ -91,37 +91,47 @@ TEST(TextureLookup, LevelSelection) {
         const FootprintEllipse iso =
             make_footprint_ellipse(std::exp2(float(k)), std::exp2(float(k)), 0.2f);
         EXPECT_NEAR(lookup_value(p, iso, tri), k, kLevelTolerance);
-        EXPECT_NEAR(lookup_value(p, iso, fa), k, kLevelTolerance);
+        // Footprint assembly plans Λ = √(λ² + 1) (footprint_assembly.h): one probe at log2 Λ,
+        // half a level above level 0 for a one-texel footprint, converging on k.
+        EXPECT_NEAR(lookup_value(p, iso, fa),
+                    std::min(8.0f, 0.5f * std::log2(std::exp2(2.0f * k) + 1)), kLevelTolerance)
+            << k;
         // EWA reads one and a half levels finer than the minor axis (ewa.h).
         EXPECT_NEAR(lookup_value(p, iso, ewa), std::max(0.0f, k - 1.5f), kLevelTolerance) << k;
     }
     // Half-way between levels 3 and 4: GL blends linearly, the remap by variance ((4^w − 1)/3 =
-    // 1/3).
+    // 1/3 at w = ½; footprint assembly's lod is log2 Λ = 3.5056).
     const FootprintEllipse half = make_footprint_ellipse(std::exp2(3.5f), std::exp2(3.5f), 1.0f);
     EXPECT_NEAR(lookup_value(p, half, tri), 3.5f, kLevelTolerance);
-    EXPECT_NEAR(lookup_value(p, half, fa), 3.5f, kLevelTolerance);
+    const float half_lod = 0.5f * std::log2(128.0f + 1);
+    EXPECT_NEAR(lookup_value(p, half, fa), half_lod, kLevelTolerance);
     fa.lod_blend = LodBlend::variance_matched;
-    EXPECT_NEAR(lookup_value(p, half, fa), 3.0f + 1.0f / 3, kLevelTolerance);
+    EXPECT_NEAR(lookup_value(p, half, fa), 3.0f + (std::exp2(2 * (half_lod - 3)) - 1) / 3,
+                kLevelTolerance);
     fa.lod_blend = LodBlend::linear;
 
     // Spec Rule B with its own budget for the anisotropic cases below.
     fa.probe_rule = ProbeRule::moment_matched;
     fa.max_probes = 16;
     fa.lod_blend = LodBlend::linear;
-    // Anisotropic: footprint assembly reads the minor axis' level, trilinear the major one's.
+    // Anisotropic: footprint assembly reads the minor axis' level (log2 Λ2 = log2 √17),
+    // trilinear the major one's.
     const FootprintEllipse aniso = make_footprint_ellipse(16, 4, 0.7f);
-    EXPECT_NEAR(lookup_value(p, aniso, fa), 2.0f, kLevelTolerance);
+    const float aniso_lod = 0.5f * std::log2(17.0f);
+    EXPECT_NEAR(lookup_value(p, aniso, fa), aniso_lod, kLevelTolerance);
     EXPECT_NEAR(lookup_value(p, aniso, tri), 4.0f, kLevelTolerance);
-    // Beyond the probe budget the level rises: λ = (64, 4), N_max = 16 → T_p = 64·√(3/258).
-    const float tp = 64 * std::sqrt(3.0f / 258), w = std::log2(tp) - 2;
-    EXPECT_NEAR(lookup_value(p, make_footprint_ellipse(64, 4, 0.7f), fa), 2 + w, 1e-4f);
+    // Beyond the probe budget the level rises: λ = (64, 4), N_max = 16 → T_p = Λ1·√(3/258).
+    const float tp = std::sqrt(64.0f * 64 + 1) * std::sqrt(3.0f / 258);
+    EXPECT_NEAR(lookup_value(p, make_footprint_ellipse(64, 4, 0.7f), fa), std::log2(tp), 1e-4f);
     // lod_bias shifts every filter's level.
     fa.lod_bias = 1;
-    EXPECT_NEAR(lookup_value(p, aniso, fa), 3.0f, kLevelTolerance);
-    // Footprints larger than the texture read the coarsest level; magnification reads level 0.
+    EXPECT_NEAR(lookup_value(p, aniso, fa), aniso_lod + 1, kLevelTolerance);
+    // Footprints larger than the texture read the coarsest level; a magnified footprint all but
+    // level 0: λ = (0.2, 0.1) is a line of probes at log2 Λ2 = log2 √1.01 (blended linearly here).
     fa.lod_bias = 0;
     EXPECT_NEAR(lookup_value(p, make_footprint_ellipse(1e6f, 1e6f, 0), fa), 8.0f, kLevelTolerance);
-    EXPECT_NEAR(lookup_value(p, make_footprint_ellipse(0.2f, 0.1f, 0), fa), 0.0f, kLevelTolerance);
+    EXPECT_NEAR(lookup_value(p, make_footprint_ellipse(0.2f, 0.1f, 0), fa), 0.5f * std::log2(1.01f),
+                kLevelTolerance);
 }
 
 TEST(TextureLookup, TrilinearUsesTheGlRuleOnDerivatives) {
