@@ -48,12 +48,18 @@ int floor_power_of_two(int n) {
     return p;
 }
 
-// Λ = √(λ² + 1): a footprint semi-axis with the one texel of the reconstruction the ground truth
-// filters (footprint_assembly.h; docs/method.md, "Footprint assembly"), for any lane type.
+// ρ, the share of the reconstruction's texel Rule B plans (footprint_assembly.h; docs/method.md,
+// "Footprint assembly"): 0 inside one texel (tr K = λ1² + λ2² ≤ 1, magnification), 1 from tr K = 2,
+// for any lane type.
 template <class F>
-F reconstructed_axis(F l) {
+F reconstruction_share(F l1, F l2) {
+    return clamp_like_std(l1 * l1 + l2 * l2 - F(1), F(0), F(1));
+}
+// Λ = max(√(λ² + ρ), 1): a semi-axis as Rule B plans it.
+template <class F>
+F planned_axis(F l, F rho) {
     using std::sqrt;
-    return sqrt(l * l + F(1));
+    return max_like_std(sqrt(l * l + rho), F(1));
 }
 
 // Rule B's arithmetic (footprint_assembly.h), for any lane type: plan_probes() and the batches'
@@ -136,17 +142,22 @@ namespace {
 template <class F>
 inline F single_probe_lod_lanes(F xx, F xy, F yy, float lod_bias, int max_level,
                                 float isotropic_ratio) {
-    const F one(1);
-    // Λ1² Λ2² = (λ1² + 1)(λ2² + 1) = 1 + tr K + det K; the eigenvalues only decide whether the
-    // footprint is one probe.
+    const F zero(0), one(1);
+    const F bias_lod(std::clamp(lod_bias, 0.0f, static_cast<float>(max_level)));
+    // Magnification (λ1² ≤ tr K ≤ 1): one probe at level 0, no eigenvalues needed.
+    const MaskOf<F> magnified = (xx + yy <= one) & (xx >= zero) & (yy >= zero);
+    if (none(!magnified)) return bias_lod;
     const AxesSquared<F> a = axes_squared(xx, xy, yy);
-    const F major_sq = a.major_sq + one, minor_sq = a.minor_sq + one;  // Λ1², Λ2² = T_p²
+    // Λ1², Λ2² = max(λ² + ρ, 1), as planned_axis() squared.
+    const F rho = clamp_like_std(a.major_sq + a.minor_sq - one, zero, one);
+    const F major_sq = max_like_std(a.major_sq + rho, one),
+            minor_sq = max_like_std(a.minor_sq + rho, one);
     const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
     const MaskOf<F> one_probe = major_sq <= F(ratio * ratio) * minor_sq;
     // log2 √(Λ1·Λ2) = ¼ log2(Λ1² Λ2²).
-    const F lod = clamp_like_std(F(0.25f) * fast_log2(major_sq * minor_sq) + F(lod_bias), F(0),
+    const F lod = clamp_like_std(F(0.25f) * fast_log2(major_sq * minor_sq) + F(lod_bias), zero,
                                  F(static_cast<float>(max_level)));
-    return select(one_probe, lod, F(-1));
+    return select(magnified, bias_lod, select(one_probe, lod, F(-1)));
 }
 
 }  // namespace
@@ -182,8 +193,9 @@ void short_plans4(Float4 xx, Float4 xy, Float4 yy, ProbeRule rule, int max_probe
     Mask4 planned = (ellipse.major_radius <= Float4(kMaxPlannedRadius)) &
                     (ellipse.minor_radius >= zero) & is_finite(ellipse.major_axis.x) &
                     is_finite(ellipse.major_axis.y);
-    const Float4 l1 = reconstructed_axis(ellipse.major_radius),  // Λ1
-        tp = reconstructed_axis(ellipse.minor_radius);           // T_p = Λ2
+    const Float4 rho = reconstruction_share(ellipse.major_radius, ellipse.minor_radius);
+    const Float4 l1 = planned_axis(ellipse.major_radius, rho),  // Λ1
+        tp = planned_axis(ellipse.minor_radius, rho);           // T_p = Λ2
     const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
     planned = planned & !(l1 <= tp * Float4(ratio));  // anisotropic
     Int4 n(2);
@@ -247,8 +259,9 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
     if (!(l2 >= 0)) l2 = 0;  // NaN: planned as rank one
     max_probes = std::clamp(max_probes, 1, kMaxProbeCount);
     ProbePlan plan;
-    // Rule B plans the axes Λ = √(λ² + 1) (footprint_assembly.h), the others λ.
-    const float big_l1 = reconstructed_axis(l1), big_l2 = reconstructed_axis(l2);
+    // Rule B plans the axes Λ (footprint_assembly.h), the others λ.
+    const float rho = reconstruction_share(l1, l2);
+    const float big_l1 = planned_axis(l1, rho), big_l2 = planned_axis(l2, rho);
 
     switch (rule) {
         case ProbeRule::moment_matched: {  // Rule B

@@ -7,7 +7,8 @@
 // construction (below) but weights the probes by a Gaussian cut at ±kGaussianProbeExtent σ, its
 // spacing solved so that the kernel keeps the covariance K/4; the other rules weight each 1/N.
 //
-// Rule B (ProbeRule::moment_matched; spec §2.8) on the axes Λ_i = √(λ_i² + 1):
+// Rule B (ProbeRule::moment_matched; spec §2.8) on the axes Λ_i = max(√(λ_i² + ρ), 1),
+// ρ = clamp(λ1² + λ2² − 1, 0, 1):
 //     T_p = Λ2
 //     Λ1 ≤ T_p:  N = 1
 //     else:      N = ⌈√(3(Λ1/T_p)² − 2)⌉                 smallest N with spacing ≤ T_p (no gaps)
@@ -16,10 +17,12 @@
 //     lod = clamp(log2 T_p, 0, L_max)
 //   The ground truth filters the bilinear reconstruction f of level 0 with K/4 (texture/
 //   reference_filter.h); a probe of texel size T has the covariance (T² − 1)/4 about f (level 0
-//   is f itself). Planned on Λ, the line's (Λ1² − T_p²)/4 and the probes' (T_p² − 1)/4 add up to
-//   exactly K/4 about f unless clamped; planned on λ with T_p = max(λ2, 1), as
+//   is f itself). With ρ = 1 (tr K ≥ 2), the line's (Λ1² − T_p²)/4 and the probes' (T_p² − 1)/4
+//   add up to exactly K/4 about f unless clamped; planned on λ with T_p = max(λ2, 1) (ρ = 0), as
 //   the papers do, a footprint of a few texels falls short by up to ¼ texel² along each axis,
-//   which aliases (docs/method.md). Λ is continuous down to K = 0, where it is one bilinear probe.
+//   which aliases (docs/method.md). Magnification (tr K ≤ 1) reads f itself, one bilinear probe
+//   of level 0, as every filter does; ρ rises from 0 there to 1 at tr K = 2, so that the plan
+//   stays continuous.
 // Rule A (ProbeRule::ext; EXT_texture_filter_anisotropic on the ellipse axes):
 //     N = min(⌈λ1/max(λ2, ε)⌉, N_max),  lod = log2(λ1/N),  o_i = (i/(N+1) − ½)·λ1 r1 (i = 1..N)
 //   It integrates about one pixel step along r1 (σ_major → λ1/√12 instead of λ1/2).
@@ -110,8 +113,10 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
 // Whether `plan`, for footprint `e`, had to raise its probes' level because the line would have
 // needed more than its max_probes (the clamped anisotropy that blurs the minor axis).
 inline bool exceeds_probe_budget(const ProbePlan& plan, const FootprintEllipse& e) {
-    return plan.count > 1 &&
-           plan.texel_size > 1.0001f * std::sqrt(e.minor_radius * e.minor_radius + 1.0f);  // Λ2
+    const float l1_sq = e.major_radius * e.major_radius, l2_sq = e.minor_radius * e.minor_radius;
+    const float minor =
+        std::sqrt(std::max(l2_sq + std::clamp(l1_sq + l2_sq - 1, 0.0f, 1.0f), 1.0f));
+    return plan.count > 1 && plan.texel_size > 1.0001f * minor;  // beyond Λ2
 }
 
 }  // namespace footprint

@@ -124,24 +124,28 @@ TEST(FootprintAssembly, RuleAAndTexramPlans) {
     EXPECT_NEAR(t.offset(0).x, (0.5f / 8 - 0.5f) * 32, 1e-5f);
 }
 
-// Λ = √(λ² + 1), the axes Rule B plans (footprint_assembly.h).
-float big_lambda(float l) {
-    return std::sqrt(l * l + 1);
+// Λ = max(√(λ² + ρ), 1), ρ = clamp(λ1² + λ2² − 1, 0, 1): footprint e's semi-axis l as Rule B
+// plans it (footprint_assembly.h).
+float big_lambda(float l, const FootprintEllipse& e) {
+    const float rho = std::clamp(
+        e.major_radius * e.major_radius + e.minor_radius * e.minor_radius - 1, 0.0f, 1.0f);
+    return std::max(std::sqrt(l * l + rho), 1.0f);
 }
 
 // The kernel covariance spec §2.8 predicts for Rule B, in the moments' measure (kernel_moments.h:
 // texel-centre covariance + I/12, where a probe of texel size T measures T²/4):
 // ¼[(Λ1'² − T_p² + T_eff²) r1r1ᵀ + T_eff² r2r2ᵀ], Λ1' = max(Λ1, T_p). T_eff² is the probes' own
 // variance ×4: T_p² with the variance-matched level blend, 4^L(1 + 3w) for GL's linear blend at
-// lod L + w ([FAT]). With the remap and no clamping this is exactly (K + I)/4: the ground truth's
-// kernel in this measure, K/4 about the bilinear reconstruction f, whose tent adds I/6 to the
-// texel-centre covariance, and the measure's I/12.
+// lod L + w ([FAT]). With the remap and no clamping this is exactly (K + I)/4 from tr K = 2 on: the
+// ground truth's kernel in this measure, K/4 about the bilinear reconstruction f, whose tent adds
+// I/6 to the texel-centre covariance, and the measure's I/12 (below, (K + ρI)/4 with each axis
+// at least the bilinear probe's ¼).
 Sym2 predicted_kernel(const FootprintEllipse& e, const ProbePlan& plan, LodBlend blend) {
     const float tp = plan.texel_size;
     const float level = std::floor(plan.lod), w = plan.lod - level;
     const float t_eff_sq =
         blend == LodBlend::variance_matched ? tp * tp : std::exp2(2 * level) * (1 + 3 * w);
-    const float major = std::max(big_lambda(e.major_radius), tp);
+    const float major = std::max(big_lambda(e.major_radius, e), tp);
     return outer(e.major_axis, 0.25f * (major * major - tp * tp + t_eff_sq)) +
            outer(e.minor_axis(), 0.25f * t_eff_sq);
 }
@@ -195,7 +199,7 @@ TEST(FootprintAssembly, GaussianPlansKeepRuleBsMomentsAndSpacing) {
                 sw += w;
                 swo += w * std::pow(k * length(plan.step), 2);
             }
-            const double major = std::max(big_lambda(l1), plan.texel_size);
+            const double major = std::max(big_lambda(l1, e), plan.texel_size);
             EXPECT_NEAR(swo / sw + plan.texel_size * plan.texel_size / 4, major * major / 4,
                         1e-3 * major * major)
                 << "λ1 = " << l1 << ", N_max = " << max_probes;
@@ -225,7 +229,7 @@ TEST(FootprintAssembly, GaussianPlansTakeTheFewestProbes) {
         const ProbePlan plan = plan_probes(e, ProbeRule::gaussian, kMaxProbeCount, 12);
         if (plan.count == 1) continue;
         ++lines;
-        const double tp = plan.texel_size, big_l1 = big_lambda(l1),
+        const double tp = plan.texel_size, big_l1 = big_lambda(l1, e),
                      sigma = 0.5 * std::sqrt(big_l1 * big_l1 - tp * tp);
         for (int n = 2; n < plan.count; ++n)
             EXPECT_GT(sigma * spacing_factor_by_definition(n), tp * (1 - 1e-5))
@@ -262,9 +266,9 @@ TEST(FootprintAssembly, KernelCovarianceIsQuarterK) {
                 EXPECT_LT(mean_error, kKernelMeanTolerance * std::max(1.0f, e.major_radius))
                     << "footprint " << i;
                 if (blend == LodBlend::variance_matched) {
-                    // ... which is (K + I)/4 itself: the ground truth's kernel.
-                    const float major = big_lambda(e.major_radius),
-                                minor = big_lambda(e.minor_radius);
+                    // ... which is (K + ρI)/4 itself: from tr K = 2 on, the ground truth's kernel.
+                    const float major = big_lambda(e.major_radius, e),
+                                minor = big_lambda(e.minor_radius, e);
                     const Sym2 quarter_k = outer(e.major_axis, 0.25f * major * major) +
                                            outer(e.minor_axis(), 0.25f * minor * minor);
                     EXPECT_LT(relative_error(m.covariance, quarter_k), kKernelCovarianceTolerance)
@@ -289,7 +293,8 @@ TEST(FootprintAssembly, IsotropicRatioTakesOneProbeOfTheGeometricMean) {
             const FootprintEllipse e = random_footprint(rng, 0.5f, 200, 1.6f);
             const ProbePlan plan =
                 plan_probes(e, rule, options.max_probes, moments.first().max_level(), 0.0f, 1.25f);
-            const float major = big_lambda(e.major_radius), minor = big_lambda(e.minor_radius);
+            const float major = big_lambda(e.major_radius, e),
+                        minor = big_lambda(e.minor_radius, e);
             float mean_error = 0;
             const KernelMoments m = averaged_fa_moments(moments, e, options, &mean_error);
             EXPECT_LT(mean_error, kKernelMeanTolerance * major) << "footprint " << i;
@@ -454,8 +459,8 @@ TEST(FootprintAssembly, ClampedProbeBudgetRaisesTheMinorAxisOnly) {
                 plan_probes(e, options.probe_rule, options.max_probes, moments.first().max_level());
             float mean_error = 0;
             const KernelMoments m = averaged_fa_moments(moments, e, options, &mean_error);
-            const float minor = std::max(big_lambda(e.minor_radius), plan.texel_size);
-            const float major = std::max(big_lambda(e.major_radius), plan.texel_size);
+            const float minor = std::max(big_lambda(e.minor_radius, e), plan.texel_size);
+            const float major = std::max(big_lambda(e.major_radius, e), plan.texel_size);
             const Sym2 expected = outer(e.major_axis, 0.25f * major * major) +
                                   outer(e.minor_axis(), 0.25f * minor * minor);
             EXPECT_LT(relative_error(m.covariance, expected), kKernelCovarianceTolerance)

@@ -97,13 +97,11 @@ detail::Requested route_lookup(const Texels& pyramid, const TextureCoords& c,
     const Vec2 d_dx{c.dsdx * w0, c.dtdx * h0}, d_dy{c.dsdy * w0, c.dtdy * h0};  // columns of D
     const float len_x2 = dot(d_dx, d_dx), len_y2 = dot(d_dy, d_dy);
     // No footprint needed: the level-0 baselines, and magnification — a footprint inside one texel
-    // (trace K = |D|²_F ≤ 1 ⇒ λ1 ≤ 1) is one bilinear probe at level 0 for trilinear and EWA.
-    // Footprint assembly has no such threshold: its levels follow the footprint continuously
-    // down to K = 0 (Λ = √(λ² + 1), footprint_assembly.h), so a footprint just inside one texel
-    // reads what one just outside does.
+    // (trace K = |D|²_F ≤ 1 ⇒ λ1 ≤ 1) is one bilinear probe at level 0 for every mipmapping filter.
     const bool isotropic =
         options.filter == TextureFilter::trilinear || options.filter == TextureFilter::brilinear;
-    const bool mipmapped = isotropic || options.filter == TextureFilter::ewa;
+    const bool mipmapped = isotropic || options.filter == TextureFilter::footprint_assembly ||
+                           options.filter == TextureFilter::ewa;
     const bool magnified = mipmapped && len_x2 + len_y2 <= 1.0f && options.lod_bias <= 0.0f;
     if (options.filter == TextureFilter::nearest || options.filter == TextureFilter::bilinear ||
         magnified) {

@@ -91,8 +91,8 @@ TEST(TextureLookup, LevelSelection) {
         const FootprintEllipse iso =
             make_footprint_ellipse(std::exp2(float(k)), std::exp2(float(k)), 0.2f);
         EXPECT_NEAR(lookup_value(p, iso, tri), k, kLevelTolerance);
-        // Footprint assembly plans Λ = √(λ² + 1) (footprint_assembly.h): one probe at log2 Λ,
-        // half a level above level 0 for a one-texel footprint, converging on k.
+        // Footprint assembly plans Λ = √(λ² + 1) from tr K = 2 on (footprint_assembly.h): one
+        // probe at log2 Λ, half a level above level 0 for a one-texel footprint, converging on k.
         EXPECT_NEAR(lookup_value(p, iso, fa),
                     std::min(8.0f, 0.5f * std::log2(std::exp2(2.0f * k) + 1)), kLevelTolerance)
             << k;
@@ -126,12 +126,16 @@ TEST(TextureLookup, LevelSelection) {
     // lod_bias shifts every filter's level.
     fa.lod_bias = 1;
     EXPECT_NEAR(lookup_value(p, aniso, fa), aniso_lod + 1, kLevelTolerance);
-    // Footprints larger than the texture read the coarsest level; a magnified footprint all but
-    // level 0: λ = (0.2, 0.1) is a line of probes at log2 Λ2 = log2 √1.01 (blended linearly here).
+    // Footprints larger than the texture read the coarsest level; magnification reads level 0.
     fa.lod_bias = 0;
     EXPECT_NEAR(lookup_value(p, make_footprint_ellipse(1e6f, 1e6f, 0), fa), 8.0f, kLevelTolerance);
-    EXPECT_NEAR(lookup_value(p, make_footprint_ellipse(0.2f, 0.1f, 0), fa), 0.5f * std::log2(1.01f),
-                kLevelTolerance);
+    EXPECT_NEAR(lookup_value(p, make_footprint_ellipse(0.2f, 0.1f, 0), fa), 0.0f, kLevelTolerance);
+    // From tr K = 1 to 2 the reconstruction's share ρ rises from 0 to 1 (footprint_assembly.h):
+    // λ = 0.8 isotropic, ρ = 0.28, one probe at ½ log2(0.64 + 0.28) < 0, level 0; λ = 0.9,
+    // ρ = 0.62, ½ log2(0.81 + 0.62) = 0.258.
+    EXPECT_NEAR(lookup_value(p, make_footprint_ellipse(0.8f, 0.8f, 0), fa), 0.0f, kLevelTolerance);
+    EXPECT_NEAR(lookup_value(p, make_footprint_ellipse(0.9f, 0.9f, 0), fa),
+                0.5f * std::log2(0.81f + 0.62f), 1e-5f);
 }
 
 TEST(TextureLookup, TrilinearUsesTheGlRuleOnDerivatives) {

@@ -113,10 +113,11 @@ float probe_lod(float texel_size, int max_level) {
     return clamp(log2(max(texel_size, 1.0)), 0.0, float(max_level));
 }
 
-// Planned on the axes Λ = √(λ² + 1), the footprint with the reconstruction the ground truth
-// filters (texture/footprint_assembly.h).
+// Planned on the axes Λ = max(√(λ² + ρ), 1), ρ = clamp(λ1² + λ2² − 1, 0, 1): the footprint with
+// the reconstruction the ground truth filters (texture/footprint_assembly.h).
 Plan plan_probes(Ellipse e, int max_probes, int max_level) {
-    float l1 = sqrt(e.l1 * e.l1 + 1.0), tp = sqrt(e.l2 * e.l2 + 1.0);  // Λ1, T_p = Λ2
+    float rho = clamp(e.l1 * e.l1 + e.l2 * e.l2 - 1.0, 0.0, 1.0);
+    float l1 = max(sqrt(e.l1 * e.l1 + rho), 1.0), tp = max(sqrt(e.l2 * e.l2 + rho), 1.0);
     if (l1 <= tp * kIsotropicRatio)  // one probe of size √(Λ1 Λ2)
         return Plan(1, vec2(0), probe_lod(sqrt(tp * l1), max_level), 0.0, sqrt(tp * l1));
     float sigma = 0.5 * sqrt(l1 * l1 - tp * tp);
@@ -143,7 +144,8 @@ Plan plan_probes(Ellipse e, int max_probes, int max_level) {
 // Whether `plan` raised its probes' level because the line needed more than its max_probes
 // (texture/footprint_assembly.h's exceeds_probe_budget()).
 bool exceeds_probe_budget(Plan plan, Ellipse e) {
-    return plan.count > 1 && plan.texel_size > 1.0001 * sqrt(e.l2 * e.l2 + 1.0);  // Λ2
+    float rho = clamp(e.l1 * e.l1 + e.l2 * e.l2 - 1.0, 0.0, 1.0);
+    return plan.count > 1 && plan.texel_size > 1.0001 * max(sqrt(e.l2 * e.l2 + rho), 1.0);  // Λ2
 }
 
 // Probe i's offset from the centre (level-0 texels) and weight.
@@ -192,9 +194,7 @@ Texel lookup_2d(int map, int first, int layers, vec2 st, vec4 dst, int mode) {
     int max_level = map_max_level(map);
     vec2 d_dx = dst.xy * size, d_dy = dst.zw * size;  // the columns of D, level-0 texels
     float len_x2 = dot(d_dx, d_dx), len_y2 = dot(d_dy, d_dy);
-    // No footprint; or magnification for trilinear (footprint assembly's levels follow Λ down
-    // to K = 0, texture/texture_lookup_route.h).
-    if (!is_finite(len_x2 + len_y2) || (mode == MODE_TRILINEAR && len_x2 + len_y2 <= 1.0))
+    if (!is_finite(len_x2 + len_y2) || len_x2 + len_y2 <= 1.0)  // magnification, or no footprint
         return probe(map, first, layers, st, 0.0);
     if (mode == MODE_TRILINEAR)  // GL's rule: ρ = max(|∂(X,Y)/∂x|, |∂(X,Y)/∂y|)
         return probe(map, first, layers, st,
