@@ -170,6 +170,28 @@ LevelChoice oiio_levels(const TexelReader& texels, const TextureOpt& options, fl
     return choice;
 }
 
+// The samples of `choice`'s levels, closest or bilinear, blended by its weights.
+LevelSample sample_levels(const TexelReader& texels, const LevelChoice& choice,
+                          TextureOpt::InterpMode interp, const TexCoords& c, TextureOpt::Wrap ws,
+                          TextureOpt::Wrap wt, int first, int count) {
+    LevelSample sum;
+    for (int k = 0; k < 2; ++k) {
+        if (choice.weight[k] == 0) continue;
+        const LevelSample one =
+            interp == TextureOpt::InterpClosest
+                ? sample_closest(texels, choice.level[k], c.s, c.t, ws, wt, first, count)
+                : sample_bilinear(texels, choice.level[k], c.s, c.t, ws, wt, first, count);
+        const float w = choice.weight[k];
+        for (int ch = 0; ch < count; ++ch) {
+            sum.value[ch] += w * one.value[ch];
+            sum.ds[ch] += w * one.ds[ch];
+            sum.dt[ch] += w * one.dt[ch];
+        }
+        sum.coverage += w * one.coverage;
+    }
+    return sum;
+}
+
 // The value of a no-MIP, one-level or trilinear lookup: OpenImageIO's levels and weights,
 // closest or bilinear samples (its smart bicubic is bilinear in these modes).
 LevelSample oiio_rule_lookup(const TexelReader& texels, const TextureOpt& options, TexCoords c,
@@ -184,40 +206,27 @@ LevelSample oiio_rule_lookup(const TexelReader& texels, const TextureOpt& option
         filtwidth += std::max(options.sblur, options.tblur);
         choice = oiio_levels(texels, options, filtwidth);
     }
-    LevelSample sum;
-    for (int k = 0; k < 2; ++k) {
-        if (choice.weight[k] == 0) continue;
-        const LevelSample one =
-            options.interpmode == TextureOpt::InterpClosest
-                ? sample_closest(texels, choice.level[k], c.s, c.t, ws, wt, first, count)
-                : sample_bilinear(texels, choice.level[k], c.s, c.t, ws, wt, first, count);
-        const float w = choice.weight[k];
-        for (int ch = 0; ch < count; ++ch) {
-            sum.value[ch] += w * one.value[ch];
-            sum.ds[ch] += w * one.ds[ch];
-            sum.dt[ch] += w * one.dt[ch];
-        }
-        sum.coverage += w * one.coverage;
-    }
-    return sum;
+    return sample_levels(texels, choice, options.interpmode, c, ws, wt, first, count);
 }
 
 // ---- footprint assembly for the anisotropic mode.
 
-// The footprint in level-0 texels, K = D Dᵀ with D = diag(W, H)·∂(s,t)/∂(x,y) (docs/method.md
-// §1), the blur's Gaussian added to it: blur b (a fraction of the texture) widens the kernel as a
-// pixel derivative of length b would, and kernels convolve by adding their covariances.
+// The footprint in level-0 texels, K = D Dᵀ with D = diag(W, H)·∂(s,t)/∂(x,y) (docs/method.md,
+// "Conventions").
 struct Covariance {
     double a = 0, b = 0, c = 0;  // [[a b] [b c]]
 };
-Covariance footprint_covariance(const TexCoords& c, float w, float h, float sblur, float tblur) {
+Covariance footprint_covariance(const TexCoords& c, float w, float h) {
     const double xs = c.dsdx * w, xt = c.dtdx * h, ys = c.dsdy * w, yt = c.dtdy * h;
-    return {xs * xs + ys * ys + sblur * sblur * w * w, xs * xt + ys * yt,
-            xt * xt + yt * yt + tblur * tblur * h * h};
+    return {xs * xs + ys * ys, xs * xt + ys * yt, xt * xt + yt * yt};
 }
 double major_axis(const Covariance& k) {  // √ of K's largest eigenvalue: texels
     const double mean = 0.5 * (k.a + k.c), d = std::hypot(0.5 * (k.a - k.c), k.b);
     return std::sqrt(mean + d);
+}
+double minor_axis(const Covariance& k) {  // √ of K's smallest eigenvalue
+    const double mean = 0.5 * (k.a + k.c), d = std::hypot(0.5 * (k.a - k.c), k.b);
+    return std::sqrt(std::max(0.0, mean - d));
 }
 // Derivatives whose footprint is K: the symmetric square root of K, back in normalised units.
 TexCoords derivatives_of(const Covariance& k, float s, float t, float w, float h) {
@@ -337,15 +346,46 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, Entries&
         return true;
     }
 
-    // Footprint assembly. Closest probes and magnified smart-bicubic lookups (OpenImageIO's
-    // default interpolation is bicubic where level 0 is magnified) stay OpenImageIO's.
-    if (options.interpmode == TextureOpt::InterpClosest) return std::nullopt;
+    // Footprint assembly. What stays OpenImageIO's: closest probes; blur, which OpenImageIO adds
+    // to the ellipse's axes (its adjust_blur), not as a kernel; smart-bicubic lookups that
+    // OpenImageIO reads from level 0 bicubically (a footprint of at most one texel); and files
+    // larger than OpenImageIO's max_mip_res, whose finest levels it hides.
+    if (options.interpmode == TextureOpt::InterpClosest || options.sblur != 0 ||
+        options.tblur != 0 || std::max(facts.spec.width, facts.spec.height) > settings.max_mip_res)
+        return std::nullopt;
     TexCoords scaled = c;
     scaled.dsdx *= options.swidth, scaled.dsdy *= options.swidth;
     scaled.dtdx *= options.twidth, scaled.dtdy *= options.twidth;
-    const Covariance k = footprint_covariance(scaled, w, h, options.sblur, options.tblur);
+    const Covariance k = footprint_covariance(scaled, w, h);
     const double major = major_axis(k);
-    if (options.interpmode == TextureOpt::InterpSmartBicubic && major < 1.0) return std::nullopt;
+    constexpr double kOneTexel = 1.001;  // 1:1 mappings, over the derivatives' rounding
+    if (options.interpmode == TextureOpt::InterpSmartBicubic && major <= kOneTexel)
+        return std::nullopt;
+    // An isotropic footprint is one trilinear probe, whatever the level rule: it takes
+    // OpenImageIO's (its compute_miplevels on the ellipse's minor axis, as its anisotropic mode
+    // does), so that a mapping of N texels to a pixel reads level log2 N alone, as OpenImageIO's
+    // does and its test suite expects, where footprint assembly's rule would blend in some of the
+    // next level for the reconstruction's share (docs/method.md).
+    constexpr double kIsotropic = 1.001;  // footprint assembly's own one-probe ratio
+    if (major <= kIsotropic * minor_axis(k)) {
+        TextureHandle* entry = file.texture(system, subimage);
+        if (!entry) return std::nullopt;
+        const float minor_st =
+            static_cast<float>(minor_axis(k)) / static_cast<float>(std::max(w, h));
+        const Status read =
+            footprint::detail::read_texels(system, entry, [&](const TexelReader& texels) {
+                const LevelChoice choice = oiio_levels(texels, options, minor_st);
+                value = sample_levels(texels, choice, TextureOpt::InterpBilinear, c, ws, wt, first,
+                                      actual);
+            });
+        if (!read) {
+            error = read.error().message;
+            return false;
+        }
+        write_result(value, actual, nchannels, options, facts, settings, result, dresultds,
+                     dresultdt);
+        return true;
+    }
     const Reach reach_s = reach(c.s * w, std::sqrt(k.a), major, facts.spec.width);
     const Reach reach_t = reach(c.t * h, std::sqrt(k.c), major, facts.spec.height);
     OpenAs as = subimage;

@@ -38,6 +38,7 @@ struct FileFacts {
 struct Settings {
     bool gray_to_rgb = false;
     bool flip_t = false;
+    int max_mip_res = 1 << 30;  // OpenImageIO's: a file larger than this is the delegate's
 };
 
 struct TexCoords {

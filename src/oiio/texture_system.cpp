@@ -678,12 +678,14 @@ class Adapter final : public OIIO::TextureSystem {
 
     detail::Settings settings() const {
         return {gray_to_rgb_.load(std::memory_order_relaxed),
-                flip_t_.load(std::memory_order_relaxed)};
+                flip_t_.load(std::memory_order_relaxed),
+                max_mip_res_.load(std::memory_order_relaxed)};
     }
     void read_settings() {
         int value = 0;
         if (delegate_->getattribute("gray_to_rgb", value)) gray_to_rgb_ = value != 0;
         if (delegate_->getattribute("flip_t", value)) flip_t_ = value != 0;
+        if (delegate_->getattribute("max_mip_res", value)) max_mip_res_ = value;
     }
 
     footprint::TextureSystem& footprint() {
@@ -852,6 +854,7 @@ class Adapter final : public OIIO::TextureSystem {
     std::shared_mutex files_mutex_;
     std::unordered_map<ustring, std::unique_ptr<File>> files_;
     std::atomic<bool> gray_to_rgb_{false}, flip_t_{false};
+    std::atomic<int> max_mip_res_{1 << 30};
     std::mutex retired_mutex_;
     std::vector<Perthread*> retired_;  // destroyed by the host, kept for create_thread_info()
     struct {
