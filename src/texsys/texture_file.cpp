@@ -196,7 +196,6 @@ void TextureHandle::read_tile(int l, int tx, int ty, float* texels) {
     const int x0 = tx * size, y0 = ty * size;
     const int level_width = shape.levels[l].width, level_height = shape.levels[l].height;
     const int w = std::min(size, level_width - x0), h = std::min(size, level_height - y0);
-    std::fill_n(texels, static_cast<std::size_t>(w) * h * stride, 0.0f);
     // The file's tiles that cover this one (OpenImageIO reads whole tiles).
     const int xb = x0 / file_tile_width_ * file_tile_width_;
     const int yb = y0 / file_tile_height_ * file_tile_height_;
@@ -204,7 +203,11 @@ void TextureHandle::read_tile(int l, int tx, int ty, float* texels) {
                             (x0 + w + file_tile_width_ - 1) / file_tile_width_ * file_tile_width_);
     const int ye = std::min(
         level_height, (y0 + h + file_tile_height_ - 1) / file_tile_height_ * file_tile_height_);
-    std::vector<float> read(static_cast<std::size_t>(xe - xb) * (ye - yb) * channels);
+    // Read into the thread's buffer, kept from tile to tile: a tile's read, in a cache smaller than
+    // the frame's tiles, is otherwise an allocation and its first touch (page faults) each time.
+    thread_local std::vector<float> read;
+    const std::size_t floats = static_cast<std::size_t>(xe - xb) * (ye - yb) * channels;
+    if (read.size() < floats) read.resize(floats);
     bool ok;
     std::string why;
     {
@@ -214,6 +217,7 @@ void TextureHandle::read_tile(int l, int tx, int ty, float* texels) {
         if (!ok) why = input_->geterror();
     }
     if (!ok) {
+        std::fill_n(texels, static_cast<std::size_t>(w) * h * stride, 0.0f);
         fail_read((subimage_ > 0 ? "part " + std::to_string(subimage_) + " " : std::string()) +
                   "MIP level " + std::to_string(l) + " tile (" + std::to_string(tx) + ", " +
                   std::to_string(ty) + "): " + why);
@@ -229,6 +233,7 @@ void TextureHandle::read_tile(int l, int tx, int ty, float* texels) {
                 const float v = srgb_ && c != alpha_ ? srgb_to_linear(from[c]) : from[c];
                 to[c] = std::isfinite(v) ? v : 0.0f;  // as the filters' no-NaN promise needs
             }
+            std::fill(to + channels, to + stride, 0.0f);  // the padding
         }
     }
 }
