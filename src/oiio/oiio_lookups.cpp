@@ -220,13 +220,15 @@ Covariance footprint_covariance(const TexCoords& c, float w, float h) {
     const double xs = c.dsdx * w, xt = c.dtdx * h, ys = c.dsdy * w, yt = c.dtdy * h;
     return {xs * xs + ys * ys, xs * xt + ys * yt, xt * xt + yt * yt};
 }
-double major_axis(const Covariance& k) {  // √ of K's largest eigenvalue: texels
-    const double mean = 0.5 * (k.a + k.c), d = std::hypot(0.5 * (k.a - k.c), k.b);
-    return std::sqrt(mean + d);
-}
-double minor_axis(const Covariance& k) {  // √ of K's smallest eigenvalue
-    const double mean = 0.5 * (k.a + k.c), d = std::hypot(0.5 * (k.a - k.c), k.b);
-    return std::sqrt(std::max(0.0, mean - d));
+// The ellipse's semi-axes, √ of K's eigenvalues, in texels (K's entries, finite floats squared,
+// cannot overflow a double).
+struct Axes {
+    double major, minor;
+};
+Axes axes_of(const Covariance& k) {
+    const double mean = 0.5 * (k.a + k.c), half = 0.5 * (k.a - k.c);
+    const double d = std::sqrt(half * half + k.b * k.b);
+    return {std::sqrt(mean + d), std::sqrt(std::max(0.0, mean - d))};
 }
 // Derivatives whose footprint is K: the symmetric square root of K, back in normalised units.
 TexCoords derivatives_of(const Covariance& k, float s, float t, float w, float h) {
@@ -283,11 +285,23 @@ void write_result(const LevelSample& v, int actual, int nchannels, const Texture
 
 }  // namespace
 
+static_assert(static_cast<int>(WrapMode::mirror) + 1 == Entries::kWrapModes);
+
 TextureHandle* Entries::texture(footprint::TextureSystem& system, const OpenAs& as) {
     const auto opened = [&] {
         TextureHandle* entry = footprint::detail::texture_handle(system, file_, as);
         return system.info(entry) ? entry : nullptr;
     };
+    if (as.subimage == 0 && as.wrap_s && as.wrap_t) {
+        std::atomic<TextureHandle*>& slot =
+            wrapped_[static_cast<int>(*as.wrap_s) * kWrapModes + static_cast<int>(*as.wrap_t)];
+        TextureHandle* entry = slot.load(std::memory_order_acquire);
+        if (!entry) {  // two threads may both open it: texture_handle() gives both the same
+            entry = opened();
+            slot.store(entry, std::memory_order_release);
+        }
+        return entry;
+    }
     if (!(as == OpenAs{})) return opened();
     std::call_once(texture_opened_, [&] { texture_ = opened(); });
     return texture_;
@@ -357,7 +371,7 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, Entries&
     scaled.dsdx *= options.swidth, scaled.dsdy *= options.swidth;
     scaled.dtdx *= options.twidth, scaled.dtdy *= options.twidth;
     const Covariance k = footprint_covariance(scaled, w, h);
-    const double major = major_axis(k);
+    const auto [major, minor] = axes_of(k);
     constexpr double kOneTexel = 1.001;  // 1:1 mappings, over the derivatives' rounding
     if (options.interpmode == TextureOpt::InterpSmartBicubic && major <= kOneTexel)
         return std::nullopt;
@@ -367,11 +381,10 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, Entries&
     // does and its test suite expects, where footprint assembly's rule would blend in some of the
     // next level for the reconstruction's share (docs/method.md).
     constexpr double kIsotropic = 1.001;  // footprint assembly's own one-probe ratio
-    if (major <= kIsotropic * minor_axis(k)) {
+    if (major <= kIsotropic * minor) {
         TextureHandle* entry = file.texture(system, subimage);
         if (!entry) return std::nullopt;
-        const float minor_st =
-            static_cast<float>(minor_axis(k)) / static_cast<float>(std::max(w, h));
+        const float minor_st = static_cast<float>(minor) / static_cast<float>(std::max(w, h));
         const Status read =
             footprint::detail::read_texels(system, entry, [&](const TexelReader& texels) {
                 const LevelChoice choice = oiio_levels(texels, options, minor_st);

@@ -11,6 +11,8 @@
 #include <Imath/ImathVec.h>  // before texture.h
 #include <OpenImageIO/texture.h>
 
+#include <array>
+#include <atomic>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -61,6 +63,15 @@ class Entries {
     std::once_flag texture_opened_, latlong_opened_;
     TextureHandle* texture_ = nullptr;
     EnvironmentHandle* latlong_ = nullptr;
+    // Subimage 0 read with given wrap modes, by (wrap_s, wrap_t): a footprint near an edge of a
+    // periodic, clamped or mirrored texture opens one, and such footprints are common (a long
+    // line of probes reaches an edge from far inside), so it is kept rather than looked up by
+    // name each time.
+  public:
+    static constexpr int kWrapModes = 3;  // footprint's WrapMode values
+
+  private:
+    std::array<std::atomic<TextureHandle*>, kWrapModes * kWrapModes> wrapped_{};
 };
 
 // A lookup footprint answers, or nullopt: the delegate's. Writes nchannels results (and the

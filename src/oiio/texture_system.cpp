@@ -47,6 +47,7 @@ struct File {
     ustring name;
     Handle* delegate = nullptr;
     std::once_flag probed;
+    std::atomic<bool> probed_done{false};
     detail::FileFacts facts;
     std::unique_ptr<detail::Entries> entries;  // footprint's entries of the file
 };
@@ -643,6 +644,9 @@ class Adapter final : public OIIO::TextureSystem {
 
     // OpenImageIO's view of a file, through the delegate.
     const detail::FileFacts& facts(File& f, Perthread* thread_info) {
+        // Probed once; every later lookup reads the flag alone (std::call_once's own check costs
+        // more than the rest of a lookup's bookkeeping).
+        if (f.probed_done.load(std::memory_order_acquire)) return f.facts;
         std::call_once(f.probed, [&] {
             detail::FileFacts& facts = f.facts;
             int exists = 0;
@@ -673,6 +677,7 @@ class Adapter final : public OIIO::TextureSystem {
             facts.sample_border =
                 (facts.latlong || facts.cube) && spec.get_int_attribute("oiio:sampleborder") != 0;
         });
+        f.probed_done.store(true, std::memory_order_release);
         return f.facts;
     }
 
@@ -688,13 +693,18 @@ class Adapter final : public OIIO::TextureSystem {
         if (delegate_->getattribute("max_mip_res", value)) max_mip_res_ = value;
     }
 
+    // footprint's texture system, made on the first lookup (so that max_memory_MB set before it
+    // counts); every later lookup finds it without the lock.
     footprint::TextureSystem& footprint() {
+        if (footprint::TextureSystem* made = footprint_ready_.load(std::memory_order_acquire))
+            return *made;
         std::lock_guard lock(footprint_mutex_);
         if (!footprint_) {
             // create() refuses only options create_texture_system() already checked.
             Result<std::unique_ptr<footprint::TextureSystem>> made =
                 footprint::TextureSystem::create(options_);
             footprint_ = std::move(*made);
+            footprint_ready_.store(footprint_.get(), std::memory_order_release);
         }
         return *footprint_;
     }
@@ -851,6 +861,7 @@ class Adapter final : public OIIO::TextureSystem {
     OIIO::TextureSystem* delegate_;
     mutable std::mutex footprint_mutex_;
     std::unique_ptr<footprint::TextureSystem> footprint_;
+    std::atomic<footprint::TextureSystem*> footprint_ready_{nullptr};
     std::shared_mutex files_mutex_;
     std::unordered_map<ustring, std::unique_ptr<File>> files_;
     std::atomic<bool> gray_to_rgb_{false}, flip_t_{false};
