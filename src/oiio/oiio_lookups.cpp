@@ -230,19 +230,6 @@ Axes axes_of(const Covariance& k) {
     const double d = std::sqrt(half * half + k.b * k.b);
     return {std::sqrt(mean + d), std::sqrt(std::max(0.0, mean - d))};
 }
-// Derivatives whose footprint is K: the symmetric square root of K, back in normalised units.
-TexCoords derivatives_of(const Covariance& k, float s, float t, float w, float h) {
-    const double root_det = std::sqrt(std::max(0.0, k.a * k.c - k.b * k.b));
-    const double scale = std::sqrt(std::max(1e-30, k.a + k.c + 2 * root_det));
-    const double d00 = (k.a + root_det) / scale, d01 = k.b / scale, d11 = (k.c + root_det) / scale;
-    return {s,
-            t,
-            static_cast<float>(d00 / w),
-            static_cast<float>(d01 / h),
-            static_cast<float>(d01 / w),
-            static_cast<float>(d11 / h)};
-}
-
 // Where a footprint lies against the texture's edges: the wrap modes matter only for a footprint
 // whose texels reach beyond them. Its reach: the ellipse's extent, a wide margin for the probes'
 // spread along the major axis and their bilinear taps at a coarser level.
@@ -303,7 +290,9 @@ TextureHandle* Entries::texture(footprint::TextureSystem& system, const OpenAs& 
         return entry;
     }
     if (!(as == OpenAs{})) return opened();
+    if (texture_ready_.load(std::memory_order_acquire)) return texture_;
     std::call_once(texture_opened_, [&] { texture_ = opened(); });
+    texture_ready_.store(true, std::memory_order_release);
     return texture_;
 }
 
@@ -418,11 +407,11 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, Entries&
     LookupOptions lookup;
     lookup.filter = TextureFilter::footprint_assembly;
     lookup.max_probes = std::clamp(options.anisotropic, 1, 1024);
-    const TexCoords d = derivatives_of(k, c.s, c.t, w, h);
     const auto filtered = [&](float s, float t, float* out) {
-        std::array<float, kMaxChannels> all{};
-        const Status status = system.texture(entry, {s, t, d.dsdx, d.dtdx, d.dsdy, d.dtdy}, lookup,
-                                             std::span<float>(all.data(), first + actual));
+        std::array<float, kMaxChannels> all;  // the lookup writes first + actual of them
+        const Status status =
+            system.texture(entry, {s, t, scaled.dsdx, scaled.dtdx, scaled.dsdy, scaled.dtdy},
+                           lookup, std::span<float>(all.data(), first + actual));
         std::copy_n(all.data() + first, actual, out);
         return status;
     };

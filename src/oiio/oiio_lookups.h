@@ -62,6 +62,7 @@ class Entries {
     const std::string file_;
     std::once_flag texture_opened_, latlong_opened_;
     TextureHandle* texture_ = nullptr;
+    std::atomic<bool> texture_ready_{false};  // texture_ is set: no std::call_once on lookups
     EnvironmentHandle* latlong_ = nullptr;
     // Subimage 0 read with given wrap modes, by (wrap_s, wrap_t): a footprint near an edge of a
     // periodic, clamped or mirrored texture opens one, and such footprints are common (a long

@@ -11,6 +11,7 @@
 #include <OpenImageIO/imagecache.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <initializer_list>
@@ -18,6 +19,7 @@
 #include <mutex>
 #include <shared_mutex>
 #include <sstream>
+#include <thread>
 #include <unordered_map>
 #include <vector>
 
@@ -171,7 +173,7 @@ class Adapter final : public OIIO::TextureSystem {
     bool texture(Handle* handle, Perthread* thread_info, TextureOpt& options, float s, float t,
                  float dsdx, float dtdx, float dsdy, float dtdy, int nchannels, float* result,
                  float* dresultds, float* dresultdt) override {
-        ++stats_.texture_calls;
+        counts().texture_calls.fetch_add(1, std::memory_order_relaxed);
         File* f = from_handle(handle);
         if (!f)
             return refuse("texture(): not a texture handle of this system", nchannels, result,
@@ -199,7 +201,7 @@ class Adapter final : public OIIO::TextureSystem {
                 footprint(), *tile->entries, facts(*tile, thread_info), settings(), options,
                 {ts, tt, dsdx, dtdx, dsdy, dtdy}, nchannels, result, dresultds, dresultdt, error);
             if (answered) {
-                ++stats_.texture_answered;
+                counts().texture_answered.fetch_add(1, std::memory_order_relaxed);
                 if (!*answered) append_error(error);
                 return *answered;
             }
@@ -273,7 +275,7 @@ class Adapter final : public OIIO::TextureSystem {
     bool environment(Handle* handle, Perthread* thread_info, TextureOpt& options, V3fParam R,
                      V3fParam dRdx, V3fParam dRdy, int nchannels, float* result, float* dresultds,
                      float* dresultdt) override {
-        ++stats_.environment_calls;
+        counts().environment_calls.fetch_add(1, std::memory_order_relaxed);
         File* f = from_handle(handle);
         if (!f)
             return refuse("environment(): not a texture handle of this system", nchannels, result,
@@ -294,7 +296,7 @@ class Adapter final : public OIIO::TextureSystem {
             footprint(), *f->entries, facts(*f, thread_info), options, r, rx, ry, nchannels, result,
             dresultds, dresultdt, error);
         if (answered) {
-            ++stats_.environment_answered;
+            counts().environment_answered.fetch_add(1, std::memory_order_relaxed);
             if (!*answered) append_error(error);
             return *answered;
         }
@@ -594,10 +596,10 @@ class Adapter final : public OIIO::TextureSystem {
     std::string getstats(int level, bool icstats) const override {
         std::ostringstream out;
         out << "footprint TextureSystem (OpenImageIO interface)\n"
-            << "  texture calls " << stats_.texture_calls << ", answered by footprint "
-            << stats_.texture_answered << "\n"
-            << "  environment calls " << stats_.environment_calls << ", answered by footprint "
-            << stats_.environment_answered << "\n";
+            << "  texture calls " << total(&Counts::texture_calls) << ", answered by footprint "
+            << total(&Counts::texture_answered) << "\n"
+            << "  environment calls " << total(&Counts::environment_calls)
+            << ", answered by footprint " << total(&Counts::environment_answered) << "\n";
         {
             std::lock_guard lock(footprint_mutex_);
             if (footprint_) {
@@ -612,8 +614,10 @@ class Adapter final : public OIIO::TextureSystem {
         return out.str();
     }
     void reset_stats() override {
-        stats_.texture_calls = stats_.texture_answered = 0;
-        stats_.environment_calls = stats_.environment_answered = 0;
+        for (Counts& c : counts_) {
+            c.texture_calls = c.texture_answered = 0;
+            c.environment_calls = c.environment_answered = 0;
+        }
         delegate_->reset_stats();
     }
     OIIO::ImageCache* imagecache() const override { return delegate_->imagecache(); }
@@ -868,10 +872,25 @@ class Adapter final : public OIIO::TextureSystem {
     std::atomic<int> max_mip_res_{1 << 30};
     std::mutex retired_mutex_;
     std::vector<Perthread*> retired_;  // destroyed by the host, kept for create_thread_info()
-    struct {
+    // The call counts getstats() reports, in shards of a cache line each, a thread counting in
+    // its own: one shared counter, written by every lookup of every thread, costs more than the
+    // adapter's whole bookkeeping once two threads look up at once.
+    struct alignas(64) Counts {
         std::atomic<std::uint64_t> texture_calls{0}, texture_answered{0};
         std::atomic<std::uint64_t> environment_calls{0}, environment_answered{0};
-    } mutable stats_;
+    };
+    static constexpr std::size_t kCountShards = 16;
+    mutable std::array<Counts, kCountShards> counts_;
+    Counts& counts() const {
+        thread_local const std::size_t shard =
+            std::hash<std::thread::id>()(std::this_thread::get_id()) % kCountShards;
+        return counts_[shard];
+    }
+    std::uint64_t total(std::atomic<std::uint64_t> Counts::*count) const {
+        std::uint64_t sum = 0;
+        for (const Counts& c : counts_) sum += (c.*count).load(std::memory_order_relaxed);
+        return sum;
+    }
 };
 
 }  // namespace
