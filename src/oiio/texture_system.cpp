@@ -19,7 +19,6 @@
 #include <mutex>
 #include <shared_mutex>
 #include <sstream>
-#include <thread>
 #include <unordered_map>
 #include <vector>
 
@@ -882,8 +881,10 @@ class Adapter final : public OIIO::TextureSystem {
     static constexpr std::size_t kCountShards = 16;
     mutable std::array<Counts, kCountShards> counts_;
     Counts& counts() const {
-        thread_local const std::size_t shard =
-            std::hash<std::thread::id>()(std::this_thread::get_id()) % kCountShards;
+        // Threads take the shards in turn (a hash of the thread id would not do: pthread ids
+        // are aligned addresses whose low bits agree).
+        static std::atomic<std::size_t> next_shard{0};
+        thread_local const std::size_t shard = next_shard++ % kCountShards;
         return counts_[shard];
     }
     std::uint64_t total(std::atomic<std::uint64_t> Counts::*count) const {

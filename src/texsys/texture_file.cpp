@@ -142,6 +142,10 @@ void TextureHandle::open_stored(const std::string& file, const TextureSystemOpti
 void TextureHandle::open_stored(const std::string& file, std::unique_ptr<OIIO::ImageInput> input,
                                 const TextureSystemOptions& options) {
     input_ = std::move(input);
+    // A tile is one read on the calling thread, as OpenImageIO's image cache reads them: the
+    // texture system is called from the host's threads already, and a decoder that hands each
+    // tile to its own pool (OpenEXR's) only adds hand-offs and threads competing with them.
+    input_->threads(1);
     if (!input_->seek_subimage(subimage_, 0)) {
         error = detail::read_error(file, "part " + std::to_string(subimage_) + " is missing");
         return;
