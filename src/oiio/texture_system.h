@@ -3,20 +3,22 @@
 //
 //   #include <footprint/oiio/texture_system.h>
 //
-//   OIIO::TextureSystem* ts = footprint::oiio::create_texture_system();  // was
-//   TextureSystem::create() OIIO::TextureOpt opt; float rgb[3]; if
-//   (!ts->texture(OIIO::ustring("albedo.tx"), opt, s, t, dsdx, dtdx, dsdy, dtdy, 3, rgb))
+//   // was: OIIO::TextureSystem* ts = OIIO::TextureSystem::create();
+//   OIIO::TextureSystem* ts = footprint::oiio::create_texture_system();
+//   OIIO::TextureOpt opt;
+//   float rgb[3];
+//   if (!ts->texture(OIIO::ustring("albedo.tx"), opt, s, t, dsdx, dtdx, dsdy, dtdy, 3, rgb))
 //       std::cerr << ts->geterror() << "\n";
-//   footprint::oiio::destroy_texture_system(ts);                          // was
-//   TextureSystem::destroy()
+//   // was: OIIO::TextureSystem::destroy(ts);
+//   footprint::oiio::destroy_texture_system(ts);
 //
 // The object implements every call of OpenImageIO 2.4's TextureSystem. footprint filters the 2D
 // texture() and lat-long environment() lookups it can answer — footprint assembly for the default
 // (anisotropic) mip mode, OpenImageIO's own closest, bilinear, one-level and trilinear rules for
-// the others — and hands everything else (3D textures, shadows, bicubic interpolation, cropped or
-// overscanned files, stochastic modes, …) to an OpenImageIO TextureSystem it owns, so that no
-// call a host makes breaks. docs/library.md lists, call by call and option by option, which is
-// which.
+// the others — and hands everything else (3D textures, shadows, bicubic interpolation, blur in the
+// anisotropic mode, cropped or overscanned files, stochastic modes, …) to an OpenImageIO
+// TextureSystem it owns, so that no call a host makes breaks. docs/library.md lists, call by call
+// and option by option, which is which.
 //
 // Values are returned as OpenImageIO returns them: as stored (8-bit textures are not decoded from
 // sRGB), in OpenImageIO's (s, t) and direction conventions, with its wrap, fill, firstchannel,
