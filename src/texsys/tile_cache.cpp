@@ -24,23 +24,33 @@ TileCache::TileCache(std::size_t max_bytes) : max_bytes_(max_bytes) {}
 
 TilePtr TileCache::get(const TileKey& key, std::size_t floats,
                        const std::function<void(float*)>& load) {
-    TilePtr tile;
-    {
-        std::lock_guard lock(mutex_);
-        auto found = entries_.find(key);
-        if (found != entries_.end()) {
-            recency_.splice(recency_.begin(), recency_, found->second.recency);
-            tile = found->second.tile;
-            accounting_->hits.fetch_add(1, std::memory_order_relaxed);
-        } else {
-            tile = std::make_shared<Tile>(floats, accounting_);
-            recency_.push_front(key);
-            entries_.emplace(key, Entry{tile, recency_.begin()});
-            cached_bytes_ += tile->bytes;
-            evict_beyond_budget();
-            accounting_->misses.fetch_add(1, std::memory_order_relaxed);
+    // Under the lock only the map and the recency list: a miss allocates its tile before taking
+    // it, and the tiles it evicts are released after (their texels freed), so that another thread
+    // waits for neither the allocator nor the page faults of a tile that is not its own.
+    TilePtr tile, fresh;
+    std::vector<TilePtr> evicted;
+    for (;;) {
+        {
+            std::lock_guard lock(mutex_);
+            auto found = entries_.find(key);
+            if (found != entries_.end()) {
+                recency_.splice(recency_.begin(), recency_, found->second.recency);
+                tile = found->second.tile;
+                accounting_->hits.fetch_add(1, std::memory_order_relaxed);
+            } else if (fresh) {
+                tile = std::move(fresh);
+                recency_.push_front(key);
+                entries_.emplace(key, Entry{tile, recency_.begin()});
+                cached_bytes_ += tile->bytes;
+                evict_beyond_budget(evicted);
+                accounting_->misses.fetch_add(1, std::memory_order_relaxed);
+            }
         }
+        if (tile) break;
+        fresh = std::make_shared<Tile>(floats, accounting_);  // then look again
     }
+    evicted.clear();
+    fresh.reset();  // another thread cached the tile first
     // Outside the lock, so that a thread reading a tile from disk holds up only the threads
     // that want that tile.
     std::call_once(tile->loaded, [&] {
@@ -50,11 +60,12 @@ TilePtr TileCache::get(const TileKey& key, std::size_t floats,
     return tile;
 }
 
-void TileCache::evict_beyond_budget() {
+void TileCache::evict_beyond_budget(std::vector<TilePtr>& evicted) {
     // The newest tile (at the front) stays even alone beyond the budget: its lookup needs it.
     while (cached_bytes_ > max_bytes_ && recency_.size() > 1) {
         auto victim = entries_.find(recency_.back());
         cached_bytes_ -= victim->second.tile->bytes;
+        evicted.push_back(std::move(victim->second.tile));
         entries_.erase(victim);
         recency_.pop_back();
     }

@@ -77,7 +77,9 @@ class TileCache {
         TilePtr tile;
         std::list<TileKey>::iterator recency;
     };
-    void evict_beyond_budget();  // under mutex_
+    // Under mutex_: drops the least recently used tiles beyond the budget into `evicted`, for the
+    // caller to release after the lock.
+    void evict_beyond_budget(std::vector<TilePtr>& evicted);
 
     std::size_t max_bytes_;
     std::shared_ptr<Accounting> accounting_ = std::make_shared<Accounting>();
