@@ -17,7 +17,8 @@
 // With api = "oiio" it also renders the same frames through OpenImageIO's TextureSystem interface
 // with footprint behind it (footprint::oiio::create_texture_system(), the same default TextureOpt
 // as OpenImageIO's run, the same cache size): what a renderer that calls OIIO::TextureSystem gets,
-// and what the interface costs against footprint's native API.
+// and what the interface costs against footprint's native API with the same probe budget
+// (`native-32`: OpenImageIO's default `anisotropic` 32, which the adapter takes for max_probes).
 #pragma once
 
 #include <string>
