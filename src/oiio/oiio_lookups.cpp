@@ -333,13 +333,12 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, Entries&
 
     const bool aniso = options.mipmode == TextureOpt::MipModeDefault ||
                        options.mipmode == TextureOpt::MipModeAniso;
-    if (!aniso) {
+    // A lookup by OpenImageIO's own level rules, `sample(texels)`, on footprint's texels.
+    const auto by_oiio_rules = [&](const auto& sample) -> std::optional<bool> {
         TextureHandle* entry = file.texture(system, subimage);
         if (!entry) return std::nullopt;
-        const Status read =
-            footprint::detail::read_texels(system, entry, [&](const TexelReader& texels) {
-                value = oiio_rule_lookup(texels, options, c, ws, wt, first, actual);
-            });
+        const Status read = footprint::detail::read_texels(
+            system, entry, [&](const TexelReader& texels) { value = sample(texels); });
         if (!read) {
             error = read.error().message;
             return false;
@@ -347,7 +346,11 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, Entries&
         write_result(value, actual, nchannels, options, facts, settings, result, dresultds,
                      dresultdt);
         return true;
-    }
+    };
+    if (!aniso)
+        return by_oiio_rules([&](const TexelReader& texels) {
+            return oiio_rule_lookup(texels, options, c, ws, wt, first, actual);
+        });
 
     // Footprint assembly. What stays OpenImageIO's: closest probes; blur, which OpenImageIO adds
     // to the ellipse's axes (its adjust_blur), not as a kernel; smart-bicubic lookups that
@@ -371,22 +374,11 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, Entries&
     // next level for the reconstruction's share (docs/method.md).
     constexpr double kIsotropic = 1.001;  // footprint assembly's own one-probe ratio
     if (major <= kIsotropic * minor) {
-        TextureHandle* entry = file.texture(system, subimage);
-        if (!entry) return std::nullopt;
         const float minor_st = static_cast<float>(minor) / static_cast<float>(std::max(w, h));
-        const Status read =
-            footprint::detail::read_texels(system, entry, [&](const TexelReader& texels) {
-                const LevelChoice choice = oiio_levels(texels, options, minor_st);
-                value = sample_levels(texels, choice, TextureOpt::InterpBilinear, c, ws, wt, first,
-                                      actual);
-            });
-        if (!read) {
-            error = read.error().message;
-            return false;
-        }
-        write_result(value, actual, nchannels, options, facts, settings, result, dresultds,
-                     dresultdt);
-        return true;
+        return by_oiio_rules([&](const TexelReader& texels) {
+            return sample_levels(texels, oiio_levels(texels, options, minor_st),
+                                 TextureOpt::InterpBilinear, c, ws, wt, first, actual);
+        });
     }
     const Reach reach_s = reach(c.s * w, std::sqrt(k.a), major, facts.spec.width);
     const Reach reach_t = reach(c.t * h, std::sqrt(k.c), major, facts.spec.height);
