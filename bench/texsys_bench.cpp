@@ -217,23 +217,32 @@ RunResult run_in_memory(const TexsysBenchOptions& opt, const fs::path& dir,
     });
 }
 
-RunResult run_oiio(const TexsysBenchOptions& opt, const fs::path& dir,
-                   const std::vector<PixelLookup>& lookups, int threads) {
-    OIIO::TextureSystem* ts = OIIO::TextureSystem::create(false);
-    ts->attribute("max_memory_MB", float(opt.cache_mb));
+// The frames through OpenImageIO's interface, on `ts`: handles, each thread's info and a default
+// TextureOpt (anisotropic, smart bicubic) per lookup, as a renderer calls it.
+RunResult render_through(OIIO::TextureSystem* ts, const TexsysBenchOptions& opt,
+                         const fs::path& dir, const std::vector<PixelLookup>& lookups,
+                         int threads) {
     std::vector<OIIO::TextureSystem::TextureHandle*> handles;
     for (int i = 0; i < opt.textures; ++i)
         handles.push_back(
             ts->get_texture_handle(OIIO::ustring(texture_file(dir, i, opt.size).string())));
-    RunResult r = render_frames(opt, lookups, threads, [&]() -> LookupCall {
+    return render_frames(opt, lookups, threads, [&]() -> LookupCall {
         OIIO::TextureSystem::Perthread* thread = ts->get_perthread_info();
         return [ts, thread, &handles](const PixelLookup& l, float* out) {
-            const OIIO::TextureOpt options;  // anisotropic, smart bicubic
+            OIIO::TextureOpt options;
             const TextureCoords& c = l.coords;
-            ts->texture(handles[l.texture], thread, const_cast<OIIO::TextureOpt&>(options), c.s,
-                        c.t, c.dsdx, c.dtdx, c.dsdy, c.dtdy, 3, out);
+            if (!ts->texture(handles[l.texture], thread, options, c.s, c.t, c.dsdx, c.dtdx, c.dsdy,
+                             c.dtdy, 3, out))
+                throw std::runtime_error("a lookup failed: " + ts->geterror());
         };
     });
+}
+
+RunResult run_oiio(const TexsysBenchOptions& opt, const fs::path& dir,
+                   const std::vector<PixelLookup>& lookups, int threads) {
+    OIIO::TextureSystem* ts = OIIO::TextureSystem::create(false);
+    ts->attribute("max_memory_MB", float(opt.cache_mb));
+    RunResult r = render_through(ts, opt, dir, lookups, threads);
     long long used = 0;
     if (ts->getattribute("stat:cache_memory_used", OIIO::TypeDesc::INT64, &used))
         r.peak_texels_mb = double(used) / double(1 << 20);  // its figure is the current use
@@ -248,20 +257,7 @@ RunResult run_adapter(const TexsysBenchOptions& opt, const fs::path& dir,
     options.max_memory_mb = std::size_t(opt.cache_mb);
     OIIO::TextureSystem* ts = oiio::create_texture_system(options);
     if (!ts) throw std::runtime_error(oiio::create_error());
-    std::vector<OIIO::TextureSystem::TextureHandle*> handles;
-    for (int i = 0; i < opt.textures; ++i)
-        handles.push_back(
-            ts->get_texture_handle(OIIO::ustring(texture_file(dir, i, opt.size).string())));
-    RunResult r = render_frames(opt, lookups, threads, [&]() -> LookupCall {
-        OIIO::TextureSystem::Perthread* thread = ts->get_perthread_info();
-        return [ts, thread, &handles](const PixelLookup& l, float* out) {
-            OIIO::TextureOpt options;  // anisotropic, smart bicubic: footprint assembly
-            const TextureCoords& c = l.coords;
-            if (!ts->texture(handles[l.texture], thread, options, c.s, c.t, c.dsdx, c.dtdx, c.dsdy,
-                             c.dtdy, 3, out))
-                throw std::runtime_error("the adapter's lookup failed: " + ts->geterror());
-        };
-    });
+    RunResult r = render_through(ts, opt, dir, lookups, threads);
     oiio::destroy_texture_system(ts);
     return r;
 }
