@@ -49,11 +49,11 @@ int floor_power_of_two(int n) {
 }
 
 // ρ, the share of the reconstruction's texel Rule B plans (footprint_assembly.h; docs/method.md,
-// "Footprint assembly"): 0 inside one texel (tr K = λ1² + λ2² ≤ 1, magnification), 1 from tr K = 2,
-// for any lane type.
+// "Footprint assembly"), from the squared axes: 0 inside one texel (tr K = λ1² + λ2² ≤ 1,
+// magnification), 1 from tr K = 2, for any lane type.
 template <class F>
-F reconstruction_share(F l1, F l2) {
-    return clamp_like_std(l1 * l1 + l2 * l2 - F(1), F(0), F(1));
+F reconstruction_share(F l1_sq, F l2_sq) {
+    return clamp_like_std(l1_sq + l2_sq - F(1), F(0), F(1));
 }
 // Λ = max(√(λ² + ρ), 1): a semi-axis as Rule B plans it.
 template <class F>
@@ -149,7 +149,7 @@ inline F single_probe_lod_lanes(F xx, F xy, F yy, float lod_bias, int max_level,
     if (none(!magnified)) return bias_lod;
     const AxesSquared<F> a = axes_squared(xx, xy, yy);
     // Λ1², Λ2² = max(λ² + ρ, 1), as planned_axis() squared.
-    const F rho = clamp_like_std(a.major_sq + a.minor_sq - one, zero, one);
+    const F rho = reconstruction_share(a.major_sq, a.minor_sq);
     const F major_sq = max_like_std(a.major_sq + rho, one),
             minor_sq = max_like_std(a.minor_sq + rho, one);
     const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
@@ -193,7 +193,8 @@ void short_plans4(Float4 xx, Float4 xy, Float4 yy, ProbeRule rule, int max_probe
     Mask4 planned = (ellipse.major_radius <= Float4(kMaxPlannedRadius)) &
                     (ellipse.minor_radius >= zero) & is_finite(ellipse.major_axis.x) &
                     is_finite(ellipse.major_axis.y);
-    const Float4 rho = reconstruction_share(ellipse.major_radius, ellipse.minor_radius);
+    const Float4 rho = reconstruction_share(ellipse.major_radius * ellipse.major_radius,
+                                            ellipse.minor_radius * ellipse.minor_radius);
     const Float4 l1 = planned_axis(ellipse.major_radius, rho),  // Λ1
         tp = planned_axis(ellipse.minor_radius, rho);           // T_p = Λ2
     const float ratio = std::max(isotropic_ratio, kIsotropicRatio);
@@ -241,6 +242,12 @@ void short_plans4(Float4 xx, Float4 xy, Float4 yy, ProbeRule rule, int max_probe
     probe_lod(tp, lod_bias, max_level).store(out.lod);
 }
 
+float planned_minor_axis(const FootprintEllipse& e) {
+    const float rho =
+        reconstruction_share(e.major_radius * e.major_radius, e.minor_radius * e.minor_radius);
+    return planned_axis(e.minor_radius, rho);
+}
+
 float single_probe_lod(const Sym2& k, const LookupOptions& options, int max_level) {
     if (!has_single_probe_rule(options)) return -1.0f;
     return single_probe_lod(k, options.lod_bias, max_level, options.isotropic_ratio);
@@ -260,7 +267,7 @@ ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max
     max_probes = std::clamp(max_probes, 1, kMaxProbeCount);
     ProbePlan plan;
     // Rule B plans the axes Λ (footprint_assembly.h), the others λ.
-    const float rho = reconstruction_share(l1, l2);
+    const float rho = reconstruction_share(l1 * l1, l2 * l2);
     const float big_l1 = planned_axis(l1, rho), big_l2 = planned_axis(l2, rho);
 
     switch (rule) {

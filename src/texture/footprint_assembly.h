@@ -31,7 +31,6 @@
 #pragma once
 
 #include <algorithm>
-#include <cmath>
 
 #include <footprint/math/footprint_ellipse.h>
 #include <footprint/texture/texture_lookup.h>
@@ -110,13 +109,13 @@ constexpr float kMaxPlannedRadius = 1e6f;
 ProbePlan plan_probes(const FootprintEllipse& footprint, ProbeRule rule, int max_probes,
                       int max_level, float lod_bias = 0, float isotropic_ratio = kIsotropicRatio);
 
+// Λ2, footprint `e`'s minor axis as Rule B plans it: the probe size of a line within its budget.
+float planned_minor_axis(const FootprintEllipse& e);
+
 // Whether `plan`, for footprint `e`, had to raise its probes' level because the line would have
 // needed more than its max_probes (the clamped anisotropy that blurs the minor axis).
 inline bool exceeds_probe_budget(const ProbePlan& plan, const FootprintEllipse& e) {
-    const float l1_sq = e.major_radius * e.major_radius, l2_sq = e.minor_radius * e.minor_radius;
-    const float minor =
-        std::sqrt(std::max(l2_sq + std::clamp(l1_sq + l2_sq - 1, 0.0f, 1.0f), 1.0f));
-    return plan.count > 1 && plan.texel_size > 1.0001f * minor;  // beyond Λ2
+    return plan.count > 1 && plan.texel_size > 1.0001f * planned_minor_axis(e);
 }
 
 }  // namespace footprint
