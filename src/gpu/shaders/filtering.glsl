@@ -113,11 +113,16 @@ float probe_lod(float texel_size, int max_level) {
     return clamp(log2(max(texel_size, 1.0)), 0.0, float(max_level));
 }
 
-// Planned on the axes Λ = max(√(λ² + ρ), 1), ρ = clamp(λ1² + λ2² − 1, 0, 1): the footprint with
+// Λ = max(√(λ² + ρ), 1), ρ = clamp(λ1² + λ2² − 1, 0, 1): a semi-axis of `e` with the share of
 // the reconstruction the ground truth filters (texture/footprint_assembly.h).
-Plan plan_probes(Ellipse e, int max_probes, int max_level) {
+float planned_axis(Ellipse e, float l) {
     float rho = clamp(e.l1 * e.l1 + e.l2 * e.l2 - 1.0, 0.0, 1.0);
-    float l1 = max(sqrt(e.l1 * e.l1 + rho), 1.0), tp = max(sqrt(e.l2 * e.l2 + rho), 1.0);
+    return max(sqrt(l * l + rho), 1.0);
+}
+
+// Planned on the axes Λ.
+Plan plan_probes(Ellipse e, int max_probes, int max_level) {
+    float l1 = planned_axis(e, e.l1), tp = planned_axis(e, e.l2);  // Λ1, T_p = Λ2
     if (l1 <= tp * kIsotropicRatio)  // one probe of size √(Λ1 Λ2)
         return Plan(1, vec2(0), probe_lod(sqrt(tp * l1), max_level), 0.0, sqrt(tp * l1));
     float sigma = 0.5 * sqrt(l1 * l1 - tp * tp);
@@ -144,8 +149,7 @@ Plan plan_probes(Ellipse e, int max_probes, int max_level) {
 // Whether `plan` raised its probes' level because the line needed more than its max_probes
 // (texture/footprint_assembly.h's exceeds_probe_budget()).
 bool exceeds_probe_budget(Plan plan, Ellipse e) {
-    float rho = clamp(e.l1 * e.l1 + e.l2 * e.l2 - 1.0, 0.0, 1.0);
-    return plan.count > 1 && plan.texel_size > 1.0001 * max(sqrt(e.l2 * e.l2 + rho), 1.0);  // Λ2
+    return plan.count > 1 && plan.texel_size > 1.0001 * planned_axis(e, e.l2);  // beyond Λ2
 }
 
 // Probe i's offset from the centre (level-0 texels) and weight.
