@@ -172,6 +172,12 @@ void TextureHandle::open_stored(const std::string& file, std::unique_ptr<OIIO::I
         if (w == 1 && h == 1) break;
     }
     info.levels = static_cast<int>(widths.size());
+    if (std::string_view(input_->format_name()) == "openexr") {
+        exr_tiles_ = texsys::ExrTiles::open(file, subimage_, spec.channelnames);
+        if (exr_tiles_ && (exr_tiles_->tile_width() != file_tile_width_ ||
+                           exr_tiles_->tile_height() != file_tile_height_))
+            exr_tiles_.reset();
+    }
     shape = detail::TiledShape(std::move(widths), std::move(heights), spec.nchannels,
                                std::countr_zero(static_cast<unsigned>(options.tile_size)),
                                info.wrap_s, info.wrap_t);
@@ -214,7 +220,9 @@ void TextureHandle::read_tile(int l, int tx, int ty, float* texels) {
     if (read.size() < floats) read.resize(floats);
     bool ok;
     std::string why;
-    {
+    if (exr_tiles_) {
+        ok = exr_tiles_->read(l, xb, xe, yb, ye, read.data(), why);
+    } else {
         std::lock_guard lock(read_mutex_);
         ok = input_->read_tiles(subimage_, l, xb, xe, yb, ye, 0, 1, 0, channels,
                                 OIIO::TypeDesc::FLOAT, read.data());

@@ -14,6 +14,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "core/result.h"
+#include "texsys/exr_tiles.h"
 #include "texsys/texel_access.h"
 #include "texture/mip_pyramid.h"
 #include "texture/tiled_texels.h"
@@ -78,7 +79,10 @@ class TextureHandle {
                      const TextureSystemOptions& options);
     void fail_read(const std::string& why);
 
-    std::mutex read_mutex_;  // one read at a time through input_
+    // The tiles are read through `exr_tiles_` where it reads them (an OpenEXR file's), else
+    // through `input_`, one read at a time.
+    std::unique_ptr<texsys::ExrTiles> exr_tiles_;
+    std::mutex read_mutex_;
     std::unique_ptr<OIIO::ImageInput> input_;
     int subimage_ = 0;          // the part (OpenImageIO subimage) read
     bool wraps_given_ = false;  // open() was given wrap modes: the file's own do not apply
