@@ -46,6 +46,18 @@ bool wrap_index(TextureOpt::Wrap wrap, int& i, int n) {
     return i >= 0 && i < n;  // black
 }
 
+TextureOpt::Wrap oiio_wrap(WrapMode mode) {
+    switch (mode) {
+        case WrapMode::clamp:
+            return TextureOpt::WrapClamp;
+        case WrapMode::repeat:
+            return TextureOpt::WrapPeriodic;
+        case WrapMode::mirror:
+            return TextureOpt::WrapMirror;
+    }
+    return TextureOpt::WrapDefault;
+}
+
 TextureOpt::Wrap resolved(TextureOpt::Wrap asked, TextureOpt::Wrap file) {
     const TextureOpt::Wrap w = asked == TextureOpt::WrapDefault ? file : asked;
     return w == TextureOpt::WrapPeriodicPow2 ? TextureOpt::WrapPeriodic : w;
@@ -60,6 +72,16 @@ struct LevelSample {
     std::array<float, kMaxChannels> value{}, ds{}, dt{};
     float coverage = 0;
 };
+// What write_result() writes: a LevelSample's arrays, or a filter's.
+struct SampleView {
+    const float* value;
+    const float* ds;
+    const float* dt;
+    float coverage;
+};
+SampleView view_of(const LevelSample& v) {
+    return {v.value.data(), v.ds.data(), v.dt.data(), v.coverage};
+}
 
 LevelSample sample_closest(const TexelReader& texels, int level, float s, float t,
                            TextureOpt::Wrap ws, TextureOpt::Wrap wt, int first, int count) {
@@ -220,16 +242,26 @@ Covariance footprint_covariance(const TexCoords& c, float w, float h) {
     const double xs = c.dsdx * w, xt = c.dtdx * h, ys = c.dsdy * w, yt = c.dtdy * h;
     return {xs * xs + ys * ys, xs * xt + ys * yt, xt * xt + yt * yt};
 }
-// The ellipse's semi-axes, √ of K's eigenvalues, in texels (K's entries, finite floats squared,
-// cannot overflow a double).
-struct Axes {
-    double major, minor;
+// K's eigenvalues are the ellipse's squared semi-axes λ1² ≥ λ2², in texels²: m ± d, with m the
+// mean of K's diagonal and d = √(h² + b²), h half its difference (K's entries, finite floats
+// squared, cannot overflow a double). The routing compares them without the square root.
+struct Eigen {
+    double m, d2;  // m and d²
+    explicit Eigen(const Covariance& k)
+        : m(0.5 * (k.a + k.c)), d2(0.25 * (k.a - k.c) * (k.a - k.c) + k.b * k.b) {}
+    // λ1 ≤ limit: d ≤ limit² − m.
+    bool major_within(double limit) const {
+        const double room = limit * limit - m;
+        return room >= 0 && d2 <= room * room;
+    }
+    // λ1 ≤ ratio·λ2: (1 + ratio²)·d ≤ (ratio² − 1)·m.
+    bool ratio_within(double ratio) const {
+        const double r2 = ratio * ratio;
+        return (1 + r2) * (1 + r2) * d2 <= (r2 - 1) * (r2 - 1) * m * m;
+    }
+    double major() const { return std::sqrt(m + std::sqrt(d2)); }
+    double minor() const { return std::sqrt(std::max(0.0, m - std::sqrt(d2))); }
 };
-Axes axes_of(const Covariance& k) {
-    const double mean = 0.5 * (k.a + k.c), half = 0.5 * (k.a - k.c);
-    const double d = std::sqrt(half * half + k.b * k.b);
-    return {std::sqrt(mean + d), std::sqrt(std::max(0.0, mean - d))};
-}
 // Where a footprint lies against the texture's edges: the wrap modes matter only for a footprint
 // whose texels reach beyond them. Its reach: the ellipse's extent, a wide margin for the probes'
 // spread along the major axis and their bilinear taps at a coarser level.
@@ -241,7 +273,7 @@ Reach reach(double centre, double extent, double margin, int size) {
     return Reach::straddles;
 }
 
-void write_result(const LevelSample& v, int actual, int nchannels, const TextureOpt& options,
+void write_result(const SampleView& v, int actual, int nchannels, const TextureOpt& options,
                   const FileFacts& facts, const Settings& settings, float* result, float* dresultds,
                   float* dresultdt) {
     for (int c = 0; c < nchannels; ++c) {
@@ -253,12 +285,12 @@ void write_result(const LevelSample& v, int actual, int nchannels, const Texture
     }
     // gray_to_rgb (OpenImageIO's fill_gray_channels): one channel to RGB, two (R, A) to RRRA.
     if (actual < nchannels && options.firstchannel == 0 && settings.gray_to_rgb) {
-        const int channels = facts.spec.nchannels;
+        const int channels = facts.nchannels;
         const auto shuffle = [&](float* v) {
             if (!v) return;
             if (channels == 1 && nchannels >= 3) {
                 v[1] = v[2] = v[0];
-            } else if (channels == 2 && nchannels == 4 && facts.spec.alpha_channel == 1) {
+            } else if (channels == 2 && nchannels == 4 && facts.alpha_channel == 1) {
                 const float alpha = v[1];
                 v[1] = v[2] = v[0];
                 v[3] = alpha;
@@ -291,7 +323,13 @@ TextureHandle* Entries::texture(footprint::TextureSystem& system, const OpenAs& 
     }
     if (!(as == OpenAs{})) return opened();
     if (texture_ready_.load(std::memory_order_acquire)) return texture_;
-    std::call_once(texture_opened_, [&] { texture_ = opened(); });
+    std::call_once(texture_opened_, [&] {
+        texture_ = opened();
+        if (texture_) {
+            const Result<TextureInfo> info = system.info(texture_);
+            own_wraps_ = {oiio_wrap(info->wrap_s), oiio_wrap(info->wrap_t)};
+        }
+    });
     texture_ready_.store(true, std::memory_order_release);
     return texture_;
 }
@@ -318,7 +356,7 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, Entries&
         options.mipmode == TextureOpt::MipModeStochasticAniso)
         return std::nullopt;
     const int first = options.firstchannel;
-    const int actual = std::clamp(facts.spec.nchannels - first, 0, nchannels);
+    const int actual = std::clamp(facts.nchannels - first, 0, nchannels);
     if (first + actual > kMaxChannels) return std::nullopt;
     const TextureOpt::Wrap ws = resolved(options.swrap, facts.swrap);
     const TextureOpt::Wrap wt = resolved(options.twrap, facts.twrap);
@@ -328,8 +366,7 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, Entries&
         c.dtdy = -c.dtdy;
     }
     const OpenAs subimage{options.subimage, std::nullopt, std::nullopt};
-    const float w = static_cast<float>(facts.spec.width), h = static_cast<float>(facts.spec.height);
-    LevelSample value;
+    const float w = static_cast<float>(facts.width), h = static_cast<float>(facts.height);
 
     const bool aniso = options.mipmode == TextureOpt::MipModeDefault ||
                        options.mipmode == TextureOpt::MipModeAniso;
@@ -337,13 +374,14 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, Entries&
     const auto by_oiio_rules = [&](const auto& sample) -> std::optional<bool> {
         TextureHandle* entry = file.texture(system, subimage);
         if (!entry) return std::nullopt;
+        LevelSample value;
         const Status read = footprint::detail::read_texels(
             system, entry, [&](const TexelReader& texels) { value = sample(texels); });
         if (!read) {
             error = read.error().message;
             return false;
         }
-        write_result(value, actual, nchannels, options, facts, settings, result, dresultds,
+        write_result(view_of(value), actual, nchannels, options, facts, settings, result, dresultds,
                      dresultdt);
         return true;
     };
@@ -357,15 +395,18 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, Entries&
     // OpenImageIO reads from level 0 bicubically (a footprint of at most one texel); and files
     // larger than OpenImageIO's max_mip_res, whose finest levels it hides.
     if (options.interpmode == TextureOpt::InterpClosest || options.sblur != 0 ||
-        options.tblur != 0 || std::max(facts.spec.width, facts.spec.height) > settings.max_mip_res)
+        options.tblur != 0 || std::max(facts.width, facts.height) > settings.max_mip_res)
         return std::nullopt;
-    TexCoords scaled = c;
-    scaled.dsdx *= options.swidth, scaled.dsdy *= options.swidth;
-    scaled.dtdx *= options.twidth, scaled.dtdy *= options.twidth;
+    const TexCoords scaled{c.s,
+                           c.t,
+                           c.dsdx * options.swidth,
+                           c.dtdx * options.twidth,
+                           c.dsdy * options.swidth,
+                           c.dtdy * options.twidth};
     const Covariance k = footprint_covariance(scaled, w, h);
-    const auto [major, minor] = axes_of(k);
+    const Eigen axes(k);
     constexpr double kOneTexel = 1.001;  // 1:1 mappings, over the derivatives' rounding
-    if (options.interpmode == TextureOpt::InterpSmartBicubic && major <= kOneTexel)
+    if (options.interpmode == TextureOpt::InterpSmartBicubic && axes.major_within(kOneTexel))
         return std::nullopt;
     // An isotropic footprint is one trilinear probe, whatever the level rule: it takes
     // OpenImageIO's (its compute_miplevels on the ellipse's minor axis, as its anisotropic mode
@@ -373,45 +414,49 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, Entries&
     // does and its test suite expects, where footprint assembly's rule would blend in some of the
     // next level for the reconstruction's share (docs/method.md).
     constexpr double kIsotropic = 1.001;  // footprint assembly's own one-probe ratio
-    if (major <= kIsotropic * minor) {
-        const float minor_st = static_cast<float>(minor) / static_cast<float>(std::max(w, h));
+    if (axes.ratio_within(kIsotropic)) {
+        const float minor_st =
+            static_cast<float>(axes.minor()) / static_cast<float>(std::max(w, h));
         return by_oiio_rules([&](const TexelReader& texels) {
             return sample_levels(texels, oiio_levels(texels, options, minor_st),
                                  TextureOpt::InterpBilinear, c, ws, wt, first, actual);
         });
     }
-    const Reach reach_s = reach(c.s * w, std::sqrt(k.a), major, facts.spec.width);
-    const Reach reach_t = reach(c.t * h, std::sqrt(k.c), major, facts.spec.height);
-    OpenAs as = subimage;
-    if (reach_s != Reach::inside || reach_t != Reach::inside) {
-        const bool black_s = ws == TextureOpt::WrapBlack, black_t = wt == TextureOpt::WrapBlack;
-        if ((black_s && reach_s == Reach::outside) || (black_t && reach_t == Reach::outside)) {
-            write_result(value, actual, nchannels, options, facts, settings, result, dresultds,
-                         dresultdt);  // all black, as OpenImageIO's every tap is
-            return true;
-        }
-        if (!footprint_wrap(ws) || !footprint_wrap(wt)) return std::nullopt;
-        as.wrap_s = footprint_wrap(ws);
-        as.wrap_t = footprint_wrap(wt);
-    }
-    TextureHandle* entry = file.texture(system, as);
+    // The file's own entry wraps as the file says, which is what a lookup asks for unless it
+    // names other modes; then those matter only where the footprint's texels reach an edge.
+    TextureHandle* entry = file.texture(system, subimage);
     if (!entry) return std::nullopt;
+    if (options.subimage != 0 || !file.wraps_as_own(ws, wt)) {
+        const std::optional<WrapMode> wrap_s = footprint_wrap(ws), wrap_t = footprint_wrap(wt);
+        const double major = axes.major();
+        const Reach reach_s = reach(c.s * w, std::sqrt(k.a), major, facts.width);
+        const Reach reach_t = reach(c.t * h, std::sqrt(k.c), major, facts.height);
+        if (reach_s != Reach::inside || reach_t != Reach::inside) {
+            const bool black_s = ws == TextureOpt::WrapBlack, black_t = wt == TextureOpt::WrapBlack;
+            if ((black_s && reach_s == Reach::outside) || (black_t && reach_t == Reach::outside)) {
+                // All black, as OpenImageIO's every tap is.
+                write_result(view_of(LevelSample{}), actual, nchannels, options, facts, settings,
+                             result, dresultds, dresultdt);
+                return true;
+            }
+            if (!wrap_s || !wrap_t) return std::nullopt;
+            entry = file.texture(system, {options.subimage, wrap_s, wrap_t});
+            if (!entry) return std::nullopt;
+        }
+    }
     LookupOptions lookup;
     lookup.filter = TextureFilter::footprint_assembly;
     lookup.max_probes = std::clamp(options.anisotropic, 1, 1024);
-    const auto filtered = [&](float s, float t, float* out) {
-        std::array<float, kMaxChannels> all;  // the lookup writes first + actual of them
-        const Status status =
-            system.texture(entry, {s, t, scaled.dsdx, scaled.dtdx, scaled.dsdy, scaled.dtdy},
-                           lookup, std::span<float>(all.data(), first + actual));
-        std::copy_n(all.data() + first, actual, out);
-        return status;
+    // The lookup writes channels 0 to first + actual: the result is the last `actual` of them.
+    const auto filtered = [&](float s, float t, std::array<float, kMaxChannels>& all) {
+        return system.texture(entry, {s, t, scaled.dsdx, scaled.dtdx, scaled.dsdy, scaled.dtdy},
+                              lookup, std::span<float>(all.data(), first + actual));
     };
-    if (Status s = filtered(c.s, c.t, value.value.data()); !s) {
+    std::array<float, kMaxChannels> value, ds, dt;
+    if (Status s = filtered(c.s, c.t, value); !s) {
         error = s.error().message;
         return false;
     }
-    value.coverage = 1;
     if (dresultds) {
         // The filtered result's derivatives by central differences over half the footprint
         // (at least half a texel): the slope of what the filter returns, as OpenImageIO's are
@@ -419,14 +464,15 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, Entries&
         const float hs = 0.5f * std::max(static_cast<float>(std::sqrt(k.a)), 1.0f) / w;
         const float ht = 0.5f * std::max(static_cast<float>(std::sqrt(k.c)), 1.0f) / h;
         std::array<float, kMaxChannels> lo{}, hi{};
-        (void)filtered(c.s - hs, c.t, lo.data());
-        (void)filtered(c.s + hs, c.t, hi.data());
-        for (int ch = 0; ch < actual; ++ch) value.ds[ch] = (hi[ch] - lo[ch]) / (2 * hs);
-        (void)filtered(c.s, c.t - ht, lo.data());
-        (void)filtered(c.s, c.t + ht, hi.data());
-        for (int ch = 0; ch < actual; ++ch) value.dt[ch] = (hi[ch] - lo[ch]) / (2 * ht);
+        (void)filtered(c.s - hs, c.t, lo);
+        (void)filtered(c.s + hs, c.t, hi);
+        for (int ch = first; ch < first + actual; ++ch) ds[ch] = (hi[ch] - lo[ch]) / (2 * hs);
+        (void)filtered(c.s, c.t - ht, lo);
+        (void)filtered(c.s, c.t + ht, hi);
+        for (int ch = first; ch < first + actual; ++ch) dt[ch] = (hi[ch] - lo[ch]) / (2 * ht);
     }
-    write_result(value, actual, nchannels, options, facts, settings, result, dresultds, dresultdt);
+    write_result({value.data() + first, ds.data() + first, dt.data() + first, 1}, actual, nchannels,
+                 options, facts, settings, result, dresultds, dresultdt);
     return true;
 }
 
@@ -443,18 +489,17 @@ std::optional<bool> footprint_environment(footprint::TextureSystem& system, Entr
         options.subimage != 0 || !options.subimagename.empty() || dresultds || dresultdt ||
         options.sblur != 0 || options.tblur != 0 ||
         options.interpmode == TextureOpt::InterpClosest ||
-        options.interpmode == TextureOpt::InterpBicubic ||
-        facts.spec.width != 2 * facts.spec.height)
+        options.interpmode == TextureOpt::InterpBicubic || facts.width != 2 * facts.height)
         return std::nullopt;
     const int first = options.firstchannel;
-    const int actual = std::clamp(facts.spec.nchannels - first, 0, nchannels);
+    const int actual = std::clamp(facts.nchannels - first, 0, nchannels);
     if (first + actual > kMaxChannels) return std::nullopt;
     // OpenImageIO's smart bicubic where the map is magnified (a pixel's angle below a texel's).
     const Imath::V3f unit = R.normalized();
     const float angle = std::min((R + dRdx).normalized().cross(unit).length(),
                                  (R + dRdy).normalized().cross(unit).length());
     if (options.interpmode == TextureOpt::InterpSmartBicubic &&
-        angle * static_cast<float>(facts.spec.height) < static_cast<float>(M_PI))
+        angle * static_cast<float>(facts.height) < static_cast<float>(M_PI))
         return std::nullopt;
     // OpenImageIO's lat-long convention in footprint's (docs/library.md): y up, s = 0.5 at −z,
     // which is footprint's direction (−x, y, −z); z up turns (x, y, z) into y-up's (−y, z, x).
@@ -509,6 +554,7 @@ std::string check_options(const TextureOpt& options, int subimages) {
 }
 
 std::string check_values(const char* const* names, const float* values, int count) {
+    if (values_in_range(values, count)) return {};
     for (int k = 0; k < count; ++k) {
         if (!std::isfinite(values[k]))
             return std::string(names[k]) + " = " + std::to_string(values[k]) + " is not finite";

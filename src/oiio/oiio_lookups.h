@@ -16,17 +16,19 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "texsys/texel_access.h"
 #include "texture_system.h"
 
 namespace footprint::oiio::detail {
 
-// OpenImageIO's view of one file, read once through the delegate (so both read it alike).
+// OpenImageIO's view of one file, read once through the delegate (so both read it alike): what
+// every lookup reads, so in a cache line or two.
 struct FileFacts {
     bool good = false;  // opened by OpenImageIO
     int subimages = 1;
-    OIIO::ImageSpec spec;          // subimage 0, level 0
+    int width = 0, height = 0, nchannels = 0, alpha_channel = -1;  // subimage 0, level 0
     bool full_pixel_range = true;  // data window = display window (no crop, no overscan)
     OIIO::TextureOpt::Wrap swrap = OIIO::TextureOpt::WrapBlack;  // "wrapmodes", else black
     OIIO::TextureOpt::Wrap twrap = OIIO::TextureOpt::WrapBlack;
@@ -55,6 +57,11 @@ class Entries {
     explicit Entries(std::string file) : file_(std::move(file)) {}
     // The texture entry read as `as`: the file's own, kept, for the default `as`.
     TextureHandle* texture(footprint::TextureSystem& system, const footprint::detail::OpenAs& as);
+    // Whether a lookup of subimage 0 wrapping as (s, t) reads the file as its own entry does,
+    // so that the own entry, and its cached tiles, serve it. After texture(system, {}).
+    bool wraps_as_own(OIIO::TextureOpt::Wrap s, OIIO::TextureOpt::Wrap t) const {
+        return own_wraps_ == std::pair(s, t);
+    }
     // The environment entry, where footprint reads the file as a lat-long map.
     EnvironmentHandle* latlong(footprint::TextureSystem& system);
 
@@ -63,6 +70,9 @@ class Entries {
     std::once_flag texture_opened_, latlong_opened_;
     TextureHandle* texture_ = nullptr;
     std::atomic<bool> texture_ready_{false};  // texture_ is set: no std::call_once on lookups
+    // texture_'s wrap modes, as OpenImageIO names them (none: not opened)
+    std::pair<OIIO::TextureOpt::Wrap, OIIO::TextureOpt::Wrap> own_wraps_{
+        OIIO::TextureOpt::WrapDefault, OIIO::TextureOpt::WrapDefault};
     EnvironmentHandle* latlong_ = nullptr;
     // Subimage 0 read with given wrap modes, by (wrap_s, wrap_t): a footprint near an edge of a
     // periodic, clamped or mirrored texture opens one, and such footprints are common (a long
@@ -95,5 +105,12 @@ std::optional<bool> footprint_environment(footprint::TextureSystem& system, Entr
 // Why a call's arguments cannot be looked up ("sblur = nan is not finite"), or empty.
 std::string check_options(const OIIO::TextureOpt& options, int subimages);
 std::string check_values(const char* const* names, const float* values, int count);
+// Whether every value is finite and within ±1e15, as check_values() asks: every lookup's are,
+// so the check is inline and the messages are not.
+inline bool values_in_range(const float* values, int count) {
+    bool in_range = true;
+    for (int k = 0; k < count; ++k) in_range &= values[k] <= 1e15f && values[k] >= -1e15f;
+    return in_range;  // NaN fails both comparisons
+}
 
 }  // namespace footprint::oiio::detail

@@ -47,6 +47,7 @@ struct File {
     std::uint64_t magic = kMagic;
     ustring name;
     Handle* delegate = nullptr;
+    bool udim = false;  // a UDIM set's name, resolved per lookup
     std::once_flag probed;
     std::atomic<bool> probed_done{false};
     detail::FileFacts facts;
@@ -172,22 +173,25 @@ class Adapter final : public OIIO::TextureSystem {
     bool texture(Handle* handle, Perthread* thread_info, TextureOpt& options, float s, float t,
                  float dsdx, float dtdx, float dsdy, float dtdy, int nchannels, float* result,
                  float* dresultds, float* dresultdt) override {
-        counts().texture_calls.fetch_add(1, std::memory_order_relaxed);
         File* f = from_handle(handle);
-        if (!f)
+        if (!f) {
+            count(&Counts::texture_others);
             return refuse("texture(): not a texture handle of this system", nchannels, result,
                           dresultds, dresultdt);
+        }
         const char* names[] = {"s", "t", "dsdx", "dtdx", "dsdy", "dtdy"};
         const float coords[] = {s, t, dsdx, dtdx, dsdy, dtdy};
         if (std::string why = check_call(*f, thread_info, options, names, coords, 6, nchannels,
                                          result, dresultds, dresultdt);
-            !why.empty())
+            !why.empty()) {
+            count(&Counts::texture_others);
             return refuse("texture(): " + why + " (texture '" + f->name.string() + "')", nchannels,
                           result, dresultds, dresultdt);
+        }
         // A UDIM set is resolved to its tile as OpenImageIO resolves it.
         File* tile = f;
         float ts = s, tt = t;
-        if (delegate_->is_udim(f->delegate)) {
+        if (f->udim) {
             Handle* resolved = delegate_->resolve_udim(f->delegate, thread_info, s, t);
             tile =
                 resolved ? file(delegate_->filename_from_handle(resolved), thread_info) : nullptr;
@@ -200,11 +204,12 @@ class Adapter final : public OIIO::TextureSystem {
                 footprint(), *tile->entries, facts(*tile, thread_info), settings(), options,
                 {ts, tt, dsdx, dtdx, dsdy, dtdy}, nchannels, result, dresultds, dresultdt, error);
             if (answered) {
-                counts().texture_answered.fetch_add(1, std::memory_order_relaxed);
+                count(&Counts::texture_answered);
                 if (!*answered) append_error(error);
                 return *answered;
             }
         }
+        count(&Counts::texture_others);
         const bool ok = delegate_->texture(f->delegate, thread_info, options, s, t, dsdx, dtdx,
                                            dsdy, dtdy, nchannels, result, dresultds, dresultdt);
         if (!ok) explain_missing(tile ? *tile : *f, thread_info, "texture");
@@ -274,11 +279,12 @@ class Adapter final : public OIIO::TextureSystem {
     bool environment(Handle* handle, Perthread* thread_info, TextureOpt& options, V3fParam R,
                      V3fParam dRdx, V3fParam dRdy, int nchannels, float* result, float* dresultds,
                      float* dresultdt) override {
-        counts().environment_calls.fetch_add(1, std::memory_order_relaxed);
         File* f = from_handle(handle);
-        if (!f)
+        if (!f) {
+            count(&Counts::environment_others);
             return refuse("environment(): not a texture handle of this system", nchannels, result,
                           dresultds, dresultdt);
+        }
         const Imath::V3f r = R.cast<Imath::V3f>(), rx = dRdx.cast<Imath::V3f>(),
                          ry = dRdy.cast<Imath::V3f>();
         const char* names[] = {"R.x",    "R.y",    "R.z",    "dRdx.x", "dRdx.y",
@@ -287,18 +293,21 @@ class Adapter final : public OIIO::TextureSystem {
         std::string why = check_call(*f, thread_info, options, names, values, 9, nchannels, result,
                                      dresultds, dresultdt);
         if (why.empty() && r.length2() == 0) why = "the direction R is zero";
-        if (!why.empty())
+        if (!why.empty()) {
+            count(&Counts::environment_others);
             return refuse("environment(): " + why + " (environment '" + f->name.string() + "')",
                           nchannels, result, dresultds, dresultdt);
+        }
         std::string error;
         const std::optional<bool> answered = detail::footprint_environment(
             footprint(), *f->entries, facts(*f, thread_info), options, r, rx, ry, nchannels, result,
             dresultds, dresultdt, error);
         if (answered) {
-            counts().environment_answered.fetch_add(1, std::memory_order_relaxed);
+            count(&Counts::environment_answered);
             if (!*answered) append_error(error);
             return *answered;
         }
+        count(&Counts::environment_others);
         const bool ok = delegate_->environment(f->delegate, thread_info, options, R, dRdx, dRdy,
                                                nchannels, result, dresultds, dresultdt);
         if (!ok) explain_missing(*f, thread_info, "environment");
@@ -538,7 +547,7 @@ class Adapter final : public OIIO::TextureSystem {
     bool is_udim(ustring filename) override { return delegate_->is_udim(filename); }
     bool is_udim(Handle* handle) override {
         File* f = from_handle(handle);
-        return f && delegate_->is_udim(f->delegate);
+        return f && f->udim;
     }
     Handle* resolve_udim(ustring pattern, float s, float t) override {
         Perthread* thread_info = get_perthread_info(nullptr);
@@ -595,9 +604,11 @@ class Adapter final : public OIIO::TextureSystem {
     std::string getstats(int level, bool icstats) const override {
         std::ostringstream out;
         out << "footprint TextureSystem (OpenImageIO interface)\n"
-            << "  texture calls " << total(&Counts::texture_calls) << ", answered by footprint "
-            << total(&Counts::texture_answered) << "\n"
-            << "  environment calls " << total(&Counts::environment_calls)
+            << "  texture calls "
+            << total(&Counts::texture_answered) + total(&Counts::texture_others)
+            << ", answered by footprint " << total(&Counts::texture_answered) << "\n"
+            << "  environment calls "
+            << total(&Counts::environment_answered) + total(&Counts::environment_others)
             << ", answered by footprint " << total(&Counts::environment_answered) << "\n";
         {
             std::lock_guard lock(footprint_mutex_);
@@ -614,8 +625,8 @@ class Adapter final : public OIIO::TextureSystem {
     }
     void reset_stats() override {
         for (Counts& c : counts_) {
-            c.texture_calls = c.texture_answered = 0;
-            c.environment_calls = c.environment_answered = 0;
+            c.texture_answered = c.texture_others = 0;
+            c.environment_answered = c.environment_others = 0;
         }
         delegate_->reset_stats();
     }
@@ -635,6 +646,7 @@ class Adapter final : public OIIO::TextureSystem {
             entry = std::make_unique<File>();
             entry->name = name;
             entry->delegate = delegate_->get_texture_handle(name, thread_info);
+            entry->udim = delegate_->is_udim(entry->delegate);
             entry->entries = std::make_unique<detail::Entries>(name.string());
         }
         return entry.get();
@@ -660,9 +672,13 @@ class Adapter final : public OIIO::TextureSystem {
             if (!facts.good) return;  // every lookup is the delegate's: it reports the error
             delegate_->get_texture_info(f.delegate, thread_info, 0, ustring("subimages"),
                                         TypeDesc::INT, &facts.subimages);
-            if (const ImageSpec* spec = delegate_->imagespec(f.delegate, thread_info, 0))
-                facts.spec = *spec;
-            const ImageSpec& spec = facts.spec;
+            ImageSpec spec;
+            if (const ImageSpec* known = delegate_->imagespec(f.delegate, thread_info, 0))
+                spec = *known;
+            facts.width = spec.width;
+            facts.height = spec.height;
+            facts.nchannels = spec.nchannels;
+            facts.alpha_channel = spec.alpha_channel;
             facts.full_pixel_range = spec.x == spec.full_x && spec.y == spec.full_y &&
                                      spec.width == spec.full_width &&
                                      spec.height == spec.full_height;
@@ -722,7 +738,8 @@ class Adapter final : public OIIO::TextureSystem {
         if (nchannels > 0 && !result) return "the result pointer is null";
         if ((dresultds == nullptr) != (dresultdt == nullptr))
             return "dresultds and dresultdt must be given together";
-        if (std::string why = detail::check_values(names, values, count); !why.empty()) return why;
+        if (!detail::values_in_range(values, count))
+            return detail::check_values(names, values, count);
         return check_options(f, thread_info, options);
     }
     std::string check_options(File& f, Perthread* thread_info, const TextureOpt& options) {
@@ -871,22 +888,52 @@ class Adapter final : public OIIO::TextureSystem {
     std::atomic<int> max_mip_res_{1 << 30};
     std::mutex retired_mutex_;
     std::vector<Perthread*> retired_;  // destroyed by the host, kept for create_thread_info()
-    // The call counts getstats() reports, in shards of a cache line each, a thread counting in
-    // its own: one shared counter, written by every lookup of every thread, costs more than the
-    // adapter's whole bookkeeping once two threads look up at once.
+    // The call counts getstats() reports, in shards of a cache line each. A call counts once:
+    // answered by footprint, or not (the delegate's, or refused). A thread holding a shard lease
+    // (CountShard) is the only one to count in its shard, with a load and a store; the threads
+    // beyond kCountShards share the last shard, with atomic increments. (A shared counter, or a
+    // locked increment per call, costs a lookup through the interface several percent.)
     struct alignas(64) Counts {
-        std::atomic<std::uint64_t> texture_calls{0}, texture_answered{0};
-        std::atomic<std::uint64_t> environment_calls{0}, environment_answered{0};
+        std::atomic<std::uint64_t> texture_answered{0}, texture_others{0};
+        std::atomic<std::uint64_t> environment_answered{0}, environment_others{0};
     };
     static constexpr std::size_t kCountShards = 16;
-    mutable std::array<Counts, kCountShards> counts_;
-    Counts& counts() const {
-        // Threads take the shards in turn (a hash of the thread id would not do: pthread ids
-        // are aligned addresses whose low bits agree).
-        static std::atomic<std::size_t> next_shard{0};
-        thread_local const std::size_t shard = next_shard++ % kCountShards;
-        return counts_[shard];
+    mutable std::array<Counts, kCountShards + 1> counts_;
+    void count(std::atomic<std::uint64_t> Counts::*which) const {
+        thread_local const CountShard lease;
+        std::atomic<std::uint64_t>& n = counts_[lease.index].*which;
+        if (lease.index < kCountShards)
+            n.store(n.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
+        else
+            n.fetch_add(1, std::memory_order_relaxed);
     }
+    // A thread's shard index, leased for the thread's life: 0 to kCountShards − 1, the thread's
+    // alone in every adapter, or kCountShards, shared.
+    struct CountShard {
+        CountShard() {
+            std::lock_guard lock(mutex());
+            std::vector<std::size_t>& free = free_shards();
+            if (!free.empty()) index = free.back(), free.pop_back();
+        }
+        ~CountShard() {
+            if (index == kCountShards) return;
+            std::lock_guard lock(mutex());
+            free_shards().push_back(index);
+        }
+        std::size_t index = kCountShards;
+        static std::mutex& mutex() {
+            static std::mutex m;
+            return m;
+        }
+        static std::vector<std::size_t>& free_shards() {
+            static std::vector<std::size_t> free = [] {
+                std::vector<std::size_t> all(kCountShards);
+                for (std::size_t i = 0; i < kCountShards; ++i) all[i] = kCountShards - 1 - i;
+                return all;
+            }();
+            return free;
+        }
+    };
     std::uint64_t total(std::atomic<std::uint64_t> Counts::*count) const {
         std::uint64_t sum = 0;
         for (const Counts& c : counts_) sum += (c.*count).load(std::memory_order_relaxed);
