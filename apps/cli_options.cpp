@@ -160,4 +160,14 @@ void report_written(const std::string& what, int width, int height, std::string_
                  height, static_cast<int>(filter.size()), filter.data(), samples.c_str(), seconds);
 }
 
+std::optional<std::string> unknown_command_problem(std::string_view word,
+                                                   std::span<const std::string_view> commands) {
+    const std::vector<std::string_view> names(commands.begin(), commands.end());
+    if (word.empty() || word.front() == '-' || contains(names, word)) return std::nullopt;
+    const std::optional<std::string_view> guess = closest_name(word, commands);
+    return "unknown command '" + std::string(word) + "'" +
+           (guess ? " (did you mean '" + std::string(*guess) + "'?)" : std::string()) +
+           "; the commands are " + joined(names, ", ");
+}
+
 }  // namespace footprint

@@ -57,6 +57,12 @@ Result<TextureFilter> parse_plane_filter(std::string_view name);
 Result<GpuFilter> parse_gpu_render_filter(std::string_view name);
 std::string gpu_filter_names(std::string_view separator);
 
+// `footprint WORD …` where WORD is none of `commands`: the whole message, with the nearest command
+// ("unknown command 'rendr' (did you mean 'render'?); the commands are …"), or nullopt for a
+// command or an option (CLI11 alone says only that a subcommand is required).
+std::optional<std::string> unknown_command_problem(std::string_view word,
+                                                   std::span<const std::string_view> commands);
+
 // The integers an option accepts, low … high: what range_problem checks and --help says.
 struct IntRange {
     long long low = 0, high = 0;

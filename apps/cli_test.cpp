@@ -267,11 +267,16 @@ TEST_F(CommandTest, BadOptionValuesFail) {
         EXPECT_NE(err.find("--size"), std::string::npos) << err;
     }
     options.width = 32;
-    for (double scale : {0.0, -1.0, std::nan(""), double(INFINITY)}) {
+    // The value as given, not as JSON writes it ("null").
+    for (auto [scale, shown] :
+         {std::pair{0.0, "0"}, std::pair{-1.0, "-1"}, std::pair{std::nan(""), "nan"},
+          std::pair{double(INFINITY), "inf"}}) {
         options.uv_scale = scale;
         std::string err;
         EXPECT_EQ(plane(options, &err), 1) << scale;
-        EXPECT_NE(err.find("--uv-scale"), std::string::npos) << err;
+        EXPECT_NE(err.find(std::string("--uv-scale ") + shown + " is out of range"),
+                  std::string::npos)
+            << err;
     }
     EXPECT_TRUE(only_texture_left());
 }
@@ -358,6 +363,17 @@ TEST_F(CommandTest, DemoIntoAFileFails) {
     const std::string err = ::testing::internal::GetCapturedStderr();
     EXPECT_NE(err.find("checker.png"), std::string::npos) << err;
     EXPECT_TRUE(one_line(err)) << err;
+}
+
+TEST(UnknownCommand, IsNamedWithTheNearestCommand) {
+    const std::string_view commands[] = {"demo", "render", "eval", "metrics", "maketx"};
+    EXPECT_EQ(unknown_command_problem("rendr", commands),
+              "unknown command 'rendr' (did you mean 'render'?); the commands are demo, render, "
+              "eval, metrics, maketx");
+    EXPECT_EQ(unknown_command_problem("foo", commands),
+              "unknown command 'foo'; the commands are demo, render, eval, metrics, maketx");
+    EXPECT_EQ(unknown_command_problem("render", commands), std::nullopt);
+    EXPECT_EQ(unknown_command_problem("--version", commands), std::nullopt);
 }
 
 }  // namespace

@@ -378,6 +378,19 @@ int run(int argc, char** argv) {
     view_cmd->footer(kFilterHelp);
     plane_cmd->footer(kFilterHelp);
 
+    // An unknown command, named with the nearest one (CLI11 would say only that a subcommand is
+    // required).
+    std::vector<std::string> command_names;
+    for (const CLI::App* command : app.get_subcommands([](CLI::App*) { return true; }))
+        command_names.push_back(command->get_name());
+    const std::vector<std::string_view> commands(command_names.begin(), command_names.end());
+    if (argc >= 2) {
+        if (const auto problem = footprint::unknown_command_problem(argv[1], commands)) {
+            std::fprintf(stderr, "footprint: %s (see footprint --help)\n", problem->c_str());
+            return 2;
+        }
+    }
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

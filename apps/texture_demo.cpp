@@ -26,11 +26,15 @@ namespace footprint {
 
 namespace {
 
-std::string number(double v, const char* format = "%.6g") {
-    if (!std::isfinite(v)) return "null";
+// A value as printf writes it ("nan", "inf" as they are), for messages.
+std::string text(double v, const char* format = "%.6g") {
     char buffer[64];
     std::snprintf(buffer, sizeof buffer, format, v);
     return buffer;
+}
+// ... and for JSON, where a value that is not finite is null.
+std::string number(double v, const char* format = "%.6g") {
+    return std::isfinite(v) ? text(v, format) : "null";
 }
 
 int demo(const TextureDemoOptions& options) {
@@ -173,7 +177,7 @@ int plane(const PlaneCommandOptions& options) {
     if (!filter) return fail(filter.error().message);
     if (auto problem = range_problem("--size", options.width, kImageWidths)) return fail(*problem);
     if (!std::isfinite(options.uv_scale) || !(options.uv_scale > 0) || options.uv_scale > 1e6)
-        return fail("--uv-scale " + number(options.uv_scale) +
+        return fail("--uv-scale " + text(options.uv_scale) +
                     " is out of range (a positive number up to 1e6)");
     if (const auto problem = output_file_problem(options.output)) return fail(*problem);
 
