@@ -58,7 +58,7 @@ bool contains(const std::vector<std::string_view>& names, std::string_view name)
 
 // Why `name` is not one of `accepted`, the filters of `command`.
 Error unknown_filter(std::string_view name, const std::vector<std::string_view>& accepted,
-                     std::string_view command) {
+                     std::string_view command, std::string_view option = "--filter") {
     const std::string quoted_name = "'" + std::string(name) + "'";
     const std::string list = joined(accepted, ", ");
     std::vector<std::string_view> vocabulary = render_names();
@@ -74,11 +74,11 @@ Error unknown_filter(std::string_view name, const std::vector<std::string_view>&
     const std::string did_you_mean =
         guess ? " (did you mean '" + std::string(*guess) + "'?)" : std::string();
     if (known) {
-        return Error{"--filter: footprint " + std::string(command) + " has no filter " +
-                     quoted_name + did_you_mean + "; it accepts " + list};
+        return Error{std::string(option) + ": footprint " + std::string(command) +
+                     " has no filter " + quoted_name + did_you_mean + "; it accepts " + list};
     }
-    return Error{"--filter: unknown filter " + quoted_name + did_you_mean + "; footprint " +
-                 std::string(command) + " accepts " + list};
+    return Error{std::string(option) + ": unknown filter " + quoted_name + did_you_mean +
+                 "; footprint " + std::string(command) + " accepts " + list};
 }
 
 }  // namespace
@@ -95,9 +95,9 @@ std::string plane_filter_names(std::string_view separator) {
     return joined(plane_names(), separator);
 }
 
-Result<FilterMode> parse_render_filter(std::string_view name) {
+Result<FilterMode> parse_render_filter(std::string_view name, std::string_view option) {
     if (const std::optional<FilterMode> mode = parse_filter_mode(name)) return *mode;
-    return unknown_filter(name, render_names(), "render");
+    return unknown_filter(name, render_names(), "render", option);
 }
 
 Result<GpuFilter> parse_gpu_render_filter(std::string_view name) {

@@ -51,7 +51,8 @@ std::string plane_filter_names(std::string_view separator);
 //   "--filter: unknown filter 'fa_rough' (did you mean 'fa-rough'?); footprint render accepts
 //    bilinear, trilinear, fa, fa-rough, ewa-rough, reference"
 //   "--filter: footprint render has no filter 'sat'; it accepts bilinear, …"
-Result<FilterMode> parse_render_filter(std::string_view name);
+// `option` names the argument ("filter" for Python's render()).
+Result<FilterMode> parse_render_filter(std::string_view name, std::string_view option = "--filter");
 Result<TextureFilter> parse_plane_filter(std::string_view name);
 // --filter NAME of `footprint render --device gpu` and `footprint view`.
 Result<GpuFilter> parse_gpu_render_filter(std::string_view name);
@@ -70,6 +71,8 @@ struct IntRange {
 // --size of demo, eval and texture-demo (each renders many images of that width) and of plane and
 // render (one image).
 inline constexpr IntRange kDemoWidths{16, 4096}, kImageWidths{16, 16384};
+// render's samples per pixel and threads (0: all cores); Python's render() takes the same.
+inline constexpr IntRange kRenderSpp{1, 1 << 16}, kRenderThreads{0, 1024};
 
 // "16 to 4096": a range as range_problem's message and --help write it.
 std::string range_text(IntRange range);

@@ -25,9 +25,7 @@ namespace footprint {
 namespace {
 
 constexpr int kDefaultReferenceSpp = 64;
-constexpr int kMaxSpp = 1 << 16;
 constexpr int kMaxFrames = 100000;
-constexpr int kMaxThreads = 1024;
 constexpr int kMaxTextureMemoryMb = 1 << 20;
 constexpr int kMaxTiles = 16384;  // the tallest image's rows
 
@@ -48,7 +46,7 @@ namespace {
 // The first problem with the command line's numbers, if any.
 std::optional<std::string> option_problem(const RenderCommandOptions& options) {
     if (options.spp) {
-        if (auto problem = range_problem("--spp", *options.spp, 1, kMaxSpp)) return problem;
+        if (auto problem = range_problem("--spp", *options.spp, kRenderSpp)) return problem;
     }
     if (options.width) {
         if (auto problem = range_problem("--size", *options.width, kImageWidths)) return problem;
@@ -75,7 +73,7 @@ std::optional<std::string> option_problem(const RenderCommandOptions& options) {
                    "'" +
                    options.output.string() + "'); footprint merge writes any format";
     }
-    if (auto problem = range_problem("--threads", options.threads, 0, kMaxThreads, "0: all cores"))
+    if (auto problem = range_problem("--threads", options.threads, kRenderThreads, "0: all cores"))
         return problem;
     if (!std::isfinite(options.exposure)) return "--exposure: must be finite";
     if (auto problem =

@@ -8,8 +8,8 @@
 //   image = footprint.render("scene.json", filter="fa-rough", spp=1)             # H × W × 3
 //   image = footprint.render("scene.json", textures=ts)        # its maps through ts's cache
 //   footprint.metrics(image, reference)                                           # rmse, psnr,
-//   ssim, flip footprint.save_image("out.exr", image); footprint.load_image("in.png")        # linear
-//   light
+//   ssim, flip footprint.save_image("out.exr", image); footprint.load_image("in.png")        #
+//   linear light
 //
 // Lookups release the GIL and run on the calling thread. Every error is a RuntimeError with the
 // library's message ("cannot read 'albedo.exr': no such file").
@@ -54,18 +54,20 @@ LookupOptions lookup_options(const std::string& filter) {
     return options;
 }
 
-// The length every argument array shares (each 1-D, or a scalar: broadcast).
+// The length every argument array shares (each 1-D, or a scalar or one value: broadcast, as
+// NumPy does; empty arrays make no lookup).
 py::ssize_t common_length(std::initializer_list<const FloatArray*> arrays) {
-    py::ssize_t n = 1;
+    py::ssize_t n = -1;  // the length of the arrays not broadcast, once one is seen
     for (const FloatArray* a : arrays) {
         if (a->ndim() > 1) throw py::value_error("lookup arguments must be 1-D arrays or scalars");
         const py::ssize_t size = a->ndim() == 0 ? 1 : a->shape(0);
-        if (size != 1 && n != 1 && size != n)
+        if (size == 1) continue;
+        if (n >= 0 && size != n)
             throw py::value_error("lookup arguments have different lengths: " + std::to_string(n) +
                                   " and " + std::to_string(size));
-        n = std::max(n, size);
+        n = size;
     }
-    return n;
+    return n < 0 ? 1 : n;
 }
 float at(const FloatArray& a, py::ssize_t i) {
     return a.data()[a.size() == 1 ? 0 : i];
@@ -84,13 +86,21 @@ py::ssize_t rows3(const FloatArray& a, const char* name) {
 
 class PyTextureSystem {
   public:
-    PyTextureSystem(std::size_t max_memory_mb, int tile_size, const std::string& cache_dir) {
+    // Options TextureSystem::create() refuses are a ValueError with its message (a negative
+    // max_memory_mb, which its unsigned option cannot hold, worded as it words 0).
+    PyTextureSystem(long long max_memory_mb, int tile_size, const std::string& cache_dir) {
         TextureSystemOptions options;
-        options.max_memory_mb = max_memory_mb;
+        options.max_memory_mb = static_cast<std::size_t>(std::max(max_memory_mb, 0LL));
         options.tile_size = tile_size;
         options.cache_dir = cache_dir;
         Result<std::unique_ptr<TextureSystem>> made = TextureSystem::create(options);
-        if (!made) raise(made.error());
+        if (!made) {
+            std::string message = made.error().message;
+            if (max_memory_mb < 0)
+                message.replace(message.rfind("(got 0)"), 7,
+                                "(got " + std::to_string(max_memory_mb) + ")");
+            throw py::value_error(message);
+        }
         ts_ = std::move(*made);
     }
 
@@ -184,13 +194,16 @@ Image to_image(const FloatArray& a, const char* name) {
 
 FloatArray render_scene(const std::string& scene, const std::string& filter, int spp,
                         std::optional<int> width, int threads, const PyTextureSystem* textures) {
-    Result<FilterMode> mode = parse_render_filter(filter);
-    if (!mode) raise(mode.error());
-    if (spp < 1) throw py::value_error("spp must be at least 1");
+    // The arguments `footprint render` checks, checked alike: ValueError, in Python's names.
+    Result<FilterMode> mode = parse_render_filter(filter, "filter");
+    if (!mode) throw py::value_error(mode.error().message);
+    std::optional<std::string> problem = range_problem("spp", spp, kRenderSpp);
+    if (!problem && width) problem = range_problem("width", *width, kImageWidths);
+    if (!problem) problem = range_problem("threads", threads, kRenderThreads, "0: all cores");
+    if (problem) throw py::value_error(*problem);
     Result<NamedScene> named = resolve_scene(scene, width);
     if (!named) raise(named.error());
     SceneDesc& desc = named->desc;
-    if (width && (*width < 1 || *width > 16384)) throw py::value_error("width must be 1 to 16384");
     if (width && desc.width != *width) {  // a scene file: keep its aspect ratio
         desc.height =
             std::max(1, static_cast<int>(std::lround(double(*width) * desc.height / desc.width)));
@@ -249,7 +262,7 @@ PYBIND11_MODULE(footprint, m) {
 
     py::class_<PyTextureSystem>(m, "TextureSystem",
                                 "Filtered lookups of texture files by name through a bounded cache")
-        .def(py::init<std::size_t, int, std::string>(), py::arg("max_memory_mb") = 1024,
+        .def(py::init<long long, int, std::string>(), py::arg("max_memory_mb") = 1024,
              py::arg("tile_size") = 64, py::arg("cache_dir") = "")
         .def("texture", &PyTextureSystem::texture, py::arg("name"), py::arg("s"), py::arg("t"),
              py::arg("dsdx"), py::arg("dtdx"), py::arg("dsdy"), py::arg("dtdy"),

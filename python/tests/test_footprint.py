@@ -36,6 +36,17 @@ def test_point_lookups_at_texel_centres_are_the_texels(texture):
     assert ts.stats()["files"] == 1
 
 
+def test_empty_arrays_make_no_lookups(texture):
+    path, _ = texture
+    ts = footprint.TextureSystem()
+    empty = np.zeros(0, dtype=np.float32)
+    assert ts.texture(path, empty, empty, 0, 0, 0, 0).shape == (0, 3)
+    assert ts.texture(path, empty, [0.5], 0.01, 0, 0, 0.01).shape == (0, 3)  # one value broadcasts
+    assert ts.environment(path, np.zeros((0, 3)), np.zeros((0, 3)), np.zeros((0, 3))).shape == (0, 3)
+    with pytest.raises(ValueError, match="lengths"):
+        ts.texture(path, empty, [0.5, 0.6], 0, 0, 0, 0)
+
+
 def test_a_footprint_over_the_whole_texture_is_its_mean(texture):
     path, pixels = texture
     ts = footprint.TextureSystem()
@@ -63,10 +74,24 @@ def test_errors_are_exceptions_naming_the_file_or_value(tmp_path, texture):
         ts.texture(texture[0], [0.5, 0.6], [0.5, 0.6, 0.7], 0, 0, 0, 0)
     with pytest.raises(ValueError, match="bicubic"):
         ts.texture(texture[0], [0.5], [0.5], 0, 0, 0, 0, filter="bicubic")
-    with pytest.raises(RuntimeError, match="max_memory_mb"):
+    with pytest.raises(ValueError, match=r"max_memory_mb must be at least 1 \(got 0\)"):
         footprint.TextureSystem(max_memory_mb=0)
+    with pytest.raises(ValueError, match=r"max_memory_mb must be at least 1 \(got -5\)"):
+        footprint.TextureSystem(max_memory_mb=-5)
     with pytest.raises(RuntimeError, match="unknown scene"):
         footprint.render("no-such-scene")
+
+
+def test_render_checks_its_arguments_as_the_command_line_does():
+    # ValueError, with the command line's ranges and messages in Python's argument names.
+    with pytest.raises(ValueError, match=r"^width 8 is out of range \(16 to 16384\)$"):
+        footprint.render("water", width=8)
+    with pytest.raises(ValueError, match=r"^threads -1 is out of range \(0 to 1024; 0: all cores\)$"):
+        footprint.render("water", width=32, threads=-1)
+    with pytest.raises(ValueError, match=r"^spp 0 is out of range \(1 to 65536\)$"):
+        footprint.render("water", width=32, spp=0)
+    with pytest.raises(ValueError, match=r"^filter: unknown filter 'fa_rough' \(did you mean 'fa-rough'\?\)"):
+        footprint.render("water", width=32, filter="fa_rough")
 
 
 def test_render_and_metrics():
