@@ -160,6 +160,16 @@ void report_written(const std::string& what, int width, int height, std::string_
                  height, static_cast<int>(filter.size()), filter.data(), samples.c_str(), seconds);
 }
 
+std::optional<std::string> unknown_value_problem(std::string_view value,
+                                                 std::span<const std::string_view> accepted) {
+    const std::vector<std::string_view> names(accepted.begin(), accepted.end());
+    if (contains(names, value)) return std::nullopt;
+    const std::optional<std::string_view> guess = closest_name(value, accepted);
+    return "unknown value '" + std::string(value) + "'" +
+           (guess ? " (did you mean '" + std::string(*guess) + "'?)" : std::string()) +
+           "; it accepts " + joined(names, ", ");
+}
+
 std::optional<std::string> unknown_command_problem(std::string_view word,
                                                    std::span<const std::string_view> commands) {
     const std::vector<std::string_view> names(commands.begin(), commands.end());

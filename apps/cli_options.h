@@ -58,6 +58,12 @@ Result<TextureFilter> parse_plane_filter(std::string_view name);
 Result<GpuFilter> parse_gpu_render_filter(std::string_view name);
 std::string gpu_filter_names(std::string_view separator);
 
+// An option's value that is none of `accepted` (--downsample, --flip-range, …): "unknown value
+// 'gauss' (did you mean 'box'?); it accepts box, tent", or nullopt for an accepted one. The
+// command line prints it after the option's name and exits 1, as for every bad value.
+std::optional<std::string> unknown_value_problem(std::string_view value,
+                                                 std::span<const std::string_view> accepted);
+
 // `footprint WORD …` where WORD is none of `commands`: the whole message, with the nearest command
 // ("unknown command 'rendr' (did you mean 'render'?); the commands are …"), or nullopt for a
 // command or an option (CLI11 alone says only that a subcommand is required).

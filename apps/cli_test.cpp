@@ -365,6 +365,15 @@ TEST_F(CommandTest, DemoIntoAFileFails) {
     EXPECT_TRUE(one_line(err)) << err;
 }
 
+TEST(UnknownValue, IsNamedWithTheNearestAndTheAcceptedOnes) {
+    const std::string_view modes[] = {"box", "tent"};
+    EXPECT_EQ(unknown_value_problem("tnet", modes),
+              "unknown value 'tnet' (did you mean 'tent'?); it accepts box, tent");
+    EXPECT_EQ(unknown_value_problem("gaussian", modes),
+              "unknown value 'gaussian'; it accepts box, tent");
+    EXPECT_EQ(unknown_value_problem("box", modes), std::nullopt);
+}
+
 TEST(UnknownCommand, IsNamedWithTheNearestCommand) {
     const std::string_view commands[] = {"demo", "render", "eval", "metrics", "maketx"};
     EXPECT_EQ(unknown_command_problem("rendr", commands),

@@ -77,6 +77,16 @@ Filters (--filter; a name means the same filter in every command):
   (render --device gpu and view also take trilinear, fa, fa-rough)
 )";
 
+// An option that takes one of `names`, refused as footprint words an unknown value
+// (cli_options.h), not as CLI11 does.
+CLI::Validator one_of(std::vector<std::string_view> names) {
+    return CLI::Validator(
+        [names](std::string& value) {
+            return footprint::unknown_value_problem(value, names).value_or(std::string());
+        },
+        "");
+}
+
 int run(int argc, char** argv) {
     CLI::App app{"footprint — anisotropic texture filtering by footprint assembly"};
     app.require_subcommand(1);
@@ -132,7 +142,7 @@ int run(int argc, char** argv) {
     maketx_cmd->add_option("--wrap", maketx.wrap, "repeat, clamp or mirror; or S,T")
         ->capture_default_str();
     maketx_cmd->add_option("--downsample", maketx_downsample, "The pyramid's filter: box or tent")
-        ->check(CLI::IsMember({"box", "tent"}))
+        ->check(one_of({"box", "tent"}))
         ->capture_default_str();
     maketx_cmd->add_option("--tile-size", maketx.tile_size, "Tiles of N×N texels, 16 to 1024")
         ->capture_default_str();
@@ -147,7 +157,7 @@ int run(int argc, char** argv) {
     maketx_cmd
         ->add_option("--invalid-normals", maketx_invalid,
                      "With --bump: a normal map's invalid texels are an error, or clamped")
-        ->check(CLI::IsMember({"error", "clamp"}))
+        ->check(one_of({"error", "clamp"}))
         ->capture_default_str();
 
     footprint::EnvConvertCommandOptions convert;
@@ -230,7 +240,7 @@ int run(int argc, char** argv) {
         ->add_option("--flip-range", metrics_flip_range,
                      "ldr: LDR-FLIP on values clamped to [0, 1]; hdr: HDR-FLIP (exposures from B); "
                      "auto: HDR-FLIP when a colour value of A or B is > 1")
-        ->check(CLI::IsMember({"ldr", "hdr", "auto"}))
+        ->check(one_of({"ldr", "hdr", "auto"}))
         ->capture_default_str();
     metrics_cmd->add_option("--flip-map", metrics_flip_map,
                             "Write the per-pixel FLIP error (1 channel, in [0, 1]) to this image");
@@ -399,6 +409,10 @@ int run(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
+    } catch (const CLI::ValidationError& e) {
+        // A value the option refuses is bad input, as footprint's own checks' are: exit 1.
+        std::fprintf(stderr, "footprint: %s\n", e.what());
+        return 1;
     } catch (const CLI::ParseError& e) {
         std::fprintf(stderr, "footprint: %s (see footprint --help)\n", e.what());
         return 2;
