@@ -71,6 +71,16 @@ class EnvCommandTest : public ::testing::Test {
     fs::path dir_, latlong_;
 };
 
+TEST_F(EnvCommandTest, SaysWhatItWroteOnStderrAsEveryCommandDoes) {
+    EnvConvertCommandOptions options = from_sky("cube", "cube.exr");
+    ::testing::internal::CaptureStdout();
+    ::testing::internal::CaptureStderr();
+    ASSERT_EQ(run_env_convert_command(options), 0);
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(::testing::internal::GetCapturedStdout(), "");
+    EXPECT_EQ(err.rfind("footprint: converted '", 0), 0u) << err;
+}
+
 TEST_F(EnvCommandTest, ConvertsToEveryLayout) {
     // Default sizes (env_convert.h): lat-long 64 wide → cube 21, sphere / paraboloid 41.
     struct Case {

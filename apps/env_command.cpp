@@ -142,10 +142,10 @@ int env_convert(const EnvConvertCommandOptions& options) {
         const std::string how = *to == EnvLayout::cube && outputs == 1
                                     ? std::string(", ") + cube_arrangement_name(shown)
                                     : std::string();
-        std::printf("converted %s (%s) to %s%s: %s\n", quoted(options.inputs[0]).c_str(),
-                    size_text(*source_images).c_str(), size_text(*converted).c_str(), how.c_str(),
-                    written.c_str());
-        std::fflush(stdout);
+        // On stderr, prefixed, as every command's "wrote" line (stdout is the commands' data).
+        std::fprintf(stderr, "footprint: converted %s (%s) to %s%s: %s\n",
+                     quoted(options.inputs[0]).c_str(), size_text(*source_images).c_str(),
+                     size_text(*converted).c_str(), how.c_str(), written.c_str());
     }
     return 0;
 }

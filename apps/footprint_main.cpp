@@ -150,6 +150,7 @@ int run(int argc, char** argv) {
                          "IN is a normal map: write its bump + roughness pyramid (5 moment "
                          "channels, strength 1), read tile by tile by the texture system");
     maketx_cmd->add_flag("--height", maketx.height, "With --bump: IN is a height map");
+    maketx_cmd->add_flag("--quiet,-q", maketx.quiet, "No output but errors");
     maketx_cmd->add_option("--env", maketx.env,
                            "IN is an environment map of this layout (auto, latlong, cube, sphere, "
                            "paraboloid): write its pyramids and polar caps, prepared once");

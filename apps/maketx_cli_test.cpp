@@ -42,6 +42,10 @@ TEST(MaketxCommand, WritesThePyramidThatTheTextureSystemReadsAsBuilt) {
     ASSERT_EQ(maketx(options, &err), 0) << err;
     EXPECT_NE(err.find("wrote"), std::string::npos);
     EXPECT_NE(err.find("7 levels"), std::string::npos) << err;
+    options.quiet = true;  // --quiet: nothing but errors
+    ASSERT_EQ(maketx(options, &err), 0) << err;
+    EXPECT_EQ(err, "");
+    options.quiet = false;
 
     MipPyramidOptions built;
     built.wrap_t = WrapMode::clamp;

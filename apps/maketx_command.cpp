@@ -60,11 +60,12 @@ int make_bump_pyramid(const MaketxCommandOptions& options, WrapMode wrap_s, Wrap
     if (!pyramid) return fail("'" + options.input.string() + "': " + pyramid.error().message);
     if (Status saved = save_bump_pyramid(*pyramid, options.output, options.tile_size); !saved)
         return fail(saved.error().message);
-    std::fprintf(stderr,
-                 "footprint: wrote %s (%dx%d bump pyramid, %d levels, 5 moment channels, tiles "
-                 "%d²)\n",
-                 options.output.string().c_str(), slopes->width, slopes->height,
-                 pyramid->level_count(), options.tile_size);
+    if (!options.quiet)
+        std::fprintf(stderr,
+                     "footprint: wrote %s (%dx%d bump pyramid, %d levels, 5 moment channels, tiles "
+                     "%d²)\n",
+                     options.output.string().c_str(), slopes->width, slopes->height,
+                     pyramid->level_count(), options.tile_size);
     return 0;
 }
 
@@ -82,12 +83,14 @@ int make_environment_pyramid(const MaketxCommandOptions& options) {
     if (Status saved = save_environment_pyramid(*map, options.output, options.tile_size); !saved)
         return fail(saved.error().message);
     const MipPyramid& face = map->face(0);
-    std::fprintf(stderr,
-                 "footprint: wrote %s (%s environment, %d face%s of %dx%d, %d levels%s, tiles "
-                 "%d²)\n",
-                 options.output.string().c_str(), env_layout_name(map->layout()), map->face_count(),
-                 map->face_count() == 1 ? "" : "s", face.width(0), face.height(0),
-                 face.level_count(), map->polar_cap(0) ? ", polar caps" : "", options.tile_size);
+    if (!options.quiet)
+        std::fprintf(stderr,
+                     "footprint: wrote %s (%s environment, %d face%s of %dx%d, %d levels%s, tiles "
+                     "%d²)\n",
+                     options.output.string().c_str(), env_layout_name(map->layout()),
+                     map->face_count(), map->face_count() == 1 ? "" : "s", face.width(0),
+                     face.height(0), face.level_count(), map->polar_cap(0) ? ", polar caps" : "",
+                     options.tile_size);
     return 0;
 }
 
@@ -126,10 +129,11 @@ int run_maketx_command(const MaketxCommandOptions& options) {
     save.tile_size = options.tile_size;
     if (Status saved = save_image_levels(levels, options.output, save); !saved)
         return fail(saved.error().message);
-    std::fprintf(stderr, "footprint: wrote %s (%dx%d, %d levels, %d channel%s, tiles %d²)\n",
-                 options.output.string().c_str(), image->width, image->height,
-                 pyramid.level_count(), image->channels, image->channels == 1 ? "" : "s",
-                 options.tile_size);
+    if (!options.quiet)
+        std::fprintf(stderr, "footprint: wrote %s (%dx%d, %d levels, %d channel%s, tiles %d²)\n",
+                     options.output.string().c_str(), image->width, image->height,
+                     pyramid.level_count(), image->channels, image->channels == 1 ? "" : "s",
+                     options.tile_size);
     return 0;
 }
 

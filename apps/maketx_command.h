@@ -46,6 +46,7 @@ struct MaketxCommandOptions {
     bool height = false;                 // --height: IN is a height map
     bool clamp_invalid_normals = false;  // --invalid-normals clamp
     std::string env;                     // --env LAYOUT (or "auto"); empty: not an environment
+    bool quiet = false;                  // --quiet: no "wrote" line (errors still)
 };
 int run_maketx_command(const MaketxCommandOptions& options);
 

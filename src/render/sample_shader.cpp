@@ -1,5 +1,6 @@
 #include "render/sample_shader.h"
 
+#include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <memory>
 #include <mutex>
 #include <numbers>
+#include <optional>
 
 #include "bump/local_frame.h"
 #include "core/parallel.h"
@@ -845,6 +847,14 @@ void for_each_tile(int width, int height, int threads,
         });
     };
     if (threads > 0) {
+        // More threads than oneTBB allows by default (the machine's cores) is a request to
+        // oversubscribe: the limit is raised while they run, where oneTBB would otherwise run
+        // fewer and print a warning. A lower limit the host set stays in force.
+        std::optional<tbb::global_control> allow;
+        const auto limit =
+            tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+        if (static_cast<std::size_t>(threads) > limit)
+            allow.emplace(tbb::global_control::max_allowed_parallelism, threads);
         arena_of(threads).execute(run);
     } else {
         run();
