@@ -375,6 +375,15 @@ std::vector<fs::path> scene_files(const SceneDesc& scene) {
 const char* const kDemoEnvironment = "envmaps/venice_sunset_1k.hdr";
 const char* const kDemoNormalMap = "normals/ambientCG_Bricks102_1K_NormalGL.jpg";
 
+TEST(DemoScenes, ADataFolderThatIsNotThereIsWarnedOf) {
+    const ScopedEnvironmentVariable data("FOOTPRINT_DATA", "/nonexistent/footprint-data");
+    ::testing::internal::CaptureStderr();
+    EXPECT_EQ(DemoSceneOptions::default_demo_data_dir(), fs::path("/nonexistent/footprint-data"));
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(),
+              "footprint: warning: FOOTPRINT_DATA '/nonexistent/footprint-data' is not a folder; "
+              "the demo scenes use the repository's assets\n");
+}
+
 TEST(DemoScenes, WithAnEmptyDataFolderTheScenesUseTheRepositorysAssets) {
     TempFolder empty;
     const ScopedEnvironmentVariable data("FOOTPRINT_DATA", empty.path().string());

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <mutex>
 #include <system_error>
 
 #include "demo_assets.h"
@@ -634,7 +636,21 @@ DemoScene irradiance(const DemoSceneOptions& options) {
 }  // namespace
 
 fs::path DemoSceneOptions::default_demo_data_dir() {
-    if (const char* env = std::getenv("FOOTPRINT_DATA"); env && *env) return env;
+    if (const char* env = std::getenv("FOOTPRINT_DATA"); env && *env) {
+        // A folder that is not there is most likely a typo: the scenes then fall back to the
+        // repository's assets, which the user should hear about (once a run).
+        std::error_code ec;
+        if (!fs::is_directory(env, ec)) {
+            static std::once_flag warned;
+            std::call_once(warned, [&] {
+                std::fprintf(stderr,
+                             "footprint: warning: FOOTPRINT_DATA '%s' is not a folder; the demo "
+                             "scenes use the repository's assets\n",
+                             env);
+            });
+        }
+        return env;
+    }
     return FOOTPRINT_DEFAULT_DATA_DIR;
 }
 

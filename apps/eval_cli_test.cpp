@@ -181,6 +181,17 @@ TEST_F(EvalCommandTest, BadArgumentsNameTheProblem) {
     o.frames = 1;
     EXPECT_EQ(run(o, &err), 1);
     EXPECT_NE(err.find("--frames"), std::string::npos) << err;
+    // --frames on a scene without a camera path: refused, as render refuses it.
+    const fs::path still = dir_ / "still.json";
+    std::ofstream(still) << R"({"image": {"width": 24, "height": 16},
+        "camera": {"position": [0, 0.5, 3], "look_at": [0, 0, 0]},
+        "lights": [{"type": "directional", "direction": [0, -1, -1]}],
+        "objects": [{"shape": "sphere", "radius": 0.8}]})";
+    o = small({still.string()});
+    o.frames_given = true;
+    EXPECT_EQ(run(o, &err), 1);
+    EXPECT_EQ(err, "footprint: " + still.stem().string() +
+                       ": --frames needs a camera_path in the scene\n");
     o = small({"water"});
     o.kappa = -1;
     EXPECT_EQ(run(o, &err), 1);

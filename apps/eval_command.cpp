@@ -197,6 +197,11 @@ int run_eval_command(const EvalCommandOptions& options) {
     Result<std::vector<NamedScene>> resolved = resolve_eval_scenes(options);
     if (!resolved) return fail(resolved.error().message);
     const std::vector<NamedScene>& scenes = *resolved;
+    // Flicker is measured along a scene's camera path: asked for on a scene without one, refused
+    // as `render --frames` refuses it (by default such a scene has no flicker column).
+    for (const NamedScene& named : scenes)
+        if (options.frames_given && options.frames != 0 && named.desc.camera_path.empty())
+            return fail(named.name + ": --frames needs a camera_path in the scene");
     // A failed run leaves none of its files behind, except the cache: references of the scenes'
     // content, valid whatever failed, so that the run after the fix need not render them again.
     RunOutputs outputs;

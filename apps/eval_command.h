@@ -60,6 +60,7 @@ struct EvalCommandOptions {
     // top of filtering, RenderOptions::spp).
     std::vector<int> filter_spp = {1, 4, 16};
     int frames = 8;                   // 0: no flicker measurement
+    bool frames_given = false;        // --frames named: every scene needs a camera_path
     int flicker_reference_spp = 256;  // the reference sequence's samples per pixel
     int threads = 0;
     float kappa = 2;      // κ of the filter modes' environment footprint (RenderOptions::kappa)

@@ -429,6 +429,7 @@ int run(int argc, char** argv) {
     }
     if (*eval_cmd) {
         eval.out_dir = eval_out;
+        eval.frames_given = eval_cmd->count("--frames") > 0;
         eval.browser_check = !eval_no_browser;
         return footprint::run_eval_command(eval);
     }
