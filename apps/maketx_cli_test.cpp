@@ -86,7 +86,10 @@ TEST(MaketxCommand, BadInputIsOneLineNamingItAndWritesNothing) {
     } cases[] = {
         {"missing.png", "out.exr", "repeat", 64, "missing.png"},
         {"in.exr", "out.png", "repeat", 64, "out.png"},
-        {"in.exr", "out.exr", "wrapped", 64, "wrapped"},
+        {"in.exr", "out.exr", "wrapped", 64, "expected repeat (or periodic), clamp or mirror"},
+        {"in.exr", "out.exr", "black", 64, "--wrap 'black': footprint's filters have no black"},
+        {"in.exr", "out.exr", "clamp,black", 64, "no black wrap"},
+        {"in.exr", "out.exr", "clamp,clamp,clamp", 64, "clamp,clamp,clamp"},
         {"in.exr", "out.exr", "repeat", 48, "48"},
         {"in.exr", "no/such/folder/out.exr", "repeat", 64, "no/such/folder"},
     };

@@ -1,5 +1,6 @@
 #include "maketx_command.h"
 
+#include <algorithm>
 #include <bit>
 #include <cstdio>
 #include <optional>
@@ -97,10 +98,20 @@ int make_environment_pyramid(const MaketxCommandOptions& options) {
 }  // namespace
 
 int run_maketx_command(const MaketxCommandOptions& options) {
-    const WrapModes wraps = parse_oiio_wrap_modes(options.wrap);
-    if (!wraps.s || !wraps.t)
+    // The modes footprint filters with, by their names and OpenImageIO's ("periodic"). Not
+    // OpenImageIO's "black": footprint reads a file that says it as clamp, but writing one would
+    // promise borders footprint's filters do not make.
+    const std::size_t comma = options.wrap.find(',');
+    const std::string s_name = options.wrap.substr(0, comma);
+    const std::string t_name = comma == std::string::npos ? s_name : options.wrap.substr(comma + 1);
+    if (s_name == "black" || t_name == "black")
         return fail("--wrap '" + options.wrap +
-                    "': expected repeat, clamp or mirror, or two of them as S,T");
+                    "': footprint's filters have no black wrap (OpenImageIO's); expected repeat "
+                    "(or periodic), clamp or mirror, or two of them as S,T");
+    const WrapModes wraps{parse_wrap_mode(s_name), parse_wrap_mode(t_name)};
+    if (!wraps.s || !wraps.t || std::count(options.wrap.begin(), options.wrap.end(), ',') > 1)
+        return fail("--wrap '" + options.wrap +
+                    "': expected repeat (or periodic), clamp or mirror, or two of them as S,T");
     if ((options.height || options.clamp_invalid_normals) && !options.bump)
         return fail(std::string(options.height ? "--height" : "--invalid-normals") +
                     " describes a bump map: give --bump too");
