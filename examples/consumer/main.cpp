@@ -1,6 +1,6 @@
 // A renderer's first lookups through the installed footprint package: a filtered texture lookup,
-// a filtered environment lookup and a texture-system lookup of a file by name. Exits with 1 if a
-// result is not what the maths says.
+// a filtered environment lookup, a texture-system lookup of a file by name, and a scene file
+// rendered. Exits with 1 if a result is not what the maths says.
 #include <footprint/footprint.h>
 
 #include <cmath>
@@ -85,6 +85,30 @@ int main() {
     }
     ok &= near(by_name, texel, 0.0f, "texture system: the same grazing lookup");
 
-    std::printf("%s\n", ok ? "all lookups as expected" : "SOME LOOKUPS WRONG");
+    // A scene file rendered: a lit sphere in front of a black sky, parsed, prepared and rendered
+    // as `footprint render` does (this is what links every module, glTF's reader included).
+    const char* const scene_json = R"({
+        "image": {"width": 32, "height": 18},
+        "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0]},
+        "lights": [{"type": "directional", "direction": [0, -1, -1]}],
+        "objects": [{"shape": "sphere", "radius": 0.8, "material": {"base_color": [0.8, 0.5, 0.2]}}]
+    })";
+    footprint::Result<footprint::SceneDesc> desc =
+        footprint::parse_scene(scene_json, "consumer-scene.json");
+    if (!desc) {
+        std::printf("scene: %s\n", desc.error().message.c_str());
+        return 1;
+    }
+    footprint::Result<footprint::RenderScene> scene = footprint::prepare_render_scene(*desc);
+    if (!scene) {
+        std::printf("scene: %s\n", scene.error().message.c_str());
+        return 1;
+    }
+    const footprint::Image image = footprint::render(*scene, footprint::RenderOptions{});
+    const float centre = image.at(16, 9, 0), corner = image.at(0, 0, 0);
+    ok &= near(corner, 0.0f, 0.0f, "render: the black sky in a corner");
+    ok &= near(centre > 0.01f ? 1.0f : 0.0f, 1.0f, 0.0f, "render: the lit sphere in the middle");
+
+    std::printf("%s\n", ok ? "all results as expected" : "SOME RESULTS WRONG");
     return ok ? 0 : 1;
 }
