@@ -100,9 +100,16 @@ Result<FilterMode> parse_render_filter(std::string_view name, std::string_view o
     return unknown_filter(name, render_names(), "render", option);
 }
 
-Result<GpuFilter> parse_gpu_render_filter(std::string_view name) {
+Result<GpuFilter> parse_gpu_render_filter(std::string_view name, std::string_view command) {
     if (const std::optional<GpuFilter> filter = parse_gpu_filter(name)) return *filter;
-    return unknown_filter(name, gpu_names(), "render --device gpu");
+    return unknown_filter(name, gpu_names(), command);
+}
+
+std::string gpu_ms_text(double ms) {
+    if (!(ms >= 0)) return "- ms GPU";
+    char text[32];
+    std::snprintf(text, sizeof text, "%.*f ms GPU", ms < 10 ? 2 : ms < 100 ? 1 : 0, ms);
+    return text;
 }
 
 std::string gpu_filter_names(std::string_view separator) {

@@ -54,9 +54,15 @@ std::string plane_filter_names(std::string_view separator);
 // `option` names the argument ("filter" for Python's render()).
 Result<FilterMode> parse_render_filter(std::string_view name, std::string_view option = "--filter");
 Result<TextureFilter> parse_plane_filter(std::string_view name);
-// --filter NAME of `footprint render --device gpu` and `footprint view`.
-Result<GpuFilter> parse_gpu_render_filter(std::string_view name);
+// --filter NAME of `footprint render --device gpu` and `footprint view` (`command` names it in
+// the message).
+Result<GpuFilter> parse_gpu_render_filter(std::string_view name,
+                                          std::string_view command = "render --device gpu");
 std::string gpu_filter_names(std::string_view separator);
+
+// The GPU time of `footprint view`'s HUD, three significant digits ("5.43 ms GPU", "83.2 ms GPU",
+// "1169 ms GPU"), or "- ms GPU" before the first frame's time is known (a negative `ms`).
+std::string gpu_ms_text(double ms);
 
 // An option's value that is none of `accepted` (--downsample, --flip-range, …): "unknown value
 // 'gauss' (did you mean 'box'?); it accepts box, tent", or nullopt for an accepted one. The

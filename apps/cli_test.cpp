@@ -365,6 +365,20 @@ TEST_F(CommandTest, DemoIntoAFileFails) {
     EXPECT_TRUE(one_line(err)) << err;
 }
 
+TEST(ViewHud, GpuTimeHasThreeSignificantDigits) {
+    EXPECT_EQ(gpu_ms_text(5.4321), "5.43 ms GPU");
+    EXPECT_EQ(gpu_ms_text(83.21), "83.2 ms GPU");
+    EXPECT_EQ(gpu_ms_text(1169.4), "1169 ms GPU");
+    EXPECT_EQ(gpu_ms_text(-1), "- ms GPU");
+}
+
+TEST(ViewFilter, AnUnknownOneIsViewsNotRenders) {
+    const Result<GpuFilter> filter = parse_gpu_render_filter("sat", "view");
+    ASSERT_FALSE(filter);
+    EXPECT_EQ(filter.error().message.rfind("--filter: footprint view has no filter 'sat'", 0), 0u)
+        << filter.error().message;
+}
+
 TEST(UnknownValue, IsNamedWithTheNearestAndTheAcceptedOnes) {
     const std::string_view modes[] = {"box", "tent"};
     EXPECT_EQ(unknown_value_problem("tnet", modes),

@@ -191,7 +191,7 @@ struct FrameTarget {
 }  // namespace
 
 int run_view_command(const ViewCommandOptions& options) {
-    const Result<GpuFilter> filter = parse_gpu_render_filter(options.filter);
+    const Result<GpuFilter> filter = parse_gpu_render_filter(options.filter, "view");
     if (!filter) return fail(filter.error().message);
     int width = 1280, height = 720;
     if (!options.size.empty()) {
@@ -265,14 +265,13 @@ int run_view_command(const ViewCommandOptions& options) {
             last_hud = now;
         }
         char line[160];
-        std::snprintf(line, sizeof line, "%s  |  %s  |  %dx%d  |  1-5 mode, drag orbit, wheel zoom",
-                      gpu_filter_name(state.filter),
-                      shown_ms >= 0 ? (std::to_string(shown_ms).substr(0, 5) + " ms GPU").c_str()
-                                    : "- ms GPU",
-                      w, h);
+        std::snprintf(line, sizeof line, "%s  |  %s  |  %dx%d", gpu_filter_name(state.filter),
+                      gpu_ms_text(shown_ms).c_str(), w, h);
         if (line != hud_text) {
             hud_text = line;
-            hud = hud_image(hud_text, 24);
+            // The keys' help where the window is wide enough for it.
+            hud = hud_image(hud_text + "  |  1-5 mode, drag orbit, wheel zoom", 24);
+            if (hud.width > w) hud = hud_image(hud_text, 24);
             glDeleteTextures(1, &hud_texture);
             glCreateTextures(GL_TEXTURE_2D, 1, &hud_texture);
             glTextureStorage2D(hud_texture, 1, GL_RGBA32F, hud.width, hud.height);
