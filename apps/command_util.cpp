@@ -127,21 +127,30 @@ std::optional<std::string> font_problem(const fs::path& font) {
 }
 
 // Draws `label` in white into `strip` of `sheet`, left-aligned, vertically centred, at the
-// largest size up to `font_size` that fits the strip's width (clipped at the minimum size).
-bool draw_label(OIIO::ImageBuf& sheet, const SheetRect& strip, const std::string& label,
-                int font_size, const fs::path& font) {
+// largest size up to `font_size` that fits the strip's width. A label that does not fit at the
+// smallest size loses its last " | " fields (a demo's timing first) until it does, and is clipped
+// to the strip if it still does not.
+bool draw_label(OIIO::ImageBuf& sheet, const SheetRect& strip, std::string label, int font_size,
+                const fs::path& font) {
     const int pad = std::max(2, font_size / 3);
+    const auto fits = [&](const std::string& text, int size) {
+        const OIIO::ROI extent = OIIO::ImageBufAlgo::text_size(text, size, font.string());
+        return extent.defined() && extent.width() <= strip.width - 2 * pad;
+    };
     int size = font_size;
-    for (; size > kMinFontSize; --size) {
-        const OIIO::ROI extent = OIIO::ImageBufAlgo::text_size(label, size, font.string());
-        if (extent.defined() && extent.width() <= strip.width - 2 * pad) break;
-    }
+    while (size > kMinFontSize && !fits(label, size)) --size;
+    for (std::size_t bar; !fits(label, size) && (bar = label.rfind(" | ")) != std::string::npos;)
+        label.erase(bar);
+    // Drawn on a copy of the strip, then put back: OpenImageIO 2.4's render_text does not keep to
+    // its clip region, so a long label would run into the next panel.
+    const OIIO::ROI roi(strip.x, strip.x + strip.width, strip.y, strip.y + strip.height, 0, 1, 0,
+                        sheet.nchannels());
+    OIIO::ImageBuf text = OIIO::ImageBufAlgo::cut(sheet, roi);
     const std::vector<float> white(static_cast<std::size_t>(sheet.nchannels()), 1.0f);
-    const OIIO::ROI clip(strip.x, strip.x + strip.width, strip.y, strip.y + strip.height, 0, 1, 0,
-                         sheet.nchannels());
-    return OIIO::ImageBufAlgo::render_text(
-        sheet, strip.x + pad, strip.y + strip.height / 2, label, size, font.string(), white,
-        OIIO::ImageBufAlgo::TextAlignX::Left, OIIO::ImageBufAlgo::TextAlignY::Center, 0, clip);
+    return OIIO::ImageBufAlgo::render_text(text, pad, strip.height / 2, label, size, font.string(),
+                                           white, OIIO::ImageBufAlgo::TextAlignX::Left,
+                                           OIIO::ImageBufAlgo::TextAlignY::Center) &&
+           OIIO::ImageBufAlgo::paste(sheet, strip.x, strip.y, 0, 0, text);
 }
 
 void fill(Image& image, const SheetRect& r, float value) {

@@ -76,6 +76,21 @@ TEST(ContactSheet, LabelsAreDrawnUnderUntouchedPanels) {
     EXPECT_GT(bright_pixels(sheet.image, left), bright_pixels(sheet.image, right));
 }
 
+// A label too long for its panel at the smallest size (texture-demo --size 160's) stays in its
+// strip: the gap and the next panel's strip, left without a label, stay as they were.
+TEST(ContactSheet, ALongLabelStaysInItsStrip) {
+    const std::vector<Image> images = two_panels();
+    const std::string long_label =
+        "nearest | 1 spp | RMSE 0.2285 | 0.721 ms | and a good deal more than fits in 160 pixels";
+    const ContactSheet sheet = contact_sheet({&images[0], &images[1]}, {long_label, ""}, {2, 4});
+    ASSERT_EQ(sheet.warning, "");
+    const SheetRect& next = sheet.strips[1];
+    EXPECT_EQ(bright_pixels(sheet.image, next, 0.05f), 0);
+    const SheetRect gap{sheet.strips[0].x + sheet.strips[0].width, next.y, 4, next.height};
+    EXPECT_EQ(bright_pixels(sheet.image, gap), 0);  // grey (0.18) between the panels
+    EXPECT_GT(bright_pixels(sheet.image, sheet.strips[0]), 100);
+}
+
 TEST(ContactSheet, MissingFontLeavesBlankStripsAndSaysWhy) {
     const std::vector<Image> images = two_panels();
     ContactSheetOptions options;
