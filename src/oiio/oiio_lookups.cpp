@@ -307,6 +307,9 @@ void write_result(const SampleView& v, int actual, int nchannels, const TextureO
 static_assert(static_cast<int>(WrapMode::mirror) + 1 == Entries::kWrapModes);
 
 TextureHandle* Entries::texture(footprint::TextureSystem& system, const OpenAs& as) {
+    // Most lookups read the file's own entry, opened by an earlier one.
+    const bool own = as.subimage == 0 && !as.wrap_s && !as.wrap_t;
+    if (own && texture_ready_.load(std::memory_order_acquire)) return texture_;
     const auto opened = [&] {
         TextureHandle* entry = footprint::detail::texture_handle(system, file_, as);
         return system.info(entry) ? entry : nullptr;
@@ -321,8 +324,7 @@ TextureHandle* Entries::texture(footprint::TextureSystem& system, const OpenAs& 
         }
         return entry;
     }
-    if (!(as == OpenAs{})) return opened();
-    if (texture_ready_.load(std::memory_order_acquire)) return texture_;
+    if (!own) return opened();
     std::call_once(texture_opened_, [&] {
         texture_ = opened();
         if (texture_) {
@@ -525,10 +527,10 @@ std::optional<bool> footprint_environment(footprint::TextureSystem& system, Entr
 }
 
 std::string check_options(const TextureOpt& options, int subimages) {
-    const char* names[] = {"sblur", "tblur", "swidth", "twidth", "fill"};
+    static constexpr const char* names[] = {"sblur", "tblur", "swidth", "twidth", "fill"};
     const float values[] = {options.sblur, options.tblur, options.swidth, options.twidth,
                             options.fill};
-    if (std::string why = check_values(names, values, 5); !why.empty()) return why;
+    if (!values_in_range(values, 5)) return check_values(names, values, 5);
     for (int k = 0; k < 4; ++k)
         if (values[k] < 0)
             return std::string(names[k]) + " = " + std::to_string(values[k]) + " is negative";

@@ -179,7 +179,7 @@ class Adapter final : public OIIO::TextureSystem {
             return refuse("texture(): not a texture handle of this system", nchannels, result,
                           dresultds, dresultdt);
         }
-        const char* names[] = {"s", "t", "dsdx", "dtdx", "dsdy", "dtdy"};
+        static constexpr const char* names[] = {"s", "t", "dsdx", "dtdx", "dsdy", "dtdy"};
         const float coords[] = {s, t, dsdx, dtdx, dsdy, dtdy};
         if (std::string why = check_call(*f, thread_info, options, names, coords, 6, nchannels,
                                          result, dresultds, dresultdt);
@@ -287,8 +287,8 @@ class Adapter final : public OIIO::TextureSystem {
         }
         const Imath::V3f r = R.cast<Imath::V3f>(), rx = dRdx.cast<Imath::V3f>(),
                          ry = dRdy.cast<Imath::V3f>();
-        const char* names[] = {"R.x",    "R.y",    "R.z",    "dRdx.x", "dRdx.y",
-                               "dRdx.z", "dRdy.x", "dRdy.y", "dRdy.z"};
+        static constexpr const char* names[] = {"R.x",    "R.y",    "R.z",    "dRdx.x", "dRdx.y",
+                                                "dRdx.z", "dRdy.x", "dRdy.y", "dRdy.z"};
         const float values[] = {r.x, r.y, r.z, rx.x, rx.y, rx.z, ry.x, ry.y, ry.z};
         std::string why = check_call(*f, thread_info, options, names, values, 9, nchannels, result,
                                      dresultds, dresultdt);
