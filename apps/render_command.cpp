@@ -222,6 +222,7 @@ int run_gpu_render(const RenderCommandOptions& options, GpuFilter filter, const 
                                         {"pixels", pixels},
                                         {"seconds", seconds},
                                         {"gpu_ms", gpu_ms},
+                                        {"warmup_ms", renderer->warmup_ms()},
                                         {"frames", frame_count}};
         std::printf("%s\n", summary.dump().c_str());
         return 0;

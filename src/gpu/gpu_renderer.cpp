@@ -1,8 +1,10 @@
 #include "gpu/gpu_renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 
 #include "gpu/gl_context.h"
 #include "gpu/gl_objects.h"
@@ -73,6 +75,9 @@ const std::string& GpuDevice::description() const {
 
 struct GpuRenderer::Impl {
     const RenderScene* scene = nullptr;
+    // The filters drawn once already, and the time their first draws took (warm_up()).
+    std::array<bool, std::size(kAllGpuFilters)> warmed{};
+    double warmup_ms = 0;
     gpu::GpuScene gpu;
     gpu::Program program, mesh_program;  // the shading pass; the meshes' raster pass
     gpu::VertexArray vertex_array;
@@ -112,6 +117,10 @@ struct GpuRenderer::Impl {
     void draw_meshes(const CameraDesc& camera, int width, int height);
     void draw_pass(const CameraDesc& camera, int width, int height,
                    const GpuRenderOptions& options);
+    // A filter's first draw, on one pixel of the bound framebuffer, untimed: a driver that
+    // compiles a shader (or its variant for a sampler's state) at its first draw, as Mesa's
+    // llvmpipe does (seconds on a cold shader cache), does it here and not in a frame's time.
+    void warm_up(const CameraDesc& camera, int width, int height, const GpuRenderOptions& options);
 };
 
 namespace {
@@ -399,6 +408,30 @@ Result<GpuRenderer> GpuRenderer::create(const RenderScene& scene) {
     return renderer;
 }
 
+void GpuRenderer::Impl::warm_up(const CameraDesc& camera, int width, int height,
+                                const GpuRenderOptions& options) {
+    bool& done = warmed[static_cast<std::size_t>(options.filter)];
+    if (done) return;
+    const auto start = std::chrono::steady_clock::now();
+    GLboolean scissored = GL_FALSE;
+    GLint box[4] = {0, 0, 0, 0};
+    glGetBooleanv(GL_SCISSOR_TEST, &scissored);
+    glGetIntegerv(GL_SCISSOR_BOX, box);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, 0, 1, 1);
+    draw_pass(camera, width, height, options);
+    glFinish();
+    glScissor(box[0], box[1], box[2], box[3]);
+    if (!scissored) glDisable(GL_SCISSOR_TEST);
+    warmup_ms +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    done = true;
+}
+
+double GpuRenderer::warmup_ms() const {
+    return impl_->warmup_ms;
+}
+
 Result<Image> GpuRenderer::render(const GpuRenderOptions& options, GpuFrameStats* stats) {
     const SceneDesc& desc = impl_->scene->desc();
     const CameraDesc camera = options.frame_count >= 1
@@ -426,6 +459,7 @@ Result<Image> GpuRenderer::render(const CameraDesc& camera, int width, int heigh
         glEnable(GL_SCISSOR_TEST);
         glScissor(0, first, width, rows);
     }
+    impl.warm_up(camera, width, height, options);
     const auto start = std::chrono::steady_clock::now();
     impl.begin_timing(0);
     impl.draw_pass(camera, width, height, options);
@@ -450,6 +484,7 @@ Result<Image> GpuRenderer::render(const CameraDesc& camera, int width, int heigh
 double GpuRenderer::draw(const CameraDesc& camera, int width, int height,
                          const GpuRenderOptions& options) {
     Impl& impl = *impl_;
+    impl.warm_up(camera, width, height, options);
     const int now = impl.frame_index % 2, previous = 1 - now;
     impl.begin_timing(now);
     impl.draw_pass(camera, width, height, options);

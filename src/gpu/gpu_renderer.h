@@ -116,6 +116,11 @@ class GpuRenderer {
     // a negative value while none is available.
     double draw(const CameraDesc& camera, int width, int height, const GpuRenderOptions& options);
 
+    // The time of each filter's first draw, on one pixel before its first frame, so that no
+    // frame's time holds it: where the driver compiles shaders at their first draw (Mesa's
+    // llvmpipe does, seconds on a cold shader cache), the compilation; elsewhere about nothing.
+    double warmup_ms() const;
+
   private:
     GpuRenderer();
     struct Impl;
