@@ -57,6 +57,11 @@ bool contains(const std::vector<std::string_view>& names, std::string_view name)
 }
 
 // Why `name` is not one of `accepted`, the filters of `command`.
+// " (did you mean 'x'?)" for a guess, or nothing: every unknown name's message words it so.
+std::string did_you_mean(std::optional<std::string_view> guess) {
+    return guess ? " (did you mean '" + std::string(*guess) + "'?)" : std::string();
+}
+
 Error unknown_filter(std::string_view name, const std::vector<std::string_view>& accepted,
                      std::string_view command, std::string_view option = "--filter") {
     const std::string quoted_name = "'" + std::string(name) + "'";
@@ -71,14 +76,13 @@ Error unknown_filter(std::string_view name, const std::vector<std::string_view>&
         if (hint.word == name && contains(accepted, hint.name)) guess = hint.name;
     const bool known = contains(vocabulary, name);
     if (!guess && !known) guess = closest_name(name, accepted);
-    const std::string did_you_mean =
-        guess ? " (did you mean '" + std::string(*guess) + "'?)" : std::string();
+    const std::string hint = did_you_mean(guess);
     if (known) {
         return Error{std::string(option) + ": footprint " + std::string(command) +
-                     " has no filter " + quoted_name + did_you_mean + "; it accepts " + list};
+                     " has no filter " + quoted_name + hint + "; it accepts " + list};
     }
-    return Error{std::string(option) + ": unknown filter " + quoted_name + did_you_mean +
-                 "; footprint " + std::string(command) + " accepts " + list};
+    return Error{std::string(option) + ": unknown filter " + quoted_name + hint + "; footprint " +
+                 std::string(command) + " accepts " + list};
 }
 
 }  // namespace
@@ -171,20 +175,16 @@ std::optional<std::string> unknown_value_problem(std::string_view value,
                                                  std::span<const std::string_view> accepted) {
     const std::vector<std::string_view> names(accepted.begin(), accepted.end());
     if (contains(names, value)) return std::nullopt;
-    const std::optional<std::string_view> guess = closest_name(value, accepted);
     return "unknown value '" + std::string(value) + "'" +
-           (guess ? " (did you mean '" + std::string(*guess) + "'?)" : std::string()) +
-           "; it accepts " + joined(names, ", ");
+           did_you_mean(closest_name(value, accepted)) + "; it accepts " + joined(names, ", ");
 }
 
 std::optional<std::string> unknown_command_problem(std::string_view word,
                                                    std::span<const std::string_view> commands) {
     const std::vector<std::string_view> names(commands.begin(), commands.end());
     if (word.empty() || word.front() == '-' || contains(names, word)) return std::nullopt;
-    const std::optional<std::string_view> guess = closest_name(word, commands);
     return "unknown command '" + std::string(word) + "'" +
-           (guess ? " (did you mean '" + std::string(*guess) + "'?)" : std::string()) +
-           "; the commands are " + joined(names, ", ");
+           did_you_mean(closest_name(word, commands)) + "; the commands are " + joined(names, ", ");
 }
 
 }  // namespace footprint

@@ -7,12 +7,13 @@
 //   sky = ts.environment("sky.hdr", r, dr_dx, dr_dy)                              # r: N × 3
 //   image = footprint.render("scene.json", filter="fa-rough", spp=1)             # H × W × 3
 //   image = footprint.render("scene.json", textures=ts)        # its maps through ts's cache
-//   footprint.metrics(image, reference)                                           # rmse, psnr,
-//   ssim, flip footprint.save_image("out.exr", image); footprint.load_image("in.png")        #
-//   linear light
+//   footprint.metrics(image, reference)                  # rmse, psnr, ssim, flip
+//   footprint.save_image("out.exr", image)               # linear light
+//   footprint.load_image("in.png")                       # linear light
 //
-// Lookups release the GIL and run on the calling thread. Every error is a RuntimeError with the
-// library's message ("cannot read 'albedo.exr': no such file").
+// Lookups release the GIL and run on the calling thread. An argument out of range or unknown is
+// a ValueError worded as the command line words it ("width 8 is out of range (16 to 16384)");
+// every other error a RuntimeError with the library's message ("cannot read 'albedo.exr': …").
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -96,9 +97,9 @@ class PyTextureSystem {
         Result<std::unique_ptr<TextureSystem>> made = TextureSystem::create(options);
         if (!made) {
             std::string message = made.error().message;
-            if (max_memory_mb < 0)
-                message.replace(message.rfind("(got 0)"), 7,
-                                "(got " + std::to_string(max_memory_mb) + ")");
+            const std::size_t got = message.rfind("(got 0)");
+            if (max_memory_mb < 0 && got != std::string::npos)
+                message.replace(got, 7, "(got " + std::to_string(max_memory_mb) + ")");
             throw py::value_error(message);
         }
         ts_ = std::move(*made);
