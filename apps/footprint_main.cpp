@@ -1,7 +1,6 @@
 // footprint — the command-line program: argument parsing only; the commands live in demo.cpp,
-// env_command.cpp, eval_command.cpp, maketx_command.cpp, merge_command.cpp, metrics_command.cpp,
-// render_command.cpp,
-// texture_demo.cpp and view_command.cpp.
+// bake_command.cpp, env_command.cpp, eval_command.cpp, maketx_command.cpp, merge_command.cpp,
+// metrics_command.cpp, render_command.cpp, texture_demo.cpp and view_command.cpp.
 //   footprint --version
 //   footprint demo [--out DIR] [--scene NAME...] [--size N] [--spp N] [--threads N] [--quiet]
 //   footprint eval [SCENE...] [--out DIR] [--size W] [--reference-spp N] [--spp-list 1,4,16,64]
@@ -23,6 +22,8 @@
 //                  [--screenshot FILE]
 //   footprint maketx IN -o OUT.exr [--wrap MODE[,MODE]] [--downsample box|tent] [--tile-size N]
 //                    [--bump [--height] [--invalid-normals clamp]] [--env LAYOUT]
+//   footprint bake color|bump|env IN -o OUT.ktx|OUT.exr [--srgb|--linear] [--float32] [--wrap W]
+//                  [--downsample box|tent] [--height] [--invalid-normals clamp] [--size N]
 // Filter names: one vocabulary across the commands (apps/cli_options.h, kFilterHelp below).
 // Exit status: 0 success, 1 bad input or failure (one line on stderr), 2 command-line usage error.
 #include <CLI/CLI.hpp>
@@ -32,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "bake_command.h"
 #include "cli_options.h"
 #include "command_util.h"
 #include "demo.h"
@@ -160,6 +162,37 @@ int run(int argc, char** argv) {
                      "With --bump: a normal map's invalid texels are an error, or clamped")
         ->check(one_of({"error", "clamp"}))
         ->capture_default_str();
+
+    footprint::BakeCommandOptions bake;
+    std::string bake_input, bake_output, bake_invalid = "error", bake_wrap, bake_downsample;
+    bool bake_srgb = false, bake_linear = false;
+    int bake_size = 0;
+    CLI::App* bake_cmd = app.add_subcommand(
+        "bake",
+        "Write the maps an engine loads (KTX 1 or EXR), level by level as footprint "
+        "builds them: a colour MIP chain, bump moment maps, an environment cube map");
+    bake_cmd->add_option("kind", bake.kind, "color, bump or env")
+        ->required()
+        ->check(one_of({"color", "bump", "env"}));
+    bake_cmd->add_option("input", bake_input, "Texture, normal / height map or environment file")
+        ->required();
+    bake_cmd->add_option("-o,--out", bake_output, "Output file (.ktx or .exr)")->required();
+    bake_cmd->add_flag("--srgb", bake_srgb, "color, env: decode IN from sRGB (default: by file)");
+    bake_cmd->add_flag("--linear", bake_linear, "color, env: read IN as linear (default: by file)");
+    bake_cmd->add_flag("--float32", bake.float32, "KTX: RGBA32F instead of RGBA16F");
+    bake_cmd->add_option("--wrap", bake_wrap, "color, bump: repeat, clamp or mirror; or S,T");
+    bake_cmd->add_option("--downsample", bake_downsample, "color, bump: box (default) or tent")
+        ->check(one_of({"box", "tent"}));
+    bake_cmd->add_flag("--height", bake.height, "bump: IN is a height map");
+    bake_cmd
+        ->add_option("--invalid-normals", bake_invalid,
+                     "bump: a normal map's invalid texels are an error, or clamped")
+        ->check(one_of({"error", "clamp"}))
+        ->capture_default_str();
+    bake_cmd->add_option("--size", bake_size,
+                         "env: the cube's face edge, 1 to 16384 (default: the source's angular "
+                         "resolution)");
+    bake_cmd->add_flag("--quiet,-q", bake.quiet, "No output but errors");
 
     footprint::EnvConvertCommandOptions convert;
     std::vector<std::string> convert_inputs, convert_outputs;
@@ -467,6 +500,21 @@ int run(int argc, char** argv) {
         maketx.downsample = maketx_downsample == "tent" ? footprint::DownsampleFilter::tent
                                                         : footprint::DownsampleFilter::box;
         return footprint::run_maketx_command(maketx);
+    }
+    if (*bake_cmd) {
+        if (bake_srgb && bake_linear) return footprint::fail("--srgb and --linear: give one");
+        bake.input = bake_input;
+        bake.output = bake_output;
+        bake.encoding = bake_srgb     ? footprint::ColorEncoding::srgb
+                        : bake_linear ? footprint::ColorEncoding::linear
+                                      : footprint::ColorEncoding::automatic;
+        if (bake_cmd->count("--wrap") > 0) bake.wrap = bake_wrap;
+        if (bake_cmd->count("--downsample") > 0)
+            bake.downsample = bake_downsample == "tent" ? footprint::DownsampleFilter::tent
+                                                        : footprint::DownsampleFilter::box;
+        if (bake_cmd->count("--size") > 0) bake.size = bake_size;
+        bake.clamp_invalid_normals = bake_invalid == "clamp";
+        return footprint::run_bake_command(bake);
     }
     if (*env_cmd) {
         convert.inputs.assign(convert_inputs.begin(), convert_inputs.end());

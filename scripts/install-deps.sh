@@ -20,6 +20,7 @@ packages=(
     xvfb xauth                                                # footprint view's test (a display)
     pybind11-dev python3-dev python3-numpy python3-pytest     # the Python module and its tests
     clang-14 libclang-rt-14-dev                               # make fuzz (libFuzzer)
+    libfilament-dev libfilament-tools                         # examples/filament (matc, cmgen)
 )
 
 missing=()
