@@ -16,12 +16,20 @@ foreach(header ${FOOTPRINT_PUBLIC_HEADERS})
 endforeach()
 install(FILES ${FOOTPRINT_GENERATED_ROOT}/footprint/version.h
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/footprint)
+# The GLSL library (docs/engine.md): share/footprint/glsl/footprint/*.glsl with its version.glsl,
+# included as "footprint/texture.glsl" from share/footprint/glsl.
+set(FOOTPRINT_GLSL_INSTALL_DIR ${CMAKE_INSTALL_DATADIR}/footprint/glsl)  # footprint_GLSL_DIR
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/glsl/footprint
+        DESTINATION ${FOOTPRINT_GLSL_INSTALL_DIR} FILES_MATCHING PATTERN "*.glsl")
+install(FILES ${FOOTPRINT_GENERATED_ROOT}/glsl/footprint/version.glsl
+        DESTINATION ${FOOTPRINT_GLSL_INSTALL_DIR}/footprint)
 
 set(package_dir ${CMAKE_INSTALL_LIBDIR}/cmake/footprint)
 install(EXPORT footprintTargets NAMESPACE footprint:: DESTINATION ${package_dir})
 configure_package_config_file(cmake/footprintConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/footprintConfig.cmake
-                              INSTALL_DESTINATION ${package_dir})
+                              INSTALL_DESTINATION ${package_dir}
+                              PATH_VARS FOOTPRINT_GLSL_INSTALL_DIR)
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/footprintConfigVersion.cmake
                                  COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/footprintConfig.cmake

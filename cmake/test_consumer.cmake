@@ -11,6 +11,12 @@ function(run)
     endif()
 endfunction()
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix)
+# The GLSL library and its version defines, where docs/engine.md says they are.
+foreach(part version common texture bump highlight environment)
+    if(NOT EXISTS ${WORK_DIR}/prefix/share/footprint/glsl/footprint/${part}.glsl)
+        message(FATAL_ERROR "not installed: share/footprint/glsl/footprint/${part}.glsl")
+    endif()
+endforeach()
 run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples/consumer -B ${WORK_DIR}/build -G Ninja
     -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix)
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)

@@ -327,7 +327,6 @@ void GpuRenderer::Impl::draw_pass(const CameraDesc& camera, int width, int heigh
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, objects.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, gpu.material_buffer.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, lights.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, gpu.gaussian_spacing_buffer.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, gpu.meshes.vertices.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, gpu.meshes.triangles.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, gpu.meshes.parts.get());

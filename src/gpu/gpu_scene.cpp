@@ -13,7 +13,6 @@
 #include "scene/mesh.h"
 #include "scene/shapes.h"
 #include "scene/triangle_bvh.h"
-#include "texture/footprint_assembly.h"
 
 namespace footprint::gpu {
 
@@ -231,7 +230,7 @@ std::shared_ptr<const MipPyramid> grey_as_rgb(const MipPyramid& grey) {
     return std::make_shared<const MipPyramid>(std::move(*rgb));
 }
 
-// shading.glsl's HIGHLIGHT_* codes.
+// footprint/highlight.glsl's FP_HIGHLIGHT_* codes.
 float highlight_code(MaterialDesc::Highlight highlight) {
     switch (highlight) {
         case MaterialDesc::Highlight::blinn_phong:
@@ -511,10 +510,6 @@ Result<GpuScene> upload_scene(const RenderScene& scene) {
     if (!gpu.slots.empty()) gpu.slot_sampler = make_sampler(GL_CLAMP_TO_EDGE, GL_CLAMP_TO_EDGE, 1);
     gpu.material_maps = pool.upload(anisotropy);
     gpu.material_buffer = storage_buffer(gpu.materials);
-    std::vector<float> spacing(kMaxProbeCount + 1);
-    for (int n = 0; n <= kMaxProbeCount; ++n)
-        spacing[static_cast<std::size_t>(n)] = gaussian_spacing_factor(n);
-    gpu.gaussian_spacing_buffer = storage_buffer(spacing.data(), spacing.size() * sizeof(float));
     if (std::string e = gl_error("uploading the scene"); !e.empty()) return Error{e};
     return gpu;
 }

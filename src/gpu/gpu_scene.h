@@ -102,7 +102,7 @@ struct GpuScene {
     bool has_caps = false;
     Texture cube;
     Sampler cube_sampler;
-    Buffer material_buffer, gaussian_spacing_buffer;
+    Buffer material_buffer;
     GpuMeshes meshes;
     // The cube maps besides the scene's: the local maps, innermost first (RenderScene::
     // local_environments(), so that the first whose proxy contains a point is its map), then the

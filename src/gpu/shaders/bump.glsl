@@ -1,45 +1,13 @@
-// gpu/shaders/bump.glsl — bump maps as slopes in a local frame, and the bump + roughness lookup by
-// moments (bump/bump_pyramid.h, bump/local_frame.h, render/bump_frame.cpp, spec §5–6).
+// gpu/shaders/bump.glsl — bump maps' frames at a hit, and parallax-occlusion mapping
+// (bump/local_frame.h, render/bump_frame.cpp, texture/parallax.h). The moments → slopes step and
+// the roughness factor are the library's (footprint/bump.glsl, docs/method.md, "The moment
+// pyramid").
 //
 // A bump map is its moment pyramid as two layers: (μ'1, μ'2, M2'11, M2'12) and (M2'22): every
-// filter blends the moments with its weights, and K_b = M2 − μμᵀ is the covariance of all the
-// finest-level slopes in the filtered region.
+// filter blends the moments with its weights, and fp_slope_stats() gives K_b = M2 − μμᵀ, the
+// covariance of all the finest-level slopes in the filtered region.
 
-struct SlopeStats {
-    vec2 mean;  // μ
-    vec3 k;     // K_b = (xx, xy, yy)
-};
-
-// The nearest PSD matrix (bump/roughness.h's clamp_to_psd).
-vec3 clamp_to_psd(vec3 k) {
-    if (!is_finite(k.x + k.y + k.z)) return vec3(0);
-    if (k.x >= 0.0 && k.z >= 0.0 && k.x * k.z - k.y * k.y >= 0.0) return k;
-    float w = sqrt((k.x - k.z) * (k.x - k.z) + 4.0 * k.y * k.y);
-    float major = max(0.0, 0.5 * (k.x + k.z + w)), minor = max(0.0, 0.5 * (k.x + k.z - w));
-    vec2 r = k.x >= k.z ? vec2(k.x - k.z + w, 2.0 * k.y) : vec2(2.0 * k.y, k.z - k.x + w);
-    float len = length(r);
-    r = len > 0.0 ? r / len : vec2(1, 0);
-    vec2 q = vec2(-r.y, r.x);
-    return major * vec3(r.x * r.x, r.x * r.y, r.y * r.y) + minor * vec3(q.x * q.x, q.x * q.y, q.y * q.y);
-}
-
-SlopeStats from_moments(Texel m, vec2 offset) {
-    float m1 = m.a.x, m2 = m.a.y;
-    return SlopeStats(vec2(m1, m2) + offset,
-                      clamp_to_psd(vec3(m.a.z - m1 * m1, m.a.w - m1 * m2, m.b.x - m2 * m2)));
-}
-
-// B = [[d1, d2], [0, d3]] with B Bᵀ = K (bump/roughness.h's roughness_factor).
-vec3 roughness_factor(vec3 k) {
-    if (!is_finite(k.x + k.y + k.z)) return vec3(0);
-    float scale = max(0.0, k.x) + max(0.0, k.z);
-    if (k.z > 1e-12 * scale && k.z > 0.0) {
-        float d3 = sqrt(k.z);
-        float bound = sqrt(max(0.0, k.x));
-        return vec3(sqrt(max(0.0, k.x * k.z - k.y * k.y) / k.z), clamp(k.y / d3, -bound, bound), d3);
-    }
-    return vec3(sqrt(max(0.0, k.x)), 0, 0);
-}
+#include "footprint/bump.glsl"
 
 // ---- Frames (spec §6). T = (t1 t2) = ∂n̂_m/∂b; slope_sign as render/bump_frame.h.
 struct Frame {
@@ -128,10 +96,10 @@ vec2 parallax_direction(vec3 v, vec3 dp_ds, vec3 dp_dt, vec3 n) {
     vec3 tangential = v_hat - cos_v * n_hat;
     float ss = dot(dp_ds, dp_ds), st = dot(dp_ds, dp_dt), tt = dot(dp_dt, dp_dt);
     float det = ss * tt - st * st;
-    if (!(abs(det) > 1e-20) || !is_finite(det)) return vec2(0);
+    if (!(abs(det) > 1e-20) || !fp_is_finite(det)) return vec2(0);
     float rs = dot(tangential, dp_ds), rt = dot(tangential, dp_dt);
     vec2 w = -vec2(tt * rs - st * rt, ss * rt - st * rs) / (det * cos_v);
-    return is_finite(w.x + w.y) ? w : vec2(0);
+    return fp_is_finite(w.x + w.y) ? w : vec2(0);
 }
 
 // hw-aniso marches over trilinear heights, as engines do: ~30 anisotropic reads per pixel would
@@ -146,7 +114,7 @@ void parallax_march(Material m, vec2 w, inout vec2 st, inout vec4 dst, int mode)
     int steps = clamp(int(m.parallax.y), 1, 256);
     vec2 shift = m.parallax.x * w;
     float len = length(shift);
-    if (!(len > 0.0) || !is_finite(len)) return;
+    if (!(len > 0.0) || !fp_is_finite(len)) return;
     if (len > m.parallax.z) shift *= m.parallax.z / len;
     float z_before = 0.0, f_before = -(1.0 - parallax_height(m, st, dst, mode));
     if (f_before >= 0.0) return;
@@ -168,7 +136,7 @@ void parallax_march(Material m, vec2 w, inout vec2 st, inout vec4 dst, int mode)
                   parallax_height(m, at + vec2(0, h.y), dst, mode) -
                       parallax_height(m, at - vec2(0, h.y), dst, mode)) / (2.0 * h);
     float denominator = 1.0 + dot(g, shift);
-    if (denominator > 0.25 && is_finite(denominator)) {
+    if (denominator > 0.25 && fp_is_finite(denominator)) {
         dst.xy -= (dot(g, dst.xy) / denominator) * shift;
         dst.zw -= (dot(g, dst.zw) / denominator) * shift;
     }

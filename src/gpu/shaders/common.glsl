@@ -1,9 +1,13 @@
 #version 450 core
+#include "footprint/common.glsl"
 // gpu/shaders/common.glsl — what every stage of the GPU path shares: constants, the filter modes,
 // the scene's buffers and the frame's uniforms. The later files are appended in pipeline order
 // (geometry, filtering, bump, environment, shading, render.frag), as the C++ pipeline's modules.
+// The method itself is footprint's GLSL library (glsl/footprint/, docs/engine.md), which these
+// files include: cmake/embed_shaders.cmake inlines each of its files once, where it is first
+// included.
 
-const float PI = 3.14159265358979323846;
+const float PI = FP_PI;
 const float TWO_PI = 6.28318530717958647692;
 const float FLT_MAX = 3.402823466e+38;
 
@@ -20,10 +24,6 @@ const int SHAPE_SPHERE = 1;
 const int SHAPE_CYLINDER = 2;
 const int SHAPE_PARABOLOID = 3;
 const int SHAPE_TORUS = 4;
-
-bool is_finite(float x) {
-    return !isnan(x) && !isinf(x);
-}
 
 // An analytic object, in camera-relative world coordinates (the camera at the origin, so that
 // float keeps the hit points' differences; the CPU renderer works in double).
@@ -45,7 +45,7 @@ struct Material {
     vec4 main_direction;  // xyz; zero: ∂p/∂v; w: the bump map's mean slope b1
     vec4 roughness;       // micro-roughness K_0 = (xx, xy, yy) in xyz; w: mean slope b2
     ivec4 maps;  // the base colour map's u_maps index (−1: none) and layer, the bump map's
-    vec4 highlight;  // HIGHLIGHT_* (shading.glsl), microfacet α, 1: metallic-roughness, unused
+    vec4 highlight;  // FP_HIGHLIGHT_* (footprint/highlight.glsl), microfacet α, 1: metallic-roughness, unused
     vec4 f0;         // Schlick's F0 per channel (× the F0 map); w: the environment's diffuse weight
     ivec4 f0_map;    // the F0 map's u_maps index (−1: none; its alpha: the slope variance σ²)
                      // and layer, unused, unused
@@ -67,9 +67,6 @@ struct Light {
 layout(std430, binding = 0) readonly buffer Objects { Object objects[]; };
 layout(std430, binding = 1) readonly buffer Materials { Material materials[]; };
 layout(std430, binding = 2) readonly buffer Lights { Light lights[]; };
-// The spacing factors c(N) of N Gaussian-weighted probes, N = 0 … 1024
-// (texture/footprint_assembly.h): Δ = σ_g·c(N).
-layout(std430, binding = 3) readonly buffer GaussianSpacing { float gaussian_spacing[]; };
 
 // The camera (render/camera.h): d(x, y) = f + a(x − W/2) r − a(y − H/2) u, at the origin.
 uniform vec3 u_camera_forward;

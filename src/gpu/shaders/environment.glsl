@@ -7,6 +7,13 @@
 // 1 = −Y), a sphere map, or a dual paraboloid (layer 0 the front, 1 the back). Taps of those that
 // fall beyond a level's edge are read where their direction lies (envmap/env_sampling.h), where
 // the hardware would clamp.
+//
+// The footprint K = D Dᵀ + κ² K3, the reflected direction's spreads (form (b)), the cube's face
+// table and the cube's probes are the library's (footprint/environment.glsl, docs/method.md,
+// "The environment footprint"); this file adds the other layouts, local maps' proxies, polar caps
+// and EWA, and reads the scene's maps.
+
+#include "footprint/environment.glsl"
 
 const int ENV_NONE = -1;
 const int ENV_CUBE = 0;  // envmap/env_layout.h's EnvLayout order
@@ -130,21 +137,14 @@ int env_cube_levels() {
 #undef SLOT_LEVELS
 }
 
-// Where a direction lands on the map and the Jacobian J_P = ∂(s,t)/∂r there (rows ds, dt).
-struct EnvPoint {
-    int face;
-    vec2 st;
-    vec3 ds, dt;
-};
-
 // ---- Lat-long (§3.4): s = ½ + atan2(r_x, −r_z)/(2π), t = θ/π (y up).
-EnvPoint latlong_point(vec3 r) {
+FpMapPoint latlong_point(vec3 r) {
     float rho = length(r.xz), len = length(r);
-    if (rho == 0.0) return EnvPoint(0, vec2(0.5, r.y > 0.0 ? 0.0 : 1.0), vec3(0), vec3(0));
+    if (rho == 0.0) return FpMapPoint(0, vec2(0.5, r.y > 0.0 ? 0.0 : 1.0), vec3(0), vec3(0));
     vec2 st = vec2(0.5 + atan(r.x, -r.z) / TWO_PI, atan(rho, r.y) / PI);
     vec3 ds = vec3(-r.z, 0, r.x) / (TWO_PI * rho * rho);
     vec3 dt = -(vec3(0, 1, 0) - (r.y / (len * len)) * r) / (PI * rho);
-    return EnvPoint(0, st, ds, dt);
+    return FpMapPoint(0, st, ds, dt);
 }
 
 vec3 latlong_direction(vec2 st) {
@@ -152,45 +152,10 @@ vec3 latlong_direction(vec2 st) {
     return vec3(sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi));
 }
 
-// ---- Cube (§3.1, the OpenGL face table: +X −X +Y −Y +Z −Z).
-void cube_face_axes(int face, out vec3 major, out vec3 gs, out vec3 gt) {
-    switch (face) {
-        case 0: major = vec3(1, 0, 0); gs = vec3(0, 0, -1); gt = vec3(0, -1, 0); break;
-        case 1: major = vec3(-1, 0, 0); gs = vec3(0, 0, 1); gt = vec3(0, -1, 0); break;
-        case 2: major = vec3(0, 1, 0); gs = vec3(1, 0, 0); gt = vec3(0, 0, 1); break;
-        case 3: major = vec3(0, -1, 0); gs = vec3(1, 0, 0); gt = vec3(0, 0, -1); break;
-        case 4: major = vec3(0, 0, 1); gs = vec3(1, 0, 0); gt = vec3(0, -1, 0); break;
-        default: major = vec3(0, 0, -1); gs = vec3(-1, 0, 0); gt = vec3(0, -1, 0); break;
-    }
-}
-
-int cube_face(vec3 r) {
-    vec3 a = abs(r);
-    if (a.x >= a.y && a.x >= a.z) return r.x < 0.0 ? 1 : 0;
-    if (a.y >= a.z) return r.y < 0.0 ? 3 : 2;
-    return r.z < 0.0 ? 5 : 4;
-}
-
-// r on a given face (its major axis need not be r's largest: the polar caps use faces 2 and 3).
-EnvPoint cube_point_on(int face, vec3 r) {
-    vec3 major, gs, gt;
-    cube_face_axes(face, major, gs, gt);
-    float ma = dot(major, r);  // |ma|, positive on its own face
-    float sp = dot(gs, r) / ma, tp = dot(gt, r) / ma;
-    return EnvPoint(face, 0.5 * (vec2(sp, tp) + 1.0), (gs - sp * major) * (0.5 / ma),
-                    (gt - tp * major) * (0.5 / ma));
-}
-
-vec3 cube_direction(int face, vec2 st) {
-    vec3 major, gs, gt;
-    cube_face_axes(face, major, gs, gt);
-    return major + (2.0 * st.x - 1.0) * gs + (2.0 * st.y - 1.0) * gt;
-}
-
 // ---- Sphere map (§3.2), +Y up the image: (s, t) = ½(a + 1, 1 − b), (a, b) = (r_x, r_y)/m,
 // m = √(2|r|(r_z + |r|)), written without cancellation on the far side; the rim direction −Z is
 // singular (a zero Jacobian).
-EnvPoint sphere_point(vec3 r) {
+FpMapPoint sphere_point(vec3 r) {
     float p = length(r), h = length(r.xy), m, c;
     if (r.z >= 0.0) {
         float w = r.z + p;
@@ -200,11 +165,11 @@ EnvPoint sphere_point(vec3 r) {
         m = h * sqrt(2.0 * p / (p - r.z));
         c = h / sqrt(2.0 * p * (p - r.z));
     }
-    if (m == 0.0) return EnvPoint(0, vec2(1.0, 0.5), vec3(0), vec3(0));
+    if (m == 0.0) return FpMapPoint(0, vec2(1.0, 0.5), vec3(0), vec3(0));
     float a = clamp(r.x / m, -1.0, 1.0), b = clamp(r.y / m, -1.0, 1.0);
     vec3 grad_m = vec3(a, b, c) + (c / p) * r;
     float k = 0.5 / m;
-    return EnvPoint(0, 0.5 * vec2(a + 1.0, 1.0 - b), k * (vec3(1, 0, 0) - a * grad_m),
+    return FpMapPoint(0, 0.5 * vec2(a + 1.0, 1.0 - b), k * (vec3(1, 0, 0) - a * grad_m),
                     -k * (vec3(0, 1, 0) - b * grad_m));
 }
 
@@ -224,13 +189,13 @@ vec3 sphere_direction(vec2 st) {
 }
 
 // ---- Dual paraboloid (§3.3): face 0 for r_z ≥ 0, (x, y) = (r_x, r_y)/(|r| + |r_z|).
-EnvPoint paraboloid_point(vec3 r) {
+FpMapPoint paraboloid_point(vec3 r) {
     float pr = length(r), sign = r.z >= 0.0 ? 1.0 : -1.0;
     float delta = pr + abs(r.z);
     float x = r.x / delta, y = r.y / delta;
     vec3 g = r / pr + vec3(0, 0, sign);
     float k = 0.5 / delta;
-    return EnvPoint(r.z >= 0.0 ? 0 : 1, 0.5 * vec2(x + 1.0, 1.0 - y),
+    return FpMapPoint(r.z >= 0.0 ? 0 : 1, 0.5 * vec2(x + 1.0, 1.0 - y),
                     k * (vec3(1, 0, 0) - x * g), -k * (vec3(0, 1, 0) - y * g));
 }
 
@@ -242,9 +207,9 @@ vec3 paraboloid_direction(int face, vec2 st) {
     return vec3(2.0 * x, 2.0 * y, sign * (1.0 - k)) / (1.0 + k);
 }
 
-EnvPoint env_point(vec3 r) {
+FpMapPoint env_point(vec3 r) {
     switch (env_layout) {
-        case ENV_CUBE: return cube_point_on(cube_face(r), r);
+        case ENV_CUBE: return fp_cube_point(r);
         case ENV_SPHERE: return sphere_point(r);
         case ENV_PARABOLOID: return paraboloid_point(r);
         default: return latlong_point(r);
@@ -253,7 +218,7 @@ EnvPoint env_point(vec3 r) {
 
 vec3 env_direction(int face, vec2 st) {
     switch (env_layout) {
-        case ENV_CUBE: return cube_direction(face, st);
+        case ENV_CUBE: return fp_cube_direction(face, st);
         case ENV_SPHERE: return sphere_direction(st);
         case ENV_PARABOLOID: return paraboloid_direction(face, st);
         default: return latlong_direction(st);
@@ -261,8 +226,8 @@ vec3 env_direction(int face, vec2 st) {
 }
 
 // G x = S J_P x: the map motion, in level-0 texels, of a change x of the (map-space) direction.
-vec2 map_motion(EnvPoint p, vec3 x) {
-    return env_texel_scale * vec2(dot(p.ds, x), dot(p.dt, x));
+vec2 map_motion(FpMapPoint p, vec3 x) {
+    return fp_map_motion(p, env_texel_scale, x);
 }
 
 // ---- A local map's proxy (envmap/env_proxy.h): the direction from the capture point to where
@@ -276,7 +241,7 @@ struct ProxyStep {
 
 bool proxy_step(vec3 p, vec3 r, out ProxyStep s) {
     float length_r = length(r);
-    if (env_proxy == 0 || !(length_r > 0.0) || !is_finite(length_r)) return false;
+    if (env_proxy == 0 || !(length_r > 0.0) || !fp_is_finite(length_r)) return false;
     vec3 r_hat = r / length_r;
     float t;
     vec3 m = vec3(0);
@@ -327,7 +292,7 @@ vec3 local_direction(vec3 p, vec3 r) {
 // ---- The footprint (envmap/env_footprint.h).
 struct EnvFootprint {
     vec3 map_direction;  // A v_r
-    EnvPoint point;
+    FpMapPoint point;
     vec2 d_dx, d_dy;  // D's columns (curvature and aperture), level-0 texels per pixel
     vec3 k;           // K = D Dᵀ + κ² K3
     vec3 map_dr_dx, map_dr_dy, map_rough1, map_rough2;  // A ∂v_r/∂x, A ∂v_r/∂y, κ A (A_n E B)
@@ -339,11 +304,11 @@ float largest_tangent_singular_value(vec3 r, vec3 a, vec3 b) {
     vec3 r_hat = normalize(r);
     a -= dot(a, r_hat) * r_hat;
     b -= dot(b, r_hat) * r_hat;
-    return ellipse_of(vec3(dot(a, a), dot(a, b), dot(b, b))).l1;
+    return fp_ellipse_of(vec3(dot(a, a), dot(a, b), dot(b, b))).l1;
 }
 
 void set_isotropic(inout EnvFootprint f, float tp) {
-    if (!is_finite(tp)) tp = 0.0;
+    if (!fp_is_finite(tp)) tp = 0.0;
     f.d_dx = vec2(tp, 0);
     f.d_dy = vec2(0, tp);
     f.k = vec3(tp * tp, 0, tp * tp);
@@ -385,10 +350,8 @@ EnvFootprint footprint_of_spread(vec3 r, vec3 dr_dx, vec3 dr_dy, vec3 rough1, ve
     }
     f.d_dx = map_motion(f.point, f.map_dr_dx);
     f.d_dy = map_motion(f.point, f.map_dr_dy);
-    vec3 curvature = footprint_matrix(f.d_dx, f.d_dy);
-    vec3 roughness = footprint_matrix(map_motion(f.point, env_rotation * rough1),
-                                      map_motion(f.point, env_rotation * rough2));
-    f.k = curvature + (u_kappa * u_kappa) * roughness;  // eq. 13
+    f.k = fp_environment_footprint(f.d_dx, f.d_dy, map_motion(f.point, env_rotation * rough1),
+                                   map_motion(f.point, env_rotation * rough2), u_kappa);
     return f;
 }
 
@@ -402,7 +365,7 @@ EnvFootprint ray_footprint(vec3 p, vec3 r, vec3 dr_dx, vec3 dr_dy) {
         dr_dy = proxy_move(s, vec3(0), dr_dy);
     }
     EnvFootprint f = footprint_of_spread(r, dr_dx, dr_dy, vec3(0), vec3(0));
-    if (!is_finite(f.k.x + f.k.y + f.k.z)) {
+    if (!fp_is_finite(f.k.x + f.k.y + f.k.z)) {
         f.d_dx = f.d_dy = vec2(0);
         f.k = vec3(0);
         f.map_dr_dx = f.map_dr_dy = vec3(0);
@@ -415,21 +378,8 @@ EnvFootprint ray_footprint(vec3 p, vec3 r, vec3 dr_dx, vec3 dr_dy) {
 // K_b its covariance; p the surface point (world space), for a local map's proxy.
 EnvFootprint reflection_footprint(vec3 p, vec3 v, vec3 dv_dx, vec3 dv_dy, vec3 n, vec3 dn_dx,
                                   vec3 dn_dy, vec2 b, Frame t, vec3 rough, vec3 k_b) {
-    float n_len = length(n);
-    vec3 nm = n + n_len * (b.x * t.t1 + b.y * t.t2);
-    if (!is_finite(nm.x + nm.y + nm.z) || !(dot(nm, v) > 0.0)) nm = n;  // the bump faces away
-    if (!(dot(n, v) > 0.0)) {  // a silhouette: n clamped towards v
-        vec3 v_hat = normalize(v);
-        n -= (dot(n, v_hat) - 1e-3 * n_len) * v_hat;
-        nm = n;
-    }
-    float nm_v = dot(nm, v), nm_nm = dot(nm, nm);
-    vec3 reflected = 2.0 * nm_v * nm - nm_nm * v;  // eq. 4
-#define A_V(x) (2.0 * dot(nm, x) * nm - nm_nm * (x))
-#define A_N(x) (2.0 * nm_v * (x) + 2.0 * dot(v, x) * nm - 2.0 * dot(nm, x) * v)
-    vec3 dvr_dx = A_V(dv_dx) + A_N(dn_dx), dvr_dy = A_V(dv_dy) + A_N(dn_dy);  // eq. 5
-    vec3 rough1 = A_N(n_len * rough.x * t.t1);                                 // eqs. 10–12
-    vec3 rough2 = A_N(n_len * (rough.y * t.t1 + rough.z * t.t2));
+    FpReflection r = fp_reflection(v, dv_dx, dv_dy, n, dn_dx, dn_dy, b, t.t1, t.t2, rough);
+    vec3 reflected = r.r, dvr_dx = r.dr_dx, dvr_dy = r.dr_dy, rough1 = r.rough1, rough2 = r.rough2;
     ProxyStep s;
     if (proxy_step(p, reflected, s)) {  // a local map: ∂d = P ∂p + (t/|r|) P ∂r, ∂p = −∂v
         reflected = s.direction;
@@ -439,17 +389,17 @@ EnvFootprint reflection_footprint(vec3 p, vec3 v, vec3 dv_dx, vec3 dv_dy, vec3 n
         rough2 = proxy_move(s, vec3(0), rough2);
     }
     EnvFootprint f = footprint_of_spread(reflected, dvr_dx, dvr_dy, rough1, rough2);
-    if (!f.fallback && !is_finite(f.k.x + f.k.y + f.k.z + f.d_dx.x + f.d_dx.y + f.d_dy.x + f.d_dy.y)) {
-        // §4: isotropic from the roughness alone, T_p = max(1, κ·‖G A_n E‖·l1).
-        Ellipse gae = ellipse_of(footprint_matrix(
-            map_motion(f.point, env_rotation * A_N(n_len * t.t1)),
-            map_motion(f.point, env_rotation * A_N(n_len * t.t2))));
-        float tp = u_kappa * gae.l1 * ellipse_of(k_b).l1;  // l1 = √λ_max(K_b)
-        set_isotropic(f, is_finite(tp) ? max(1.0, tp) : 1.0);
+    if (!f.fallback && !fp_is_finite(f.k.x + f.k.y + f.k.z + f.d_dx.x + f.d_dx.y + f.d_dy.x + f.d_dy.y)) {
+        // Non-finite D or K (docs/method.md, "Degenerate cases"): isotropic from the roughness
+        // alone, T_p = max(1, κ·‖G A_n E‖·l1).
+        float n_len = length(n);
+        FpEllipse gae = fp_ellipse_of(fp_footprint_matrix(
+            map_motion(f.point, env_rotation * fp_reflection_normal_spread(r, n_len * t.t1)),
+            map_motion(f.point, env_rotation * fp_reflection_normal_spread(r, n_len * t.t2))));
+        float tp = u_kappa * gae.l1 * fp_ellipse_of(k_b).l1;  // l1 = √λ_max(K_b)
+        set_isotropic(f, fp_is_finite(tp) ? max(1.0, tp) : 1.0);
         f.map_dr_dx = f.map_dr_dy = f.map_rough1 = f.map_rough2 = vec3(0);
     }
-#undef A_V
-#undef A_N
     return f;
 }
 
@@ -477,7 +427,7 @@ vec4 env_texel(int face, ivec2 i, int level) {
         }
         i.x = ((i.x % size.x) + size.x) % size.x;
     } else if (any(lessThan(i, ivec2(0))) || any(greaterThanEqual(i, size))) {
-        EnvPoint p = env_point(env_direction(face, (vec2(i) + 0.5) / vec2(size)));
+        FpMapPoint p = env_point(env_direction(face, (vec2(i) + 0.5) / vec2(size)));
         face = p.face;
         i = ivec2(p.st * vec2(size));
     }
@@ -519,7 +469,7 @@ vec4 env_probe_2d(int face, vec2 st, float lod) {
 vec3 env_point_sample(vec3 r) {
     vec3 m = env_rotation * r;
     if (env_layout == ENV_CUBE) return env_probe_direction(m, 0.0).rgb;
-    EnvPoint p = env_point(m);
+    FpMapPoint p = env_point(m);
     return env_probe_2d(p.face, p.st, 0.0).rgb;
 }
 
@@ -545,29 +495,29 @@ CapFootprint cap_footprint(EnvFootprint f, float latlong_trace) {
     c.valid = false;
     if (env_caps == 0 || !(abs(r.y) >= 0.8660254 * length(r))) return c;
     c.layer = r.y > 0.0 ? 0 : 1;
-    EnvPoint p = cube_point_on(2 + c.layer, r);
+    FpMapPoint p = fp_cube_point_on(2 + c.layer, r);
     float n = map_size(MAP_CAPS).x;
     vec2 a = n * vec2(dot(p.ds, f.map_dr_dx), dot(p.dt, f.map_dr_dx));
     vec2 b = n * vec2(dot(p.ds, f.map_dr_dy), dot(p.dt, f.map_dr_dy));
     vec2 c1 = n * vec2(dot(p.ds, f.map_rough1), dot(p.dt, f.map_rough1));
     vec2 c2 = n * vec2(dot(p.ds, f.map_rough2), dot(p.dt, f.map_rough2));
-    c.k = footprint_matrix(a, b) + footprint_matrix(c1, c2);
+    c.k = fp_footprint_matrix(a, b) + fp_footprint_matrix(c1, c2);
     c.st = p.st;
     float reach = (2.0 * sqrt(c.k.x + c.k.z) + 1.0) / n;
     bool on_face = p.st.x - reach >= 0.0 && p.st.x + reach <= 1.0 && p.st.y - reach >= 0.0 &&
                    p.st.y + reach <= 1.0;
-    c.valid = is_finite(c.k.x + c.k.y + c.k.z) && on_face &&
+    c.valid = fp_is_finite(c.k.x + c.k.y + c.k.z) && on_face &&
               !(c.k.x + c.k.z == 0.0 && latlong_trace > 0.0);
     return c;
 }
 
 vec3 cap_lookup(CapFootprint c, int mode) {
     int max_level = map_max_level(MAP_CAPS);
-    Ellipse e = ellipse_of(c.k);
+    FpEllipse e = fp_ellipse_of(c.k);
     if (mode == MODE_TRILINEAR)
         return probe(MAP_CAPS, c.layer, 1, c.st, clamp(log2(max(e.l1, 1e-30)), 0.0, float(max_level)))
             .a.rgb;
-    return assemble(MAP_CAPS, c.layer, 1, c.st, plan_probes(e, u_max_probes, max_level)).a.rgb;
+    return assemble(MAP_CAPS, c.layer, 1, c.st, fp_plan_probes(e, u_max_probes, max_level)).a.rgb;
 }
 
 // Probe placement on the sphere for the curved layouts (environment_map.cpp's TangentProbes): an
@@ -584,16 +534,16 @@ TangentProbes tangent_probes(vec3 direction) {
     t.centre = normalize(direction);
     t.e1 = normalize(cross(t.centre, abs(t.centre.x) < 0.6 ? vec3(1, 0, 0) : vec3(0, 1, 0)));
     t.e2 = cross(t.centre, t.e1);
-    EnvPoint p = env_point(t.centre);
+    FpMapPoint p = env_point(t.centre);
     float j11 = env_texel_scale.x * dot(p.ds, t.e1), j12 = env_texel_scale.x * dot(p.ds, t.e2);
     float j21 = env_texel_scale.y * dot(p.dt, t.e1), j22 = env_texel_scale.y * dot(p.dt, t.e2);
     float det = j11 * j22 - j12 * j21;
-    t.valid = abs(det) > 1e-12 * (j11 * j11 + j12 * j12 + j21 * j21 + j22 * j22) && is_finite(det);
+    t.valid = abs(det) > 1e-12 * (j11 * j11 + j12 * j12 + j21 * j21 + j22 * j22) && fp_is_finite(det);
     t.inv = t.valid ? mat2(j22, -j21, -j12, j11) / det : mat2(0);  // column-major
     return t;
 }
 
-EnvPoint tangent_place(TangentProbes t, vec2 offset) {
+FpMapPoint tangent_place(TangentProbes t, vec2 offset) {
     vec2 ab = t.inv * offset;
     return env_point(t.centre + ab.x * t.e1 + ab.y * t.e2);
 }
@@ -601,19 +551,19 @@ EnvPoint tangent_place(TangentProbes t, vec2 offset) {
 // How much the layout stretches a round footprint at the probes' centre: the anisotropy (≥ 1) of
 // the ellipse of J_t⁻¹'s columns (TangentProbes::distortion()).
 float tangent_distortion(TangentProbes t) {
-    Ellipse e = ellipse_of(footprint_matrix(t.inv[0], t.inv[1]));
+    FpEllipse e = fp_ellipse_of(fp_footprint_matrix(t.inv[0], t.inv[1]));
     float ratio = e.l1 / e.l2;
-    return is_finite(ratio) ? max(ratio, 1.0) : 1.0;
+    return fp_is_finite(ratio) ? max(ratio, 1.0) : 1.0;
 }
 
 // Where a probe centre (s, t) of `face` lands that was not placed on the sphere: itself on the
 // face's valid region, else the face and (s, t) of its direction (environment_map.cpp's
 // place_probe): over a lat-long pole, back through the sphere map's rim, onto the other
 // paraboloid hemisphere.
-EnvPoint place_probe(int face, vec2 st) {
+FpMapPoint place_probe(int face, vec2 st) {
     vec2 ab = 2.0 * st - 1.0;
     bool outside = env_layout == ENV_LATLONG ? st.y < 0.0 || st.y > 1.0 : dot(ab, ab) > 1.0;
-    return outside ? env_point(env_direction(face, st)) : EnvPoint(face, st, vec3(0), vec3(0));
+    return outside ? env_point(env_direction(face, st)) : FpMapPoint(face, st, vec3(0), vec3(0));
 }
 
 // How the probes of a line are placed. Cube: on the centre face's plane along r1, each handed to
@@ -627,7 +577,7 @@ struct ProbeLine {
     vec2 h, q;
 };
 
-ProbeLine probe_line(EnvFootprint f, Plan plan) {
+ProbeLine probe_line(EnvFootprint f, FpPlan plan) {
     ProbeLine line;
     line.tangent.valid = false;
     line.path = false;
@@ -637,8 +587,8 @@ ProbeLine probe_line(EnvFootprint f, Plan plan) {
     line.path = env_layout == ENV_LATLONG && line.tangent.valid && plan.count > 2;
     if (line.path) {
         vec2 c = f.point.st;
-        vec2 a = tangent_place(line.tangent, probe_offset(plan, plan.count - 1)).st - c;
-        vec2 b = tangent_place(line.tangent, -probe_offset(plan, plan.count - 1)).st - c;
+        vec2 a = tangent_place(line.tangent, fp_probe_offset(plan, plan.count - 1)).st - c;
+        vec2 b = tangent_place(line.tangent, -fp_probe_offset(plan, plan.count - 1)).st - c;
         a.x -= round(a.x);  // unwrapped across the seam
         b.x -= round(b.x);
         line.h = 0.5 * (a - b);
@@ -647,34 +597,31 @@ ProbeLine probe_line(EnvFootprint f, Plan plan) {
     return line;
 }
 
-// Probe i of a line, at the plan's lod (the centre face's).
-vec4 line_probe(EnvFootprint f, Plan plan, ProbeLine line, int i) {
-    vec2 on_plane = f.point.st + probe_offset(plan, i) / env_texel_scale;
+// Probe i of a line, its centre on_plane = c + o_i / S on the centre face's plane, at the plan's
+// lod (the centre face's).
+vec4 line_probe(EnvFootprint f, FpPlan plan, ProbeLine line, int i, vec2 on_plane) {
     if (env_layout == ENV_CUBE)
-        return env_probe_direction(cube_direction(f.point.face, on_plane), plan.lod);
+        return env_probe_direction(fp_cube_direction(f.point.face, on_plane), plan.lod);
     float half_count = 0.5 * float(plan.count - 1), u = (float(i) - half_count) / half_count;
     vec2 on_path = f.point.st + u * (line.h + u * line.q);
-    EnvPoint p;
+    FpMapPoint p;
     if (line.path && on_path.y >= 0.0 && on_path.y <= 1.0)
-        p = EnvPoint(0, on_path, vec3(0), vec3(0));
+        p = FpMapPoint(0, on_path, vec3(0), vec3(0));
     else if (line.tangent.valid)
-        p = tangent_place(line.tangent, probe_offset(plan, i));
+        p = tangent_place(line.tangent, fp_probe_offset(plan, i));
     else
         p = place_probe(f.point.face, on_plane);
     return env_probe_2d(p.face, p.st, plan.lod);
 }
 
-// C = Σ w_i probe_i / Σ w_i over the line (spec §2.9).
-vec3 env_line(EnvFootprint f, Plan plan) {
+// C = Σ w_i probe_i / Σ w_i over the line (footprint/texture.glsl's FP_ASSEMBLE).
+vec3 env_line(EnvFootprint f, FpPlan plan) {
     ProbeLine line = probe_line(f, plan);
-    vec3 sum = vec3(0);
-    float weights = 0.0;
-    for (int i = 0; i < plan.count; ++i) {
-        float w = probe_weight(plan, i);
-        sum += w * line_probe(f, plan, line, i).rgb;
-        weights += w;
-    }
-    return sum / weights;
+    vec3 sum;
+#define LINE_PROBE(i, on_plane, lod) line_probe(f, plan, line, i, on_plane).rgb
+    FP_ASSEMBLE(vec3, sum, plan, f.point.st, env_texel_scale, LINE_PROBE)
+#undef LINE_PROBE
+    return sum;
 }
 
 // ---- EWA on the lat-long map (texture/ewa.h's filter_ewa()): where footprint assembly would need
@@ -689,7 +636,7 @@ int ewa_wrap(int i, int n, int repeat) {
     return repeat == 1 ? ((i % n) + n) % n : clamp(i, 0, n - 1);
 }
 
-vec3 env_ewa_level(int face, int level, vec2 st, Ellipse e) {
+vec3 env_ewa_level(int face, int level, vec2 st, FpEllipse e) {
     // The level's size as the CPU's pyramid halves it (textureSize() on this array gave level 0's).
     vec2 level0 = map_size(MAP_ENV);
     ivec2 size = max(ivec2(1), ivec2(level0) >> level);
@@ -733,7 +680,7 @@ vec3 env_ewa_level(int face, int level, vec2 st, Ellipse e) {
     return sum / weights;
 }
 
-vec3 env_ewa(int face, vec2 st, Ellipse e, int max_level) {
+vec3 env_ewa(int face, vec2 st, FpEllipse e, int max_level) {
     if (e.l1 <= 1.0) return sample_lod(MAP_ENV, vec3(st, face), 0.0).rgb;
     if (e.l2 * kEwaBeyondProbesAnisotropy < e.l1) e.l2 = e.l1 / kEwaBeyondProbesAnisotropy;
     float lod = clamp(log2(max(e.l2, 1e-30)) - 1.5, 0.0, float(max_level));
@@ -756,7 +703,7 @@ vec3 env_lookup(EnvFootprint f, int mode, float latlong_trace) {
     }
     int max_level = env_layout == ENV_CUBE ? env_cube_levels() - 1
                                              : map_max_level(MAP_ENV);
-    Ellipse e = is_finite(f.k.x + f.k.y + f.k.z) ? ellipse_of(f.k) : Ellipse(0.0, 0.0, vec2(1, 0));
+    FpEllipse e = fp_is_finite(f.k.x + f.k.y + f.k.z) ? fp_ellipse_of(f.k) : FpEllipse(0.0, 0.0, vec2(1, 0));
     if (env_layout == ENV_SPHERE) {
         // §3.2: towards the singular rim the anisotropy grows without bound; λ1 ≤ W/2.
         e.l1 = min(e.l1, 0.5 * env_texel_scale.x);
@@ -765,9 +712,9 @@ vec3 env_lookup(EnvFootprint f, int mode, float latlong_trace) {
     float limit = 4.0 * max(env_texel_scale.x, env_texel_scale.y);
     e.l1 = min(e.l1, limit);
     e.l2 = min(e.l2, limit);
-    Plan plan;
+    FpPlan plan;
     if (mode == MODE_TRILINEAR) {
-        plan = Plan(1, vec2(0), clamp(log2(max(e.l1, 1e-30)), 0.0, float(max_level)), 0.0, e.l1);
+        plan = FpPlan(1, vec2(0), clamp(log2(max(e.l1, 1e-30)), 0.0, float(max_level)), 0.0, e.l1);
     } else {
         // Towards the sphere map's rim the map adds up to 67:1 of its own anisotropy: a line
         // there may take N_max × its distortion (environment_map.cpp's sphere_probe_limit).
@@ -776,12 +723,12 @@ vec3 env_lookup(EnvFootprint f, int mode, float latlong_trace) {
             TangentProbes t = tangent_probes(f.map_direction);
             if (t.valid)
                 max_probes = int(min(ceil(float(max(max_probes, 1)) * tangent_distortion(t)),
-                                     float(gaussian_spacing.length() - 1)));
+                                     float(FP_MAX_PROBE_COUNT)));
         }
-        plan = plan_probes(e, max_probes, max_level);
+        plan = fp_plan_probes(e, max_probes, max_level);
         // Beyond the probe budget on a lat-long map: EWA (LookupOptions::ewa_beyond_probes, the
         // fa modes' setting); the other layouts keep the raised level.
-        if (env_layout == ENV_LATLONG && exceeds_probe_budget(plan, e))
+        if (env_layout == ENV_LATLONG && fp_exceeds_probe_budget(plan, e))
             return env_ewa(f.point.face, f.point.st, e, max_level);
     }
     // Trilinear filters the centre face alone, its taps wrapped or clamped as the pyramid's

@@ -334,7 +334,7 @@ uniform int u_mesh_triangles;     // how many there are (0: no meshes, u_visibil
 // (derivatives with respect to (b1, b2)) where the UV map is singular.
 vec4 barycentric_derivatives(vec2 e1, vec2 e2) {
     float det = e1.x * e2.y - e1.y * e2.x;
-    if (!(abs(det) > 1e-12 * (dot(e1, e1) + dot(e2, e2))) || !is_finite(det))
+    if (!(abs(det) > 1e-12 * (dot(e1, e1) + dot(e2, e2))) || !fp_is_finite(det))
         return vec4(1, 0, 0, 1);
     return vec4(e2.y, -e1.y, -e2.x, e1.x) / det;
 }
@@ -367,7 +367,7 @@ Hit mesh_hit(int triangle, float t, vec2 b, Ray ray) {
     if (part.y != 0) {
         vec3 nn = b0 * v0.normal.xyz + b.x * v1.normal.xyz + b.y * v2.normal.xyz;
         float len = length(nn);
-        if (len > 0.0 && is_finite(len)) {
+        if (len > 0.0 && fp_is_finite(len)) {
             shading = true;
             hit.n = nn / len;
             vec3 dn1 = v1.normal.xyz - v0.normal.xyz, dn2 = v2.normal.xyz - v0.normal.xyz;

@@ -13,6 +13,6 @@ void main() {
     vec3 color = intersect_scene(ray, ivec2(pixel), hit) ? shade_hit(ray, dddx, dddy, hit)
                                            : background(ray, dddx, dddy);
     // Non-finite samples never reach a pixel (render/renderer.h): written as 0.
-    if (!is_finite(color.r + color.g + color.b)) color = vec3(0);
+    if (!fp_is_finite(color.r + color.g + color.b)) color = vec3(0);
     out_color = vec4(color, 1.0);
 }

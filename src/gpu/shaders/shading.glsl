@@ -1,18 +1,9 @@
-// gpu/shaders/shading.glsl — roughness-aware Blinn-Phong, microfacet highlights and Fresnel
-// (shading/blinn_phong.h, shading/microfacet.h, shading/fresnel.h), and
-// the shading of one hit (render/renderer.h's "Shading"), the same steps as the CPU renderer.
+// gpu/shaders/shading.glsl — Fresnel over the slopes (shading/fresnel.h) and the shading of one hit
+// (render/renderer.h's "Shading"), the same steps as the CPU renderer. The roughness-aware
+// Blinn-Phong and microfacet highlights and Schlick's Fresnel are the library's
+// (footprint/highlight.glsl, docs/method.md, "Shading").
 
-float schlick_fresnel(float f0, float cos_theta) {
-    float c = clamp(1.0 - cos_theta, 0.0, 1.0);
-    float c2 = c * c;
-    return f0 + (1.0 - f0) * c2 * c2 * c;
-}
-
-// Per channel of a coloured F0 (a metal's).
-vec3 schlick_fresnel3(vec3 f0, float cos_theta) {
-    float w = schlick_fresnel(0.0, cos_theta);
-    return f0 + (1.0 - f0) * w;
-}
+#include "footprint/highlight.glsl"
 
 // The channels' mean; exactly their value where they are equal (as the CPU's channel_mean()).
 float channel_mean(vec3 c) {
@@ -69,8 +60,8 @@ struct FresnelOverSlopes {
 };
 
 FresnelOverSlopes fresnel_over_slopes(float f0, float cos_mean, vec2 u, vec3 k) {
-    FresnelOverSlopes out_f = FresnelOverSlopes(schlick_fresnel(f0, cos_mean), 0.0,
-                                                schlick_fresnel(0.0, cos_mean), vec2(0), k);
+    FresnelOverSlopes out_f = FresnelOverSlopes(fp_schlick_fresnel(f0, cos_mean), 0.0,
+                                                fp_schlick_fresnel(0.0, cos_mean), vec2(0), k);
     float variance = k.x * u.x * u.x + 2.0 * k.y * u.x * u.y + k.z * u.y * u.y;
     if (!(variance > 1e-12)) return out_f;
     float sigma = sqrt(variance), a = 1.0 - cos_mean;
@@ -106,93 +97,6 @@ FresnelOverSlopes fresnel_over_slopes(float f0, float cos_mean, vec2 u, vec3 k) 
     out_f.shift = (mean_z / sigma) * ku;
     out_f.k = k - narrowing * vec3(ku.x * ku.x, ku.x * ku.y, ku.y * ku.y);
     return out_f;
-}
-
-float blinn_phong(float cos_a, float shininess) {
-    if (!(cos_a > 0.0)) return 0.0;
-    return pow(min(cos_a, 1.0), max(0.0, shininess));
-}
-
-// cos²a' = cos²a / (term + cos²a).
-float modified_cos2(float cos2, float term) {
-    float den = term + cos2;
-    return den > 0.0 ? cos2 / den : 0.0;
-}
-
-// The Gaussian rough Blinn-Phong lobe: K_rel = I + m K_b (shading/blinn_phong.h).
-float rough_blinn_phong(float cos_a, vec2 d, vec3 k_b, float shininess) {
-    if (!(cos_a > 0.0)) return 0.0;
-    float c = min(cos_a, 1.0), c2 = c * c;
-    float m = max(0.0, shininess);
-    float xx = max(0.0, k_b.x), yy = max(0.0, k_b.z);
-    float bound = sqrt(xx * yy), xy = clamp(k_b.y, -bound, bound);
-    float det_rel = 1.0 + m * (xx + yy) + m * m * max(0.0, xx * yy - xy * xy);
-    float adj_b = max(0.0, yy * d.x * d.x - 2.0 * xy * d.x * d.y + xx * d.y * d.y);
-    float term = (d.x * d.x + d.y * d.y + m * adj_b) / det_rel;
-    return pow(modified_cos2(c2, term), 0.5 * m) / sqrt(det_rel);
-}
-
-float specular_lobe(bool rough, vec3 n, vec3 e1, vec3 e2, vec3 h, vec3 k_b, float shininess) {
-    float cos_a = dot(n, h);
-    if (!(cos_a > 0.0)) return 0.0;
-    if (!rough) return blinn_phong(cos_a, shininess);
-    return rough_blinn_phong(cos_a, vec2(-dot(h, e1), -dot(h, e2)), k_b, shininess);
-}
-
-// ---- Microfacet highlights (shading/microfacet.h's microfacet_highlight()), in float: M's
-// eigenvalues are ≥ α² ≥ 1e-6, so det M ≥ 1e-12 and D ≤ 3.2e5 stay in range.
-
-const int HIGHLIGHT_BLINN_PHONG = 0;  // MaterialDesc::Highlight, gpu_scene.cpp's highlight_code()
-const int HIGHLIGHT_BECKMANN = 1;
-const int HIGHLIGHT_GGX = 2;
-
-// D(ĥ) for the local coordinates h = (ĥ·e1, ĥ·e2, ĥ·n̂) of a unit ĥ and M = α² I + 2 K_b
-// (xx, xy, yy): Q = tᵀM⁻¹t, Beckmann exp(−Q/z²)/(π √det M z⁴), GGX 1/(π √det M (z² + Q)²).
-float microfacet_distribution(int model, vec3 h, vec3 m) {
-    if (!(h.z > 0.0)) return 0.0;
-    float det = m.x * m.z - m.y * m.y;
-    float q = max(0.0, m.z * h.x * h.x - 2.0 * m.y * h.x * h.y + m.x * h.y * h.y) / det;
-    float z2 = h.z * h.z;
-    if (model == HIGHLIGHT_GGX) {
-        float den = z2 + q;
-        return 1.0 / (PI * sqrt(det) * den * den);
-    }
-    float exponent = q / z2;
-    if (!(exponent < 80.0)) return 0.0;  // e^{−80} ≈ 2e-35; z⁴ might underflow beyond
-    return exp(-exponent) / (PI * sqrt(det) * z2 * z2);
-}
-
-// Smith's Λ(ω), q = α_ω² tan²θ = tᵀM t / z²: Beckmann (e^{−a²}/(a√π) − erfc a)/2 with a = 1/√q,
-// GGX q/(2(1 + √(1 + q))).
-float smith_lambda(int model, vec3 w, vec3 m) {
-    float q = max(0.0, m.x * w.x * w.x + 2.0 * m.y * w.x * w.y + m.z * w.y * w.y) / (w.z * w.z);
-    if (!(q > 0.0)) return 0.0;
-    if (!(q < 1e30)) return 1e30;  // at the horizon (z² rounded to 0): G2 = 0
-    if (model == HIGHLIGHT_GGX) return q / (2.0 * (1.0 + sqrt(1.0 + q)));
-    // erfc(a) = e^{−a²}·t·poly(t) by Abramowitz & Stegun 7.1.26 (as normal_cdf(); absolute error
-    // < 1.5e-7, so Λ's is < 1e-7).
-    float a = inversesqrt(q);
-    float t = 1.0 / (1.0 + 0.3275911 * a);
-    float poly = t * (0.254829592 + t * (-0.284496736 + t * (1.421413741 +
-                 t * (-1.453152027 + t * 1.061405429))));
-    return max(0.0, 0.5 * exp(-a * a) * (1.0 / (a * sqrt(PI)) - poly));
-}
-
-// f_r·cos_l = D G2 F / (4 cos_v): the height-correlated G2 = 1/(1 + Λ(l̂) + Λ(v̂)), Schlick's F at
-// v̂·ĥ per channel of F0; α clamped to [1e-3, 1] and K_b to PSD, as on the CPU.
-vec3 microfacet_highlight(int model, vec3 n, vec3 e1, vec3 e2, vec3 l, vec3 v, vec3 k_b,
-                          float alpha, vec3 f0) {
-    float cos_l = dot(n, l), cos_v = dot(n, v);
-    if (!(cos_l > 0.0) || !(cos_v > 0.0)) return vec3(0);
-    vec3 h = normalize(l + v);
-    float a = clamp(alpha, 1e-3, 1.0);
-    float xx = max(0.0, k_b.x), yy = max(0.0, k_b.z);
-    float bound = sqrt(xx * yy), xy = clamp(k_b.y, -bound, bound);
-    vec3 m = vec3(a * a + 2.0 * xx, 2.0 * xy, a * a + 2.0 * yy);
-    float d = microfacet_distribution(model, vec3(dot(h, e1), dot(h, e2), dot(h, n)), m);
-    float g = 1.0 / (1.0 + smith_lambda(model, vec3(dot(l, e1), dot(l, e2), cos_l), m) +
-                     smith_lambda(model, vec3(dot(v, e1), dot(v, e2), cos_v), m));
-    return d * g * schlick_fresnel3(clamp(f0, 0.0, 1.0), dot(v, h)) / (4.0 * cos_v);
 }
 
 void tangent_basis(vec3 n, out vec3 u, out vec3 v) {
@@ -260,8 +164,9 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
     vec2 slope = vec2(0);
     vec3 k_b = material.roughness.xyz;
     if (bump_map) {
-        SlopeStats stats = from_moments(lookup_2d(material.maps.z, material.maps.w, 2, st, dst, mode),
-                                        vec2(material.main_direction.w, material.roughness.w));
+        Texel moments = lookup_2d(material.maps.z, material.maps.w, 2, st, dst, mode);
+        FpSlopeStats stats = fp_slope_stats(moments.a, moments.b.x,
+                                            vec2(material.main_direction.w, material.roughness.w));
         slope = stats.mean;
         k_b = stats.k;
     } else if (procedural_bump) {  // h = strength·v: b = −∇h and K_b in the orthonormal frame
@@ -286,7 +191,7 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
         frame.t1 = -frame.t1;
         frame.t2 = -frame.t2;
     }
-    if (!is_finite(b_t.x + b_t.y)) b_t = vec2(0);
+    if (!fp_is_finite(b_t.x + b_t.y)) b_t = vec2(0);
     vec3 n_m = bumped ? n + length(n) * (b_t.x * frame.t1 + b_t.y * frame.t2) : n;
     vec3 n_hat = normalize(n_m);
     if (dot(n_hat, v_hat) <= 0.0) n_hat = n;  // a slope tilted past the viewer (spec §4)
@@ -318,11 +223,11 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
         vec3 h = normalize(l + v_hat);
         int highlight = int(material.highlight.x);
         vec3 spec = vec3(0);
-        if (material.weights.y > 0.0 && highlight == HIGHLIGHT_BLINN_PHONG) {
+        if (material.weights.y > 0.0 && highlight == FP_HIGHLIGHT_BLINN_PHONG) {
             spec = vec3(material.weights.y *
-                        specular_lobe(rough_mode, n_hat, e1, e2, h, k_e, material.weights.z));
+                        fp_specular_lobe(rough_mode, n_hat, e1, e2, h, k_e, material.weights.z));
         } else if (material.weights.y > 0.0) {  // f_r·cos_l, widened by K_b in the rough mode
-            spec = material.weights.y * microfacet_highlight(highlight, n_hat, e1, e2, l, v_hat,
+            spec = material.weights.y * fp_microfacet_highlight(highlight, n_hat, e1, e2, l, v_hat,
                                                              rough_mode ? k_e : vec3(0),
                                                              alpha, f0);
         }
@@ -340,7 +245,7 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
     if (probe >= 0) use_slot(probe);
     if (env_layout != ENV_NONE && material.weights.w > 0.0) {
         vec3 texel;
-        vec3 fresnel = schlick_fresnel3(f0, dot(n_hat, v_hat));
+        vec3 fresnel = fp_schlick_fresnel3(f0, dot(n_hat, v_hat));
         float f0_mean = channel_mean(f0);  // steers the Fresnel-weighted slopes
         if (filtered) {
             // The rough mode averages Fresnel over the slopes and looks the reflection up under
@@ -352,7 +257,7 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
                 vec3 tangential = v_hat - dot(n_hat, v_hat) * n_hat;
                 vec2 u = length(n) / length(n_m) *
                          vec2(dot(frame.t1, tangential), dot(frame.t2, tangential));
-                if (!is_finite(u.x + u.y)) u = vec2(0);
+                if (!fp_is_finite(u.x + u.y)) u = vec2(0);
                 FresnelOverSlopes w = fresnel_over_slopes(f0_mean, dot(n_hat, v_hat), u, k_b);
                 fresnel = f0 * (1.0 - w.facing_away) + (1.0 - f0) * w.schlick;
                 facing_away = w.facing_away;
@@ -362,18 +267,18 @@ vec3 shade_hit(Ray ray, vec3 dddx, vec3 dddy, Hit hit) {
             Frame t = bumped ? frame : Frame(vec3(1, 0, 0), vec3(0, 1, 0), 1.0);
             EnvFootprint f = reflection_footprint(p_world, v, -diff.dpdx, -diff.dpdy, n, dndx, dndy,
                                                   bumped ? b_env : vec2(0), t,
-                                                  bumped ? roughness_factor(k_env) : vec3(0), k_env);
+                                                  bumped ? fp_roughness_factor(k_env) : vec3(0), k_env);
             texel = env_lookup(f, mode, f.k.x + f.k.z);
             // Slopes facing away from the eye are shaded with the surface's own normal (§4).
             float cos_surface = dot(normalize(n), v_hat);
-            float f_away = facing_away * schlick_fresnel(f0_mean, cos_surface);
+            float f_away = facing_away * fp_schlick_fresnel(f0_mean, cos_surface);
             float f_mean = channel_mean(fresnel);
             if (facing_away > 1e-3 && f_mean + f_away > 0.0) {
                 EnvFootprint unbumped = reflection_footprint(p_world, v, -diff.dpdx, -diff.dpdy, n, dndx,
                                                              dndy, vec2(0), t, vec3(0), vec3(0));
                 vec3 away = env_lookup(unbumped, mode, unbumped.k.x + unbumped.k.z);
                 texel = (f_mean * texel + f_away * away) / (f_mean + f_away);
-                fresnel += facing_away * schlick_fresnel3(f0, cos_surface);
+                fresnel += facing_away * fp_schlick_fresnel3(f0, cos_surface);
             }
         } else {
             texel = env_point_sample(local_direction(p_world,
