@@ -70,6 +70,8 @@ int main(int argc, char** argv) {
     tsys->add_option("--frame", texsys_frame, "frame size WxH (default 1280x720)");
     tsys->add_option("--frames", texsys.frames, "frames per run, the first cold")
         ->check(CLI::Range(2, 100));
+    tsys->add_option("--rounds", texsys.rounds, "runs per system, in turn (the best counts)")
+        ->check(CLI::Range(1, 100));
     tsys->add_option("--threads", texsys.thread_counts, "thread counts to measure")
         ->check(CLI::Range(1, 256));
     tsys->add_option("--dir", texsys.dir, "where the texture files are written, kept and reused");

@@ -10,7 +10,8 @@
 // itself): ours with footprint assembly, OpenImageIO's with its default TextureOpt (anisotropic,
 // smart bicubic), both reading the very same files. For each it reports the first (cold) frame's
 // time, the later frames' lookups/s (the best frame's) with 1 and 2 threads, the peak RSS of the
-// process and the texture system's own peak of texel memory; the RMS error of both against
+// process and the texture system's own peak of texel memory (each from the system's best of
+// `rounds` runs, taken in turn); the RMS error of both against
 // reference_lookup() on a subset of pixels; and whether ours with 1 and 2 threads and with an
 // unbounded cache gave the same image, bit for bit.
 //
@@ -32,6 +33,10 @@ struct TexsysBenchOptions {
     int cache_mb = 256;
     int width = 1280, height = 720;
     int frames = 4;  // the first is the cold one; the best of the others counts
+    // Each system runs once per round, the systems in turn, and its best round counts: this
+    // machine's slow spells (other tenants) then fall on every system alike rather than on
+    // whichever ran during them.
+    int rounds = 3;
     std::vector<int> thread_counts = {1, 2};
     std::string dir;  // where the files are written (kept, and reused when present); empty: a
                       // temporary folder, removed afterwards

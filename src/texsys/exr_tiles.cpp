@@ -3,6 +3,8 @@
 #include <openexr.h>
 
 #include <algorithm>
+#include <cstddef>
+#include <cstdlib>
 #include <string_view>
 #include <vector>
 
@@ -21,6 +23,70 @@ void keep_exr_error(exr_const_context_t, exr_result_t, const char* message) {
 std::string exr_error(exr_result_t result) {
     return last_exr_error.empty() ? exr_get_default_error_message(result) : last_exr_error;
 }
+
+// OpenEXR's decoder allocates its buffers (the compressed chunk, the decompressed one, its
+// scratch) for each tile and frees them after. Freed, they left the top of glibc's heap free
+// beyond its trim threshold, which glibc handed back to the kernel, and the next tile faulted the
+// pages in again: a texture system's first frame, which reads its tiles, took a third longer
+// (docs/performance.md, "The texture system"). So the contexts allocate through each thread's
+// last few freed blocks, reused for its next tile.
+class FreedBlocks {
+  public:
+    ~FreedBlocks() {
+        for (int i = 0; i < count_; ++i) std::free(blocks_[i]);
+        count_ = 0;
+        gone_ = true;  // frees after this (a context finished later on this thread) go to free()
+    }
+    static void* allocate(std::size_t bytes) {
+        if (!gone_) {
+            FreedBlocks& mine = blocks();
+            for (int i = 0; i < mine.count_; ++i) {
+                Header* block = mine.blocks_[i];
+                if (block->capacity < bytes) continue;
+                mine.blocks_[i] = mine.blocks_[--mine.count_];
+                return block + 1;
+            }
+        }
+        // Rounded up, so that a block serves the next tile's buffer of a slightly larger size.
+        const std::size_t capacity = (bytes + kRounding - 1) / kRounding * kRounding;
+        auto* block = static_cast<Header*>(std::malloc(sizeof(Header) + capacity));
+        if (!block) return nullptr;
+        block->capacity = capacity;
+        return block + 1;
+    }
+    static void release(void* pointer) {
+        if (!pointer) return;
+        Header* block = static_cast<Header*>(pointer) - 1;
+        if (!gone_) {
+            FreedBlocks& mine = blocks();
+            if (mine.count_ < kBlocks) {
+                mine.blocks_[mine.count_++] = block;
+                return;
+            }
+            // Full: keep the larger blocks, which serve any buffer the smaller ones would.
+            Header** smallest = std::min_element(
+                mine.blocks_, mine.blocks_ + kBlocks,
+                [](const Header* a, const Header* b) { return a->capacity < b->capacity; });
+            if ((*smallest)->capacity < block->capacity) std::swap(*smallest, block);
+        }
+        std::free(block);
+    }
+
+  private:
+    struct alignas(std::max_align_t) Header {
+        std::size_t capacity;
+    };
+    static constexpr int kBlocks = 8;
+    static constexpr std::size_t kRounding = 16 << 10;
+    static FreedBlocks& blocks() {
+        thread_local FreedBlocks mine;
+        return mine;
+    }
+    Header* blocks_[kBlocks] = {};
+    int count_ = 0;
+    static thread_local bool gone_;
+};
+thread_local bool FreedBlocks::gone_ = false;
 
 }  // namespace
 
@@ -44,6 +110,8 @@ std::unique_ptr<ExrTiles> ExrTiles::open(const std::filesystem::path& file, int 
     auto context = std::make_unique<Context>();
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.error_handler_fn = keep_exr_error;
+    init.alloc_fn = FreedBlocks::allocate;
+    init.free_fn = FreedBlocks::release;
     if (exr_start_read(&context->context, file.c_str(), &init) != EXR_ERR_SUCCESS) return nullptr;
     exr_const_context_t c = context->context;
     int parts = 0;
