@@ -437,9 +437,9 @@ int run_texsys_bench(const TexsysBenchOptions& opt) {
         rows.push_back({system, threads, r});
     };
     for (int round = 1; round <= opt.rounds; ++round) {
-        const std::string of_round = opt.rounds > 1 ? ", round " + std::to_string(round) + "/" +
-                                                          std::to_string(opt.rounds)
-                                                    : "";
+        const std::string of_round =
+            opt.rounds > 1 ? ", round " + std::to_string(round) + "/" + std::to_string(opt.rounds)
+                           : "";
         for (int threads : opt.thread_counts) {
             const std::string with = " " + std::to_string(threads) + " thread(s)" + of_round;
             note("footprint," + with);
@@ -448,13 +448,13 @@ int run_texsys_bench(const TexsysBenchOptions& opt) {
                           subset, scratch));
             if (opt.api == "oiio") {
                 note("footprint with the adapter's probe budget," + with);
-                keep("native-32", threads, in_child(
-                                               [&] {
-                                                   return run_ours(opt, dir, lookups, threads,
-                                                                   opt.cache_mb,
-                                                                   kOiioDefaultAnisotropic);
-                                               },
-                                               subset, scratch));
+                keep("native-32", threads,
+                     in_child(
+                         [&] {
+                             return run_ours(opt, dir, lookups, threads, opt.cache_mb,
+                                             kOiioDefaultAnisotropic);
+                         },
+                         subset, scratch));
                 note("footprint behind OpenImageIO's interface," + with);
                 keep("fp-oiio", threads,
                      in_child([&] { return run_adapter(opt, dir, lookups, threads); }, subset,
@@ -478,7 +478,8 @@ int run_texsys_bench(const TexsysBenchOptions& opt) {
 
     std::printf(
         "footprint-bench texsys: %d textures of %d² RGB (%.0f MiB of float pyramids), "
-        "cache %d MiB, %dx%d frames of a grazing plane, %d frames (the first cold), each system's best of %d "
+        "cache %d MiB, %dx%d frames of a grazing plane, %d frames (the first cold), each system's "
+        "best of %d "
         "rounds\n",
         opt.textures, opt.size, float_pyramids_mb, opt.cache_mb, opt.width, opt.height, opt.frames,
         opt.rounds);
