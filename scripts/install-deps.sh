@@ -21,6 +21,7 @@ packages=(
     pybind11-dev python3-dev python3-numpy python3-pytest     # the Python module and its tests
     clang-14 libclang-rt-14-dev                               # make fuzz (libFuzzer)
     libfilament-dev libfilament-tools                         # examples/filament (matc, cmgen)
+    slurm-wlm munge                                           # tests/farm: a one-node Slurm cluster
 )
 
 missing=()
