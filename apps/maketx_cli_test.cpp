@@ -3,10 +3,19 @@
 // results, and bad input is one line naming the file or value, with nothing written.
 #include <gtest/gtest.h>
 
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <bit>
 #include <cstdint>
+#include <cstdlib>
 #include <memory>
+#include <sstream>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "bump/bump_pyramid_file.h"
 #include "bump/slope_map.h"
@@ -207,6 +216,80 @@ TEST(MaketxCommand, EnvWritesTheEnvironmentsPyramidsThatLoadAsBuilt) {
     EXPECT_EQ(maketx(bad, &err), 1);
     EXPECT_EQ(err, "footprint: --bump and --env: give one of them\n");
     EXPECT_FALSE(std::filesystem::exists(bad.output));
+}
+
+// ---- memory: a build's peak, measured in a process of its own
+
+// What BuildMemory's child process does (FOOTPRINT_BUILD_MEMORY_CHILD: "maketx IN OUT", or
+// "texsys IN CACHE": the texture system's first use of IN, its pyramid built into CACHE).
+TEST(BuildMemoryChild, DISABLED_Run) {
+    const char* job = std::getenv("FOOTPRINT_BUILD_MEMORY_CHILD");
+    ASSERT_NE(job, nullptr);
+    std::istringstream words(job);
+    std::string kind, input, output;
+    words >> kind >> input >> output;
+    if (kind == "maketx") {
+        MaketxCommandOptions options;
+        options.input = input;
+        options.output = output;
+        options.quiet = true;
+        ASSERT_EQ(run_maketx_command(options), 0);
+    } else {
+        TextureSystemOptions options;
+        options.cache_dir = output;
+        auto ts = std::move(TextureSystem::create(options).value());
+        float rgb[3];
+        ASSERT_TRUE(ts->texture(input, TextureCoords{0.5f, 0.5f, 0.01f, 0, 0, 0.01f},
+                                LookupOptions{}, rgb));
+        ASSERT_TRUE(ts->info(input)->tiled);
+    }
+}
+
+// The peak resident memory (bytes) of this test program running BuildMemoryChild with `job`.
+std::size_t child_peak_rss(const std::string& job) {
+    const std::string variable = "FOOTPRINT_BUILD_MEMORY_CHILD=" + job;
+    std::vector<std::string> env_strings{variable, "FOOTPRINT_TEST_KEEP_XDG_CACHE=1"};
+    for (char** e = environ; *e != nullptr; ++e)
+        if (std::string_view(*e).rfind("FOOTPRINT_BUILD_MEMORY_CHILD=", 0) != 0)
+            env_strings.emplace_back(*e);
+    std::vector<char*> env;
+    for (std::string& e : env_strings) env.push_back(e.data());
+    env.push_back(nullptr);
+    std::string exe = "/proc/self/exe", filter = "--gtest_filter=BuildMemoryChild.DISABLED_Run",
+                also = "--gtest_also_run_disabled_tests", brief = "--gtest_brief=1";
+    char* argv[] = {exe.data(), filter.data(), also.data(), brief.data(), nullptr};
+    pid_t pid = 0;
+    if (::posix_spawn(&pid, "/proc/self/exe", nullptr, nullptr, argv, env.data()) != 0) return 0;
+    int status = 0;
+    struct rusage usage {};
+    if (::wait4(pid, &status, 0, &usage) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+        return 0;
+    return static_cast<std::size_t>(usage.ru_maxrss) * 1024;  // Linux: KiB
+}
+
+// Building a pyramid needs at most twice the image as floats above the process's own memory
+// (a 2048² RGB image: 48 MiB of floats), for `footprint maketx` and for the texture system's
+// cache alike (docs/performance.md, "Building pyramids: memory"). Before the streaming build the
+// pyramid, its level copies and the encoded file were all held: about 8 times.
+TEST(BuildMemory, APyramidBuildPeaksBelowTwiceTheImageAsFloats) {
+    test::TempDir dir;
+    constexpr int kSize = 2048;
+    ASSERT_TRUE(save_image(random_image(kSize, kSize, 3, 50), dir / "big.png"));
+    ASSERT_TRUE(save_image(random_image(8, 8, 3, 51), dir / "tiny.png"));
+    constexpr std::size_t kLevel0 = std::size_t{kSize} * kSize * 3 * sizeof(float);
+    for (const std::string kind : {"maketx", "texsys"}) {
+        const auto job = [&](const char* input, const char* output) {
+            return kind + " " + (dir / input).string() + " " + (dir / output).string();
+        };
+        const std::size_t baseline =
+            child_peak_rss(job("tiny.png", ("tiny-" + kind + ".exr").c_str()));
+        const std::size_t peak = child_peak_rss(job("big.png", ("big-" + kind + ".exr").c_str()));
+        ASSERT_GT(baseline, 0u) << kind << ": the child failed";
+        ASSERT_GT(peak, 0u) << kind << ": the child failed";
+        EXPECT_LE(peak, baseline + 2 * kLevel0)
+            << kind << ": " << ((peak - baseline) >> 20) << " MiB above the baseline of "
+            << (baseline >> 20) << " MiB; level 0 is " << (kLevel0 >> 20) << " MiB of floats";
+    }
 }
 
 }  // namespace

@@ -128,23 +128,29 @@ int run_maketx_command(const MaketxCommandOptions& options) {
     Result<Image> image = load_image(options.input);
     if (!image) return fail(image.error().message);
 
+    // Each level is written as soon as it is made, and dropped once the next is made from it: the
+    // image and two levels in memory, not the pyramid and its copies (docs/performance.md,
+    // "Building pyramids: memory").
     MipPyramidOptions pyramid_options;
     pyramid_options.wrap_s = *wraps.s;
     pyramid_options.wrap_t = *wraps.t;
     pyramid_options.downsample = options.downsample;
-    const MipPyramid pyramid = MipPyramid::build(*image, pyramid_options);
-    std::vector<Image> levels;
-    for (int l = 0; l < pyramid.level_count(); ++l) levels.push_back(pyramid.level_image(l));
     LevelsSaveOptions save;
     save.wrap_modes = oiio_wrap_modes(*wraps.s, *wraps.t);
     save.tile_size = options.tile_size;
-    if (Status saved = save_image_levels(levels, options.output, save); !saved)
-        return fail(saved.error().message);
+    Result<LevelsWriter> writer = LevelsWriter::open(options.output, save);
+    if (!writer) return fail(writer.error().message);
+    int level_count = 0;
+    Status saved = for_each_mip_level(*image, pyramid_options, [&](const Image& level) {
+        ++level_count;
+        return writer->write(level);
+    });
+    if (saved) saved = writer->finish();
+    if (!saved) return fail(saved.error().message);
     if (!options.quiet)
         std::fprintf(stderr, "footprint: wrote %s (%dx%d, %d levels, %d channel%s, tiles %d²)\n",
-                     options.output.string().c_str(), image->width, image->height,
-                     pyramid.level_count(), image->channels, image->channels == 1 ? "" : "s",
-                     options.tile_size);
+                     options.output.string().c_str(), image->width, image->height, level_count,
+                     image->channels, image->channels == 1 ? "" : "s", options.tile_size);
     return 0;
 }
 

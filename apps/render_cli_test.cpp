@@ -93,7 +93,7 @@ TEST_F(RenderCommandTest, WritesPngAndExrAndJsonSummary) {
     EXPECT_GT(summary["lookups"].get<double>(), 0);
     EXPECT_GE(summary["seconds"].get<double>(), 0);
     EXPECT_EQ(summary["texture_tiles_loaded"], 0);  // no tiled file: the maps are in memory
-    EXPECT_EQ(summary["texture_peak_bytes"], 0);
+    EXPECT_GT(summary["texture_peak_bytes"], 0);    // the maps held whole are counted
 
     // EXR keeps linear HDR values (the sky's 4.0 band is reflected in the sphere), no exposure.
     RenderCommandOptions exr = options("ref.exr", "reference");

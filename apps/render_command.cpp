@@ -295,6 +295,8 @@ int run_render_command(const RenderCommandOptions& options) {
         RenderStats frame_stats;
         Image image = render(*scene, render_options, &frame_stats, [&] { progress.advance(); });
         if (Status s = scene->take_texture_errors(); !s) return fail(s.error().message);
+        for (const Error& warning : scene->textures().take_warnings())
+            std::fprintf(stderr, "footprint: warning: %s\n", warning.message.c_str());
         stats.seconds += frame_stats.seconds;
         stats.pixels += frame_stats.pixels;
         stats.samples += frame_stats.samples;

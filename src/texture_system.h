@@ -18,11 +18,20 @@
 //   MIP-mapped OpenEXR or TIFF, save_image_levels()' and `footprint maketx`'s output — is read
 //   tile by tile, as lookups need its tiles, and its levels are used as stored (a box pyramid's
 //   kernel is assumed, as MipPyramid::from_levels() assumes).
-//   Built levels. Any other image is read whole once and its pyramid built (MipPyramid::build with
-//   options.downsample). With options.cache_dir set, the pyramid is written there as a tiled
-//   MIP-mapped EXR (named by the source's path, size and modification time, so a changed source is
-//   rebuilt), dropped from memory, and read tile by tile like a stored file: later runs open the
-//   cached file without building. Without it the pyramid stays in memory (stats().bytes_in_memory).
+//   Built levels. Any other image is read whole once and its pyramid built (MipPyramid::build's
+//   levels, with options.downsample), a level at a time, into the cache folder: options.cache_dir,
+//   or by default default_texture_cache_dir() ($XDG_CACHE_HOME/footprint, else
+//   $HOME/.cache/footprint). There it is a tiled MIP-mapped EXR, named by a hash of the source's
+//   absolute path, size and modification time (and of the options that shape the pyramid), so
+//   that a changed source is built again; it is then read tile by tile like a stored file, and
+//   later runs open it without building. A build holds the image and two levels as floats (about
+//   1.3 times the image as floats) until it is written; the file is written under a temporary name
+//   and renamed, so that an interrupted build leaves no cache file and processes building the same
+//   file at once each put a complete one in place. Lookups give the same bits as on the pyramid
+//   built in memory: the file keeps the levels' prefilter variances. options.build_in_memory
+//   keeps the pyramid in memory instead (stats().bytes_in_memory), outside max_memory_mb's bound.
+//   Where the default folder cannot be made or a file cannot be written there, the pyramid is
+//   held in memory and a warning says so (take_warnings(); once for the folder, once per file).
 //   Colour: integer files are sRGB-decoded as load_image() decodes them (image/image_io.h), float
 //   files are linear (options.color = ColorEncoding::linear: every file's values as stored, as
 //   OpenImageIO's TextureSystem returns them); alpha is read as stored, straight or
@@ -36,20 +45,22 @@
 //   (a micro-cache of kMicroCacheTiles tiles, without locks) and pins the tiles of the lookup it is
 //   in until that lookup returns. So the texels resident at any time are at most max_memory_mb
 //   plus, per thread, the micro-cache and the tiles of one lookup; plus about 150 bytes of
-//   bookkeeping per cached tile. stats() reports them (bytes_resident, peak_bytes). The threads'
-//   micro-caches belong to the system and are freed with it. Results do not depend on what the
-//   cache holds: a lookup returns the same bits with any max_memory_mb.
+//   bookkeeping per cached tile; plus the maps held whole (below, and build_in_memory). stats()
+//   reports all of them (bytes_resident, peak_bytes; bytes_in_memory: those held whole). The
+//   threads' micro-caches belong to the system and are freed with it. Results do not depend on
+//   what the cache holds: a lookup returns the same bits with any max_memory_mb.
 //   Bump maps are read the same way: a bump pyramid file (`footprint maketx --bump`) is read tile
-//   by tile as a texture of 5 moment channels, a normal map has its pyramid built (in memory, or
-//   into cache_dir and then read tile by tile). So are environment maps, per face (and per polar
-//   cap of a lat-long map), per MIP level: an environment pyramid file (`footprint maketx --env`,
-//   envmap/env_pyramid_file.h) is read tile by tile as stored; any other image, laid out as
-//   load_environment() detects, has its pyramids built, held whole as an EnvironmentMap
-//   (stats().bytes_in_memory) or, with cache_dir, written there as an environment pyramid file
-//   once and read tile by tile (later runs open it without building). Lookups through tiles return
-//   the map's own results bit for bit with footprint assembly; the other filters, which read the
-//   centre face alone, may differ at a cube face's edge (a cube map in memory keeps its
-//   neighbours' texels there).
+//   by tile as a texture of 5 moment channels, a normal map has its pyramid built into the cache
+//   folder (as a texture's, build_in_memory and fallback alike) and then read tile by tile. So are
+//   environment maps, per face (and per polar cap of a lat-long map), per MIP level: an
+//   environment pyramid file (`footprint maketx --env`, envmap/env_pyramid_file.h) is read tile by
+//   tile as stored; any other image, laid out as load_environment() detects, has its pyramids
+//   built and held whole as an EnvironmentMap (stats().bytes_in_memory) or, with an explicit
+//   cache_dir (not the default folder), written there as an environment pyramid file once and read
+//   tile by tile (later runs open it without building). Not by default, because lookups through
+//   tiles return the map's own results bit for bit with footprint assembly only; the other
+//   filters, which read the centre face alone, may differ at a cube face's edge (a cube map in
+//   memory keeps its neighbours' texels there).
 //
 // Maps made in memory
 //   add_image(), add_bump() and add_environment() give a name to an image, a bump pyramid or an
@@ -100,9 +111,14 @@ namespace footprint {
 struct TextureSystemOptions {
     std::size_t max_memory_mb = 1024;  // the cached tiles' texels, in MiB (≥ 1)
     int tile_size = 64;                // texels per tile side: a power of two, 8 to 1024
-    // Where pyramids built for files without stored levels are kept (created if missing); empty:
-    // in memory.
+    // Where pyramids built for files without stored levels are written, then read tile by tile
+    // (created if missing); empty: default_texture_cache_dir(). An environment map's are written
+    // only to a cache_dir given here (see "Bounded memory").
     std::filesystem::path cache_dir;
+    // Hold the pyramids built for files without stored levels whole in memory, as footprint did
+    // before its default cache folder: nothing is written, but their texels are not bounded by
+    // max_memory_mb (stats().bytes_in_memory). Not with a cache_dir.
+    bool build_in_memory = false;
     DownsampleFilter downsample = DownsampleFilter::box;  // of pyramids built here
     WrapMode default_wrap = WrapMode::repeat;             // for files that do not say how they wrap
     // How integer files' colour channels are decoded (load_image()'s choice, image/image_io.h):
@@ -116,9 +132,10 @@ struct TextureSystemStats {
     // Tiles asked of the shared cache: found there, or not (then loaded). A thread's micro-cache
     // answers most tile requests before they reach it; those are not counted.
     std::size_t tile_hits = 0, tile_misses = 0;
-    std::size_t bytes_resident = 0;   // texels of the tiles alive now: cached, or pinned
+    // Texels held now: the tiles alive (cached, or pinned) and the maps held whole.
+    std::size_t bytes_resident = 0;
     std::size_t peak_bytes = 0;       // the most bytes_resident has been
-    std::size_t bytes_in_memory = 0;  // texels of pyramids held whole (see "Where the texels…")
+    std::size_t bytes_in_memory = 0;  // texels of the maps held whole (see "Where the texels…")
 };
 
 struct TextureInfo {
@@ -141,7 +158,9 @@ class TextureSystem {
     static constexpr int kMicroCacheTiles = 8;
 
     // Refuses options it cannot honour (max_memory_mb 0, a tile size that is not a power of two in
-    // range, a cache_dir that cannot be created), naming them.
+    // range, a cache_dir that cannot be created, a cache_dir with build_in_memory), naming them. A
+    // default cache folder that cannot be created is a warning (take_warnings()), not a refusal:
+    // pyramids are then built in memory.
     static Result<std::unique_ptr<TextureSystem>> create(const TextureSystemOptions& options = {});
     virtual ~TextureSystem() = default;
 
@@ -237,6 +256,14 @@ class TextureSystem {
     virtual TextureSystemStats stats() const = 0;
     // The errors not yet taken, each file's once, in the order they happened.
     virtual std::vector<Error> take_errors() = 0;
+    // The warnings not yet taken: things done otherwise than asked, lookups unaffected (a cache
+    // folder that cannot be used: pyramids held in memory instead), each once.
+    virtual std::vector<Error> take_warnings() { return {}; }
 };
+
+// The default cache folder of built pyramids (TextureSystemOptions::cache_dir):
+// $XDG_CACHE_HOME/footprint where XDG_CACHE_HOME is an absolute path, else
+// $HOME/.cache/footprint; empty where neither is set (pyramids are then built in memory).
+std::filesystem::path default_texture_cache_dir();
 
 }  // namespace footprint

@@ -1,11 +1,40 @@
 #include <gtest/gtest.h>
 
+#include <stdlib.h>  // mkdtemp
+
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <string>
 
 #include "gpu/gpu_test_device.h"
 
+namespace {
+
+// The texture system writes the pyramids it builds to $XDG_CACHE_HOME/footprint by default
+// (texture_system.h): tests, and the commands they run, write them to a folder of their own, never
+// to the user's, removed at the end. A test process started with FOOTPRINT_TEST_KEEP_XDG_CACHE set
+// (a child a test starts) keeps the one it was given.
+struct TestCacheHome {
+    std::filesystem::path dir;
+    TestCacheHome() {
+        if (std::getenv("FOOTPRINT_TEST_KEEP_XDG_CACHE") != nullptr) return;
+        std::string name =
+            (std::filesystem::temp_directory_path() / "footprint-tests-XXXXXX").string();
+        if (::mkdtemp(name.data()) == nullptr) return;
+        dir = name;
+        ::setenv("XDG_CACHE_HOME", name.c_str(), 1);
+    }
+    ~TestCacheHome() {
+        std::error_code ignored;
+        if (!dir.empty()) std::filesystem::remove_all(dir, ignored);
+    }
+};
+
+}  // namespace
+
 int main(int argc, char** argv) {
+    const TestCacheHome cache_home;
     ::testing::InitGoogleTest(&argc, argv);
     const int result = RUN_ALL_TESTS();
 #ifdef FOOTPRINT_SANITIZED

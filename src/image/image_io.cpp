@@ -15,12 +15,14 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <new>
 #include <optional>
 #include <random>
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include "image/color.h"
@@ -894,6 +896,172 @@ Status save_image_level_chains(const std::vector<LevelChain>& parts, const fs::p
     if (!bytes) return write_error(file, bytes.error().message);
     return write_file_atomically(
         file, std::string_view(reinterpret_cast<const char*>(bytes->data()), bytes->size()));
+}
+
+namespace {
+
+// OpenImageIO's output to an open file, every write checked as write_temporary() checks its
+// writes (through the test seam too): the first error is kept, and every write after it fails.
+class CheckedFileOutput final : public OIIO::Filesystem::IOProxy {
+  public:
+    explicit CheckedFileOutput(int fd) : IOProxy("", Write), fd_(fd) {}
+    const char* proxytype() const override { return "footprint-checked-file"; }
+    std::size_t write(const void* data, std::size_t size) override {
+        const std::size_t done = pwrite(data, size, m_pos);
+        m_pos += static_cast<std::int64_t>(done);
+        return done;
+    }
+    std::size_t pwrite(const void* data, std::size_t size, std::int64_t offset) override {
+        if (error_ == 0 && ::lseek(fd_, offset, SEEK_SET) < 0) error_ = errno;
+        const detail::WriteCall hook = write_call.load();
+        const detail::WriteCall write = hook != nullptr ? hook : system_write;
+        std::size_t done = 0;
+        while (done < size && error_ == 0) {
+            const long n = write(fd_, static_cast<const char*>(data) + done, size - done);
+            if (n > 0) {
+                done += static_cast<std::size_t>(n);
+            } else if (n < 0 && errno == EINTR) {
+                continue;
+            } else {
+                error_ = n < 0 ? errno : EIO;
+            }
+        }
+        end_ = std::max(end_, static_cast<std::size_t>(offset) + done);
+        return done;
+    }
+    std::size_t size() const override { return end_; }
+    int error() const { return error_; }
+
+  private:
+    int fd_;
+    int error_ = 0;
+    std::size_t end_ = 0;
+};
+
+}  // namespace
+
+struct LevelsWriter::State {
+    fs::path file, temporary;
+    LevelsSaveOptions options;
+    int fd = -1;
+    std::unique_ptr<CheckedFileOutput> proxy;
+    std::unique_ptr<OIIO::ImageOutput> out;
+    std::vector<Image> shapes;  // the levels written so far, as sizes only (levels_problem())
+    bool failed = false;
+
+    ~State() { abandon(); }
+    // Drops the file being written: nothing is left behind.
+    void abandon() {
+        out.reset();
+        if (fd >= 0) ::close(fd);
+        fd = -1;
+        if (!temporary.empty()) ::unlink(temporary.c_str());
+        temporary.clear();
+    }
+    Error fail(const std::string& cause) {
+        failed = true;
+        abandon();
+        return write_error(file, cause);
+    }
+    // The cause of a failed write: the file's own error, else OpenImageIO's.
+    std::string cause(const std::string& what) {
+        if (proxy && proxy->error() != 0) return errno_text(proxy->error());
+        return with_oiio_message(what, out ? out->geterror() : std::string());
+    }
+};
+
+LevelsWriter::LevelsWriter(std::unique_ptr<State> state) : state_(std::move(state)) {}
+LevelsWriter::LevelsWriter(LevelsWriter&&) noexcept = default;
+LevelsWriter& LevelsWriter::operator=(LevelsWriter&&) noexcept = default;
+LevelsWriter::~LevelsWriter() = default;
+
+Result<LevelsWriter> LevelsWriter::open(const fs::path& file, const LevelsSaveOptions& options) {
+    if (kind_of(file) != FileKind::exr)
+        return write_error(file, "MIP levels are written as OpenEXR; name the file .exr");
+    if (!(options.tile_size >= 16 && options.tile_size <= 1024))
+        return write_error(
+            file, "tile size " + std::to_string(options.tile_size) + " is outside 16 to 1024");
+    if (options.channel_names.size() > 8)
+        return write_error(file, std::to_string(options.channel_names.size()) +
+                                     " channel names (1 to 8 named channels can be written)");
+    if (auto problem = location_problem(file)) return write_error(file, *problem);
+    auto state = std::make_unique<State>();
+    state->file = file;
+    state->options = options;
+    state->temporary = temporary_path(file);
+    state->fd = ::open(state->temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (state->fd < 0) {
+        const int error = errno;
+        state->temporary.clear();
+        return write_error(file, "cannot create a temporary file beside it: " + errno_text(error));
+    }
+    state->proxy = std::make_unique<CheckedFileOutput>(state->fd);
+    state->out = OIIO::ImageOutput::create("levels.exr");
+    if (!state->out || !state->out->supports("mipmap") || !state->out->supports("ioproxy"))
+        return state->fail(
+            with_oiio_message("OpenImageIO cannot write MIP-mapped OpenEXR", OIIO::geterror()));
+    state->out->set_ioproxy(state->proxy.get());
+    return LevelsWriter(std::move(state));
+}
+
+Status LevelsWriter::write(const Image& level) {
+    State& s = *state_;
+    if (s.failed) return write_error(s.file, "an earlier level failed");
+    // The level's shape against the levels before it, as save_image_levels() checks a chain.
+    s.shapes.push_back(Image{});
+    Image& shape = s.shapes.back();
+    shape.width = level.width, shape.height = level.height, shape.channels = level.channels;
+    const auto l = s.shapes.size() - 1;
+    const auto names = static_cast<int>(s.options.channel_names.size());
+    std::optional<std::string> problem = image_problem(level, names > 0 ? names : 4);
+    if (!problem && names > 0 && level.channels != names)
+        problem = std::to_string(names) + " channel names for " + std::to_string(level.channels) +
+                  " channels";
+    if (!problem && l > 0) {
+        const Image& before = s.shapes[l - 1];
+        const int w = std::max(1, before.width / 2), h = std::max(1, before.height / 2);
+        if (before.width == 1 && before.height == 1)
+            problem = std::string("the chain already ended at 1 x 1");
+        else if (level.channels != before.channels)
+            problem = "it has " + std::to_string(level.channels) + " channels, level 0 has " +
+                      std::to_string(before.channels);
+        else if (level.width != w || level.height != h)
+            problem = "it is " + std::to_string(level.width) + " x " +
+                      std::to_string(level.height) + ", not " + std::to_string(w) + " x " +
+                      std::to_string(h);
+    }
+    if (problem) return s.fail("MIP level " + std::to_string(l) + ": " + *problem);
+    // As encode_levels() writes a level, so that the bytes are the same.
+    const OIIO::ImageSpec spec = level_spec(level.width, level.height, level.channels, s.options);
+    const auto mode = l == 0 ? OIIO::ImageOutput::Create : OIIO::ImageOutput::AppendMIPLevel;
+    if (!s.out->open(s.file.string(), spec, mode) ||
+        !s.out->write_image(OIIO::TypeDesc::FLOAT, level.pixels.data()))
+        return s.fail(s.cause("encoding MIP level " + std::to_string(l) + " failed"));
+    return {};
+}
+
+Status LevelsWriter::finish() {
+    State& s = *state_;
+    if (s.failed) return write_error(s.file, "an earlier level failed");
+    if (s.shapes.empty()) return s.fail("no levels given");
+    if (const Image& last = s.shapes.back(); last.width != 1 || last.height != 1)
+        return s.fail("the levels stop at " + std::to_string(last.width) + " x " +
+                      std::to_string(last.height) + ", not 1 x 1");
+    // OpenImageIO's OpenEXR writer writes the chunk tables as it is destroyed (encode_levels()).
+    const bool closed = s.out->close();
+    const std::string oiio_message = s.out->geterror();
+    s.out.reset();
+    if (!closed || s.proxy->error() != 0)
+        return s.fail(s.proxy->error() != 0
+                          ? errno_text(s.proxy->error())
+                          : with_oiio_message("finishing the encoding failed", oiio_message));
+    int error = ::fsync(s.fd) != 0 ? errno : 0;
+    if (::close(s.fd) != 0 && error == 0) error = errno;
+    s.fd = -1;
+    if (error != 0) return s.fail(errno_text(error));
+    const fs::path temporary = std::exchange(s.temporary, fs::path());
+    s.failed = true;  // finished: nothing more can be written
+    return rename_all({temporary}, {s.file});
 }
 
 namespace detail {

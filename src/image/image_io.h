@@ -72,6 +72,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -135,6 +136,36 @@ struct LevelsSaveOptions {
 // Errors name the file and, where the levels are wrong, the level.
 Status save_image_levels(const std::vector<Image>& levels, const std::filesystem::path& file,
                          const LevelsSaveOptions& options = {});
+
+// save_image_levels()' file written a level at a time, for a chain too large to hold whole
+// (for_each_mip_level(), texture/mip_pyramid.h, makes one level at a time): the same bytes as
+// save_image_levels() of the same levels and options, each level encoded as it comes into a
+// temporary file beside the target (".<name>.tmp-<random>.exr", every write checked as save_image
+// checks them), which finish() syncs and renames onto it. A writer destroyed before finish(), or
+// one whose write failed, removes its temporary file: the target is either the complete file or
+// left untouched, and concurrent writers of one target each rename a complete file onto it.
+class LevelsWriter {
+  public:
+    // A writer of `file`'s levels, or the error naming it (not .exr, no such directory, options
+    // save_image_levels() refuses).
+    static Result<LevelsWriter> open(const std::filesystem::path& file,
+                                     const LevelsSaveOptions& options = {});
+    LevelsWriter(LevelsWriter&&) noexcept;
+    LevelsWriter& operator=(LevelsWriter&&) noexcept;
+    ~LevelsWriter();
+
+    // The next level: level 0 first (1–4 channels, or as many as options.channel_names), then each
+    // max(1, ⌊W/2⌋) × max(1, ⌊H/2⌋) of the one before. A level that does not fit is an error naming
+    // it; any error ends the writer (its temporary file removed).
+    Status write(const Image& level);
+    // After the 1×1 level: the file made complete and moved onto the target.
+    Status finish();
+
+  private:
+    struct State;
+    explicit LevelsWriter(std::unique_ptr<State> state);
+    std::unique_ptr<State> state_;
+};
 
 // Several MIP chains as the parts of one such file (OpenEXR multi-part; OpenImageIO's subimages),
 // each written as save_image_levels() writes its one, part i named parts[i].name (OpenEXR requires

@@ -1749,5 +1749,53 @@ TEST_F(ImageIo, SavedFilesCarryNoTimeStamp) {
     }
 }
 
+// A LevelsWriter writes save_image_levels()' bytes a level at a time; one that fails, or is
+// dropped unfinished, or given a level that does not fit, leaves nothing behind.
+TEST_F(ImageIo, LevelsWrittenOneAtATimeAreSaveImageLevelsBytes) {
+    const std::vector<Image> levels = mip_chain(37, 20, 3);
+    LevelsSaveOptions options;
+    options.wrap_modes = "periodic,clamp";
+    options.tile_size = 16;
+    options.float_attributes.push_back({"footprint:test", {1, 2, 3, 4, 5}});
+    ASSERT_TRUE(save_image_levels(levels, path("whole.exr"), options));
+    {
+        Result<LevelsWriter> writer = LevelsWriter::open(path("levels.exr"), options);
+        ASSERT_TRUE(writer) << writer.error().message;
+        for (const Image& level : levels) ASSERT_TRUE(writer->write(level));
+        EXPECT_EQ(entries().size(), 2u) << "the target appears only when finished";
+        ASSERT_TRUE(writer->finish());
+    }
+    EXPECT_EQ(read_bytes(path("levels.exr")), read_bytes(path("whole.exr")));
+    EXPECT_EQ(entries().size(), 2u);
+
+    {  // dropped unfinished
+        Result<LevelsWriter> writer = LevelsWriter::open(path("dropped.exr"), options);
+        ASSERT_TRUE(writer);
+        ASSERT_TRUE(writer->write(levels[0]));
+    }
+    {  // a level of the wrong size
+        Result<LevelsWriter> writer = LevelsWriter::open(path("wrong.exr"), options);
+        ASSERT_TRUE(writer);
+        ASSERT_TRUE(writer->write(levels[0]));
+        const Status s = writer->write(levels[2]);
+        ASSERT_FALSE(s);
+        EXPECT_NE(s.error().message.find("MIP level 1"), std::string::npos) << s.error().message;
+        EXPECT_FALSE(writer->finish());
+    }
+    {  // a full disk
+        FailingWrites failing(half_then_full_disk);
+        Result<LevelsWriter> writer = LevelsWriter::open(path("full.exr"), options);
+        ASSERT_TRUE(writer);
+        Status s;
+        for (const Image& level : levels)
+            if (s) s = writer->write(level);
+        if (s) s = writer->finish();
+        expect_full_disk_error(s, path("full.exr"));
+    }
+    EXPECT_EQ(entries().size(), 2u) << "only whole.exr and levels.exr";
+    EXPECT_FALSE(LevelsWriter::open(path("levels.png"), options));
+    EXPECT_FALSE(LevelsWriter::open(path("no-such-folder") / "levels.exr", options));
+}
+
 }  // namespace
 }  // namespace footprint

@@ -49,10 +49,12 @@ void write_stored_levels(const Image& image, const std::filesystem::path& file) 
     ASSERT_TRUE(save_image_levels(levels, file, options));
 }
 
-std::shared_ptr<TextureSystem> texture_system(std::size_t max_memory_mb, int tile_size = 64) {
+std::shared_ptr<TextureSystem> texture_system(std::size_t max_memory_mb, int tile_size = 64,
+                                              bool build_in_memory = false) {
     TextureSystemOptions options;
     options.max_memory_mb = max_memory_mb;
     options.tile_size = tile_size;
+    options.build_in_memory = build_in_memory;
     Result<std::unique_ptr<TextureSystem>> made = TextureSystem::create(options);
     EXPECT_TRUE(made) << made.error().message;
     return std::move(*made);
@@ -99,7 +101,8 @@ TEST(RenderTextures, ScenesShareATextureSystemAndEachMapIsHeldOnce) {
     ASSERT_TRUE(save_image(random_image(64, 64, 3, 3), dir / "a.exr"));
     SceneDesc desc = textured_plane(dir / "a.exr");
     desc.objects.push_back(desc.objects[0]);  // a second object with the same map
-    const std::shared_ptr<TextureSystem> textures = texture_system(64);
+    // Held whole (build_in_memory), to count it: by default the file's pyramid is read by tiles.
+    const std::shared_ptr<TextureSystem> textures = texture_system(64, 64, true);
     ASSERT_TRUE(prepare_render_scene(desc, textures));
     const std::size_t one_scene = textures->stats().bytes_in_memory;
     EXPECT_GT(one_scene, 64u * 64 * 3 * sizeof(float));

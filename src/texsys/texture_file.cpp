@@ -25,6 +25,44 @@ void read_wrap_modes(const OIIO::ImageSpec& spec, WrapMode fallback, TextureInfo
     info.wrap_t = modes.t.value_or(fallback);
 }
 
+// The header attribute of a cached pyramid that holds its levels' prefilter variances
+// (MipPyramid::prefilter_variance(), x and y per level), so that lookups on it give the bits of
+// the pyramid built in memory.
+constexpr const char* kPrefilterVarianceAttribute = "footprint:prefilter_variance";
+
+// The prefilter variances a file's header gives its `levels` levels, or none (a stored chain's,
+// the box's, apply).
+std::vector<Vec2> stored_prefilter_variances(const OIIO::ImageSpec& spec, std::size_t levels) {
+    const OIIO::ParamValue* p = spec.find_attribute(kPrefilterVarianceAttribute);
+    if (!p || p->type().basetype != OIIO::TypeDesc::FLOAT ||
+        p->type().numelements() * p->type().aggregate != 2 * levels)
+        return {};
+    const float* v = static_cast<const float*>(p->data());
+    std::vector<Vec2> variances(levels);
+    for (std::size_t l = 0; l < levels; ++l) variances[l] = {v[2 * l], v[2 * l + 1]};
+    return variances;
+}
+
+// Writes the pyramid of `image` to `file` as a cached pyramid, a level at a time
+// (for_each_mip_level(): the image and two levels in memory, not the pyramid).
+Status save_built_levels(const Image& image, const MipPyramidOptions& options, int tile_size,
+                         const fs::path& file) {
+    LevelsSaveOptions save;
+    save.wrap_modes = oiio_wrap_modes(options.wrap_s, options.wrap_t);
+    save.tile_size = std::clamp(tile_size, 16, 1024);
+    LevelsSaveOptions::FloatAttribute variances{kPrefilterVarianceAttribute, {}};
+    for (const Vec2 v : mip_prefilter_variances(image.width, image.height, options.downsample)) {
+        variances.values.push_back(v.x);
+        variances.values.push_back(v.y);
+    }
+    save.float_attributes.push_back(std::move(variances));
+    Result<LevelsWriter> writer = LevelsWriter::open(file, save);
+    if (!writer) return writer.error();
+    Status written = for_each_mip_level(image, options,
+                                        [&](const Image& level) { return writer->write(level); });
+    return written ? writer->finish() : written;
+}
+
 }  // namespace
 
 fs::path cached_pyramid_file(const fs::path& file, const TextureSystemOptions& options,
@@ -36,14 +74,16 @@ fs::path cached_pyramid_file(const fs::path& file, const TextureSystemOptions& o
     std::ostringstream key;
     key << absolute.string() << '|' << size << '|' << modified << '|' << options.tile_size << '|'
         << static_cast<int>(options.downsample) << '|' << static_cast<int>(wrap_s) << '|'
-        << static_cast<int>(wrap_t) << '|' << kind << '|' << static_cast<int>(options.color);
+        << static_cast<int>(wrap_t) << '|' << kind << '|' << static_cast<int>(options.color)
+        << "|prefilter variances";  // files without them (before they were kept) are rebuilt
     std::ostringstream name;
     name << file.stem().string() << '-' << kind << '-' << std::hex
          << std::hash<std::string>{}(key.str()) << ".exr";
     return options.cache_dir / name.str();
 }
 
-void TextureHandle::open(const TextureSystemOptions& options, const detail::OpenAs& as) {
+void TextureHandle::open(const TextureSystemOptions& options, const detail::OpenAs& as,
+                         bool fall_back_to_memory) {
     Result<std::unique_ptr<OIIO::ImageInput>> opened = detail::open_image_input(name);
     if (!opened) {
         error = opened.error();
@@ -110,21 +150,22 @@ void TextureHandle::open(const TextureSystemOptions& options, const detail::Open
     pyramid_options.wrap_s = info.wrap_s;
     pyramid_options.wrap_t = info.wrap_t;
     pyramid_options.downsample = options.downsample;
-    MipPyramid built = MipPyramid::build(*image, pyramid_options);
     if (!cached.empty()) {
-        std::vector<Image> level_images;
-        for (int l = 0; l < built.level_count(); ++l) level_images.push_back(built.level_image(l));
-        LevelsSaveOptions save;
-        save.wrap_modes = oiio_wrap_modes(info.wrap_s, info.wrap_t);
-        save.tile_size = std::clamp(options.tile_size, 16, 1024);
-        if (Status saved = save_image_levels(level_images, cached, save); !saved) {
+        Status saved = save_built_levels(*image, pyramid_options, options.tile_size, cached);
+        if (saved) {
+            image.value() = Image();  // freed before the file is opened
+            open_stored(cached.string(), options);
+            return;
+        }
+        if (!fall_back_to_memory) {
             error =
                 Error{"cannot cache the MIP levels of '" + name + "': " + saved.error().message};
             return;
         }
-        open_stored(cached.string(), options);
-        return;
+        warning = Error{"texture system: cannot cache the MIP levels of '" + name +
+                        "' (held in memory instead): " + saved.error().message};
     }
+    MipPyramid built = MipPyramid::build(*image, pyramid_options);
     info = {built.width(0), built.height(0), built.channels(), built.level_count(),
             false,          info.wrap_s,     info.wrap_t};
     pyramid = std::make_shared<const MipPyramid>(std::move(built));
@@ -178,9 +219,10 @@ void TextureHandle::open_stored(const std::string& file, std::unique_ptr<OIIO::I
                            exr_tiles_->tile_height() != file_tile_height_))
             exr_tiles_.reset();
     }
+    std::vector<Vec2> variances = stored_prefilter_variances(spec, widths.size());
     shape = detail::TiledShape(std::move(widths), std::move(heights), spec.nchannels,
                                std::countr_zero(static_cast<unsigned>(options.tile_size)),
-                               info.wrap_s, info.wrap_t);
+                               info.wrap_s, info.wrap_t, std::move(variances));
 }
 
 void TextureHandle::open_part(int part, const detail::TiledShape& part_shape,

@@ -28,8 +28,10 @@ class TextureHandle {
 
     // Opens the file: its header for stored levels, else the image, whose pyramid is built (and,
     // with options.cache_dir, written there and opened as stored), as `as` says (subimage, wrap
-    // modes). Sets `error` on failure.
-    void open(const TextureSystemOptions& options, const detail::OpenAs& as = {});
+    // modes). Sets `error` on failure; where the pyramid cannot be written to options.cache_dir,
+    // with fall_back_to_memory, holds it in memory and sets `warning` instead.
+    void open(const TextureSystemOptions& options, const detail::OpenAs& as = {},
+              bool fall_back_to_memory = false);
 
     // Opens part `part` of the file (an environment pyramid file's face or polar cap,
     // envmap/tiled_environment.h) to be read tile by tile as `part_shape`, which its headers gave.
@@ -47,7 +49,8 @@ class TextureHandle {
     const std::string name;
     const std::uint32_t id;
     std::once_flag opened;
-    std::optional<Error> error;  // set by open(): the file cannot be looked up
+    std::optional<Error> error;    // set by open(): the file cannot be looked up
+    std::optional<Error> warning;  // set by open(): the file is looked up, not as asked
     std::atomic<bool> error_reported{false};
     TextureInfo info;
 

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <bit>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -174,8 +175,13 @@ constexpr std::string_view kUdim = "<UDIM>";
 
 class TextureSystemImpl final : public TextureSystem {
   public:
-    explicit TextureSystemImpl(const TextureSystemOptions& options)
-        : options_(options), cache_(options.max_memory_mb << 20) {}
+    // `options` with the cache folder resolved: cache_dir the folder pyramids are built into, or
+    // empty (in memory); default_cache: it is the default folder, whose failures are warnings.
+    TextureSystemImpl(const TextureSystemOptions& options, bool default_cache,
+                      std::optional<Error> warning)
+        : options_(options), default_cache_(default_cache), cache_(options.max_memory_mb << 20) {
+        if (warning) warn(*warning);
+    }
 
     TextureHandle* handle(std::string_view name) override { return handle(name, {}); }
 
@@ -197,8 +203,9 @@ class TextureSystemImpl final : public TextureSystem {
             if (name.find(kUdim) != std::string_view::npos) {
                 file->udim = true;
             } else {
-                file->open(options_, as);
-                if (file->pyramid) bytes_in_memory_ += pyramid_bytes(*file->pyramid);
+                file->open(options_, as, default_cache_);
+                if (file->pyramid) hold_whole(pyramid_bytes(*file->pyramid));
+                if (file->warning) warn(*file->warning);
             }
         });
         return file;
@@ -332,7 +339,7 @@ class TextureSystemImpl final : public TextureSystem {
             file->pyramid = std::make_shared<const MipPyramid>(MipPyramid::build(image, options));
             file->info = {image.width, image.height, image.channels, file->pyramid->level_count(),
                           false,       wrap_s,       wrap_t};
-            bytes_in_memory_ += pyramid_bytes(*file->pyramid);
+            hold_whole(pyramid_bytes(*file->pyramid));
         });
         return file;
     }
@@ -405,6 +412,11 @@ class TextureSystemImpl final : public TextureSystem {
         return std::exchange(errors_, {});
     }
 
+    std::vector<Error> take_warnings() override {
+        std::lock_guard lock(errors_mutex_);
+        return std::exchange(warnings_, {});
+    }
+
   private:
     // Calls read(texels) with an opened file's texels: its pyramid in memory (a MipPyramid), or its
     // tiles through the cache (a TiledTexels), pinned until read() returns.
@@ -453,8 +465,9 @@ class TextureSystemImpl final : public TextureSystem {
     // tile (in later runs, without building them again).
     void open_environment(EnvironmentHandle& entry, const std::string& name) {
         if (is_environment_pyramid_file(name)) return open_stored_environment(entry, name);
+        // Only into a cache folder given (see texture_system.h, "Bounded memory").
         const fs::path cached =
-            options_.cache_dir.empty()
+            options_.cache_dir.empty() || default_cache_
                 ? fs::path()
                 : cached_pyramid_file(name, options_, WrapMode::repeat, WrapMode::clamp, "env");
         std::error_code ec;
@@ -520,9 +533,15 @@ class TextureSystemImpl final : public TextureSystem {
             return held_whole(entry);
         }
         const int tile = std::clamp(options_.tile_size, 16, 1024);
-        if (Status saved = save_bump_pyramid(*pyramid, cached, tile); !saved)
-            return void(entry.error = Error{"cannot cache the bump pyramid of '" + name +
-                                            "': " + saved.error().message});
+        if (Status saved = save_bump_pyramid(*pyramid, cached, tile); !saved) {
+            if (!default_cache_)
+                return void(entry.error = Error{"cannot cache the bump pyramid of '" + name +
+                                                "': " + saved.error().message});
+            warn(Error{"texture system: cannot cache the bump pyramid of '" + name +
+                       "' (held in memory instead): " + saved.error().message});
+            entry.value = std::make_shared<const BumpPyramid>(std::move(*pyramid));
+            return held_whole(entry);
+        }
         open_stored_bump(entry, cached.string(), name);
     }
 
@@ -570,7 +589,7 @@ class TextureSystemImpl final : public TextureSystem {
         for (int f = 0; f < map.face_count(); ++f) {
             const MipPyramid& face = map.face(f);
             add_face_mean(face.texel(face.max_level(), 0, 0), map.face_count(), entry.shape_of);
-            bytes_in_memory_ += pyramid_bytes(face);
+            hold_whole(pyramid_bytes(face));
         }
     }
     // One face's 1×1 texel's share of the map's mean colour (EnvironmentShape::mean).
@@ -578,8 +597,11 @@ class TextureSystemImpl final : public TextureSystem {
         for (int c = 0; c < shape.channels; ++c)
             shape.mean[c] += texel[c] / static_cast<float>(faces);
     }
-    void held_whole(BumpHandle& entry) {
-        bytes_in_memory_ += pyramid_bytes(entry.value->moments());
+    void held_whole(BumpHandle& entry) { hold_whole(pyramid_bytes(entry.value->moments())); }
+    // Texels held whole from now on: bytes_in_memory, and resident with the tiles.
+    void hold_whole(std::size_t bytes) {
+        bytes_in_memory_ += bytes;
+        cache_.accounting()->add(bytes);
     }
 
     static std::size_t pyramid_bytes(const MipPyramid& pyramid) {
@@ -608,8 +630,13 @@ class TextureSystemImpl final : public TextureSystem {
         std::lock_guard lock(errors_mutex_);
         errors_.push_back(error);
     }
+    void warn(const Error& warning) {
+        std::lock_guard lock(errors_mutex_);
+        warnings_.push_back(warning);
+    }
 
     const TextureSystemOptions options_;
+    const bool default_cache_;
     texsys::TileCache cache_;
     texsys::PerThreadTiles thread_tiles_;
     std::atomic<std::uint32_t> next_file_id_{0};
@@ -618,7 +645,7 @@ class TextureSystemImpl final : public TextureSystem {
     FileTable<EnvironmentHandle> environments_;
     FileTable<BumpHandle> bumps_;
     std::mutex errors_mutex_;
-    std::vector<Error> errors_;
+    std::vector<Error> errors_, warnings_;
 };
 
 }  // namespace
@@ -640,15 +667,43 @@ Result<std::unique_ptr<TextureSystem>> TextureSystem::create(const TextureSystem
         !std::has_single_bit(static_cast<unsigned>(options.tile_size)))
         return Error{"texture system: tile_size must be a power of two from 8 to 1024 (got " +
                      std::to_string(options.tile_size) + ")"};
-    if (!options.cache_dir.empty()) {
+    if (!options.cache_dir.empty() && options.build_in_memory)
+        return Error{"texture system: cache_dir '" + options.cache_dir.string() +
+                     "' and build_in_memory: give one of them"};
+    TextureSystemOptions resolved = options;
+    const bool default_cache = options.cache_dir.empty() && !options.build_in_memory;
+    if (default_cache) resolved.cache_dir = default_texture_cache_dir();
+    std::optional<Error> warning;
+    if (!resolved.cache_dir.empty()) {
         std::error_code ec;
-        std::filesystem::create_directories(options.cache_dir, ec);
-        if (ec || !std::filesystem::is_directory(options.cache_dir))
-            return Error{"texture system: cannot use the cache folder '" +
-                         options.cache_dir.string() +
-                         "': " + (ec ? ec.message() : std::string("it is not a directory"))};
+        std::filesystem::create_directories(resolved.cache_dir, ec);
+        if (ec || !std::filesystem::is_directory(resolved.cache_dir)) {
+            const std::string why =
+                "cannot use the " + std::string(default_cache ? "default " : "") +
+                "cache folder '" + resolved.cache_dir.string() +
+                "': " + (ec ? ec.message() : std::string("it is not a directory"));
+            if (!default_cache) return Error{"texture system: " + why};
+            warning = Error{"texture system: " + why + " (pyramids are built in memory)"};
+            resolved.cache_dir.clear();
+        }
+    } else if (default_cache) {
+        warning = Error{
+            "texture system: neither XDG_CACHE_HOME nor HOME is set: no default cache folder "
+            "(pyramids are built in memory)"};
     }
-    return std::unique_ptr<TextureSystem>(std::make_unique<TextureSystemImpl>(options));
+    return std::unique_ptr<TextureSystem>(
+        std::make_unique<TextureSystemImpl>(resolved, default_cache, std::move(warning)));
+}
+
+std::filesystem::path default_texture_cache_dir() {
+    // The XDG Base Directory rule: a relative XDG_CACHE_HOME is invalid and ignored.
+    const char* xdg = std::getenv("XDG_CACHE_HOME");
+    if (xdg != nullptr && *xdg != '\0' && std::filesystem::path(xdg).is_absolute())
+        return std::filesystem::path(xdg) / "footprint";
+    const char* home = std::getenv("HOME");
+    if (home != nullptr && *home != '\0')
+        return std::filesystem::path(home) / ".cache" / "footprint";
+    return {};
 }
 
 }  // namespace footprint

@@ -9,8 +9,10 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <random>
 #include <span>
 #include <thread>
@@ -233,16 +235,22 @@ TEST(TextureSystem, FilesWithoutLevelsAreBuiltInMemoryOrInTheCacheFolder) {
     const std::string png = (dir / "plain.png").string();
     const MipPyramid pyramid = MipPyramid::build(*load_image(png));
 
-    auto in_memory = make_system();
+    TextureSystemOptions memory_options;
+    memory_options.build_in_memory = true;
+    auto in_memory = make_system(memory_options);
     TextureSystemOptions cached_options;
     cached_options.cache_dir = dir / "cache";
     auto cached = make_system(cached_options);
     expect_lookups_of_pyramid(*in_memory, png, pyramid, lookups(200, 5));
-    // The cached file's levels are the built pyramid's, as float; only EWA reads the prefilter
-    // variance, which a stored chain takes as the box's (T² − 1)/12.
-    expect_lookups_of_pyramid(*cached, png, pyramid, lookups(200, 5), 1e-5f);
+    // The cached file's levels are the built pyramid's, as float, with its prefilter variances
+    // (which EWA reads): the same bits.
+    expect_lookups_of_pyramid(*cached, png, pyramid, lookups(200, 5));
     EXPECT_FALSE(in_memory->info(png)->tiled);
-    EXPECT_GT(in_memory->stats().bytes_in_memory, 128u * 64 * 16);
+    // A pyramid held whole is counted as resident, as tiles are.
+    const TextureSystemStats held = in_memory->stats();
+    EXPECT_GT(held.bytes_in_memory, 128u * 64 * 16);
+    EXPECT_GE(held.bytes_resident, held.bytes_in_memory);
+    EXPECT_GE(held.peak_bytes, held.bytes_in_memory);
     EXPECT_TRUE(cached->info(png)->tiled);
     EXPECT_EQ(cached->stats().bytes_in_memory, 0u);
     int cache_files = 0;
@@ -259,6 +267,142 @@ TEST(TextureSystem, FilesWithoutLevelsAreBuiltInMemoryOrInTheCacheFolder) {
     EXPECT_EQ(std::filesystem::last_write_time(
                   std::filesystem::directory_iterator(dir / "cache")->path()),
               written);
+}
+
+// XDG_CACHE_HOME set to `value` (unset where null) while in scope.
+class ScopedCacheHome {
+  public:
+    explicit ScopedCacheHome(const char* value) {
+        if (const char* was = std::getenv("XDG_CACHE_HOME")) was_ = was;
+        if (value != nullptr)
+            ::setenv("XDG_CACHE_HOME", value, 1);
+        else
+            ::unsetenv("XDG_CACHE_HOME");
+    }
+    ~ScopedCacheHome() {
+        if (was_)
+            ::setenv("XDG_CACHE_HOME", was_->c_str(), 1);
+        else
+            ::unsetenv("XDG_CACHE_HOME");
+    }
+    ScopedCacheHome(const ScopedCacheHome&) = delete;
+    ScopedCacheHome& operator=(const ScopedCacheHome&) = delete;
+
+  private:
+    std::optional<std::string> was_;
+};
+
+// The files in `dir`, temporary ones too.
+std::vector<std::filesystem::path> files_in(const std::filesystem::path& dir) {
+    std::vector<std::filesystem::path> files;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
+        files.push_back(entry.path());
+    return files;
+}
+
+// A plain file (no stored levels) is bounded by max_memory_mb by default: its pyramid is built
+// into $XDG_CACHE_HOME/footprint and read tile by tile, with the in-memory pyramid's bits for
+// every filter, resident texels within the bound; a second system opens the cached file.
+TEST(TextureSystem, PlainFilesAreBuiltIntoTheDefaultCacheFolderAndStayWithinTheBound) {
+    test::TempDir dir;
+    const ScopedCacheHome home((dir / "xdg").c_str());
+    EXPECT_EQ(default_texture_cache_dir(), dir / "xdg" / "footprint");
+    const Image image = random_image(512, 384, 3, 31);  // 4 MiB of float pyramid
+    const std::string exr = (dir / "plain.exr").string();
+    ASSERT_TRUE(save_image(image, exr));
+    TextureSystemOptions small;
+    small.max_memory_mb = 1;
+    small.tile_size = 16;
+    small.downsample = DownsampleFilter::tent;  // its prefilter variances are not the box's
+    auto ts = make_system(small);
+    const std::string name = exr;
+    MipPyramidOptions tent;
+    tent.downsample = DownsampleFilter::tent;
+    const MipPyramid built = MipPyramid::build(image, tent);
+    expect_lookups_of_pyramid(*ts, name, built, lookups(400, 32));
+    const Result<TextureInfo> info = ts->info(name);
+    ASSERT_TRUE(info) << info.error().message;
+    EXPECT_TRUE(info->tiled);
+    const TextureSystemStats s = ts->stats();
+    EXPECT_EQ(s.bytes_in_memory, 0u);
+    EXPECT_GT(s.tiles_loaded, 0u);
+    // 1 MiB, plus this thread's micro-cache and one lookup's pinned tiles (16² RGB tiles: 4 KiB).
+    EXPECT_LE(s.peak_bytes, (1u << 20) + 256 * 4096u);
+    EXPECT_TRUE(ts->take_warnings().empty());
+    const std::vector<std::filesystem::path> cached = files_in(dir / "xdg" / "footprint");
+    ASSERT_EQ(cached.size(), 1u);  // no temporary file left
+    EXPECT_EQ(cached[0].extension(), ".exr");
+    const auto written = std::filesystem::last_write_time(cached[0]);
+    auto again = make_system(small);
+    expect_lookups_of_pyramid(*again, name, built, lookups(50, 33));
+    EXPECT_EQ(std::filesystem::last_write_time(cached[0]), written);  // opened, not rebuilt
+    EXPECT_EQ(files_in(dir / "xdg" / "footprint").size(), 1u);
+    // build_in_memory keeps the pyramid whole, as before the default folder, and counts it.
+    TextureSystemOptions memory = small;
+    memory.build_in_memory = true;
+    auto whole = make_system(memory);
+    expect_lookups_of_pyramid(*whole, name, built, lookups(50, 34));
+    EXPECT_FALSE(whole->info(name)->tiled);
+    EXPECT_GT(whole->stats().bytes_in_memory, 512u * 384 * 16);
+    EXPECT_GE(whole->stats().peak_bytes, whole->stats().bytes_in_memory);
+    // A changed source (size, time) is built again, beside the first.
+    ASSERT_TRUE(save_image(random_image(256, 256, 3, 35), exr));
+    auto changed = make_system(small);
+    EXPECT_EQ(changed->info(name)->width, 256);
+    EXPECT_EQ(files_in(dir / "xdg" / "footprint").size(), 2u);
+}
+
+// A default cache folder that cannot be made is a warning, never an error: pyramids are built in
+// memory, with the same results. A cache_dir given with build_in_memory is refused.
+TEST(TextureSystem, AnUnusableDefaultCacheFolderFallsBackToMemoryWithAWarning) {
+    test::TempDir dir;
+    { std::ofstream(dir / "file") << "x"; }
+    const ScopedCacheHome home((dir / "file").c_str());  // footprint/ cannot be made in a file
+    const Image image = random_image(64, 48, 3, 36);
+    const std::string exr = (dir / "plain.exr").string();
+    ASSERT_TRUE(save_image(image, exr));
+    auto ts = make_system();
+    const std::vector<Error> warnings = ts->take_warnings();
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].message.find("file"), std::string::npos) << warnings[0].message;
+    EXPECT_NE(warnings[0].message.find("in memory"), std::string::npos) << warnings[0].message;
+    expect_lookups_of_pyramid(*ts, exr, MipPyramid::build(image), lookups(100, 37));
+    EXPECT_FALSE(ts->info(exr)->tiled);
+    EXPECT_TRUE(ts->take_errors().empty());
+    EXPECT_TRUE(ts->take_warnings().empty());  // once
+
+    TextureSystemOptions both;
+    both.cache_dir = dir / "cache";
+    both.build_in_memory = true;
+    EXPECT_FALSE(TextureSystem::create(both));
+}
+
+// Systems building one file's pyramid into one folder at the same time (as processes do) each
+// write a complete file under a name of its own and rename it: one cache file, no temporary ones,
+// and every system's lookups right.
+TEST(TextureSystem, ConcurrentBuildsOfOneCacheFileLeaveOneCompleteFile) {
+    test::TempDir dir;
+    const Image image = random_image(256, 256, 4, 38);
+    const std::string exr = (dir / "plain.exr").string();
+    ASSERT_TRUE(save_image(image, exr));
+    TextureSystemOptions options;
+    options.cache_dir = dir / "cache";
+    options.tile_size = 32;
+    constexpr int kSystems = 4;
+    std::vector<std::unique_ptr<TextureSystem>> systems;
+    for (int i = 0; i < kSystems; ++i) systems.push_back(make_system(options));
+    std::vector<std::thread> threads;
+    std::atomic<int> tiled{0};
+    for (int i = 0; i < kSystems; ++i)
+        threads.emplace_back([&, i] {
+            if (Result<TextureInfo> info = systems[i]->info(exr); info && info->tiled) ++tiled;
+        });
+    for (std::thread& t : threads) t.join();
+    EXPECT_EQ(tiled, kSystems);
+    const MipPyramid pyramid = MipPyramid::build(image);
+    for (const auto& ts : systems) expect_lookups_of_pyramid(*ts, exr, pyramid, lookups(30, 39));
+    EXPECT_EQ(files_in(dir / "cache").size(), 1u);
 }
 
 TEST(TextureSystem, AMissingOrCorruptFileIsAnErrorNamingItReportedOnce) {

@@ -29,6 +29,16 @@ std::vector<float> padded_to_stride(const Image& image, int stride) {
     return padded;
 }
 
+// The prefilter variance of a level of dw × dh made from one of sw × sh whose variance is
+// `before`, in a pyramid whose level 0 is width × height: variances add through the chain, and a
+// step's variance in level-0 units scales with the source level's texel size squared.
+Vec2 next_prefilter_variance(Vec2 before, int width, int height, int sw, int sh, int dw, int dh,
+                             DownsampleFilter filter) {
+    const double tx = double(width) / sw, ty = double(height) / sh;
+    return {float(before.x + tx * tx * detail::tap_variance(sw, dw, filter)),
+            float(before.y + ty * ty * detail::tap_variance(sh, dh, filter))};
+}
+
 }  // namespace
 
 MipPyramid::MipPyramid() = default;
@@ -99,17 +109,9 @@ MipPyramid MipPyramid::build(const Image& level0, const MipPyramidOptions& optio
             current = std::move(next);
             p.store_level(l, current);
         }
-        // Variances add through the chain; a step's variance in level-0 units scales with the
-        // source level's texel size squared.
-        const double tx = double(level0.width) / p.width(l - 1),
-                     ty = double(level0.height) / p.height(l - 1);
-        const Vec2 before = p.levels_[l - 1].prefilter_variance;
-        p.levels_[l].prefilter_variance = {
-            float(before.x +
-                  tx * tx * detail::tap_variance(p.width(l - 1), p.width(l), options.downsample)),
-            float(before.y +
-                  ty * ty *
-                      detail::tap_variance(p.height(l - 1), p.height(l), options.downsample))};
+        p.levels_[l].prefilter_variance =
+            next_prefilter_variance(p.levels_[l - 1].prefilter_variance, level0.width,
+                                    level0.height, sw, sh, dw, dh, options.downsample);
     }
 
     if (options.summed_area_table)
@@ -177,6 +179,34 @@ Image MipPyramid::level_image(int level) const {
         for (int x = 0; x < image.width; ++x)
             std::copy_n(texel(level, x, y), channels_, image.at(x, y));
     return image;
+}
+
+Status for_each_mip_level(const Image& level0, const MipPyramidOptions& options,
+                          const std::function<Status(const Image& level)>& take) {
+    assert(!level0.empty() && level0.channels >= 1 && level0.channels <= MipPyramid::kMaxChannels);
+    // The channels are filtered independently, each with the same taps in the same order as
+    // build()'s padded texels: stride = channels gives its values without the padding.
+    if (Status s = take(level0); !s) return s;
+    Image previous;
+    const Image* source = &level0;
+    while (source->width > 1 || source->height > 1) {
+        const int sw = source->width, sh = source->height;
+        Image next(std::max(1, sw / 2), std::max(1, sh / 2), level0.channels);
+        detail::downsample<float, float>(source->pixels.data(), sw, sh, next.pixels.data(),
+                                         next.width, next.height, level0.channels, options);
+        if (Status s = take(next); !s) return s;
+        previous = std::move(next);  // the level it was made from freed
+        source = &previous;
+    }
+    return {};
+}
+
+std::vector<Vec2> mip_prefilter_variances(int width, int height, DownsampleFilter filter) {
+    std::vector<Vec2> variances{Vec2{}};
+    for (int w = width, h = height; w > 1 || h > 1; w = std::max(1, w / 2), h = std::max(1, h / 2))
+        variances.push_back(next_prefilter_variance(
+            variances.back(), width, height, w, h, std::max(1, w / 2), std::max(1, h / 2), filter));
+    return variances;
 }
 
 }  // namespace footprint

@@ -27,6 +27,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -156,6 +157,20 @@ class MipPyramid {
     detail::TexelStorage storage_;
     std::unique_ptr<SummedAreaTable> sat_;
 };
+
+// MipPyramid::build()'s levels made one at a time, for writing a pyramid out without holding it
+// whole (`footprint maketx`, the texture system's cache): take(level) is called for level 0
+// (level0 itself), 1, … down to 1×1, each level what build(level0, options)'s level_image(l)
+// holds, bit for bit. Besides level0, at most two levels are held at once (level l while level
+// l + 1 is made from it), as plain images of level0's channels: together a third of level0's size.
+// Stops at take's first error and returns it. options.tile_log2, border and summed_area_table do
+// not apply.
+Status for_each_mip_level(const Image& level0, const MipPyramidOptions& options,
+                          const std::function<Status(const Image& level)>& take);
+
+// The prefilter variances (MipPyramid::prefilter_variance()) that build() gives the levels of a
+// width × height pyramid made with `filter`, level 0 first.
+std::vector<Vec2> mip_prefilter_variances(int width, int height, DownsampleFilter filter);
 
 // The number of stored floats per texel for a channel count: 1, 2, 4 or 8.
 constexpr int texel_stride(int channels) {

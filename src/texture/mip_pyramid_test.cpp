@@ -105,6 +105,43 @@ TEST(MipPyramid, PrefilterVarianceOfTheBoxPyramid) {
     }
 }
 
+// for_each_mip_level() makes build()'s levels one at a time, bit for bit (its channels unpadded),
+// and mip_prefilter_variances() build()'s variances, for every channel count, filter and wrap.
+TEST(MipPyramid, LevelsMadeOneAtATimeAreTheBuiltPyramids) {
+    for (int channels = 1; channels <= MipPyramid::kMaxChannels; ++channels) {
+        for (DownsampleFilter filter : {DownsampleFilter::box, DownsampleFilter::tent}) {
+            const Image image = random_image(53, 22, channels, 40 + channels);
+            MipPyramidOptions options;
+            options.downsample = filter;
+            options.wrap_s = WrapMode::mirror;
+            options.wrap_t = channels % 2 ? WrapMode::clamp : WrapMode::repeat;
+            const MipPyramid pyramid = MipPyramid::build(image, options);
+            int l = 0;
+            ASSERT_TRUE(for_each_mip_level(image, options, [&](const Image& level) -> Status {
+                EXPECT_LT(l, pyramid.level_count());
+                EXPECT_EQ(level.pixels, pyramid.level_image(l).pixels)
+                    << channels << " channels, level " << l;
+                ++l;
+                return {};
+            }));
+            EXPECT_EQ(l, pyramid.level_count());
+            const std::vector<Vec2> variances = mip_prefilter_variances(53, 22, filter);
+            ASSERT_EQ(static_cast<int>(variances.size()), pyramid.level_count());
+            for (int k = 0; k < pyramid.level_count(); ++k) {
+                EXPECT_EQ(variances[k].x, pyramid.prefilter_variance(k).x) << k;
+                EXPECT_EQ(variances[k].y, pyramid.prefilter_variance(k).y) << k;
+            }
+        }
+    }
+    // take's error ends it.
+    int calls = 0;
+    const Status stopped = for_each_mip_level(random_image(8, 8, 3, 1), {}, [&](const Image&) {
+        return ++calls == 2 ? Status(Error{"full"}) : Status();
+    });
+    EXPECT_FALSE(stopped);
+    EXPECT_EQ(calls, 2);
+}
+
 TEST(MipPyramid, EveryTileLayoutStoresTheSameTexels) {
     const Image image = random_image(37, 19, 3, 4);
     MipPyramidOptions options;
