@@ -44,4 +44,18 @@ if(NOT FOOTPRINT_SANITIZE AND NOT FOOTPRINT_TESTS_ONLY)
              COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR}
                      -DSOURCE_DIR=${PROJECT_SOURCE_DIR} -DWORK_DIR=${PROJECT_BINARY_DIR}/consumer-test
                      -P ${PROJECT_SOURCE_DIR}/cmake/test_consumer.cmake)
+    # The C++ snippets of README.md and docs/library.md, built and run against the installed
+    # package as a user's program would be (examples/snippets/, cmake/test_snippets.cmake).
+    add_test(NAME footprint-doc-snippets
+             COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR}
+                     -DSOURCE_DIR=${PROJECT_SOURCE_DIR} -DWORK_DIR=${PROJECT_BINARY_DIR}/snippets-test
+                     -P ${PROJECT_SOURCE_DIR}/cmake/test_snippets.cmake)
+endif()
+# Every C++ block of README.md and docs/library.md is, line for line, a region of one of those
+# snippet programs (no build needed: it runs in every configuration).
+find_package(Python3 COMPONENTS Interpreter QUIET)
+if(Python3_Interpreter_FOUND)
+    add_test(NAME footprint-doc-snippets-match
+             COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/examples/snippets/check_snippets.py
+                     ${PROJECT_SOURCE_DIR})
 endif()
