@@ -23,6 +23,18 @@ struct TestCacheHome {
             (std::filesystem::temp_directory_path() / "footprint-tests-XXXXXX").string();
         if (::mkdtemp(name.data()) == nullptr) return;
         dir = name;
+        // Mesa keeps its compiled shaders under XDG_CACHE_HOME too: they stay where they were, or
+        // every test process would compile the GPU path's shaders again (minutes on llvmpipe).
+        if (std::getenv("MESA_SHADER_CACHE_DIR") == nullptr) {
+            const char* xdg = std::getenv("XDG_CACHE_HOME");
+            const char* home = std::getenv("HOME");
+            if (xdg != nullptr && xdg[0] == '/')
+                ::setenv("MESA_SHADER_CACHE_DIR", (std::string(xdg) + "/mesa_shader_cache").c_str(),
+                         1);
+            else if (home != nullptr)
+                ::setenv("MESA_SHADER_CACHE_DIR",
+                         (std::string(home) + "/.cache/mesa_shader_cache").c_str(), 1);
+        }
         ::setenv("XDG_CACHE_HOME", name.c_str(), 1);
     }
     ~TestCacheHome() {
