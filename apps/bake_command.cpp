@@ -127,37 +127,6 @@ Result<Baked> bake_color(const BakeCommandOptions& options, WrapMode wrap_s, Wra
     return baked;
 }
 
-// The slopes of a bump map file at strength 1, read as `footprint maketx --bump` reads it: a
-// normal map's b = (n_x, n_y)/n_z, or a height map's b = −∇h per unit of (u, v).
-Result<Image> slopes_at_strength_one(const BakeCommandOptions& options) {
-    ImageLoadOptions load;
-    load.encoding = ColorEncoding::linear;  // a bump map's values are data, never sRGB
-    if (!options.height) load.non_finite = NonFinitePolicy::keep;  // --invalid-normals decides
-    Result<Image> map = load_image(options.input, load);
-    if (!map) return map.error();
-    Result<Image> slopes = [&] {
-        if (options.height) {
-            HeightMapOptions height;
-            height.texel_size_u = 1.0f / static_cast<float>(map->width);
-            height.texel_size_v = 1.0f / static_cast<float>(map->height);
-            return slopes_from_height_map(*map, height);
-        }
-        NormalMapOptions normal;
-        normal.invalid_normal_policy =
-            options.clamp_invalid_normals ? InvalidNormalPolicy::clamp : InvalidNormalPolicy::error;
-        return slopes_from_normal_map(*map, normal);
-    }();
-    if (!slopes)
-        return Error{quoted(options.input) + " is not a " +
-                     (options.height ? "height map" : "tangent-space normal map") + ": " +
-                     slopes.error().message +
-                     (options.height || options.clamp_invalid_normals
-                          ? ""
-                          : " (--invalid-normals clamp replaces such texels; --height reads a "
-                            "height map)")};
-    return slopes;
-}
-
 // The offset as text, exactly (9 significant digits give a float back bit for bit).
 std::string offset_text(Vec2 offset) {
     char text[64];
@@ -166,7 +135,8 @@ std::string offset_text(Vec2 offset) {
 }
 
 Result<Baked> bake_bump(const BakeCommandOptions& options, WrapMode wrap_s, WrapMode wrap_t) {
-    Result<Image> slopes = slopes_at_strength_one(options);
+    Result<Image> slopes =
+        load_bump_slopes(options.input, options.height, options.clamp_invalid_normals);
     if (!slopes) return slopes.error();
     BumpPyramidOptions pyramid_options;
     pyramid_options.wrap_s = wrap_s;

@@ -9,6 +9,7 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
+#include "bump/slope_map.h"
 #include "demo_scenes.h"
 #include "image/image_io.h"
 #include "plane_view.h"
@@ -260,6 +261,35 @@ Result<NamedScene> resolve_scene(const std::string& name, std::optional<int> wid
     for (const std::string& n : demos) valid += (valid.empty() ? "" : ", ") + n;
     return Error{"unknown scene '" + name + "': not a built-in demo (" + valid +
                  ") nor a .json scene file"};
+}
+
+Result<Image> load_bump_slopes(const fs::path& input, bool height, bool clamp_invalid_normals) {
+    ImageLoadOptions load;
+    load.encoding = ColorEncoding::linear;  // a bump map's values are data, never sRGB
+    if (!height) load.non_finite = NonFinitePolicy::keep;  // --invalid-normals decides
+    Result<Image> map = load_image(input, load);
+    if (!map) return map.error();
+    Result<Image> slopes = [&] {
+        if (height) {
+            HeightMapOptions texels;
+            texels.texel_size_u = 1.0f / static_cast<float>(map->width);
+            texels.texel_size_v = 1.0f / static_cast<float>(map->height);
+            return slopes_from_height_map(*map, texels);
+        }
+        NormalMapOptions normal;
+        normal.invalid_normal_policy =
+            clamp_invalid_normals ? InvalidNormalPolicy::clamp : InvalidNormalPolicy::error;
+        return slopes_from_normal_map(*map, normal);
+    }();
+    if (!slopes)
+        return Error{quoted(input) + " is not a " +
+                     (height ? "height map" : "tangent-space normal map") + ": " +
+                     slopes.error().message +
+                     (height || clamp_invalid_normals
+                          ? ""
+                          : " (--invalid-normals clamp replaces such texels; --height reads a "
+                            "height map)")};
+    return slopes;
 }
 
 }  // namespace footprint

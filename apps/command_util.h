@@ -25,6 +25,13 @@ std::string quoted(const std::filesystem::path& path);
 // directory, a directory), or nullopt if it can.
 std::optional<std::string> output_file_problem(const std::filesystem::path& file);
 
+// The slopes of a bump map file at strength 1, read as `footprint maketx --bump` and `footprint
+// bake bump` read it (data, never sRGB): a tangent-space normal map's b = (n_x, n_y)/n_z, invalid
+// normals refused unless clamp_invalid_normals; or with `height` a height map's b = −∇h per unit
+// of (u, v). The error names the file and what it is not.
+Result<Image> load_bump_slopes(const std::filesystem::path& input, bool height,
+                               bool clamp_invalid_normals);
+
 // Whether an output file holds linear radiance as rendered (.exr, .hdr) rather than sRGB-encoded
 // integers (exposure applies to those only).
 bool is_float_image_file(const std::filesystem::path& file);

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "bump/bump_pyramid_file.h"
-#include "bump/slope_map.h"
+#include "command_util.h"
 #include "envmap/env_image_io.h"
 #include "envmap/env_pyramid_file.h"
 #include "image/image_io.h"
@@ -16,42 +16,9 @@ namespace footprint {
 
 namespace {
 
-int fail(const std::string& message) {
-    std::fprintf(stderr, "footprint: %s\n", message.c_str());
-    return 1;
-}
-
-// The slopes of a bump map file at strength 1 (render_scene.h's conventions): a normal map's
-// b = (n_x, n_y)/n_z, or a height map's b = −∇h per unit of (u, v).
-Result<Image> slopes_at_strength_one(const MaketxCommandOptions& options) {
-    ImageLoadOptions load;
-    load.encoding = ColorEncoding::linear;  // a bump map's values are data, never sRGB
-    // A normal map's NaN texels are kept: --invalid-normals decides for them.
-    if (!options.height) load.non_finite = NonFinitePolicy::keep;
-    Result<Image> map = load_image(options.input, load);
-    if (!map) return map.error();
-    Result<Image> slopes = [&] {
-        if (options.height) {
-            HeightMapOptions height;
-            height.texel_size_u = 1.0f / static_cast<float>(map->width);
-            height.texel_size_v = 1.0f / static_cast<float>(map->height);
-            return slopes_from_height_map(*map, height);
-        }
-        NormalMapOptions normal;
-        normal.invalid_normal_policy =
-            options.clamp_invalid_normals ? InvalidNormalPolicy::clamp : InvalidNormalPolicy::error;
-        return slopes_from_normal_map(*map, normal);
-    }();
-    if (!slopes)
-        return Error{"'" + options.input.string() + "': " + slopes.error().message +
-                     (options.height || options.clamp_invalid_normals
-                          ? ""
-                          : " (--invalid-normals clamp replaces such texels)")};
-    return slopes;
-}
-
 int make_bump_pyramid(const MaketxCommandOptions& options, WrapMode wrap_s, WrapMode wrap_t) {
-    Result<Image> slopes = slopes_at_strength_one(options);
+    Result<Image> slopes =
+        load_bump_slopes(options.input, options.height, options.clamp_invalid_normals);
     if (!slopes) return fail(slopes.error().message);
     BumpPyramidOptions pyramid_options;
     pyramid_options.wrap_s = wrap_s;
