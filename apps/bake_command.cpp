@@ -68,18 +68,20 @@ Result<std::string> encode(const KtxTexture& texture, const fs::path& file) {
     return bytes;
 }
 
+// `texture` as the KTX file `file`, written completely or not at all.
+Status write_ktx(const KtxTexture& texture, const fs::path& file) {
+    Result<std::string> bytes = encode(texture, file);
+    if (!bytes) return bytes.error();
+    return write_file_atomically(file, *bytes);
+}
+
 // Why `file` cannot be written (checked before any work), or nullopt.
 std::optional<std::string> output_problem(const fs::path& file) {
     const std::string extension = file.extension().string();
     if (file.filename().empty() || (extension != ".ktx" && extension != ".exr"))
         return "cannot write " + quoted(file) +
                ": footprint bake writes KTX 1 (.ktx) or OpenEXR (.exr) files";
-    std::error_code ec;
-    const fs::path dir = file.parent_path();
-    if (!dir.empty() && !fs::is_directory(dir, ec))
-        return "cannot write " + quoted(file) + ": directory " + quoted(dir) + " does not exist";
-    if (fs::is_directory(file, ec)) return "cannot write " + quoted(file) + ": it is a directory";
-    return std::nullopt;
+    return output_location_problem(file);
 }
 
 bool is_ktx(const fs::path& file) {
@@ -119,10 +121,7 @@ Result<Baked> bake_color(const BakeCommandOptions& options, WrapMode wrap_s, Wra
         {kOrientationKey, kTopRowFirst},
         {"footprint", "color: MIP pyramid, linear light (" + std::string(to_string(wrap_s)) + "," +
                           to_string(wrap_t) + " wrap)"}};
-    Result<std::string> bytes = encode(ktx, options.output);
-    if (!bytes) return bytes.error();
-    if (Status written = write_file_atomically(options.output, *bytes); !written)
-        return written.error();
+    if (Status written = write_ktx(ktx, options.output); !written) return written.error();
     baked.format = format_name(options.float32);
     return baked;
 }
@@ -243,10 +242,7 @@ Result<Baked> bake_env(const BakeCommandOptions& options) {
     ktx.key_values = {{"footprint",
                        "env: cube map, faces +X -X +Y -Y +Z -Z as OpenGL's cube map "
                        "rule reads them, linear light"}};
-    Result<std::string> bytes = encode(ktx, options.output);
-    if (!bytes) return bytes.error();
-    if (Status written = write_file_atomically(options.output, *bytes); !written)
-        return written.error();
+    if (Status written = write_ktx(ktx, options.output); !written) return written.error();
     baked.format = format_name(options.float32);
     return baked;
 }

@@ -35,6 +35,10 @@ std::optional<std::string> output_file_problem(const fs::path& file) {
     if (!is_supported_image_extension(file))
         return "cannot write " + quoted(file) + ": unsupported extension '" +
                file.extension().string() + "' (supported: .png .jpg .jpeg .exr .hdr .tif .tiff)";
+    return output_location_problem(file);
+}
+
+std::optional<std::string> output_location_problem(const fs::path& file) {
     std::error_code ec;
     const fs::path dir = file.parent_path();
     if (!dir.empty() && !fs::is_directory(dir, ec))

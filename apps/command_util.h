@@ -24,6 +24,8 @@ std::string quoted(const std::filesystem::path& path);
 // Why `file` cannot be written as an image (no file name, unsupported extension, missing
 // directory, a directory), or nullopt if it can.
 std::optional<std::string> output_file_problem(const std::filesystem::path& file);
+// The same for where `file` is, whatever it holds: a missing directory, a directory.
+std::optional<std::string> output_location_problem(const std::filesystem::path& file);
 
 // The slopes of a bump map file at strength 1, read as `footprint maketx --bump` and `footprint
 // bake bump` read it (data, never sRGB): a tangent-space normal map's b = (n_x, n_y)/n_z, invalid
