@@ -273,6 +273,29 @@ Reach reach(double centre, double extent, double margin, int size) {
     return Reach::straddles;
 }
 
+// How footprint_texture() answers a footprint in the anisotropic modes. Magnified: a smart-bicubic
+// lookup that OpenImageIO reads from level 0 bicubically (a footprint of at most one texel), the
+// delegate's. Isotropic: one trilinear probe, whatever the level rule, so it takes OpenImageIO's
+// (its compute_miplevels on the ellipse's minor axis, as its anisotropic mode does), so that a
+// mapping of N texels to a pixel reads level log2 N alone, as OpenImageIO's does and its test
+// suite expects, where footprint assembly's rule would blend in some of the next level for the
+// reconstruction's share (docs/method.md). Anisotropic: footprint assembly.
+enum class Shape { magnified, isotropic, anisotropic };
+Shape shape_of(const Eigen& axes, TextureOpt::InterpMode interp) {
+    constexpr double kOneTexel = 1.001;   // 1:1 mappings, over the derivatives' rounding
+    constexpr double kIsotropic = 1.001;  // footprint assembly's own one-probe ratio
+    if (interp == TextureOpt::InterpSmartBicubic && axes.major_within(kOneTexel))
+        return Shape::magnified;
+    return axes.ratio_within(kIsotropic) ? Shape::isotropic : Shape::anisotropic;
+}
+// Footprint assembly with OpenImageIO's `anisotropic` as its probe budget.
+LookupOptions assembly_options(const TextureOpt& options) {
+    LookupOptions lookup;
+    lookup.filter = TextureFilter::footprint_assembly;
+    lookup.max_probes = std::clamp(options.anisotropic, 1, 1024);
+    return lookup;
+}
+
 void write_result(const SampleView& v, int actual, int nchannels, const TextureOpt& options,
                   const FileFacts& facts, const Settings& settings, float* result, float* dresultds,
                   float* dresultdt) {
@@ -407,16 +430,9 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, Entries&
                            c.dtdy * options.twidth};
     const Covariance k = footprint_covariance(scaled, w, h);
     const Eigen axes(k);
-    constexpr double kOneTexel = 1.001;  // 1:1 mappings, over the derivatives' rounding
-    if (options.interpmode == TextureOpt::InterpSmartBicubic && axes.major_within(kOneTexel))
-        return std::nullopt;
-    // An isotropic footprint is one trilinear probe, whatever the level rule: it takes
-    // OpenImageIO's (its compute_miplevels on the ellipse's minor axis, as its anisotropic mode
-    // does), so that a mapping of N texels to a pixel reads level log2 N alone, as OpenImageIO's
-    // does and its test suite expects, where footprint assembly's rule would blend in some of the
-    // next level for the reconstruction's share (docs/method.md).
-    constexpr double kIsotropic = 1.001;  // footprint assembly's own one-probe ratio
-    if (axes.ratio_within(kIsotropic)) {
+    const Shape shape = shape_of(axes, options.interpmode);
+    if (shape == Shape::magnified) return std::nullopt;
+    if (shape == Shape::isotropic) {
         const float minor_st =
             static_cast<float>(axes.minor()) / static_cast<float>(std::max(w, h));
         return by_oiio_rules([&](const TexelReader& texels) {
@@ -446,9 +462,7 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, Entries&
             if (!entry) return std::nullopt;
         }
     }
-    LookupOptions lookup;
-    lookup.filter = TextureFilter::footprint_assembly;
-    lookup.max_probes = std::clamp(options.anisotropic, 1, 1024);
+    const LookupOptions lookup = assembly_options(options);
     // The lookup writes channels 0 to first + actual: the result is the last `actual` of them.
     const auto filtered = [&](float s, float t, std::array<float, kMaxChannels>& all) {
         return system.texture(entry, {s, t, scaled.dsdx, scaled.dtdx, scaled.dsdy, scaled.dtdy},
@@ -476,6 +490,30 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, Entries&
     write_result({value.data() + first, ds.data() + first, dt.data() + first, 1}, actual, nchannels,
                  options, facts, settings, result, dresultds, dresultdt);
     return true;
+}
+
+TextureHandle* direct_entry(footprint::TextureSystem& system, Entries& file,
+                            const FileFacts& facts) {
+    if (!facts.good || !facts.full_pixel_range || facts.sample_border ||
+        facts.nchannels > kMaxChannels)
+        return nullptr;
+    TextureHandle* entry = file.texture(system, {});
+    const TextureOpt::Wrap ws = resolved(TextureOpt::WrapDefault, facts.swrap);
+    const TextureOpt::Wrap wt = resolved(TextureOpt::WrapDefault, facts.twrap);
+    return entry && file.wraps_as_own(ws, wt) ? entry : nullptr;
+}
+
+std::optional<bool> direct_texture(footprint::TextureSystem& system, TextureHandle* entry,
+                                   int width, int height, const TextureOpt& options,
+                                   const TexCoords& c, int nchannels, float* result,
+                                   std::string& error) {
+    const Eigen axes(
+        footprint_covariance(c, static_cast<float>(width), static_cast<float>(height)));
+    if (shape_of(axes, options.interpmode) != Shape::anisotropic) return std::nullopt;
+    const Status s = system.texture(entry, {c.s, c.t, c.dsdx, c.dtdx, c.dsdy, c.dtdy},
+                                    assembly_options(options), std::span<float>(result, nchannels));
+    if (!s) error = s.error().message;
+    return static_cast<bool>(s);
 }
 
 std::optional<bool> footprint_environment(footprint::TextureSystem& system, Entries& file,

@@ -94,6 +94,30 @@ std::optional<bool> footprint_texture(footprint::TextureSystem& system, Entries&
                                       float* result, float* dresultds, float* dresultdt,
                                       std::string& error);
 
+// The common call answered without footprint_texture()'s routing: OpenImageIO's default
+// TextureOpt (as direct_options() checks it) on a file footprint reads as its own entry `entry`
+// (width × height texels, at least nchannels channels), without result derivatives or flip_t.
+// Gives the answer footprint_texture() gives for it, or nullopt where the footprint is one that
+// footprint_texture() routes elsewhere (magnified or isotropic): then take footprint_texture().
+inline bool direct_options(const OIIO::TextureOpt& o) {
+    using T = OIIO::TextureOpt;
+    return o.firstchannel == 0 && o.subimage == 0 && o.swrap == T::WrapDefault &&
+           o.twrap == T::WrapDefault &&
+           (o.mipmode == T::MipModeDefault || o.mipmode == T::MipModeAniso) &&
+           (o.interpmode == T::InterpSmartBicubic || o.interpmode == T::InterpBilinear) &&
+           o.sblur == 0 && o.tblur == 0 && o.swidth == 1 && o.twidth == 1 && o.anisotropic >= 1 &&
+           o.subimagename.empty();
+}
+// The entry direct_texture() reads for a file, or null where its calls take footprint_texture():
+// a file OpenImageIO reads otherwise than as a plain texture (cropped, with a sample border) or
+// whose own entry wraps otherwise than the file says.
+TextureHandle* direct_entry(footprint::TextureSystem& system, Entries& file,
+                            const FileFacts& facts);
+std::optional<bool> direct_texture(footprint::TextureSystem& system, TextureHandle* entry,
+                                   int width, int height, const OIIO::TextureOpt& options,
+                                   const TexCoords& c, int nchannels, float* result,
+                                   std::string& error);
+
 // The same for environment(): lat-long maps (OpenImageIO 2.4 reads every environment map as
 // lat-long), direction R with ray differentials dRdx, dRdy in OpenImageIO's convention.
 std::optional<bool> footprint_environment(footprint::TextureSystem& system, Entries& file,

@@ -52,6 +52,10 @@ struct File {
     std::atomic<bool> probed_done{false};
     detail::FileFacts facts;
     std::unique_ptr<detail::Entries> entries;  // footprint's entries of the file
+    // detail::direct_entry() of the file, found on the first call with default options.
+    std::once_flag direct_found;
+    std::atomic<bool> direct_done{false};
+    footprint::TextureHandle* direct = nullptr;
 };
 
 class Adapter final : public OIIO::TextureSystem {
@@ -181,6 +185,26 @@ class Adapter final : public OIIO::TextureSystem {
         }
         static constexpr const char* names[] = {"s", "t", "dsdx", "dtdx", "dsdy", "dtdy"};
         const float coords[] = {s, t, dsdx, dtdx, dsdy, dtdy};
+        // Most calls of a renderer: OpenImageIO's default options on a plain texture, the
+        // values in range, as many channels as the file has or fewer, no derivatives. They skip
+        // the checks and the routing that find footprint assembly for them (oiio_lookups.h).
+        if (detail::direct_options(options) && !dresultds && !dresultdt && result &&
+            nchannels > 0 && detail::values_in_range(coords, 6) && !f->udim) {
+            const detail::Settings now = settings();
+            footprint::TextureHandle* entry = direct_entry(*f, thread_info);
+            if (entry && nchannels <= f->facts.nchannels && !now.flip_t &&
+                std::max(f->facts.width, f->facts.height) <= now.max_mip_res) {
+                std::string error;
+                const std::optional<bool> answered = detail::direct_texture(
+                    footprint(), entry, f->facts.width, f->facts.height, options,
+                    {s, t, dsdx, dtdx, dsdy, dtdy}, nchannels, result, error);
+                if (answered) {
+                    count(&Counts::texture_answered);
+                    if (!*answered) append_error(error);
+                    return *answered;
+                }
+            }
+        }
         if (std::string why = check_call(*f, thread_info, options, names, coords, 6, nchannels,
                                          result, dresultds, dresultdt);
             !why.empty()) {
@@ -655,6 +679,17 @@ class Adapter final : public OIIO::TextureSystem {
     static File* from_handle(Handle* handle) {
         File* f = reinterpret_cast<File*>(handle);
         return f && f->magic == File::kMagic ? f : nullptr;
+    }
+
+    // The entry of `f` that answers calls with default options, or null (oiio_lookups.h).
+    footprint::TextureHandle* direct_entry(File& f, Perthread* thread_info) {
+        if (f.direct_done.load(std::memory_order_acquire)) return f.direct;
+        std::call_once(f.direct_found, [&] {
+            const detail::FileFacts& known = facts(f, thread_info);
+            if (!f.udim) f.direct = detail::direct_entry(footprint(), *f.entries, known);
+            f.direct_done.store(true, std::memory_order_release);
+        });
+        return f.direct;
     }
 
     // OpenImageIO's view of a file, through the delegate.

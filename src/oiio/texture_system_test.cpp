@@ -451,6 +451,46 @@ TEST(OiioAdapter, AnisotropicIsCloserToBruteForceThanOpenImageIO) {
     EXPECT_GT(std::sqrt(transposed_sq / n), kWrongAxisFactor * adapter_rmse);
 }
 
+// A call with OpenImageIO's default options takes a shorter route through the adapter than one
+// that names the file's own wrap modes or asks for derivatives; both must give the same bits, for
+// every shape of footprint (magnified, isotropic, anisotropic) and for fewer channels than the
+// file has. With flip_t, default options take the longer route too.
+TEST(OiioAdapter, DefaultOptionsGiveTheBitsOfTheRoutedLookup) {
+    test::TempDir dir;
+    const std::string file = make_tx(dir, "periodic.tx", TypeDesc::HALF, "periodic", 4, 128);
+    Systems systems;
+    std::mt19937 random(11);
+    int anisotropic = 0;
+    for (const int flip_t : {0, 1}) {
+        systems.ours->attribute("flip_t", flip_t);
+        for (int k = 0; k < 300; ++k) {
+            const float s = random_in(random, -1, 2), t = random_in(random, -1, 2);
+            // Semi-axes from a tenth of a texel to 40 texels, at any angle and ratio.
+            const float major = std::exp2(random_in(random, -3.3f, 5.3f)) / 128;
+            const float minor = k % 5 == 0 ? major : major * random_in(random, 0.02f, 1.0f);
+            const float angle = random_in(random, 0, static_cast<float>(M_PI));
+            const float dsdx = major * std::cos(angle), dtdx = major * std::sin(angle);
+            const float dsdy = -minor * std::sin(angle), dtdy = minor * std::cos(angle);
+            anisotropic += major > 1.1f * minor && major * 128 > 1.5f;
+            const int nchannels = 1 + k % 4;
+            TextureOpt defaults, named, with_derivatives;
+            named.swrap = named.twrap = TextureOpt::WrapPeriodic;
+            float direct[4], routed[4], derived[4], ds[4], dt[4];
+            ASSERT_TRUE(systems.ours->texture(ustring(file), defaults, s, t, dsdx, dtdx, dsdy, dtdy,
+                                              nchannels, direct));
+            ASSERT_TRUE(systems.ours->texture(ustring(file), named, s, t, dsdx, dtdx, dsdy, dtdy,
+                                              nchannels, routed));
+            ASSERT_TRUE(systems.ours->texture(ustring(file), with_derivatives, s, t, dsdx, dtdx,
+                                              dsdy, dtdy, nchannels, derived, ds, dt));
+            for (int c = 0; c < nchannels; ++c) {
+                EXPECT_EQ(direct[c], routed[c]) << "lookup " << k << " channel " << c;
+                EXPECT_EQ(direct[c], derived[c]) << "lookup " << k << " channel " << c;
+            }
+        }
+    }
+    EXPECT_GT(anisotropic, 200);  // most lookups are footprint assembly's
+}
+
 // ---- UDIM sets.
 
 // The name of the file behind a handle, or "" for none.
