@@ -36,20 +36,28 @@ install(FILES ${PROJECT_BINARY_DIR}/footprintConfig.cmake
               ${PROJECT_BINARY_DIR}/footprintConfigVersion.cmake
         DESTINATION ${package_dir})
 
-# The installed package, tried as a user would: install into a fresh prefix, then configure,
-# build and run examples/consumer against it (cmake/test_consumer.cmake). Release builds only:
-# a sanitizer build's libraries need the sanitizer runtimes in every program that links them.
+# The installed package, tried as a user would: installed once into a fresh prefix (the fixture
+# footprint-package), then examples/consumer and examples/oiio-drop-in (cmake/test_consumer.cmake)
+# and the C++ snippets of README.md and docs/library.md (examples/snippets/,
+# cmake/test_snippets.cmake) configured, built and run against it. Release builds only: a
+# sanitizer build's libraries need the sanitizer runtimes in every program that links them.
 if(NOT FOOTPRINT_SANITIZE AND NOT FOOTPRINT_TESTS_ONLY)
-    add_test(NAME footprint-package-consumer
-             COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR}
-                     -DSOURCE_DIR=${PROJECT_SOURCE_DIR} -DWORK_DIR=${PROJECT_BINARY_DIR}/consumer-test
-                     -P ${PROJECT_SOURCE_DIR}/cmake/test_consumer.cmake)
-    # The C++ snippets of README.md and docs/library.md, built and run against the installed
-    # package as a user's program would be (examples/snippets/, cmake/test_snippets.cmake).
-    add_test(NAME footprint-doc-snippets
-             COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR}
-                     -DSOURCE_DIR=${PROJECT_SOURCE_DIR} -DWORK_DIR=${PROJECT_BINARY_DIR}/snippets-test
-                     -P ${PROJECT_SOURCE_DIR}/cmake/test_snippets.cmake)
+    set(package_prefix ${PROJECT_BINARY_DIR}/package-test/prefix)
+    add_test(NAME footprint-package-install
+             COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR} -DPREFIX=${package_prefix}
+                     -P ${PROJECT_SOURCE_DIR}/cmake/test_install.cmake)
+    set_tests_properties(footprint-package-install PROPERTIES FIXTURES_SETUP footprint-package)
+    # package_test(NAME SCRIPT PART): cmake/SCRIPT against the installed package.
+    function(package_test name script part)
+        add_test(NAME ${name}
+                 COMMAND ${CMAKE_COMMAND} -DPREFIX=${package_prefix}
+                         -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
+                         -DWORK_DIR=${PROJECT_BINARY_DIR}/package-test/${part}
+                         -P ${PROJECT_SOURCE_DIR}/cmake/${script})
+        set_tests_properties(${name} PROPERTIES FIXTURES_REQUIRED footprint-package)
+    endfunction()
+    package_test(footprint-package-consumer test_consumer.cmake consumer)
+    package_test(footprint-doc-snippets test_snippets.cmake snippets)
 endif()
 # Every C++ block of README.md and docs/library.md is, line for line, a region of one of those
 # snippet programs (no build needed: it runs in every configuration).

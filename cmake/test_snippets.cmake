@@ -1,19 +1,13 @@
-# cmake -DBUILD_DIR=… -DSOURCE_DIR=… -DWORK_DIR=… -P test_snippets.cmake
-# Installs the build into WORK_DIR/prefix, then configures and builds examples/snippets against it,
-# as a user's project would (only find_package(footprint) and the installed files), and runs each
-# program: the C++ snippets of README.md and docs/library.md compile and run as written
-# (examples/snippets/check_snippets.py holds the documents to those programs).
+# cmake -DPREFIX=… -DSOURCE_DIR=… -DWORK_DIR=… -P test_snippets.cmake
+# Configures and builds examples/snippets against the package installed in PREFIX
+# (cmake/test_install.cmake), as a user's project would (only find_package(footprint) and the
+# installed files), and runs each program: the C++ snippets of README.md and docs/library.md
+# compile and run as written (examples/snippets/check_snippets.py holds the documents to those
+# programs).
+include(${CMAKE_CURRENT_LIST_DIR}/package_test_run.cmake)
 file(REMOVE_RECURSE ${WORK_DIR})
-function(run)
-    execute_process(COMMAND ${ARGN} RESULT_VARIABLE status)
-    if(NOT status EQUAL 0)
-        list(JOIN ARGN " " command)
-        message(FATAL_ERROR "failed (${status}): ${command}")
-    endif()
-endfunction()
-run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix)
 run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples/snippets -B ${WORK_DIR}/build -G Ninja
-    -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix)
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${PREFIX})
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build --parallel 2)
 file(STRINGS ${WORK_DIR}/build/snippet_programs.txt programs)
 set(failed)
