@@ -3,7 +3,9 @@
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <OpenImageIO/parallel.h>
 #include <fcntl.h>
+#include <openexr.h>
 #include <tiffio.h>
 #include <unistd.h>
 
@@ -26,6 +28,7 @@
 #include <vector>
 
 #include "image/color.h"
+#include "image/exr_decode.h"
 #include "image/exr_parts.h"
 #include "image/format_checks.h"
 #include "image/image_input.h"
@@ -422,6 +425,201 @@ bool read_float_texels(OIIO::ImageInput& in, int level, const OIIO::ImageSpec& s
     return true;
 }
 
+// How a level of an OpenEXR file was read through OpenEXR's core library.
+enum class ExrRead {
+    done,      // the texels are read
+    refused,   // a chunk is corrupt: the cause says which
+    elsewhere  // not a layout read here (subsampled channels, types OpenImageIO reads otherwise)
+};
+
+// Native rows decoded at a time by one thread (a band of whole chunks).
+constexpr std::size_t kExrBandBytes = std::size_t{1} << 20;
+
+// Level `level` of the first part of the OpenEXR file `file`, whose header OpenImageIO gives as
+// `spec`, as float texels: its chunks decoded through OpenEXR's core library (image/exr_decode.h),
+// which refuses a chunk whose codec unpacks fewer bytes than its rows take, where OpenEXR 3.1's
+// C++ reader would leave those rows as they were. Each band of rows is decoded into OpenImageIO's
+// native layout of `spec` and converted as read_float_texels() converts it, so a valid file reads
+// to the same floats; bands are decoded in parallel, as OpenEXR's C++ reader decodes chunks.
+ExrRead read_exr_texels(const fs::path& file, int level, const OIIO::ImageSpec& spec,
+                        std::vector<float>& texels, std::string& cause) {
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    detail::keep_exr_errors(init);
+    exr_context_t context = nullptr;
+    const exr_result_t started = exr_start_read(&context, file.c_str(), &init);
+    const std::unique_ptr<exr_context_t, void (*)(exr_context_t*)> finish(
+        &context, [](exr_context_t* c) { exr_finish(c); });
+    if (started != EXR_ERR_SUCCESS) return ExrRead::elsewhere;
+    constexpr int part = 0;  // OpenImageIO's first subimage
+    // Only the codecs whose chunks OpenEXR 3.1's C++ reader leaves short. Its PIZ, PXR24, B44 and
+    // DWA decoders refuse a chunk that ends before its rows do; the core library's PIZ takes a
+    // third more time than the C++ reader's, its B44 gives other halves, and it has no DWA.
+    exr_compression_t compression{};
+    if (exr_get_compression(context, part, &compression) != EXR_ERR_SUCCESS ||
+        (compression != EXR_COMPRESSION_NONE && compression != EXR_COMPRESSION_RLE &&
+         compression != EXR_COMPRESSION_ZIPS && compression != EXR_COMPRESSION_ZIP))
+        return ExrRead::elsewhere;
+    exr_storage_t storage{};
+    const exr_attr_chlist_t* list = nullptr;
+    exr_attr_box2i_t window{};
+    if (exr_get_storage(context, part, &storage) != EXR_ERR_SUCCESS ||
+        (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED) ||
+        exr_get_channels(context, part, &list) != EXR_ERR_SUCCESS ||
+        list->num_channels != spec.nchannels ||
+        exr_get_data_window(context, part, &window) != EXR_ERR_SUCCESS || window.min.x != spec.x ||
+        window.min.y != spec.y)
+        return ExrRead::elsewhere;
+
+    // Where each of the file's channels goes in OpenImageIO's native pixel (spec's channel order).
+    const int channels = spec.nchannels;
+    std::vector<int> element_bytes(channels);
+    std::vector<std::size_t> offsets(channels);
+    std::vector<bool> placed(channels, false);
+    std::size_t offset = 0;
+    for (int k = 0; k < channels; ++k) {
+        const OIIO::TypeDesc type =
+            spec.channelformats.empty() ? spec.format : spec.channelformats[k];
+        int i = 0;
+        while (i < channels &&
+               std::string_view(list->entries[i].name.str,
+                                std::size_t(list->entries[i].name.length)) != spec.channelnames[k])
+            ++i;
+        if (i == channels || placed[i]) return ExrRead::elsewhere;
+        const exr_attr_chlist_entry_t& entry = list->entries[i];
+        const OIIO::TypeDesc stored = entry.pixel_type == EXR_PIXEL_HALF    ? OIIO::TypeDesc::HALF
+                                      : entry.pixel_type == EXR_PIXEL_FLOAT ? OIIO::TypeDesc::FLOAT
+                                                                            : OIIO::TypeDesc::UINT;
+        if (entry.x_sampling != 1 || entry.y_sampling != 1 || type != stored)
+            return ExrRead::elsewhere;
+        placed[i] = true;
+        element_bytes[i] = static_cast<int>(type.size());
+        offsets[i] = offset;
+        offset += type.size();
+    }
+    const std::size_t pixel_bytes = offset;
+    const std::size_t row_bytes = pixel_bytes * static_cast<std::size_t>(spec.width);
+    if (pixel_bytes != spec.pixel_bytes(/*native=*/true)) return ExrRead::elsewhere;
+
+    // Chunks: blocks of rows, or tiles of MIP level `level` (OpenImageIO reads a ripmap's l × l).
+    const bool tiled = storage == EXR_STORAGE_TILED;
+    int chunk_width = spec.width, chunk_rows = 0;
+    if (tiled) {
+        std::uint32_t tile_width = 0, tile_height = 0;
+        exr_tile_level_mode_t mode{};
+        std::int32_t level_width = 0, level_height = 0;
+        if (exr_get_tile_descriptor(context, part, &tile_width, &tile_height, &mode, nullptr) !=
+                EXR_ERR_SUCCESS ||
+            (mode == EXR_TILE_ONE_LEVEL && level != 0) ||
+            exr_get_level_sizes(context, part, level, level, &level_width, &level_height) !=
+                EXR_ERR_SUCCESS ||
+            level_width != spec.width || level_height != spec.height ||
+            static_cast<int>(tile_width) != spec.tile_width ||
+            static_cast<int>(tile_height) != spec.tile_height)
+            return ExrRead::elsewhere;
+        chunk_width = spec.tile_width;
+        chunk_rows = spec.tile_height;
+    } else {
+        if (level != 0 ||
+            exr_get_scanlines_per_chunk(context, part, &chunk_rows) != EXR_ERR_SUCCESS ||
+            chunk_rows <= 0 || std::int64_t{window.max.x} - window.min.x + 1 != spec.width)
+            return ExrRead::elsewhere;
+    }
+
+    const bool float_native = spec.format == OIIO::TypeDesc::FLOAT && spec.channelformats.empty();
+    const std::size_t chunk_band_bytes = row_bytes * static_cast<std::size_t>(chunk_rows);
+    const int band_rows =
+        chunk_rows * static_cast<int>(std::max<std::size_t>(
+                         kExrBandBytes / std::max<std::size_t>(chunk_band_bytes, 1), 1));
+    const std::int64_t bands = (std::int64_t{spec.height} + band_rows - 1) / band_rows;
+    std::vector<std::string> band_causes(static_cast<std::size_t>(bands));
+
+    // Each task decodes a run of bands with one decoder and one set of buffers, reused from chunk
+    // to chunk: allocated per band, they were mapped and faulted in afresh each time (several
+    // times the system time of OpenImageIO's reader on a 4096² float file).
+    const auto read_bands = [&](std::int64_t first, std::int64_t end) {
+        std::vector<std::uint8_t> band, planes;
+        std::vector<std::uint8_t*> plane_of(channels);
+        try {
+            if (!float_native) band.resize(static_cast<std::size_t>(band_rows) * row_bytes);
+            planes.resize(static_cast<std::size_t>(chunk_width) * chunk_rows * pixel_bytes);
+        } catch (const std::bad_alloc&) {
+            band_causes[static_cast<std::size_t>(first)] = "not enough memory to decode its texels";
+            return;
+        }
+        detail::ExrChunkDecoder decoder(context, part);
+        for (std::int64_t b = first; b < end; ++b) {
+            std::string& why = band_causes[static_cast<std::size_t>(b)];
+            const int y0 = static_cast<int>(b) * band_rows;
+            const int y1 = std::min(y0 + band_rows, spec.height);
+            float* out = texels.data() + static_cast<std::size_t>(y0) * spec.width * channels;
+            std::uint8_t* rows = float_native ? reinterpret_cast<std::uint8_t*>(out) : band.data();
+            for (int y = y0; y < y1 && why.empty(); y += chunk_rows) {
+                const int height = std::min(chunk_rows, spec.height - y);
+                for (int x = 0; x < spec.width && why.empty(); x += chunk_width) {
+                    const int width = std::min(chunk_width, spec.width - x);
+                    const auto which = [&] {
+                        return tiled ? "the chunk of tile (" + std::to_string(x / chunk_width) +
+                                           ", " + std::to_string(y / chunk_rows) + ")"
+                                     : "chunk " + std::to_string(y / chunk_rows) + " (rows " +
+                                           std::to_string(spec.y + y) + " to " +
+                                           std::to_string(spec.y + y + height - 1) + ")";
+                    };
+                    exr_chunk_info_t chunk{};
+                    const exr_result_t found =
+                        tiled ? exr_read_tile_chunk_info(context, part, x / chunk_width,
+                                                         y / chunk_rows, level, level, &chunk)
+                              : exr_read_scanline_chunk_info(context, part, spec.y + y, &chunk);
+                    if (found != EXR_ERR_SUCCESS || chunk.width != width ||
+                        chunk.height != height) {
+                        why = which() + " is missing or corrupt";
+                        break;
+                    }
+                    // Uncompressed rows are read straight from the file, past a chunk that
+                    // holds fewer bytes than they take.
+                    if (compression == EXR_COMPRESSION_NONE &&
+                        chunk.packed_size != chunk.unpacked_size) {
+                        why = which() + " holds " + std::to_string(chunk.packed_size) +
+                              " bytes, but its rows take " + std::to_string(chunk.unpacked_size);
+                        break;
+                    }
+                    std::size_t at = 0;
+                    for (int i = 0; i < channels; ++i) {
+                        plane_of[i] = planes.data() + at;
+                        at += static_cast<std::size_t>(width) * height * element_bytes[i];
+                    }
+                    std::string exr_why;
+                    if (!decoder.decode(chunk, plane_of.data(), /*as_float=*/false, exr_why)) {
+                        why = which() +
+                              " is corrupt or unpacks to fewer bytes than its rows take "
+                              "(OpenEXR: " +
+                              exr_why + ")";
+                        break;
+                    }
+                    detail::interleave_exr_planes(channels, plane_of.data(), element_bytes.data(),
+                                                  offsets.data(), width, height,
+                                                  rows +
+                                                      static_cast<std::size_t>(y - y0) * row_bytes +
+                                                      static_cast<std::size_t>(x) * pixel_bytes,
+                                                  pixel_bytes, row_bytes);
+                }
+            }
+            if (why.empty() && !float_native &&
+                !convert_band(spec, y1 - y0, reinterpret_cast<const std::byte*>(band.data()), out))
+                why = "its texels cannot be converted to floats";
+        }
+    };
+    if (bands == 1)
+        read_bands(0, 1);
+    else
+        OIIO::parallel_for_chunked(0, bands, 0, read_bands);
+    for (const std::string& why : band_causes) {
+        if (why.empty()) continue;
+        cause = "the OpenEXR file is corrupt: " + why;
+        return ExrRead::refused;
+    }
+    return ExrRead::done;
+}
+
 // A TIFF compressed by a codec libtiff lacks cannot be decoded, yet OpenImageIO would allocate the
 // level and try every strip.
 std::optional<std::string> tiff_codec_problem(const OIIO::ImageSpec& spec) {
@@ -502,7 +700,13 @@ Result<Image> read_level(OIIO::ImageInput& in, int level, const fs::path& file,
         return fail("not enough memory for " + std::to_string(spec.width) + " x " +
                     std::to_string(spec.height) + " pixels");
     }
-    if (!read_float_texels(in, level, spec, image.pixels) || in.has_error()) {
+    std::string exr_cause;
+    const ExrRead exr = std::string_view(in.format_name()) == "openexr"
+                            ? read_exr_texels(file, level, spec, image.pixels, exr_cause)
+                            : ExrRead::elsewhere;
+    if (exr == ExrRead::refused) return detail::read_error(file, where + exr_cause);
+    if ((exr == ExrRead::elsewhere && !read_float_texels(in, level, spec, image.pixels)) ||
+        in.has_error()) {
         return detail::read_error(
             file, where + with_oiio_message("the file is truncated or corrupt", in.geterror()));
     }

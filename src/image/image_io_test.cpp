@@ -982,6 +982,129 @@ TEST_F(ImageIo, AnExrTooShortForItsChunksIsRefusedBeforeReading) {
     expect_load_error(file, "the file is truncated: its header claims 4 x 10000000 texels");
 }
 
+// A chunk whose codec unpacks fewer bytes than its rows take: OpenEXR 3.1's C++ reader,
+// OpenImageIO's, left the rest of its rows as they were, without an error (a flat 64 × 1 zip file
+// of half RGB widened to 1 000 texels loaded with 192 of its 3 000 values set), and read an
+// uncompressed chunk's rows on past its end. Such texels are decoded through OpenEXR's core
+// library, which checks every chunk's size; the C++ reader's other decoders refuse such a chunk.
+TEST_F(ImageIo, AnExrChunkThatUnpacksShortIsRefused) {
+    const fs::path file = path("widened.exr");
+    for (const std::string compression : {"zip", "zips", "rle"}) {
+        SCOPED_TRACE(compression);
+        write_flat_exr(file, 64, 1, compression);
+        set_exr_window_end(file, WindowEnd::last_column, 999);
+        expect_load_error(file,
+                          "chunk 0 (rows 0 to 0) is corrupt or unpacks to fewer bytes than "
+                          "its rows take");
+    }
+    // Uncompressed, one row a chunk: 65 columns fit the file's bytes, not its first chunk's.
+    write_flat_exr(file, 64, 64, "none");
+    set_exr_window_end(file, WindowEnd::last_column, 64);
+    expect_load_error(file, "chunk 0 (rows 0 to 0) holds 384 bytes, but its rows take 390");
+    for (const std::string compression : {"piz", "pxr24", "b44", "b44a", "dwaa", "dwab"}) {
+        SCOPED_TRACE(compression);
+        write_flat_exr(file, 64, 1, compression);
+        set_exr_window_end(file, WindowEnd::last_column, 99);
+        expect_load_error(file);
+    }
+    // A tile, widened within itself (64 × 64 tiles; 40 × 1 texels made 60 × 1).
+    auto out = OIIO::ImageOutput::create(file.string());
+    ASSERT_TRUE(out) << OIIO::geterror();
+    OIIO::ImageSpec spec(40, 1, 3, OIIO::TypeDesc::HALF);
+    spec.tile_width = spec.tile_height = 64;
+    spec.attribute("compression", "zip");
+    ASSERT_TRUE(out->open(file.string(), spec)) << out->geterror();
+    const std::vector<float> flat(40 * 3, 0.5f);
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, flat.data())) << out->geterror();
+    ASSERT_TRUE(out->close()) << out->geterror();
+    ASSERT_TRUE(load_image(file));
+    set_exr_window_end(file, WindowEnd::last_column, 59);
+    expect_load_error(file, "the chunk of tile (0, 0) is corrupt or unpacks to fewer bytes");
+}
+
+// OpenEXR texels are decoded through OpenEXR's core library (the test above), not OpenImageIO's
+// reader; a valid file reads to the very floats OpenImageIO reads, whatever its codec, channel
+// types, data window and layout (scanlines, tiles, MIP levels).
+TEST_F(ImageIo, ExrTexelsAreTheFloatsOpenImageIoReads) {
+    struct Layout {
+        int width, height, tile;  // tile 0: scanlines
+        bool mip;
+    };
+    const std::vector<std::vector<OIIO::TypeDesc>> types = {
+        {OIIO::TypeDesc::HALF, OIIO::TypeDesc::HALF, OIIO::TypeDesc::HALF, OIIO::TypeDesc::HALF},
+        {OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::FLOAT},
+        {OIIO::TypeDesc::HALF, OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::UINT},
+        {OIIO::TypeDesc::HALF}};
+    const fs::path file = path("texels.exr");
+    for (const std::string compression :
+         {"none", "rle", "zips", "zip", "piz", "pxr24", "b44", "b44a", "dwaa", "dwab"}) {
+        for (const Layout layout :
+             {Layout{301, 77, 0, false}, Layout{300, 70, 32, false}, Layout{129, 67, 16, true}}) {
+            for (const auto& channel_types : types) {
+                const int channels = static_cast<int>(channel_types.size());
+                SCOPED_TRACE(compression + ", " + std::to_string(channels) + " channels, tile " +
+                             std::to_string(layout.tile));
+                auto out = OIIO::ImageOutput::create(file.string());
+                ASSERT_TRUE(out) << OIIO::geterror();
+                OIIO::ImageSpec spec(layout.width, layout.height, channels, channel_types[0]);
+                spec.channelformats = channel_types;
+                spec.x = -3;
+                spec.y = 5;
+                spec.full_width = layout.width + 10;
+                spec.full_height = layout.height + 10;
+                spec.tile_width = spec.tile_height = layout.tile;
+                spec.attribute("compression", compression);
+                const Image pixels = make_image(layout.width, layout.height, channels, -2.0f, 40.0f,
+                                                static_cast<unsigned>(channels * 7 + layout.tile));
+                if (layout.mip) {
+                    spec.attribute("openexr:levelmode", 1);     // MIPMAP_LEVELS
+                    spec.attribute("openexr:roundingmode", 0);  // down
+                    spec.attribute("textureformat", "Plain Texture");
+                }
+                ASSERT_TRUE(out->open(file.string(), spec)) << out->geterror();
+                ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.pixels.data()))
+                    << out->geterror();
+                int levels = 1;
+                for (OIIO::ImageSpec level = spec;
+                     layout.mip && (level.width > 1 || level.height > 1);
+                     ++levels) {  // every level down to 1 × 1
+                    level.width = std::max(level.width / 2, 1);
+                    level.height = std::max(level.height / 2, 1);
+                    ASSERT_TRUE(out->open(file.string(), level, OIIO::ImageOutput::AppendMIPLevel))
+                        << out->geterror();
+                    const Image small = make_image(level.width, level.height, channels, 0.0f, 1.0f,
+                                                   static_cast<unsigned>(levels));
+                    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, small.pixels.data()))
+                        << out->geterror();
+                }
+                ASSERT_TRUE(out->close()) << out->geterror();
+                out.reset();  // a tiled file's chunk tables are written as the writer goes
+
+                auto in = OIIO::ImageInput::open(file.string());
+                ASSERT_TRUE(in) << OIIO::geterror();
+                Result<std::vector<Image>> loaded = load_image_levels(file);
+                ASSERT_TRUE(loaded) << loaded.error().message;
+                for (int level = 0; level < static_cast<int>(loaded->size()); ++level) {
+                    ASSERT_TRUE(in->seek_subimage(0, level));
+                    const OIIO::ImageSpec& read = in->spec();
+                    std::vector<float> expected(static_cast<std::size_t>(read.width) * read.height *
+                                                read.nchannels);
+                    ASSERT_TRUE(in->read_image(0, level, 0, read.nchannels, OIIO::TypeDesc::FLOAT,
+                                               expected.data()))
+                        << in->geterror();
+                    const Image& got = (*loaded)[level];
+                    ASSERT_EQ(got.pixels.size(), expected.size());
+                    EXPECT_EQ(std::memcmp(got.pixels.data(), expected.data(),
+                                          expected.size() * sizeof(float)),
+                              0)
+                        << "level " << level;
+                }
+                EXPECT_EQ(static_cast<int>(loaded->size()), levels);
+            }
+        }
+    }
+}
+
 // fuzz_texture_file found it (run 4a): a 451-byte B44A OpenEXR whose header claims 3080193 × 1
 // texels of two half channels and a uint channel was allocated and read before its only chunk
 // failed: 1.6 s and 210 MB for the fuzz input's opens in Release, 159 s under AddressSanitizer. B44

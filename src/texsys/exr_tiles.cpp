@@ -8,21 +8,11 @@
 #include <string_view>
 #include <vector>
 
+#include "image/exr_decode.h"
+
 namespace footprint::texsys {
 
 namespace {
-
-// The message of the last error OpenEXR's core library reported on this thread: its error
-// callback gets no pointer of ours, and a context is shared by the threads reading it.
-thread_local std::string last_exr_error;
-
-void keep_exr_error(exr_const_context_t, exr_result_t, const char* message) {
-    last_exr_error = message;
-}
-
-std::string exr_error(exr_result_t result) {
-    return last_exr_error.empty() ? exr_get_default_error_message(result) : last_exr_error;
-}
 
 // OpenEXR's decoder allocates its buffers (the compressed chunk, the decompressed one, its
 // scratch) for each tile and frees them after. Freed, they left the top of glibc's heap free
@@ -109,7 +99,7 @@ std::unique_ptr<ExrTiles> ExrTiles::open(const std::filesystem::path& file, int 
                                          const std::vector<std::string>& channels) {
     auto context = std::make_unique<Context>();
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    init.error_handler_fn = keep_exr_error;
+    detail::keep_exr_errors(init);
     init.alloc_fn = FreedBlocks::allocate;
     init.free_fn = FreedBlocks::release;
     if (exr_start_read(&context->context, file.c_str(), &init) != EXR_ERR_SUCCESS) return nullptr;
@@ -128,71 +118,69 @@ std::unique_ptr<ExrTiles> ExrTiles::open(const std::filesystem::path& file, int 
         return nullptr;
     }
     std::size_t found = 0;
+    std::vector<int> channel_of(list->num_channels, -1);
+    std::vector<std::size_t> offsets(list->num_channels, 0);
     for (int i = 0; i < list->num_channels; ++i) {
         const exr_attr_chlist_entry_t& entry = list->entries[i];
         if (entry.x_sampling != 1 || entry.y_sampling != 1 || entry.pixel_type == EXR_PIXEL_UINT)
             return nullptr;
-        found += std::count(channels.begin(), channels.end(),
-                            std::string_view(entry.name.str, std::size_t(entry.name.length)));
+        const std::string_view name(entry.name.str, std::size_t(entry.name.length));
+        found += std::count(channels.begin(), channels.end(), name);
+        const auto k = std::find(channels.begin(), channels.end(), name) - channels.begin();
+        if (k == static_cast<std::ptrdiff_t>(channels.size())) continue;
+        channel_of[i] = static_cast<int>(k);
+        offsets[i] = k * sizeof(float);
     }
     if (found != channels.size()) return nullptr;
-    return std::unique_ptr<ExrTiles>(new ExrTiles(std::move(context), part, channels,
-                                                  static_cast<int>(tile_width),
-                                                  static_cast<int>(tile_height)));
+    auto tiles = std::unique_ptr<ExrTiles>(new ExrTiles(std::move(context), part, channels,
+                                                        static_cast<int>(tile_width),
+                                                        static_cast<int>(tile_height)));
+    tiles->channel_of_ = std::move(channel_of);
+    tiles->offsets_ = std::move(offsets);
+    tiles->element_bytes_.assign(tiles->channel_of_.size(), static_cast<int>(sizeof(float)));
+    return tiles;
 }
 
 bool ExrTiles::read(int level, int x0, int x1, int y0, int y1, float* texels,
                     std::string& why) const {
     const exr_const_context_t c = context_->context;
     const int channels = static_cast<int>(channels_.size());
-    const std::size_t row_floats = static_cast<std::size_t>(x1 - x0) * channels;
-    // Each channel is decoded into a plane of its own, then interleaved: OpenEXR 3.1's decoder
-    // writes half channels interleaved straight to floats in the file's order, whatever the
-    // pointers ask (ExrTiles.LevelsReadAsOpenImageIOReadsThem catches it).
+    const std::size_t row_bytes = static_cast<std::size_t>(x1 - x0) * channels * sizeof(float);
+    const std::size_t pixel_bytes = channels * sizeof(float);
+    // Each channel asked for is decoded into a float plane of its own, then interleaved
+    // (image/exr_decode.h).
     thread_local std::vector<float> planes;
     const std::size_t plane_floats = static_cast<std::size_t>(tile_width_) * tile_height_;
     if (planes.size() < plane_floats * channels) planes.resize(plane_floats * channels);
+    // Plane i receives the file's channel i (null: not asked for).
+    const int file_channels = static_cast<int>(channel_of_.size());
+    thread_local std::vector<std::uint8_t*> plane_of;
+    plane_of.assign(file_channels, nullptr);
+    for (int i = 0; i < file_channels; ++i)
+        if (channel_of_[i] >= 0)
+            plane_of[i] = reinterpret_cast<std::uint8_t*>(&planes[channel_of_[i] * plane_floats]);
+    detail::ExrChunkDecoder decoder(c, part_);
     for (int ty = y0 / tile_height_; ty * tile_height_ < y1; ++ty) {
         for (int tx = x0 / tile_width_; tx * tile_width_ < x1; ++tx) {
-            last_exr_error.clear();
             exr_chunk_info_t chunk{};
-            exr_decode_pipeline_t decoder = EXR_DECODE_PIPELINE_INITIALIZER;
-            exr_result_t result = exr_read_tile_chunk_info(c, part_, tx, ty, level, level, &chunk);
-            if (result == EXR_ERR_SUCCESS)
-                result = exr_decoding_initialize(c, part_, &chunk, &decoder);
-            if (result == EXR_ERR_SUCCESS) {
-                for (int i = 0; i < decoder.channel_count; ++i) {
-                    exr_coding_channel_info_t& channel = decoder.channels[i];
-                    const auto k = std::find(channels_.begin(), channels_.end(),
-                                             std::string_view(channel.channel_name)) -
-                                   channels_.begin();
-                    channel.decode_to_ptr =
-                        k == channels ? nullptr
-                                      : reinterpret_cast<std::uint8_t*>(&planes[k * plane_floats]);
-                    channel.user_data_type = EXR_PIXEL_FLOAT;
-                    channel.user_bytes_per_element = sizeof(float);
-                    channel.user_pixel_stride = sizeof(float);
-                    channel.user_line_stride =
-                        static_cast<std::int32_t>(chunk.width * sizeof(float));
-                }
-                result = exr_decoding_choose_default_routines(c, part_, &decoder);
-            }
-            if (result == EXR_ERR_SUCCESS) result = exr_decoding_run(c, part_, &decoder);
-            exr_decoding_destroy(c, &decoder);
-            if (result != EXR_ERR_SUCCESS) {
-                why = "OpenEXR: " + exr_error(result);
+            if (exr_read_tile_chunk_info(c, part_, tx, ty, level, level, &chunk) !=
+                EXR_ERR_SUCCESS) {
+                why = "OpenEXR: the chunk of tile (" + std::to_string(tx) + ", " +
+                      std::to_string(ty) + ") of level " + std::to_string(level) +
+                      " is missing or corrupt";
                 return false;
             }
-            float* corner = texels + static_cast<std::size_t>(ty * tile_height_ - y0) * row_floats +
-                            static_cast<std::size_t>(tx * tile_width_ - x0) * channels;
-            for (int y = 0; y < chunk.height; ++y) {
-                float* row = corner + y * row_floats;
-                for (int x = 0; x < chunk.width; ++x)
-                    for (int k = 0; k < channels; ++k)
-                        row[x * channels + k] =
-                            planes[k * plane_floats + static_cast<std::size_t>(y) * chunk.width +
-                                   x];
+            std::string exr_why;
+            if (!decoder.decode(chunk, plane_of.data(), /*as_float=*/true, exr_why)) {
+                why = "OpenEXR: " + exr_why;
+                return false;
             }
+            std::uint8_t* corner = reinterpret_cast<std::uint8_t*>(texels) +
+                                   static_cast<std::size_t>(ty * tile_height_ - y0) * row_bytes +
+                                   static_cast<std::size_t>(tx * tile_width_ - x0) * pixel_bytes;
+            detail::interleave_exr_planes(file_channels, plane_of.data(), element_bytes_.data(),
+                                          offsets_.data(), chunk.width, chunk.height, corner,
+                                          pixel_bytes, row_bytes);
         }
     }
     return true;

@@ -9,6 +9,7 @@
 // this only decodes the tiles.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -46,6 +47,11 @@ class ExrTiles {
     int part_;
     std::vector<std::string> channels_;  // read, in this order
     int tile_width_, tile_height_;
+    // For each of the part's channels (the file's order): its index in channels_, or −1 where it
+    // is not read; where its float lands in a texel (bytes); its floats' size.
+    std::vector<int> channel_of_;
+    std::vector<std::size_t> offsets_;
+    std::vector<int> element_bytes_;
 };
 
 }  // namespace footprint::texsys
