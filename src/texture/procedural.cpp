@@ -44,6 +44,32 @@ double quintic_slope(double t) {
     return 30 * t * t * (t - 1) * (t - 1);
 }
 
+// The octaves' lattice, rotated against the pattern's axes by 1 radian about (1, 2, 3)/√14: a
+// plane at a whole lattice coordinate (a floor at y = 0) would otherwise be a lattice plane of
+// every octave, where the gradients' third components drop out and the noise is not the noise
+// whose moments (E|n|, Var|n|) and autocorrelation the band limit uses: on y = 0, E|n| = 0.196
+// against 0.220 over space, a bias of every clamped octave. An oblique plane meets the lattice
+// at every offset, as random points do (docs/method.md#procedural-textures).
+constexpr double kLatticeRotation[3][3] = {
+    {0.57313785544898699, -0.60900664213739331, 0.54829180960859991},
+    {0.74034884046078198, 0.67164450419152844, -0.02787928294794625},
+    {-0.35127851212351696, 0.42190587791811218, 0.83582225209576422}};
+
+Vec3d to_lattice(Vec3d x) {
+    const auto& r = kLatticeRotation;
+    return {r[0][0] * x.x + r[0][1] * x.y + r[0][2] * x.z,
+            r[1][0] * x.x + r[1][1] * x.y + r[1][2] * x.z,
+            r[2][0] * x.x + r[2][1] * x.y + r[2][2] * x.z};
+}
+
+// A gradient in the rotated lattice's coordinates back in the pattern's: Rᵀ g.
+Vec3d from_lattice(Vec3d g) {
+    const auto& r = kLatticeRotation;
+    return {r[0][0] * g.x + r[1][0] * g.y + r[2][0] * g.z,
+            r[0][1] * g.x + r[1][1] * g.y + r[2][1] * g.z,
+            r[0][2] * g.x + r[1][2] * g.y + r[2][2] * g.z};
+}
+
 // The pixel filter's Gaussian over the footprint (σ = ½ pixel along ∂p/∂x and ∂p/∂y) in lattice
 // units: the variances along its two principal axes, the eigenvalues of ¼ scale² [a b]ᵀ[a b].
 struct Spread {
@@ -57,30 +83,55 @@ Spread footprint_spread(Vec3d a, Vec3d b, double scale) {
     return {mean + root, std::max(0.0, mean - root)};
 }
 
-// Octave i's weight: the share of its amplitude that the footprint's Gaussian keeps. An octave of
-// lattice spacing λ is taken as isotropic with a Gaussian spectrum of σ_f = c/λ per axis; the
-// Gaussian of variances σ_1², σ_2² keeps Π_k (1 + 8π² σ_k² σ_f²)^(−1/2) of its variance. c = 0.7 is
-// fitted (ProceduralTexture.BandLimitedValuesApproachTheFootprintsMean; 0.35 to 1.4 were tried).
-double octave_weight(double spacing, Spread s) {
-    constexpr double c = 0.7;
-    const double f2 = (c / spacing) * (c / spacing);
-    const double kept =
-        1 / std::sqrt((1 + 8 * kPi * kPi * s.major * f2) * (1 + 8 * kPi * kPi * s.minor * f2));
-    return std::sqrt(kept);
+// Octave i's weight (docs/method.md#procedural-textures): clamping replaces the octave o (n, or
+// |n|) by a·o(p) + (1 − a)·E o, and the a closest to the footprint's mean B(p) = E o(q), q drawn
+// from the footprint's Gaussian around p, is a = Cov(B, o)/Var o: o's autocorrelation averaged over
+// that Gaussian. For a spectrum taken as isotropic Gaussian of σ_f = c/λ per axis that is
+// Π_k (1 + 4π² σ_k² σ_f²)^(−1/2) over the Gaussian's principal variances σ_k²; c is the noise's
+// own, fitted to its measured autocorrelation (bench/fit-procedural-band-limit.sh): the folds of
+// |n| put more of its variance at high frequencies than n has.
+constexpr double kNoiseBandLimit = 0.448;     // c for n
+constexpr double kAbsNoiseBandLimit = 0.677;  // c for |n|
+
+double octave_weight(double spacing, Spread s, bool absolute) {
+    const double c = absolute ? kAbsNoiseBandLimit : kNoiseBandLimit;
+    const double k = 4 * kPi * kPi * (c / spacing) * (c / spacing);
+    return 1 / std::sqrt((1 + k * s.major) * (1 + k * s.minor));
 }
 
-// Σ_{i<N} a_i f(n(2^i x))/2^i + (1 − a_i) mean/2^i, and Σ 2^−i: the fractal sums.
-template <class F>
-double fractal_sum(Vec3d x, int octaves, Spread w, double mean, F&& f, double& norm) {
-    double sum = 0, amplitude = 1;
+// Σ_{i<N} a_i f(n(2^i x))/2^i + (1 − a_i) mean/2^i, f the identity or |·|, and Σ 2^−i: the fractal
+// sums. residual: Σ 4^−i (1 − a_i²), the variance, in units of one octave's (Var o = 1), by which
+// the octaves at the footprint's points differ from the clamped sum: E_q (o(q) − a o(p))² =
+// (1 − a²) Var o for the a above.
+double fractal_sum(Vec3d x, int octaves, Spread w, bool absolute, double& norm,
+                   double* residual = nullptr) {
+    const double mean = absolute ? kMeanAbsNoise : 0.0;
+    const Vec3d u = to_lattice(x);
+    double sum = 0, amplitude = 1, left = 0;
     norm = 0;
     for (int i = 0; i < octaves; ++i, amplitude *= 0.5) {
-        const double a = octave_weight(amplitude, w);
-        const double n = a > 0 ? f(gradient_noise(x / amplitude)) : mean;
+        const double a = octave_weight(amplitude, w, absolute);
+        double n = mean;
+        if (a > 0) {
+            n = gradient_noise(u / amplitude);
+            if (absolute) n = std::abs(n);
+        }
         sum += amplitude * (a * n + (1 - a) * mean);
         norm += amplitude;
+        left += amplitude * amplitude * (1 - a * a);
     }
+    if (residual) *residual = left;
     return sum;
+}
+
+// The marble's stripes sin(x₀ + T) averaged over the footprint's Gaussian, as a factor on the
+// sinusoid of the clamped phase: exp(−σ_x²/2) for x₀'s variance σ_x² = ¼ scale² (a₀² + b₀²) along
+// it, times exp(−V/2) for the variance V = Var|n| Σ 4^−i (1 − a_i²) the turbulence's octaves keep
+// about the clamped phase (E cos r = exp(−Var r/2) for a Gaussian r).
+double stripe_factor(double scale, Vec3d dpdx, Vec3d dpdy, double residual) {
+    const double along = 0.25 * scale * scale * (dpdx.x * dpdx.x + dpdy.x * dpdy.x);
+    const double exponent = -0.5 * (along + kAbsNoiseVariance * residual);
+    return std::isfinite(exponent) ? std::exp(exponent) : 0.0;
 }
 
 // Σ_{i<N} a_i f'(n_i) ∇n(2^i x) (in lattice units: each octave's 1/2^i cancels its 2^i), f the
@@ -91,11 +142,11 @@ Vec3d fractal_gradient(Vec3d x, int octaves, Spread w, bool absolute, double& re
     removed = 0;
     double amplitude = 1;
     for (int i = 0; i < octaves; ++i, amplitude *= 0.5) {
-        const double a = octave_weight(amplitude, w);
+        const double a = octave_weight(amplitude, w, absolute);
         removed += 1 - a * a;
         if (!(a > 0)) continue;
-        const NoiseSample n = gradient_noise_sample(x / amplitude);
-        sum = sum + (absolute && n.value < 0 ? -a : a) * n.gradient;
+        const NoiseSample n = gradient_noise_sample(to_lattice(x) / amplitude);
+        sum = sum + (absolute && n.value < 0 ? -a : a) * from_lattice(n.gradient);
     }
     return sum;
 }
@@ -159,21 +210,17 @@ double procedural_value(const ProceduralTexture& texture, Vec3d p, Vec3d dpdx, V
     double norm = 0;
     switch (texture.pattern) {
         case ProceduralPattern::noise: {
-            const double sum = fractal_sum(
-                x, octaves, w, 0, [](double n) { return n; }, norm);
+            const double sum = fractal_sum(x, octaves, w, false, norm);
             return std::clamp(0.5 + 0.5 * sum / norm, 0.0, 1.0);
         }
         case ProceduralPattern::turbulence: {
-            const double sum = fractal_sum(
-                x, octaves, w, kMeanAbsNoise, [](double n) { return std::abs(n); }, norm);
+            const double sum = fractal_sum(x, octaves, w, true, norm);
             return std::clamp(sum / norm, 0.0, 1.0);
         }
         case ProceduralPattern::marble: {
-            const double turbulence = fractal_sum(
-                x, octaves, w, kMeanAbsNoise, [](double n) { return std::abs(n); }, norm);
-            // sin(x₀) under the Gaussian: exp(−σ²/2) for its variance σ² along x₀.
-            const double along = 0.25 * scale * scale * (dpdx.x * dpdx.x + dpdy.x * dpdy.x);
-            const double stripes = std::isfinite(along) ? std::exp(-0.5 * along) : 0.0;
+            double residual = 0;
+            const double turbulence = fractal_sum(x, octaves, w, true, norm, &residual);
+            const double stripes = stripe_factor(scale, dpdx, dpdy, residual);
             return 0.5 + 0.5 * stripes * std::sin(x.x + turbulence);
         }
         case ProceduralPattern::checker: {
@@ -216,13 +263,11 @@ ProceduralSlopes procedural_slopes(const ProceduralTexture& texture, Vec3d p, Ve
             break;
         }
         case ProceduralPattern::marble: {  // v = ½ + ½ e^{−σ²/2} sin(x₀ + T)
-            double unused = 0;
-            const double turbulence = fractal_sum(
-                x, octaves, w, kMeanAbsNoise, [](double n) { return std::abs(n); }, unused);
+            double unused = 0, residual = 0;
+            const double turbulence = fractal_sum(x, octaves, w, true, unused, &residual);
             const Vec3d turbulence_gradient =
                 scale * fractal_gradient(x, octaves, w, true, removed);
-            const double along = 0.25 * scale * scale * (dpdx.x * dpdx.x + dpdy.x * dpdy.x);
-            const double stripes = std::isfinite(along) ? std::exp(-0.5 * along) : 0.0;
+            const double stripes = stripe_factor(scale, dpdx, dpdy, residual);
             const double c = std::cos(x.x + turbulence);
             out.gradient = 0.5 * stripes * c * (Vec3d{scale, 0, 0} + turbulence_gradient);
             // The turbulence's removed octaves under (½ cos)²: the local cos² where the footprint

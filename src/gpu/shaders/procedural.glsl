@@ -6,6 +6,12 @@ const float PROCEDURAL_NOISE = 1.0, PROCEDURAL_TURBULENCE = 2.0, PROCEDURAL_MARB
             PROCEDURAL_CHECKER = 4.0;
 const float kMeanAbsNoise = 0.2200;            // procedural.h's E|n|
 const float kNoiseGradientVariance = 0.496;    // procedural.h's Var(∂n/∂x_k)
+const float kAbsNoiseVariance = 0.0244;        // procedural.h's Var|n|
+const float kNoiseBandLimit = 0.448, kAbsNoiseBandLimit = 0.677;  // procedural.cpp's c for n, |n|
+// procedural.cpp's kLatticeRotation (columns): the octaves' lattice u = R x.
+const mat3 kLatticeRotation = mat3(0.57313785544898699, 0.74034884046078198, -0.35127851212351696,
+                                   -0.60900664213739331, 0.67164450419152844, 0.42190587791811218,
+                                   0.54829180960859991, -0.02787928294794625, 0.83582225209576422);
 
 uint lattice_hash(ivec3 c) {
     uint h = uint(c.x) * 0x8da6b343u ^ uint(c.y) * 0xd8163841u ^ uint(c.z) * 0xcb1ab31fu;
@@ -73,28 +79,38 @@ vec2 footprint_spread(vec3 a, vec3 b, float scale) {
 }
 
 // The share of an octave's amplitude the footprint keeps (procedural.cpp's octave_weight()).
-float octave_weight(float spacing, vec2 spread) {
-    float f2 = (0.7 / spacing) * (0.7 / spacing);
-    float k = 8.0 * 9.8696044 * f2;  // 8π² σ_f²
-    return sqrt(1.0 / sqrt((1.0 + k * spread.x) * (1.0 + k * spread.y)));
+float octave_weight(float spacing, vec2 spread, bool absolute) {
+    float c = absolute ? kAbsNoiseBandLimit : kNoiseBandLimit;
+    float k = 4.0 * 9.8696044 * (c / spacing) * (c / spacing);  // 4π² σ_f²
+    return 1.0 / sqrt((1.0 + k * spread.x) * (1.0 + k * spread.y));
 }
 
 // Σ_i 2^−i (a_i f(n(2^i x)) + (1 − a_i) mean), f = identity or |·|; norm = Σ_i 2^−i.
-float fractal_sum(vec3 x, int octaves, vec2 w, bool absolute, out float norm) {
+float fractal_sum(vec3 x, int octaves, vec2 w, bool absolute, out float norm, out float residual) {
     float mean = absolute ? kMeanAbsNoise : 0.0;
+    vec3 u = kLatticeRotation * x;
     float sum = 0.0, amplitude = 1.0;
     norm = 0.0;
+    residual = 0.0;
     for (int i = 0; i < octaves; ++i, amplitude *= 0.5) {
-        float a = octave_weight(amplitude, w);
+        float a = octave_weight(amplitude, w, absolute);
         float n = mean;
         if (a > 0.0) {
-            n = gradient_noise(x / amplitude);
+            n = gradient_noise(u / amplitude);
             if (absolute) n = abs(n);
         }
         sum += amplitude * (a * n + (1.0 - a) * mean);
         norm += amplitude;
+        residual += amplitude * amplitude * (1.0 - a * a);
     }
     return sum;
+}
+
+// procedural.cpp's stripe_factor(): exp(−σ_x²/2 − Var|n|·residual/2).
+float stripe_factor(float scale, vec3 dpdx, vec3 dpdy, float residual) {
+    float along = 0.25 * scale * scale * (dpdx.x * dpdx.x + dpdy.x * dpdy.x);
+    float e = -0.5 * (along + kAbsNoiseVariance * residual);
+    return isinf(e) || isnan(e) ? 0.0 : exp(e);
 }
 
 float square_wave_mean(float u, float h) {
@@ -113,15 +129,15 @@ float procedural_value(vec4 info, vec3 p, vec3 dpdx, vec3 dpdy) {
     vec3 x = scale * p;
     vec2 w = footprint_spread(dpdx, dpdy, scale);
     int octaves = clamp(int(info.z), 1, 16);
-    float norm;
+    float norm, residual;
     if (info.x == PROCEDURAL_NOISE)
-        return clamp(0.5 + 0.5 * fractal_sum(x, octaves, w, false, norm) / norm, 0.0, 1.0);
+        return clamp(0.5 + 0.5 * fractal_sum(x, octaves, w, false, norm, residual) / norm, 0.0,
+                     1.0);
     if (info.x == PROCEDURAL_TURBULENCE)
-        return clamp(fractal_sum(x, octaves, w, true, norm) / norm, 0.0, 1.0);
+        return clamp(fractal_sum(x, octaves, w, true, norm, residual) / norm, 0.0, 1.0);
     if (info.x == PROCEDURAL_MARBLE) {
-        float turbulence = fractal_sum(x, octaves, w, true, norm);
-        float along = 0.25 * scale * scale * (dpdx.x * dpdx.x + dpdy.x * dpdy.x);
-        float stripes = isinf(along) || isnan(along) ? 0.0 : exp(-0.5 * along);
+        float turbulence = fractal_sum(x, octaves, w, true, norm, residual);
+        float stripes = stripe_factor(scale, dpdx, dpdy, residual);
         return 0.5 + 0.5 * stripes * sin(x.x + turbulence);
     }
     vec3 half_width = 0.8660254 * scale * (abs(dpdx) + abs(dpdy));  // the checker
@@ -136,11 +152,11 @@ vec3 fractal_gradient(vec3 x, int octaves, vec2 w, bool absolute, out float remo
     float amplitude = 1.0;
     removed = 0.0;
     for (int i = 0; i < octaves; ++i, amplitude *= 0.5) {
-        float a = octave_weight(amplitude, w);
+        float a = octave_weight(amplitude, w, absolute);
         removed += 1.0 - a * a;
         if (!(a > 0.0)) continue;
-        vec4 n = gradient_noise_sample(x / amplitude);
-        sum += (absolute && n.w < 0.0 ? -a : a) * n.xyz;
+        vec4 n = gradient_noise_sample((kLatticeRotation * x) / amplitude);
+        sum += (absolute && n.w < 0.0 ? -a : a) * (n.xyz * kLatticeRotation);  // Rᵀ ∇n
     }
     return sum;
 }
@@ -165,11 +181,10 @@ ProceduralSlopes procedural_slopes(vec4 info, vec3 p, vec3 dpdx, vec3 dpdy) {
         out_slopes.gradient = k * fractal_gradient(x, octaves, w, absolute, removed);
         out_slopes.covariance = mat3(k * k * removed * kNoiseGradientVariance);
     } else if (info.x == PROCEDURAL_MARBLE) {
-        float unused;
-        float turbulence = fractal_sum(x, octaves, w, true, unused);
+        float unused, residual;
+        float turbulence = fractal_sum(x, octaves, w, true, unused, residual);
         vec3 turbulence_gradient = scale * fractal_gradient(x, octaves, w, true, removed);
-        float along = 0.25 * scale * scale * (dpdx.x * dpdx.x + dpdy.x * dpdy.x);
-        float stripes = isinf(along) || isnan(along) ? 0.0 : exp(-0.5 * along);
+        float stripes = stripe_factor(scale, dpdx, dpdy, residual);
         float c = cos(x.x + turbulence);
         out_slopes.gradient = 0.5 * stripes * c * (vec3(scale, 0, 0) + turbulence_gradient);
         float c2 = 0.5 + stripes * stripes * (c * c - 0.5);
