@@ -94,9 +94,9 @@ Status check_material_package(const fs::path& path, const std::vector<char>& byt
 
 // Parameters each material must declare (Filament aborts on setParameter of an unknown name).
 const std::vector<const char*>& lit_parameters() {
-    static const std::vector<const char*> names{"baseColorMap",    "normalMap", "roughnessMap",
-                                                "baseColorFactor", "metallic",  "roughnessFactor",
-                                                "uvScale"};
+    static const std::vector<const char*> names{
+        "baseColorMap",    "normalMap", "roughnessMap",    "metallicMap",
+        "baseColorFactor", "metallic",  "roughnessFactor", "uvScale"};
     return names;
 }
 
@@ -315,51 +315,100 @@ struct Vertex {
 
 }  // namespace
 
-Status FilamentRenderer::load(const BuiltinScene& scene, const MapSource& environment_override) {
+// One surface's textures, shared by every object that uses it: the same maps for every material,
+// each material binding its own samplers (and Filament's its roughness chain).
+struct FilamentRenderer::SurfaceTextures {
+    filament::Texture* colour = nullptr;
+    filament::Texture* normal = nullptr;
+    filament::Texture* roughness_chain = nullptr;     // Filament's: roughness-prefilter's levels
+    filament::Texture* authored_roughness = nullptr;  // footprint's and the truth's
+    filament::Texture* metallic = nullptr;
+    filament::Texture* moments0 = nullptr;  // footprint's bump moments, when its material exists
+    filament::Texture* moments1 = nullptr;
+    float2 slope_offset{0, 0};
+    const SurfaceDesc* desc = nullptr;
+};
+
+// The maps of one surface, as every scene's go to the GPU: footprint's colour pyramid, the normal
+// map (its bump moments for footprint's material), the authored roughness and metallic (a glTF's
+// metallic-roughness channels times their factors, else the factors), and Filament's roughness
+// chain from roughness-prefilter.
+Result<FilamentRenderer::SurfaceTextures> FilamentRenderer::make_surface_textures(
+    const SurfaceDesc& surface) {
     State& s = *state_;
     filament::Engine& engine = *s.engine;
-    s.clear_scene();
-    s.camera_setup = scene.camera;
-
-    // Maps.
-    const SurfaceDesc& surface = scene.surface;
+    std::vector<filament::Texture*>& owned = s.textures;
+    SurfaceTextures out;
+    out.desc = &surface;
     Result<Image> colour = surface.base_color.empty() ? Result<Image>(constant_image(1, 1, 1))
                                                       : load_map(surface.base_color, false);
     if (!colour) return colour.error();
     Result<Image> normal = surface.normal.empty() ? Result<Image>(constant_image(0.5f, 0.5f, 1))
                                                   : load_map(surface.normal, true);
     if (!normal) return normal.error();
+    // Authored roughness and metallic: 1×1 constants, or the metallic-roughness map's G and B.
+    Image authored = constant_image(surface.roughness, surface.roughness, surface.roughness);
+    Image metallic = constant_image(1, 1, 1);
+    if (!surface.metallic_roughness.empty()) {
+        Result<Image> mr = load_map(surface.metallic_roughness, true);
+        if (!mr) return mr.error();
+        authored = Image(mr->width, mr->height, 1);
+        metallic = Image(mr->width, mr->height, 1);
+        for (int y = 0; y < mr->height; ++y) {
+            for (int x = 0; x < mr->width; ++x) {
+                const float* p = mr->at(x, y);
+                authored.at(x, y, 0) = surface.roughness * p[std::min(1, mr->channels - 1)];
+                metallic.at(x, y, 0) = p[std::min(2, mr->channels - 1)];
+            }
+        }
+    }
     // Filament's roughness map: roughness-prefilter's chain; without a normal map there is no
-    // variance to add, so the authored roughness as it is.
-    std::vector<Image> roughness_chain{
-        constant_image(surface.roughness, surface.roughness, surface.roughness)};
+    // variance to add, so the authored roughness as it is (its MIP levels from the GPU).
+    std::vector<Image> roughness_chain{authored};
     if (!surface.normal.empty()) {
-        Result<std::vector<Image>> chain = prefilter_roughness(
-            *normal, surface.normal.label, surface.roughness, s.options.cache_dir);
+        Result<std::vector<Image>> chain =
+            prefilter_roughness(*normal, surface.normal.label, authored,
+                                surface.metallic_roughness.label, s.options.cache_dir);
         if (!chain) return chain.error();
         roughness_chain = std::move(*chain);
     }
     // The colour map's levels as footprint builds them (not the driver's glGenerateMipmap).
-    filament::Texture* colour_texture = make_texture(engine, colour_pyramid(*colour), true);
-    filament::Texture* normal_texture = make_texture(engine, {*normal}, true);
-    filament::Texture* roughness_texture = make_texture(engine, roughness_chain, true);
-    filament::Texture* authored_roughness = make_texture(
-        engine, {constant_image(surface.roughness, surface.roughness, surface.roughness)}, false);
-    s.textures = {colour_texture, normal_texture, roughness_texture, authored_roughness};
+    out.colour = make_texture(engine, colour_pyramid(*colour), true);
+    out.normal = make_texture(engine, {*normal}, true);
+    out.roughness_chain = make_texture(engine, roughness_chain, true);
+    const bool authored_map = authored.width > 1 || authored.height > 1;
+    out.authored_roughness = make_texture(engine, {authored}, authored_map);
+    out.metallic = make_texture(engine, {metallic}, authored_map);
+    owned.insert(owned.end(), {out.colour, out.normal, out.roughness_chain, out.authored_roughness,
+                               out.metallic});
     // footprint's bump moments, when its material was built.
-    filament::Texture* moments0 = nullptr;
-    filament::Texture* moments1 = nullptr;
-    float2 slope_offset{0, 0};
     if (has_material(MaterialKind::footprint)) {
         Result<BumpMoments> moments =
             make_bump_moments(*normal, surface.normal.empty() ? std::string("flat normal map")
                                                               : surface.normal.label);
         if (!moments) return moments.error();
-        moments0 = make_texture(engine, moments->moments0, true);
-        moments1 = make_texture(engine, moments->moments1, true);
-        slope_offset = {moments->slope_offset[0], moments->slope_offset[1]};
-        s.textures.push_back(moments0);
-        s.textures.push_back(moments1);
+        out.moments0 = make_texture(engine, moments->moments0, true);
+        out.moments1 = make_texture(engine, moments->moments1, true);
+        out.slope_offset = {moments->slope_offset[0], moments->slope_offset[1]};
+        owned.push_back(out.moments0);
+        owned.push_back(out.moments1);
+    }
+    return out;
+}
+
+Status FilamentRenderer::load(const SceneSetup& scene, const MapSource& environment_override) {
+    State& s = *state_;
+    filament::Engine& engine = *s.engine;
+    s.clear_scene();
+    s.camera_setup = scene.camera;
+    if (scene.objects.empty()) return Error{"the scene '" + scene.name + "' has no objects"};
+
+    // Maps, once per surface.
+    std::vector<SurfaceTextures> surfaces;
+    for (const SurfaceDesc& surface : scene.surfaces) {
+        Result<SurfaceTextures> textures = make_surface_textures(surface);
+        if (!textures) return textures.error();
+        surfaces.push_back(*textures);
     }
 
     // Environment: cmgen's IBL and skybox.
@@ -390,28 +439,44 @@ Status FilamentRenderer::load(const BuiltinScene& scene, const MapSource& enviro
     s.scene->setIndirectLight(s.indirect_light);
     s.scene->setSkybox(s.skybox);
 
+    for (const SceneObject& object : scene.objects) {
+        if (object.surface >= surfaces.size())
+            return Error{"the scene '" + scene.name + "' names a surface it does not have"};
+        add_renderable(object.mesh, surfaces[object.surface]);
+    }
+    return {};
+}
+
+// One object: its geometry and one material instance per material.
+void FilamentRenderer::add_renderable(const Mesh& mesh, const SurfaceTextures& textures) {
+    State& s = *state_;
+    filament::Engine& engine = *s.engine;
+    const SurfaceDesc& surface = *textures.desc;
+
     // Geometry: positions, tangent frames (from normals and uvs), uvs.
-    const Mesh& mesh = scene.mesh;
     const std::size_t n = mesh.positions.size();
+    const bool has_uvs = mesh.uvs.size() == n;
     std::vector<float3> positions(n), normals(n);
-    std::vector<float2> uvs(n);
+    std::vector<float2> uvs(n, float2{0, 0});
     for (std::size_t i = 0; i < n; ++i) {
         positions[i] = {mesh.positions[i][0], mesh.positions[i][1], mesh.positions[i][2]};
         normals[i] = {mesh.normals[i][0], mesh.normals[i][1], mesh.normals[i][2]};
-        uvs[i] = {mesh.uvs[i][0], mesh.uvs[i][1]};
+        if (has_uvs) uvs[i] = {mesh.uvs[i][0], mesh.uvs[i][1]};
     }
     std::vector<uint3> triangles(mesh.triangles.size());
     for (std::size_t i = 0; i < triangles.size(); ++i)
         triangles[i] = {mesh.triangles[i][0], mesh.triangles[i][1], mesh.triangles[i][2]};
-    filament::geometry::SurfaceOrientation* orientation =
-        filament::geometry::SurfaceOrientation::Builder()
-            .vertexCount(n)
-            .positions(positions.data())
-            .normals(normals.data())
+    // Without uvs (a glTF primitive without TEXCOORD_0) Lengyel's method has nothing to follow:
+    // any tangent, and every map reads its texel (0, 0).
+    filament::geometry::SurfaceOrientation::Builder orientation_builder;
+    orientation_builder.vertexCount(n).normals(normals.data());
+    if (has_uvs) {
+        orientation_builder.positions(positions.data())
             .uvs(uvs.data())
             .triangleCount(triangles.size())
-            .triangles(triangles.data())
-            .build();
+            .triangles(triangles.data());
+    }
+    filament::geometry::SurfaceOrientation* orientation = orientation_builder.build();
     std::vector<short4> quats(n);
     orientation->getQuats(quats.data(), n);
     delete orientation;
@@ -419,7 +484,6 @@ Status FilamentRenderer::load(const BuiltinScene& scene, const MapSource& enviro
     for (std::size_t i = 0; i < n; ++i) vertices[i] = {positions[i], quats[i], uvs[i]};
     auto* indices = new uint3[triangles.size()];
     std::copy(triangles.begin(), triangles.end(), indices);
-
     State::Renderable r;
     r.vertices = filament::VertexBuffer::Builder()
                      .vertexCount(static_cast<std::uint32_t>(n))
@@ -468,17 +532,19 @@ Status FilamentRenderer::load(const BuiltinScene& scene, const MapSource& enviro
                                  : kind == MaterialKind::footprint ? trilinear
                                                                    : trilinear_aniso;
         if (kind == MaterialKind::footprint) {
-            mi->setParameter("moments0", moments0, trilinear);
-            mi->setParameter("moments1", moments1, trilinear);
-            mi->setParameter("slopeOffset", slope_offset);
+            mi->setParameter("moments0", textures.moments0, trilinear);
+            mi->setParameter("moments1", textures.moments1, trilinear);
+            mi->setParameter("slopeOffset", textures.slope_offset);
             mi->setParameter("maxProbes", kFootprintMaxProbes);
         }
-        mi->setParameter("baseColorMap", colour_texture, sampler);
-        mi->setParameter("normalMap", normal_texture, sampler);
+        mi->setParameter("baseColorMap", textures.colour, sampler);
+        mi->setParameter("normalMap", textures.normal, sampler);
         // footprint's material gets the authored roughness: it widens it from the bump moments.
-        mi->setParameter("roughnessMap",
-                         kind == MaterialKind::filament ? roughness_texture : authored_roughness,
-                         sampler);
+        mi->setParameter(
+            "roughnessMap",
+            kind == MaterialKind::filament ? textures.roughness_chain : textures.authored_roughness,
+            sampler);
+        mi->setParameter("metallicMap", textures.metallic, sampler);
         mi->setParameter("baseColorFactor",
                          float3{surface.base_color_factor[0], surface.base_color_factor[1],
                                 surface.base_color_factor[2]});
@@ -506,7 +572,6 @@ Status FilamentRenderer::load(const BuiltinScene& scene, const MapSource& enviro
         .build(engine, r.entity);
     s.scene->addEntity(r.entity);
     s.renderables.push_back(std::move(r));
-    return {};
 }
 
 namespace {

@@ -55,9 +55,9 @@ class FilamentRenderer {
     // Whether footprint's material was built (the GLSL library was there at build time).
     bool has_material(MaterialKind kind) const;
 
-    // Builds a scene: the mesh, its textures for every material, the environment (cmgen).
-    // `environment`, when not empty, replaces the scene's own.
-    Status load(const BuiltinScene& scene, const MapSource& environment);
+    // Builds a scene: each surface's textures for every material, the environment (cmgen), each
+    // object's geometry. `environment`, when not empty, replaces the scene's own.
+    Status load(const SceneSetup& scene, const MapSource& environment);
 
     // Renders width × height with one material (frames ≥ 1: the first is warm-up, the rest timed).
     Result<RenderedFrame> render(MaterialKind kind, int width, int height, int frames);
@@ -67,7 +67,10 @@ class FilamentRenderer {
 
   private:
     struct State;
+    struct SurfaceTextures;
     explicit FilamentRenderer(std::unique_ptr<State> state);
+    Result<SurfaceTextures> make_surface_textures(const SurfaceDesc& surface);
+    void add_renderable(const Mesh& mesh, const SurfaceTextures& textures);
     std::unique_ptr<State> state_;
 };
 

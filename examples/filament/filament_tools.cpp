@@ -164,17 +164,26 @@ Result<PrefilteredEnvironment> prefilter_environment(const Image& latlong,
 }
 
 Result<std::vector<Image>> prefilter_roughness(const Image& normal_map, const std::string& label,
-                                               float roughness, const fs::path& cache_dir) {
-    const int size = normal_map.width;
-    if (size != normal_map.height || size < 1 || (size & (size - 1)) != 0)
-        return Error{"roughness-prefilter needs a square power-of-two normal map; '" + label +
-                     "' is " + std::to_string(normal_map.width) + "x" +
-                     std::to_string(normal_map.height)};
-    const fs::path dir =
-        cache_dir / ("roughness-" + content_hash(normal_map, std::to_string(roughness)));
+                                               const Image& roughness,
+                                               const std::string& roughness_label,
+                                               const fs::path& cache_dir) {
+    auto square_power_of_two = [](const Image& map) {
+        return map.width == map.height && map.width >= 1 && (map.width & (map.width - 1)) == 0;
+    };
+    auto not_square = [](const Image& map, const std::string& name) {
+        return Error{"roughness-prefilter needs a square power-of-two map; '" + name + "' is " +
+                     std::to_string(map.width) + "x" + std::to_string(map.height)};
+    };
+    if (!square_power_of_two(normal_map)) return not_square(normal_map, label);
+    const bool constant = roughness.width == 1 && roughness.height == 1;
+    if (!constant && !square_power_of_two(roughness)) return not_square(roughness, roughness_label);
+    const float value = roughness.at(0, 0, 0);
+    const std::string key = constant ? std::to_string(value) : "map-" + content_hash(roughness, "");
+    const fs::path dir = cache_dir / ("roughness-" + content_hash(normal_map, key));
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) return Error{"cannot create the cache folder '" + dir.string() + "': " + ec.message()};
+    const int size = std::max(normal_map.width, constant ? 1 : roughness.width);
     int levels = 1;
     while ((size >> (levels - 1)) > 1) ++levels;
     auto level_file = [&dir](int level) {
@@ -183,14 +192,39 @@ Result<std::vector<Image>> prefilter_roughness(const Image& normal_map, const st
     if (!fs::is_regular_file(level_file(levels - 1), ec)) {
         // The tool reads PNG, HDR, PSD or EXR; a 16-bit PNG of the values as stored keeps the map's
         // bytes (its EXR and HDR output are empty files in 1.9, so the levels come back as PNG).
-        const fs::path input = dir / "normal.png";
         ImageSaveOptions save;
         save.encoding = ColorEncoding::linear;
         save.bits = 16;
-        if (Status s = save_image(normal_map, input, save); !s) return s.error();
+        // The tool wants both maps of one size: the smaller one's texels repeated (both are
+        // powers of two), which keeps every level's normal variance and roughness.
+        auto enlarged = [size](const Image& map) {
+            if (map.width == size) return map;
+            const int factor = size / map.width;
+            Image out(size, size, map.channels);
+            for (int y = 0; y < size; ++y)
+                for (int x = 0; x < size; ++x)
+                    for (int c = 0; c < map.channels; ++c)
+                        out.at(x, y, c) = map.at(x / factor, y / factor, c);
+            return out;
+        };
+        const fs::path input = dir / "normal.png";
+        if (Status s = save_image(enlarged(normal_map), input, save); !s) return s.error();
         std::ostringstream command;
-        command << "roughness-prefilter --roughness=" << roughness << " --format=png "
-                << quoted(input) << " " << quoted(dir / "roughness.png");
+        command << "roughness-prefilter";
+        if (constant) {
+            command << " --roughness=" << value;
+        } else {
+            // Grey as RGB: whichever channel the tool reads holds the roughness.
+            const Image map = enlarged(roughness);
+            Image grey(size, size, 3);
+            for (int y = 0; y < size; ++y)
+                for (int x = 0; x < size; ++x)
+                    for (int c = 0; c < 3; ++c) grey.at(x, y, c) = map.at(x, y, 0);
+            const fs::path roughness_input = dir / "roughness_in.png";
+            if (Status s = save_image(grey, roughness_input, save); !s) return s.error();
+            command << " --roughness-map=" << quoted(roughness_input);
+        }
+        command << " --format=png " << quoted(input) << " " << quoted(dir / "roughness.png");
         if (Status s = run_tool(command.str(), dir / "roughness-prefilter.log"); !s)
             return s.error();
     }

@@ -33,11 +33,14 @@ Result<PrefilteredEnvironment> prefilter_environment(const Image& latlong,
                                                      const std::filesystem::path& cache_dir,
                                                      int face_size);
 
-// Filament's roughness MIP chain for a normal map and an authored perceptual roughness, from
-// `roughness-prefilter --roughness=R` (one image per level, level 0 first, 1 channel). The normal
-// map must be square with a power-of-two size (the tool's rule); the error says so, naming it.
+// Filament's roughness MIP chain for a normal map and the authored perceptual roughness, from
+// `roughness-prefilter` (one image per level, level 0 first, 1 channel, as large as the larger
+// input). `roughness` is a 1×1 image (a constant: --roughness=R) or a map (channel 0; a glTF's
+// metallic-roughness G channel times its factor: --roughness-map). Each map must be square with a
+// power-of-two size (the tool's rule); the error says so, naming it (`label`, `roughness_label`).
 Result<std::vector<Image>> prefilter_roughness(const Image& normal_map, const std::string& label,
-                                               float roughness,
+                                               const Image& roughness,
+                                               const std::string& roughness_label,
                                                const std::filesystem::path& cache_dir);
 
 // footprint's MIP pyramid of a colour map (texture/mip_pyramid.h: box downsampling, repeat wrap,

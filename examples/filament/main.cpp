@@ -6,11 +6,12 @@
 //   footprint-filament SCENE --compare [--supersample N] [--size WxH] [-o DIR]
 //   footprint-filament sky --check-orientation [--size WxH] [-o DIR]
 //
-// SCENE is a built-in scene (plate, floor, mirror, sky: scenes.h). --supersample N renders the
-// truth whatever --material says: N× the size with truth.mat (level-0 maps, authored roughness),
-// then the pixel filter below. --compare renders every material and the truth and prints one table
-// row per scene: interior RMSE and mean FLIP against the truth (footprint's metrics module, as
-// `footprint metrics` and `footprint eval` compute them) and the frame time.
+// SCENE is a built-in scene (plate, floor, mirror, sky: scenes.h) or a glTF file (.gltf, .glb:
+// gltf_scene.h; lit by the Venice sky unless --environment names another). --supersample N renders
+// the truth whatever --material says: N× the size with truth.mat (level-0 maps, authored
+// roughness), then the pixel filter below. --compare renders every material and the truth and
+// prints one table row per scene: interior RMSE and mean FLIP against the truth (footprint's
+// metrics module, as `footprint metrics` and `footprint eval` compute them) and the frame time.
 //
 // The pixel filter is footprint's (docs/rendering.md#pixel-filter-and-sampling): a Gaussian of
 // σ = ½ pixel cut at ±1.5 pixels. It is the measure every footprint filter aims at (K/4,
@@ -26,6 +27,7 @@
 #include <vector>
 
 #include "filament_renderer.h"
+#include "gltf_scene.h"
 #include "image/image_io.h"
 #include "metrics/flip.h"
 #include "metrics/image_metrics.h"
@@ -180,7 +182,9 @@ int main(int argc, char** argv) {
                                         materials_dir, cache_dir, assets_dir;
     int supersample = 0, frames = 5;
     bool compare = false, check_orientation = false;
-    app.add_option("scene", scene_arg, "a built-in scene (plate, floor, mirror)")->required();
+    app.add_option("scene", scene_arg,
+                   "a built-in scene (plate, floor, mirror) or a .gltf/.glb file")
+        ->required();
     app.add_option(
         "--environment", environment,
         "equirectangular HDR or EXR in footprint's orientation (default: the scene's own)");
@@ -228,14 +232,20 @@ int main(int argc, char** argv) {
         return fail("--size times --supersample exceeds 16384 pixels, OpenGL's usual limit");
 
     // Inputs first, so that a missing file is named before the engine starts.
+    Result<SceneSetup> scene = Error{""};
     if (is_gltf(scene_arg)) {
         std::error_code ec;
         if (!fs::is_regular_file(scene_arg, ec))
             return fail("cannot read the scene '" + scene_arg + "'");
-        return fail("glTF scenes are not supported yet (" + scene_arg +
-                    "); use plate, floor or mirror");
+        Result<GltfScene> gltf = load_gltf_scene(scene_arg, assets_dir);
+        if (!gltf) return fail(gltf.error().message);
+        if (!gltf->note.empty())
+            std::fprintf(stderr, "footprint-filament: note: '%s': %s\n", scene_arg.c_str(),
+                         gltf->note.c_str());
+        scene = std::move(gltf->scene);
+    } else {
+        scene = make_builtin_scene(scene_arg, assets_dir);
     }
-    Result<BuiltinScene> scene = make_builtin_scene(scene_arg, assets_dir);
     if (!scene) return fail(scene.error().message);
     MapSource environment_source;
     if (!environment.empty()) {
@@ -319,6 +329,11 @@ int main(int argc, char** argv) {
     Result<Image> ids = renderer.render_object_ids(width * supersample, height * supersample);
     if (!ids) return fail(ids.error().message);
     const Image mask = interior_mask(*ids, supersample);
+    double interior = 0;
+    for (float v : mask.pixels) interior += v;
+    // A comment line of the table: how much of the image the figures measure (0: nothing seen).
+    std::printf("# %s: interior %.1f %% of the pixels\n", scene->name.c_str(),
+                100.0 * interior / static_cast<double>(mask.pixels.size()));
     std::error_code ec;
     if (!output.empty()) {
         fs::create_directories(output, ec);
@@ -334,7 +349,7 @@ int main(int argc, char** argv) {
     rendered.reserve(2);
     for (MaterialKind kind : {MaterialKind::footprint, MaterialKind::filament}) {
         if (!renderer.has_material(kind)) {
-            std::printf("%-8s %-10s %10s %10s %10s   (material not built)\n", scene->name.c_str(),
+            std::printf("%-12s %-10s %10s %10s %10s   (material not built)\n", scene->name.c_str(),
                         material_name(kind), "-", "-", "-");
             continue;
         }
@@ -344,7 +359,7 @@ int main(int argc, char** argv) {
         if (!m)
             return fail(std::string(material_name(kind)) +
                         " against the truth: " + m.error().message);
-        std::printf("%-8s %-10s %10.5f %10.5f %10.2f\n", scene->name.c_str(), material_name(kind),
+        std::printf("%-12s %-10s %10.5f %10.5f %10.2f\n", scene->name.c_str(), material_name(kind),
                     m->rmse, m->flip, frame->frame_ms);
         if (!output.empty()) {
             const fs::path file =
@@ -354,7 +369,7 @@ int main(int argc, char** argv) {
         rendered.push_back(std::move(frame->image));
         sheet.push_back(&rendered.back());
     }
-    std::printf("%-8s %-10s %10s %10s %10.2f   (%dx supersampled, one frame)\n",
+    std::printf("%-12s %-10s %10s %10s %10.2f   (%dx supersampled, one frame)\n",
                 scene->name.c_str(), "truth", "0", "0", truth->first_ms, supersample);
     if (!output.empty()) {
         sheet.push_back(&truth->image);

@@ -54,15 +54,17 @@ MapSource generated(Image image, std::string label) {
     return map;
 }
 
-MapSource file(const std::filesystem::path& path) {
+}  // namespace
+
+MapSource file_map(const std::filesystem::path& path) {
     MapSource map;
     map.file = path;
     map.label = path.string();
     return map;
 }
 
-Result<std::filesystem::path> asset(const std::filesystem::path& assets_dir,
-                                    const std::filesystem::path& relative) {
+Result<std::filesystem::path> asset_file(const std::filesystem::path& assets_dir,
+                                         const std::filesystem::path& relative) {
     std::filesystem::path path = assets_dir / relative;
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
@@ -70,56 +72,56 @@ Result<std::filesystem::path> asset(const std::filesystem::path& assets_dir,
     return path;
 }
 
-}  // namespace
-
 const std::vector<std::string>& builtin_scene_names() {
     static const std::vector<std::string> names{"plate", "floor", "mirror", "sky"};
     return names;
 }
 
-Result<BuiltinScene> make_builtin_scene(const std::string& name,
-                                        const std::filesystem::path& assets_dir) {
-    BuiltinScene scene;
+Result<SceneSetup> make_builtin_scene(const std::string& name,
+                                      const std::filesystem::path& assets_dir) {
+    SceneSetup scene;
     scene.name = name;
+    Mesh mesh;
+    SurfaceDesc surface;
     if (name == "plate") {
         Result<std::filesystem::path> normals =
-            asset(assets_dir, "normals/polyhaven_metal_plate_02_nor_gl_1k.jpg");
+            asset_file(assets_dir, "normals/polyhaven_metal_plate_02_nor_gl_1k.jpg");
         if (!normals) return normals.error();
         scene.title = "bumpy mirror plate reflecting a zebra-stripe sky";
-        scene.mesh = make_plane(3, 3, 1.5);  // the 1K map twice across the plate
-        scene.surface.normal = file(*normals);
-        scene.surface.base_color_factor = {0.9f, 0.9f, 0.9f};
-        scene.surface.metallic = 1;
-        scene.surface.roughness = 0.08f;
+        mesh = make_plane(3, 3, 1.5);  // the 1K map twice across the plate
+        surface.normal = file_map(*normals);
+        surface.base_color_factor = {0.9f, 0.9f, 0.9f};
+        surface.metallic = 1;
+        surface.roughness = 0.08f;
         scene.camera.eye = {0, 1.6, 3.2};
         scene.camera.target = {0, 0, -0.2};
         scene.environment = generated(make_zebra_latlong(1024), "generated zebra");
     } else if (name == "floor") {
-        Result<std::filesystem::path> sky = asset(assets_dir, "envmaps/venice_sunset_1k.hdr");
+        Result<std::filesystem::path> sky = asset_file(assets_dir, "envmaps/venice_sunset_1k.hdr");
         if (!sky) return sky.error();
         scene.title = "grazing floor with the secret-writing texture";
-        scene.mesh = make_plane(400, 400, 5);  // uv_scale 0.2 of the demo: one tile per 5 units
-        scene.surface.base_color = generated(make_secret_writing_texture(1024), "secret writing");
-        scene.surface.roughness = 0.6f;
+        mesh = make_plane(400, 400, 5);  // uv_scale 0.2 of the demo: one tile per 5 units
+        surface.base_color = generated(make_secret_writing_texture(1024), "secret writing");
+        surface.roughness = 0.6f;
         scene.camera.eye = {0, 0.5, 0};
         scene.camera.target = {0, 0, 5};
-        scene.environment = file(*sky);
+        scene.environment = file_map(*sky);
     } else if (name == "mirror") {
-        Result<std::filesystem::path> sky = asset(assets_dir, "envmaps/venice_sunset_1k.hdr");
+        Result<std::filesystem::path> sky = asset_file(assets_dir, "envmaps/venice_sunset_1k.hdr");
         if (!sky) return sky.error();
         scene.title = "curved mirror: a mirror cylinder";
-        scene.mesh = make_cylinder(0.75, 2.6, 256);
-        scene.surface.base_color_factor = {0.9f, 0.9f, 0.9f};
-        scene.surface.metallic = 1;
-        scene.surface.roughness = 0.05f;
+        mesh = make_cylinder(0.75, 2.6, 256);
+        surface.base_color_factor = {0.9f, 0.9f, 0.9f};
+        surface.metallic = 1;
+        surface.roughness = 0.05f;
         scene.camera.eye = {0, 0.35, 3.2};
         scene.camera.target = {0, 0, 0};
-        scene.environment = file(*sky);
+        scene.environment = file_map(*sky);
     } else if (name == "sky") {
         scene.title = "orientation check: a flat mirror under a sky coloured by direction";
-        scene.mesh = make_plane(2, 2, 2);
-        scene.surface.metallic = 1;
-        scene.surface.roughness = 0;  // Filament clamps it to its smallest (0.045)
+        mesh = make_plane(2, 2, 2);
+        surface.metallic = 1;
+        surface.roughness = 0;  // Filament clamps it to its smallest (0.045)
         scene.camera.eye = {0.3, 0.8, 2.2};
         scene.camera.target = {0, 0.25, 0};
         scene.camera.fov_y_deg = 70;
@@ -129,6 +131,8 @@ Result<BuiltinScene> make_builtin_scene(const std::string& name,
         for (const std::string& n : builtin_scene_names()) list += (list.empty() ? "" : ", ") + n;
         return Error{"unknown scene '" + name + "' (a .gltf/.glb file or one of " + list + ")"};
     }
+    scene.surfaces.push_back(std::move(surface));
+    scene.objects.push_back({std::move(mesh), 0});
     return scene;
 }
 
@@ -148,7 +152,7 @@ Image make_direction_latlong(int width) {
     return image;
 }
 
-Image expected_direction_colours(const BuiltinScene& scene, int width, int height) {
+Image expected_direction_colours(const SceneSetup& scene, int width, int height) {
     using V = std::array<double, 3>;
     auto sub = [](V a, V b) { return V{a[0] - b[0], a[1] - b[1], a[2] - b[2]}; };
     auto cross = [](V a, V b) {
@@ -166,7 +170,8 @@ Image expected_direction_colours(const BuiltinScene& scene, int width, int heigh
     const double aspect = static_cast<double>(width) / height;
     // The plate: y = 0, |x|, |z| within the mesh's half extent.
     double half = 0;
-    for (const auto& p : scene.mesh.positions) half = std::max(half, std::abs(double(p[0])));
+    for (const auto& p : scene.objects.front().mesh.positions)
+        half = std::max(half, std::abs(double(p[0])));
     std::vector<int> hits(static_cast<std::size_t>(width) * height);
     Image image(width, height, 4);
     for (int y = 0; y < height; ++y) {

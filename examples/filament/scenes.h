@@ -1,5 +1,6 @@
-// examples/filament/scenes.h — the built-in scenes of footprint-filament, as plain data: meshes,
-// maps, camera and environment, before any Filament object exists.
+// examples/filament/scenes.h — footprint-filament's scenes as plain data: meshes, surfaces (maps
+// and factors), camera and environment, before any Filament object exists. The built-in scenes
+// below; a glTF file's (gltf_scene.h) are the same data.
 //
 //   plate   a bumpy mirror plate (demo bump_plate: metal-plate normal map, zebra-stripe sky)
 //   floor   a grazing textured floor (demo secret_writing: the "secret writing" texture on an
@@ -14,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -43,10 +45,19 @@ struct MapSource {
 struct SurfaceDesc {
     MapSource base_color;  // sRGB colour; empty: white
     MapSource normal;      // tangent-space normal map, OpenGL convention; empty: flat
+    // glTF's metallicRoughnessTexture (data, not decoded): G roughness, B metallic, each × its
+    // factor below; empty: the factors alone.
+    MapSource metallic_roughness;
     std::array<float, 3> base_color_factor{1, 1, 1};
     float metallic = 0;
     float roughness = 0.5f;  // authored perceptual roughness
     std::array<float, 2> uv_scale{1, 1};
+};
+
+// One mesh and the index of its surface in SceneSetup::surfaces.
+struct SceneObject {
+    Mesh mesh;
+    std::size_t surface = 0;
 };
 
 struct CameraSetup {
@@ -55,16 +66,24 @@ struct CameraSetup {
     double near = 0.05, far = 1000;
 };
 
-struct BuiltinScene {
-    std::string name;
+struct SceneSetup {
+    std::string name;  // the built-in scene's, or the glTF file's stem: tables and file names
     std::string title;
-    Mesh mesh;
-    SurfaceDesc surface;
+    std::vector<SurfaceDesc> surfaces;  // each one's maps are built once, whatever uses it
+    std::vector<SceneObject> objects;   // at least one
     CameraSetup camera;
     MapSource environment;  // lat-long in footprint's orientation (docs/environment-maps.md)
 };
 
 const std::vector<std::string>& builtin_scene_names();
+
+// `relative` in the repository's assets/ folder `assets_dir`; an error naming the path when it is
+// not there.
+Result<std::filesystem::path> asset_file(const std::filesystem::path& assets_dir,
+                                         const std::filesystem::path& relative);
+
+// A map read from a file.
+MapSource file_map(const std::filesystem::path& path);
 
 // The "sky" scene's environment: a lat-long of `width` × width/2 whose texel (s, t) holds
 // 0.5 + 0.5·d for its direction d by docs/method.md's addressing, inverted here on its own:
@@ -76,10 +95,10 @@ Image make_direction_latlong(int width);
 // the plate; channel 3 is 1 (sky) or 2 (mirror) where the pixel and its 8 neighbours agree on
 // which they see, 0 at the plate's edge. A pinhole camera as Filament's: vertical field of view,
 // lookAt.
-Image expected_direction_colours(const BuiltinScene& scene, int width, int height);
+Image expected_direction_colours(const SceneSetup& scene, int width, int height);
 
 // One of builtin_scene_names(), its files looked up in `assets_dir` (the repository's assets/).
-Result<BuiltinScene> make_builtin_scene(const std::string& name,
-                                        const std::filesystem::path& assets_dir);
+Result<SceneSetup> make_builtin_scene(const std::string& name,
+                                      const std::filesystem::path& assets_dir);
 
 }  // namespace footprint::filament_example

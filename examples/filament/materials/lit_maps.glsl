@@ -1,5 +1,5 @@
 // lit_maps.glsl — the fragment body shared by filament_best.mat and truth.mat: the glTF
-// metallic-roughness inputs read from the three maps. The two materials differ only in the
+// metallic-roughness inputs read from the four maps. The two materials differ only in the
 // samplers and roughness map the program binds and in specularAntiAliasing (see the .mat files),
 // so that the comparison measures filtering, not a different shading model.
 void material(inout MaterialInputs material) {
@@ -8,7 +8,8 @@ void material(inout MaterialInputs material) {
     material.normal = texture(materialParams_normalMap, uv).xyz * 2.0 - 1.0;
     prepareMaterial(material);
     material.baseColor.rgb = materialParams.baseColorFactor * texture(materialParams_baseColorMap, uv).rgb;
-    material.metallic = materialParams.metallic;
+    // glTF's metallic factor × its metallic-roughness map's B channel (the program puts it in R).
+    material.metallic = materialParams.metallic * texture(materialParams_metallicMap, uv).r;
     // Perceptual roughness (glTF's): the map holds it directly.
     material.roughness = materialParams.roughnessFactor * texture(materialParams_roughnessMap, uv).r;
 }

@@ -27,6 +27,7 @@ fail() { echo "FAIL: $1" >&2; exit 1; }
 case_name=$1
 [[ "$case_name" == skip ]] && skip "$2"
 binary=$2 materials=$3 work=$4/$case_name
+gltf=$(cd "$(dirname "$0")" && pwd)/gltf  # the glTF test scenes (gltf/make_quad.py writes them)
 rm -rf "$work" && mkdir -p "$work"
 
 command -v xvfb-run >/dev/null || skip "xvfb-run (package xvfb) is not installed: no X server for Filament's OpenGL backend"
@@ -112,6 +113,45 @@ closer-plate|closer-floor)
     # on llvmpipe"): llvmpipe's 16x anisotropic sampler is an EWA filter, not a GPU's probe rule.
     awk -v a="$fp_rmse" -v b="$fi_rmse" 'BEGIN { exit !(a < b) }' || fail "RMSE: footprint $fp_rmse, filament $fi_rmse"
     awk -v a="$fp_flip" -v b="$fi_flip" 'BEGIN { exit !(a < b) }' || fail "FLIP: footprint $fp_flip, filament $fi_flip"
+    ;;
+gltf-same-pixels-twice)
+    # A glTF scene (tests/gltf/quad.gltf: base colour, normal and metallic-roughness maps, a
+    # camera) with each material: two processes, the same EXR bytes. (The truth goes through the
+    # same scene code; same-pixels-twice checks its determinism on the plate.)
+    for material in filament footprint; do
+        [[ $material == footprint && ! -f "$materials/footprint.filamat" ]] && continue
+        for i in 1 2; do
+            run "$gltf/quad.gltf" --material $material --size 96x54 --frames 2 -o "$work/$material-$i.exr" \
+                >/dev/null || fail "render $material $i failed"
+        done
+        cmp "$work/$material-1.exr" "$work/$material-2.exr" || fail "$material: two renders differ"
+    done
+    ;;
+gltf-missing-texture)
+    # The scene without its texture files: the first one named, exit 1, no abort; a file that is
+    # not glTF is named too.
+    cp "$gltf/quad.gltf" "$work/"
+    expect_error "$work/quad_basecolor.png" "$work/quad.gltf" --material footprint --size 32x18 -o "$work/x.png"
+    cp "$gltf"/quad_basecolor.png "$work/"
+    expect_error "$work/quad_normal.png" "$work/quad.gltf" --material filament --size 32x18 -o "$work/x.png"
+    echo "not json" >"$work/broken.gltf"
+    expect_error "$work/broken.gltf" "$work/broken.gltf" --material filament --size 32x18 -o "$work/x.png"
+    ;;
+gltf-camera-and-framing)
+    # quad.gltf's camera looks straight down at the quad from 1 unit: the quad fills the view, so
+    # every pixel is interior. quad_nocamera.gltf has no camera: the framing view must show the quad
+    # (a part of the pixels interior) and the sky around it (not all of them).
+    interior() { sed -n 's/^# .*: interior \([0-9.]*\) % of the pixels$/\1/p' "$1"; }
+    run "$gltf/quad.gltf" --compare --size 64x36 --supersample 2 --frames 1 >"$work/camera.txt" \
+        || fail "--compare with the camera failed"
+    cat "$work/camera.txt"
+    camera=$(interior "$work/camera.txt")
+    awk -v a="$camera" 'BEGIN { exit !(a == 100) }' || fail "the glTF's camera: interior $camera %, not 100 %"
+    run "$gltf/quad_nocamera.gltf" --compare --size 64x36 --supersample 2 --frames 1 >"$work/framing.txt" \
+        || fail "--compare without a camera failed"
+    cat "$work/framing.txt"
+    framed=$(interior "$work/framing.txt")
+    awk -v a="$framed" 'BEGIN { exit !(a > 2 && a < 100) }' || fail "the framing view: interior $framed %"
     ;;
 *) fail "unknown case '$case_name'" ;;
 esac
