@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "math/sample_patterns.h"
+#include "texture/grazing_views.h"
 #include "texture/procedural.h"
 
 namespace {
@@ -159,93 +160,6 @@ void curves(int pairs) {
 
 // ---- 2. grazing planes ----
 
-constexpr double kR2a = 0.7548776662466927, kR2b = 0.5698402909980532;
-
-struct View {
-    double angle;  // degrees from the normal at the image's centre
-    double scale;  // lattice cells per world unit; the camera is 1 unit above the plane
-    double fov;    // vertical, degrees
-    int width, height;
-};
-
-struct PlaneCamera {
-    Vec3d origin, forward, right, up;
-    double pixel;  // the image plane's pixel size at distance 1
-    int width, height;
-    explicit PlaneCamera(const View& v) : width(v.width), height(v.height) {
-        const double t = v.angle * kPi / 180;
-        origin = {0, 1, 0};
-        forward = {0, -std::cos(t), -std::sin(t)};
-        right = {1, 0, 0};
-        up = cross(right, forward);
-        pixel = 2 * std::tan(0.5 * v.fov * kPi / 180) / v.height;
-    }
-    // The direction through image point (x, y) (pixels, y down), unnormalised.
-    Vec3d direction(double x, double y) const {
-        return forward + (x - 0.5 * width) * pixel * right - (y - 0.5 * height) * pixel * up;
-    }
-    // The plane y = 0's point along (x, y), and its derivatives along x and y; false above the
-    // horizon.
-    bool hit(double x, double y, Vec3d& p, Vec3d& dpdx, Vec3d& dpdy) const {
-        const Vec3d d = direction(x, y);
-        if (!(d.y < -1e-9)) return false;
-        const double t = -origin.y / d.y;
-        p = origin + t * d;
-        const Vec3d ddx = pixel * right, ddy = -pixel * up;
-        dpdx = t * (ddx - (ddx.y / d.y) * d);
-        dpdy = t * (ddy - (ddy.y / d.y) * d);
-        return true;
-    }
-};
-
-std::uint32_t seed_of(int x, int y) {
-    return hash32(static_cast<std::uint32_t>(x) * 9781u + static_cast<std::uint32_t>(y) * 6271u);
-}
-
-// The mean of n point values at R2 points warped to the Gaussian pixel filter (rotated per pixel);
-// false where one of them misses the plane.
-bool supersample(const ProceduralTexture& texture, const PlaneCamera& cam, int x, int y, int n,
-                 std::uint32_t salt, double& out) {
-    const std::uint32_t seed = seed_of(x, y) ^ salt;
-    const double rx = unit_float(hash32(seed)), ry = unit_float(hash32(seed + 1));
-    double sum = 0;
-    for (int k = 0; k < n; ++k) {
-        const double ux = std::fmod(rx + kR2a * (k + 0.5), 1.0);
-        const double uy = std::fmod(ry + kR2b * (k + 0.5), 1.0);
-        Vec3d p, a, b;
-        if (!cam.hit(x + 0.5 + gaussian_pixel_offset(ux), y + 0.5 + gaussian_pixel_offset(uy), p, a,
-                     b))
-            return false;
-        sum += procedural_value(texture, p);
-    }
-    out = sum / n;
-    return true;
-}
-
-struct ViewError {
-    double filtered = 0, sixteen = 0;
-    int pixels = 0;
-};
-
-ViewError view_error(const ProceduralTexture& texture, const View& v, int reference_spp) {
-    const PlaneCamera cam(v);
-    double f2 = 0, s2 = 0;
-    int count = 0;
-    for (int y = 0; y < v.height; ++y)
-        for (int x = 0; x < v.width; ++x) {
-            double truth = 0, sixteen = 0;
-            if (!supersample(texture, cam, x, y, reference_spp, 0x9e3779b9u, truth)) continue;
-            supersample(texture, cam, x, y, 16, 0x85ebca6bu, sixteen);
-            Vec3d p, a, b;
-            cam.hit(x + 0.5, y + 0.5, p, a, b);
-            const double filtered = procedural_value(texture, p, a, b);
-            f2 += (filtered - truth) * (filtered - truth);
-            s2 += (sixteen - truth) * (sixteen - truth);
-            ++count;
-        }
-    return {std::sqrt(f2 / count), std::sqrt(s2 / count), count};
-}
-
 void views(int reference_spp) {
     // 75°–88° at the image's centre, scales from a minor axis of a tenth of a cell to a few.
     const double angles[] = {75, 80, 84, 86, 88};
@@ -273,7 +187,8 @@ void views(int reference_spp) {
                 texture.pattern = pat.pattern;
                 texture.scale = scale;
                 texture.octaves = 6;
-                const ViewError e = view_error(texture, {angle, scale, 20, 48, 32}, reference_spp);
+                const test::GrazingError e =
+                    test::grazing_error(texture, {angle, scale, 20, 48, 32}, reference_spp);
                 const double ratio = e.filtered / e.sixteen;
                 worst_ratio = std::max(worst_ratio, ratio);
                 wins += ratio < 1, ++total;

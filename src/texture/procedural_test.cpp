@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "math/sample_patterns.h"
+#include "texture/grazing_views.h"
 
 namespace footprint {
 namespace {
@@ -174,64 +175,12 @@ TEST(ProceduralTexture, OctaveWeightIsTheAutocorrelationOverTheFootprint) {
     }
 }
 
-// A plane y = 0 seen from a camera 1 unit above it, its view direction at `angle` from the
-// normal at the image's centre, rendered as the renderer does (render/sample_shader.cpp): one
-// band-limited sample at the pixel's centre with the ray's differentials, or point samples at R2
-// points warped to the σ = ½-pixel Gaussian pixel filter, rotated per pixel (the reference mode).
-struct GrazingView {
-    double angle, scale, fov;  // degrees from the normal, lattice cells per unit, vertical degrees
-    int width, height;
-};
-
-struct GrazingCamera {
-    Vec3d forward, right{1, 0, 0}, up;
-    double pixel;
-    int width, height;
-    explicit GrazingCamera(const GrazingView& v) : width(v.width), height(v.height) {
-        const double t = v.angle * 3.14159265358979323846 / 180;
-        forward = {0, -std::cos(t), -std::sin(t)};
-        up = cross(right, forward);
-        pixel = 2 * std::tan(0.5 * v.fov * 3.14159265358979323846 / 180) / v.height;
-    }
-    // The plane's point through image point (x, y) (pixels, y down) and its derivatives along x
-    // and y; false above the horizon.
-    bool hit(double x, double y, Vec3d& p, Vec3d& dpdx, Vec3d& dpdy) const {
-        const Vec3d d =
-            forward + (x - 0.5 * width) * pixel * right - (y - 0.5 * height) * pixel * up;
-        if (!(d.y < -1e-9)) return false;
-        const double t = 1 / -d.y;
-        p = Vec3d{0, 1, 0} + t * d;
-        const Vec3d ddx = pixel * right, ddy = -pixel * up;
-        dpdx = t * (ddx - (ddx.y / d.y) * d);
-        dpdy = t * (ddy - (ddy.y / d.y) * d);
-        return true;
-    }
-};
-
-// The mean of n point samples of the pixel (x, y); false where one misses the plane.
-bool supersampled_value(const ProceduralTexture& texture, const GrazingCamera& camera, int x, int y,
-                        int n, std::uint32_t salt, double& out) {
-    constexpr double kR2a = 0.7548776662466927, kR2b = 0.5698402909980532;
-    const std::uint32_t seed = hash32(static_cast<std::uint32_t>(x * 9781 + y * 6271)) ^ salt;
-    const double rx = unit_float(hash32(seed)), ry = unit_float(hash32(seed + 1));
-    double sum = 0;
-    for (int k = 0; k < n; ++k) {
-        Vec3d p, a, b;
-        if (!camera.hit(x + 0.5 + gaussian_pixel_offset(std::fmod(rx + kR2a * (k + 0.5), 1.0)),
-                        y + 0.5 + gaussian_pixel_offset(std::fmod(ry + kR2b * (k + 0.5), 1.0)), p,
-                        a, b))
-            return false;
-        sum += procedural_value(texture, p);
-    }
-    out = sum / n;
-    return true;
-}
-
 // Grazing planes that nothing was fitted to (the band limit comes from the noise alone:
 // OctaveWeightIsTheAutocorrelationOverTheFootprint; these views are neither the tool's sweep nor
 // the renderer's marble test): the band-limited value at one sample per pixel is closer to the
 // 256-spp reference than 16 point samples are, in RMSE over the pixels whose samples all hit.
 TEST(ProceduralGrazing, OneBandLimitedSampleBeatsSixteenPointSamples) {
+    using test::GrazingError, test::GrazingView;
     constexpr int kReferenceSpp = 256;
     // The band-limited error over the 16-spp one, at most. Measured (docs/method.md): marble at
     // 82° 0.88 (the old weight on the lattice plane: 1.12), at 87° 0.32 (0.43); turbulence
@@ -252,29 +201,13 @@ TEST(ProceduralGrazing, OneBandLimitedSampleBeatsSixteenPointSamples) {
                  {high, ProceduralPattern::noise, "noise", kRatio}};
     for (const auto& c : cases) {
         const GrazingView& view = c.view;
-        const GrazingCamera camera(view);
         ProceduralTexture texture;
         texture.pattern = c.pattern;
         texture.scale = view.scale;
         texture.octaves = 6;
-        double filtered_sq = 0, sixteen_sq = 0;
-        int pixels = 0;
-        for (int y = 0; y < view.height; ++y)
-            for (int x = 0; x < view.width; ++x) {
-                double truth = 0, sixteen = 0;
-                if (!supersampled_value(texture, camera, x, y, kReferenceSpp, 0x9e3779b9u, truth))
-                    continue;
-                supersampled_value(texture, camera, x, y, 16, 0x85ebca6bu, sixteen);
-                Vec3d p, a, b;
-                camera.hit(x + 0.5, y + 0.5, p, a, b);
-                const double filtered = procedural_value(texture, p, a, b);
-                filtered_sq += (filtered - truth) * (filtered - truth);
-                sixteen_sq += (sixteen - truth) * (sixteen - truth);
-                ++pixels;
-            }
-        ASSERT_GT(pixels, view.width * view.height / 2) << c.name;
-        const double filtered = std::sqrt(filtered_sq / pixels),
-                     sixteen = std::sqrt(sixteen_sq / pixels);
+        const GrazingError e = grazing_error(texture, view, kReferenceSpp);
+        ASSERT_GT(e.pixels, view.width * view.height / 2) << c.name;
+        const double filtered = e.filtered, sixteen = e.sixteen;
         std::printf(
             "[ grazing ] %-10s %2.0f deg, scale %g: RMSE against %d spp: band-limited "
             "1 spp %.5f, 16 spp %.5f (ratio %.3f, bound %.2f)\n",
