@@ -55,8 +55,11 @@ test-asan: build-asan
 
 test: test-release test-asan
 
+# history_size=7: ThreadSanitizer keeps the stacks of older accesses, so that a hand-over inside
+# oneTBB (tests/tsan.supp) is matched by its suppression rather than reported with the other
+# access's stack lost ("failed to restore the stack").
 test-tsan: build-tsan
-	cd build-tsan && TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$(CURDIR)/tests/tsan.supp" \
+	cd build-tsan && TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 history_size=7 suppressions=$(CURDIR)/tests/tsan.supp" \
 	    ctest --output-on-failure -j $(JOBS)
 
 SOAK_SCENES ?= 10000

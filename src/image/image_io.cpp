@@ -3,7 +3,6 @@
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
-#include <OpenImageIO/parallel.h>
 #include <fcntl.h>
 #include <openexr.h>
 #include <tiffio.h>
@@ -27,6 +26,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/parallel.h"
 #include "image/color.h"
 #include "image/exr_decode.h"
 #include "image/exr_parts.h"
@@ -611,7 +611,7 @@ ExrRead read_exr_texels(const fs::path& file, int level, const OIIO::ImageSpec& 
     if (bands == 1)
         read_bands(0, 1);
     else
-        OIIO::parallel_for_chunked(0, bands, 0, read_bands);
+        parallel_for<std::int64_t>(0, bands, 1, read_bands);
     for (const std::string& why : band_causes) {
         if (why.empty()) continue;
         cause = "the OpenEXR file is corrupt: " + why;
