@@ -70,7 +70,7 @@ bool ExrChunkDecoder::decode(const exr_chunk_info_t& chunk, std::uint8_t* const*
     why = first_exr_error.empty() ? exr_get_default_error_message(result) : first_exr_error;
     // A pipeline that failed part-way starts afresh for the next chunk.
     exr_decoding_destroy(context_, &pipeline_);
-    pipeline_ = EXR_DECODE_PIPELINE_INITIALIZER;
+    pipeline_ = exr_decode_pipeline_t{};
     started_ = false;
     return false;
 }

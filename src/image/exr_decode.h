@@ -43,7 +43,7 @@ class ExrChunkDecoder {
   private:
     exr_const_context_t context_;
     int part_;
-    exr_decode_pipeline_t pipeline_ = EXR_DECODE_PIPELINE_INITIALIZER;
+    exr_decode_pipeline_t pipeline_{};  // OpenEXR's EXR_DECODE_PIPELINE_INITIALIZER: all zero
     bool started_ = false;
 };
 
