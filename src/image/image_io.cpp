@@ -534,8 +534,8 @@ ExrRead read_exr_texels(const fs::path& file, int level, const OIIO::ImageSpec& 
     std::vector<std::string> band_causes(static_cast<std::size_t>(bands));
 
     // Each task decodes a run of bands with one decoder and one set of buffers, reused from chunk
-    // to chunk: allocated per band, they were mapped and faulted in afresh each time (several
-    // times the system time of OpenImageIO's reader on a 4096² float file).
+    // to chunk, so that a large file's buffers are not mapped and faulted in afresh for each
+    // band.
     const auto read_bands = [&](std::int64_t first, std::int64_t end) {
         std::vector<std::uint8_t> band, planes;
         std::vector<std::uint8_t*> plane_of(channels);

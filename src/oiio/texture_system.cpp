@@ -189,7 +189,7 @@ class Adapter final : public OIIO::TextureSystem {
         // values in range, as many channels as the file has or fewer, no derivatives. They skip
         // the checks and the routing that find footprint assembly for them (oiio_lookups.h).
         if (detail::direct_options(options) && !dresultds && !dresultdt && result &&
-            nchannels > 0 && detail::values_in_range(coords, 6) && !f->udim) {
+            nchannels > 0 && detail::values_in_range(coords, 6)) {
             const detail::Settings now = settings();
             footprint::TextureHandle* entry = direct_entry(*f, thread_info);
             if (entry && nchannels <= f->facts.nchannels && !now.flip_t &&
